@@ -1,0 +1,33 @@
+# Thin wrapper around CMake. `make demo` and `make test` work on a fresh Debian 12 machine:
+# both first install whatever Debian packages are missing.
+BUILD      ?= build
+ASAN_BUILD ?= build-asan
+JOBS       ?= $(shell nproc)
+CMAKE_FLAGS ?=
+
+.PHONY: all build deps demo test test-gpu test-asan clean
+
+all: build
+
+build:
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOB_WERROR=ON $(CMAKE_FLAGS) >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS)
+
+deps:
+	@scripts/install-deps.sh
+
+demo: deps build
+	@scripts/demo.sh $(BUILD)/obscura out
+
+# Every test: the GPU/CLI suite on llvmpipe (or a GPU) in the normal build, and the CPU tests
+# again under AddressSanitizer + UndefinedBehaviorSanitizer.
+test: deps build test-asan
+	@ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+test-asan:
+	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DOB_WERROR=ON -DOB_SANITIZE=ON -DOB_GPU_TESTS=OFF $(CMAKE_FLAGS) >/dev/null
+	@cmake --build $(ASAN_BUILD) -j $(JOBS)
+	@ctest --test-dir $(ASAN_BUILD) --output-on-failure -L cpu -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD)

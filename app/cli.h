@@ -1,0 +1,35 @@
+/* The obscura CLI: shared helpers for the subcommands. */
+#ifndef OB_CLI_H
+#define OB_CLI_H
+
+#include <stdbool.h>
+
+#include "obscura/obscura.h"
+
+/* Exit codes: documented in README.md and `obscura --help`. */
+enum {
+    EXIT_OK = 0,
+    EXIT_RUNTIME = 1, /* GL or shader failure, out of memory */
+    EXIT_USAGE = 2,   /* bad argument: unknown scene/method/parameter/camera, value out of range, bad size */
+    EXIT_INPUT = 3,   /* missing, unreadable or corrupt model or sidecar */
+    EXIT_OUTPUT = 4,  /* an output file could not be written */
+    EXIT_NO_GPU = 5,  /* no OpenGL 4.5 context could be made */
+};
+
+/* Print "obscura: MESSAGE" (one line) and return the exit code for the library's last error. */
+int cli_fail_from_library(void);
+/* The library's last message with an explicit exit code (e.g. EXIT_OUTPUT for a failed write). */
+int cli_fail_library_as(int code);
+/* Print "obscura: MESSAGE" and return code. */
+int cli_fail(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+bool cli_parse_size(const char *text, int *w, int *h);
+bool cli_parse_vec3(const char *text, float out[3]);
+bool cli_parse_float(const char *text, float *out);
+/* Fail early when an output's directory cannot take a new file. */
+bool cli_output_writable(const char *path);
+
+int cmd_render(int argc, char **argv);
+int cmd_list(int argc, char **argv);
+
+#endif

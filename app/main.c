@@ -1,0 +1,143 @@
+/* obscura: render scenes headless with screen-space AO, list methods and scenes. */
+#include <errno.h>
+#include <libgen.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+int cli_fail(int code, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("obscura: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    return code;
+}
+
+int cli_fail_from_library(void)
+{
+    const char *msg = NULL;
+    ob_error err = ob_get_error(&msg);
+    int code = EXIT_RUNTIME;
+    switch (err) {
+    case OB_ERR_INVALID_ARGUMENT:
+    case OB_ERR_OUT_OF_RANGE:
+    case OB_ERR_UNKNOWN_SCENE:
+    case OB_ERR_UNKNOWN_METHOD:
+    case OB_ERR_UNKNOWN_PARAM:
+    case OB_ERR_UNKNOWN_CAMERA:
+    case OB_ERR_BAD_SIZE: code = EXIT_USAGE; break;
+    case OB_ERR_MODEL:
+    case OB_ERR_SIDECAR:
+    case OB_ERR_IO: code = EXIT_INPUT; break; /* reading: writes go through cli_fail_library_as */
+    case OB_ERR_NO_CONTEXT: code = EXIT_NO_GPU; break;
+    default: code = EXIT_RUNTIME; break;
+    }
+    return cli_fail(code, "%s", msg && *msg ? msg : ob_error_name(err));
+}
+
+int cli_fail_library_as(int code)
+{
+    const char *msg = NULL;
+    ob_error err = ob_get_error(&msg);
+    return cli_fail(code, "%s", msg && *msg ? msg : ob_error_name(err));
+}
+
+bool cli_parse_size(const char *text, int *w, int *h)
+{
+    char *end = NULL;
+    errno = 0;
+    long a = strtol(text, &end, 10);
+    if (end == text || (*end != 'x' && *end != 'X') || errno) return false;
+    const char *second = end + 1;
+    long b = strtol(second, &end, 10);
+    if (end == second || *end != '\0' || errno) return false;
+    if (a <= 0 || b <= 0 || a > 1000000 || b > 1000000) return false;
+    *w = (int)a;
+    *h = (int)b;
+    return true;
+}
+
+bool cli_parse_float(const char *text, float *out)
+{
+    char *end = NULL;
+    errno = 0;
+    double d = strtod(text, &end);
+    if (end == text || *end != '\0' || errno || !isfinite(d)) return false;
+    *out = (float)d;
+    return true;
+}
+
+bool cli_parse_vec3(const char *text, float out[3])
+{
+    const char *p = text;
+    for (int i = 0; i < 3; ++i) {
+        char *end = NULL;
+        errno = 0;
+        double d = strtod(p, &end);
+        if (end == p || errno || !isfinite(d)) return false;
+        out[i] = (float)d;
+        if (i < 2) {
+            if (*end != ',') return false;
+            p = end + 1;
+        } else if (*end != '\0') {
+            return false;
+        }
+    }
+    return true;
+}
+
+bool cli_output_writable(const char *path)
+{
+    char *copy = strdup(path);
+    if (!copy) return false;
+    const char *dir = dirname(copy);
+    bool ok = access(dir, W_OK | X_OK) == 0;
+    free(copy);
+    return ok;
+}
+
+static void usage(FILE *f)
+{
+    fputs("usage: obscura <command> [options]\n"
+          "\n"
+          "Screen-space ambient occlusion, rendered headless on the GPU (EGL) or llvmpipe.\n"
+          "\n"
+          "commands:\n"
+          "  render   render a scene with an AO method to PNG (and the AO map to PFM/PNG)\n"
+          "  list     list AO methods with their parameters, and the scenes (--json for JSON)\n"
+          "\n"
+          "Run `obscura <command> --help` for a command's options.\n"
+          "\n"
+          "exit codes: 0 ok, 1 GL/shader/runtime failure, 2 bad argument, 3 missing or corrupt\n"
+          "model/sidecar, 4 output not writable, 5 no OpenGL 4.5 context\n",
+          f);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return EXIT_USAGE;
+    }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
+        usage(stdout);
+        return EXIT_OK;
+    }
+    if (!strcmp(cmd, "--version")) {
+        printf("obscura %s\n", OB_VERSION_STRING);
+        return EXIT_OK;
+    }
+    if (!strcmp(cmd, "render")) return cmd_render(argc - 1, argv + 1);
+    if (!strcmp(cmd, "list")) return cmd_list(argc - 1, argv + 1);
+    fprintf(stderr, "obscura: unknown command '%s' (commands: render, list; see obscura --help)\n", cmd);
+    return EXIT_USAGE;
+}

@@ -1,0 +1,293 @@
+/* obscura render: one scene, one method, one camera -> PNG (+ AO as PFM/PNG). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+static void render_usage(FILE *f)
+{
+    fputs("usage: obscura render [options]\n"
+          "\n"
+          "  --scene NAME|PATH     built-in (cornell, corner, sphere-on-plane), a named scene from\n"
+          "                        scenes/ (bunny, fzk-haus, cornell-obj) or any model Assimp reads\n"
+          "                        (default cornell)\n"
+          "  --sidecar FILE        scene sidecar JSON (default: MODEL.obscura.json beside the model)\n"
+          "  --up y|z              the model's up axis (overrides the sidecar)\n"
+          "  --method NAME         AO method: see `obscura list` (default ssao)\n"
+          "  --set M.P=V           set a method parameter, validated (repeatable), e.g. ssao.radius=0.5\n"
+          "  --blur on|off         the 4x4 box blur after the AO pass (default on)\n"
+          "  --size WxH            image size (default 640x480)\n"
+          "  --camera NAME|INDEX   a camera preset of the scene (default: 'default', which frames the\n"
+          "                        scene's bounds unless its sidecar defines it)\n"
+          "  --eye X,Y,Z --target X,Y,Z [--fov DEG]   an explicit camera (world units, degrees)\n"
+          "  --out FILE.png        the final image (required)\n"
+          "  --ao-out FILE.pfm     the AO map as exact floats (PFM, bottom row first)\n"
+          "  --ao-png FILE.png     the AO map as an 8-bit grey PNG\n"
+          "  --depth-out FILE.pfm  linear view depth; --normal-out FILE.pfm view-space normals\n"
+          "  --frames N            render N frames (timings are medians over them; default 1)\n"
+          "  --timings             print GPU time per pass (GL timestamp queries)\n"
+          "  --gpu auto|hw|sw      hardware EGL device, Mesa llvmpipe, or hardware first (default auto)\n"
+          "  -v                    print the GL renderer and device\n",
+          f);
+}
+
+typedef struct render_opts {
+    const char *scene, *sidecar, *method, *camera, *out, *ao_out, *ao_png, *depth_out, *normal_out;
+    const char *sets[64];
+    int set_count;
+    ob_up_axis up;
+    int width, height, frames;
+    bool blur, timings, verbose, has_eye, has_target, has_fov;
+    float eye[3], target[3], fov;
+    ob_gpu_kind gpu;
+} render_opts;
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static int parse(int argc, char **argv, render_opts *o)
+{
+    *o = (render_opts){.scene = "cornell", .method = "ssao", .width = 640, .height = 480, .frames = 1, .blur = true};
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            render_usage(stdout);
+            return -1;
+        }
+        if (!strcmp(a, "-v")) { o->verbose = true; continue; }
+        if (!strcmp(a, "--timings")) { o->timings = true; continue; }
+        if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura render --help)", a);
+        const char *v = argv[++i];
+        if (!strcmp(a, "--scene")) o->scene = v;
+        else if (!strcmp(a, "--sidecar")) o->sidecar = v;
+        else if (!strcmp(a, "--method")) o->method = v;
+        else if (!strcmp(a, "--camera")) o->camera = v;
+        else if (!strcmp(a, "--out")) o->out = v;
+        else if (!strcmp(a, "--ao-out")) o->ao_out = v;
+        else if (!strcmp(a, "--ao-png")) o->ao_png = v;
+        else if (!strcmp(a, "--depth-out")) o->depth_out = v;
+        else if (!strcmp(a, "--normal-out")) o->normal_out = v;
+        else if (!strcmp(a, "--set")) {
+            if (o->set_count >= 64) return cli_fail(EXIT_USAGE, "--set: too many");
+            o->sets[o->set_count++] = v;
+        } else if (!strcmp(a, "--up")) {
+            if (!strcmp(v, "y")) o->up = OB_UP_Y;
+            else if (!strcmp(v, "z")) o->up = OB_UP_Z;
+            else return cli_fail(EXIT_USAGE, "--up: expected y or z, got '%s'", v);
+        } else if (!strcmp(a, "--blur")) {
+            if (!strcmp(v, "on")) o->blur = true;
+            else if (!strcmp(v, "off")) o->blur = false;
+            else return cli_fail(EXIT_USAGE, "--blur: expected on or off, got '%s'", v);
+        } else if (!strcmp(a, "--size")) {
+            if (!cli_parse_size(v, &o->width, &o->height))
+                return cli_fail(EXIT_USAGE, "--size: expected WIDTHxHEIGHT with positive integers, got '%s'", v);
+        } else if (!strcmp(a, "--frames")) {
+            char *end = NULL;
+            long n = strtol(v, &end, 10);
+            if (end == v || *end || n < 1 || n > 100000) return cli_fail(EXIT_USAGE, "--frames: expected 1..100000, got '%s'", v);
+            o->frames = (int)n;
+        } else if (!strcmp(a, "--eye")) {
+            if (!cli_parse_vec3(v, o->eye)) return cli_fail(EXIT_USAGE, "--eye: expected X,Y,Z (finite numbers), got '%s'", v);
+            o->has_eye = true;
+        } else if (!strcmp(a, "--target")) {
+            if (!cli_parse_vec3(v, o->target)) return cli_fail(EXIT_USAGE, "--target: expected X,Y,Z (finite numbers), got '%s'", v);
+            o->has_target = true;
+        } else if (!strcmp(a, "--fov")) {
+            if (!cli_parse_float(v, &o->fov) || o->fov <= 0.0f || o->fov >= 179.0f)
+                return cli_fail(EXIT_USAGE, "--fov: expected degrees in (0, 179), got '%s'", v);
+            o->has_fov = true;
+        } else if (!strcmp(a, "--gpu")) {
+            if (!strcmp(v, "auto")) o->gpu = OB_GPU_AUTO;
+            else if (!strcmp(v, "hw")) o->gpu = OB_GPU_HW;
+            else if (!strcmp(v, "sw")) o->gpu = OB_GPU_SW;
+            else return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
+        } else {
+            return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura render --help)", a);
+        }
+    }
+    if (!o->out) return cli_fail(EXIT_USAGE, "--out FILE.png is required (see obscura render --help)");
+    if (o->has_eye != o->has_target) return cli_fail(EXIT_USAGE, "--eye and --target go together");
+    if (o->camera && o->has_eye) return cli_fail(EXIT_USAGE, "--camera and --eye/--target exclude each other");
+    if (o->has_eye && o->eye[0] == o->target[0] && o->eye[1] == o->target[1] && o->eye[2] == o->target[2])
+        return cli_fail(EXIT_USAGE, "--eye and --target are the same point");
+    const char *outs[5] = {o->out, o->ao_out, o->ao_png, o->depth_out, o->normal_out};
+    for (int i = 0; i < 5; ++i)
+        if (outs[i] && !cli_output_writable(outs[i]))
+            return cli_fail(EXIT_OUTPUT, "cannot write %s: its directory does not exist or is not writable", outs[i]);
+    return 0;
+}
+
+static void flip_rows_to_grey(const float *ao, int w, int h, unsigned char *out)
+{
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            float v = ao[(size_t)(h - 1 - y) * (size_t)w + (size_t)x];
+            v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
+            out[(size_t)y * (size_t)w + (size_t)x] = (unsigned char)lrintf(v * 255.0f);
+        }
+}
+
+/* Outputs written so far in this run: removed again if a later one fails, so a failed run
+ * leaves no partial set of files behind. */
+static const char *written[8];
+static int written_count;
+
+static ob_error track(ob_error err, const char *path)
+{
+    if (err == OB_OK && written_count < 8) written[written_count++] = path;
+    return err;
+}
+
+static int write_outputs_tracked(ob_renderer *r, const render_opts *o);
+
+static int write_outputs(ob_renderer *r, const render_opts *o)
+{
+    written_count = 0;
+    int code = write_outputs_tracked(r, o);
+    if (code != EXIT_OK)
+        for (int i = 0; i < written_count; ++i) remove(written[i]);
+    return code;
+}
+
+static int write_outputs_tracked(ob_renderer *r, const render_opts *o)
+{
+    size_t px = (size_t)o->width * (size_t)o->height;
+    int code = EXIT_OK;
+    unsigned char *rgba = malloc(px * 4);
+    float *buf = malloc(px * 3 * sizeof(float));
+    unsigned char *grey = malloc(px);
+    if (!rgba || !buf || !grey) {
+        code = cli_fail(EXIT_RUNTIME, "out of memory for %dx%d outputs", o->width, o->height);
+        goto done;
+    }
+    if (ob_read_image(r, OB_IMAGE_FINAL_RGBA8, rgba, px * 4) != OB_OK ||
+        track(ob_write_png(o->out, o->width, o->height, 4, rgba), o->out) != OB_OK) {
+        code = cli_fail_library_as(EXIT_OUTPUT);
+        goto done;
+    }
+    if (o->ao_out || o->ao_png) {
+        if (ob_read_image(r, OB_IMAGE_AO_F32, buf, px * sizeof(float)) != OB_OK) {
+            code = cli_fail_library_as(EXIT_OUTPUT);
+            goto done;
+        }
+        if (o->ao_out && track(ob_write_pfm(o->ao_out, o->width, o->height, 1, buf), o->ao_out) != OB_OK) {
+            code = cli_fail_library_as(EXIT_OUTPUT);
+            goto done;
+        }
+        if (o->ao_png) {
+            flip_rows_to_grey(buf, o->width, o->height, grey);
+            if (track(ob_write_png(o->ao_png, o->width, o->height, 1, grey), o->ao_png) != OB_OK) {
+                code = cli_fail_library_as(EXIT_OUTPUT);
+                goto done;
+            }
+        }
+    }
+    if (o->depth_out && (ob_read_image(r, OB_IMAGE_DEPTH_F32, buf, px * sizeof(float)) != OB_OK ||
+                         track(ob_write_pfm(o->depth_out, o->width, o->height, 1, buf), o->depth_out) != OB_OK)) {
+        code = cli_fail_library_as(EXIT_OUTPUT);
+        goto done;
+    }
+    if (o->normal_out && (ob_read_image(r, OB_IMAGE_NORMAL_F32, buf, px * 3 * sizeof(float)) != OB_OK ||
+                          track(ob_write_pfm(o->normal_out, o->width, o->height, 3, buf), o->normal_out) != OB_OK)) {
+        code = cli_fail_library_as(EXIT_OUTPUT);
+        goto done;
+    }
+done:
+    free(rgba);
+    free(buf);
+    free(grey);
+    return code;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    render_opts o;
+    int code = parse(argc, argv, &o);
+    if (code != 0) return code < 0 ? EXIT_OK : code;
+
+    /* Everything that can be checked without a GPU is checked first. */
+    ob_settings settings;
+    if (ob_settings_init(&settings, o.method) != OB_OK) return cli_fail_from_library();
+    settings.blur = o.blur ? 1 : 0;
+    for (int i = 0; i < o.set_count; ++i)
+        if (ob_settings_set(&settings, o.sets[i]) != OB_OK) return cli_fail_from_library();
+
+    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = o.scene, .sidecar = o.sidecar, .up = o.up});
+    if (!scene) return cli_fail_from_library();
+    ob_camera cam;
+    if (o.has_eye) {
+        memset(&cam, 0, sizeof cam);
+        memcpy(cam.eye, o.eye, sizeof cam.eye);
+        memcpy(cam.target, o.target, sizeof cam.target);
+        cam.fov_y_deg = o.has_fov ? o.fov : 60.0f;
+        snprintf(cam.name, sizeof cam.name, "explicit");
+    } else if (ob_find_camera(scene, o.camera ? o.camera : "default", &cam) != OB_OK) {
+        code = cli_fail_from_library();
+        ob_destroy_scene(scene);
+        return code;
+    } else if (o.has_fov) {
+        cam.fov_y_deg = o.fov;
+    }
+
+    ob_context *ctx = ob_make_context(&(ob_context_desc){.gpu = o.gpu});
+    if (!ctx) {
+        code = cli_fail_from_library();
+        ob_destroy_scene(scene);
+        return code;
+    }
+    if (o.verbose)
+        fprintf(stderr, "obscura: GL_RENDERER %s | GL_VERSION %s | EGL %s\n", ob_query_renderer(ctx),
+                ob_query_gl_version(ctx), ob_query_device(ctx));
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.width, .height = o.height});
+    if (!r || ob_renderer_set_scene(r, scene) != OB_OK) {
+        code = cli_fail_from_library();
+        goto cleanup;
+    }
+    enum { MAX_PASSES = 16 };
+    double *samples = calloc((size_t)o.frames * MAX_PASSES, sizeof(double));
+    const char *names[MAX_PASSES] = {0};
+    int pass_count = 0;
+    if (!samples) {
+        code = cli_fail(EXIT_RUNTIME, "out of memory");
+        goto cleanup;
+    }
+    for (int f = 0; f < o.frames && code == EXIT_OK; ++f) {
+        if (ob_render_frame(r, &cam, &settings) != OB_OK) {
+            code = cli_fail_from_library();
+            break;
+        }
+        ob_pass_timing t[MAX_PASSES];
+        pass_count = ob_query_timings(r, t, MAX_PASSES);
+        for (int p = 0; p < pass_count; ++p) {
+            names[p] = t[p].name;
+            samples[(size_t)p * (size_t)o.frames + (size_t)f] = t[p].ms;
+        }
+    }
+    if (code == EXIT_OK && o.timings) {
+        const ob_scene_stats st = ob_query_scene_stats(scene);
+        printf("%s, %s, %dx%d, %u triangles, %d frame(s), %s\n", ob_query_scene_name(scene),
+               ob_method_at(settings.method)->name, o.width, o.height, st.triangles, o.frames, ob_query_renderer(ctx));
+        printf("%-10s %10s %10s %10s\n", "pass", "median ms", "min ms", "max ms");
+        double total = 0.0;
+        for (int p = 0; p < pass_count; ++p) {
+            double *s = samples + (size_t)p * (size_t)o.frames;
+            qsort(s, (size_t)o.frames, sizeof(double), cmp_double);
+            double med = o.frames % 2 ? s[o.frames / 2] : 0.5 * (s[o.frames / 2 - 1] + s[o.frames / 2]);
+            total += med;
+            printf("%-10s %10.3f %10.3f %10.3f\n", names[p], med, s[0], s[o.frames - 1]);
+        }
+        printf("%-10s %10.3f\n", "total", total);
+    }
+    free(samples);
+    if (code == EXIT_OK) code = write_outputs(r, &o);
+cleanup:
+    ob_destroy_renderer(r);
+    ob_destroy_context(ctx);
+    ob_destroy_scene(scene);
+    return code;
+}

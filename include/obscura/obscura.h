@@ -1,0 +1,264 @@
+/*
+ * obscura.h — public API of libobscura: screen-space ambient occlusion and indirect light.
+ *
+ * The frame flows one way (see ../shared/DESIGN.md): scene -> G-buffer -> AO method -> blur ->
+ * compose -> sRGB. Every screen-space pass is a GLSL compute shader with its own GPU timer.
+ *
+ * Conventions
+ *   - AO value = visibility in [0,1]; 1 = open sky.
+ *   - View space is OpenGL's: the camera looks down -Z; linear depth is the positive distance
+ *     along -Z. Radii are in world units.
+ *   - Desc structs: zero means "default" (sokol style), resolved in one place per object.
+ *
+ * Errors
+ *   Functions that can fail return an ob_error (or NULL) and record a one-line message that
+ *   ob_get_error() returns (glfwGetError style). Library code never aborts or prints.
+ *
+ * Threading
+ *   An ob_context and everything made from it belong to the thread that made the context (its
+ *   GL context is current there). Scenes (ob_load_scene) are CPU-only and may be loaded on any
+ *   thread. The last-error slot is thread-local.
+ */
+#ifndef OBSCURA_H
+#define OBSCURA_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define OB_VERSION_STRING "0.1.0"
+
+/* ---- errors ---------------------------------------------------------------------------------
+ * One X-macro list yields the enum, the names and the default messages. The CLI maps classes of
+ * errors to exit codes (see app/main.c). */
+#define OB_ERRORS(X)                                                                   \
+    X(OB_OK, "no error")                                                               \
+    X(OB_ERR_INVALID_ARGUMENT, "invalid argument")                                     \
+    X(OB_ERR_OUT_OF_RANGE, "value out of range")                                       \
+    X(OB_ERR_UNKNOWN_SCENE, "unknown scene")                                           \
+    X(OB_ERR_UNKNOWN_METHOD, "unknown method")                                         \
+    X(OB_ERR_UNKNOWN_PARAM, "unknown parameter")                                       \
+    X(OB_ERR_UNKNOWN_CAMERA, "unknown camera")                                         \
+    X(OB_ERR_BAD_SIZE, "bad image size")                                               \
+    X(OB_ERR_IO, "file could not be read or written")                                  \
+    X(OB_ERR_MODEL, "model could not be imported")                                     \
+    X(OB_ERR_SIDECAR, "malformed scene sidecar")                                       \
+    X(OB_ERR_NO_CONTEXT, "no OpenGL 4.5 context could be created")                     \
+    X(OB_ERR_SHADER, "shader failed to compile or link")                               \
+    X(OB_ERR_GL, "OpenGL error")                                                       \
+    X(OB_ERR_OUT_OF_MEMORY, "out of memory")
+
+typedef enum ob_error {
+#define OB_X_ENUM(code, msg) code,
+    OB_ERRORS(OB_X_ENUM)
+#undef OB_X_ENUM
+        OB_ERROR_COUNT
+} ob_error;
+
+/* The last error on this thread and its one-line message (never NULL; "" when none). */
+ob_error ob_get_error(const char **message);
+/* The enum's name, e.g. "OB_ERR_UNKNOWN_METHOD". */
+const char *ob_error_name(ob_error err);
+/* Forget the last error. */
+void ob_clear_error(void);
+
+/* ---- GPU context ----------------------------------------------------------------------------
+ * A headless OpenGL 4.5 core context from EGL's device platform (EGL_EXT_platform_device), no X
+ * server. OB_GPU_AUTO prefers a hardware device and falls back to Mesa's software device
+ * (llvmpipe). */
+typedef enum ob_gpu_kind { OB_GPU_AUTO = 0, OB_GPU_HW, OB_GPU_SW } ob_gpu_kind;
+
+typedef struct ob_context_desc {
+    ob_gpu_kind gpu;
+    bool debug; /* GL debug output into the error log (slow) */
+} ob_context_desc;
+
+typedef struct ob_context ob_context;
+
+/* Errors: OB_ERR_NO_CONTEXT (message names every device and step that was tried). */
+ob_context *ob_make_context(const ob_context_desc *desc);
+void ob_destroy_context(ob_context *ctx);
+const char *ob_query_renderer(const ob_context *ctx); /* GL_RENDERER */
+const char *ob_query_gl_version(const ob_context *ctx); /* GL_VERSION */
+const char *ob_query_device(const ob_context *ctx);   /* which EGL device was used */
+bool ob_query_is_software(const ob_context *ctx);
+int ob_query_max_texture_size(const ob_context *ctx);
+
+/* ---- scenes (CPU side) ---------------------------------------------------------------------- */
+typedef enum ob_up_axis { OB_UP_DEFAULT = 0, OB_UP_Y, OB_UP_Z } ob_up_axis;
+
+typedef struct ob_scene_desc {
+    /* A built-in scene ("cornell", "corner", "sphere-on-plane"), a named scene from the data
+     * directory's scenes/NAME.obscura.json (e.g. "bunny", "fzk-haus"), or a model path. */
+    const char *name;
+    const char *sidecar; /* explicit sidecar JSON; default: MODEL.obscura.json beside the model */
+    ob_up_axis up;       /* overrides the sidecar's up axis */
+} ob_scene_desc;
+
+typedef struct ob_camera {
+    float eye[3];
+    float target[3];
+    float up[3];      /* zero = world up (+Y) */
+    float fov_y_deg;  /* zero = 60 */
+    float near_z;     /* zero = derived from the scene bounds */
+    float far_z;      /* zero = derived from the scene bounds */
+    char name[64];
+} ob_camera;
+
+typedef struct ob_light {
+    float direction[3]; /* world space, pointing FROM the surface TOWARD the light */
+    float color[3];
+    float intensity;
+} ob_light;
+
+typedef struct ob_material_info {
+    char name[64];
+    float diffuse[3];
+    bool has_texture;
+} ob_material_info;
+
+typedef struct ob_scene_stats {
+    uint32_t triangles;
+    uint32_t vertices;
+    uint32_t meshes;
+    uint32_t materials;
+    float bounds_min[3];
+    float bounds_max[3];
+} ob_scene_stats;
+
+typedef struct ob_scene ob_scene;
+
+/* Errors: OB_ERR_UNKNOWN_SCENE, OB_ERR_IO, OB_ERR_MODEL, OB_ERR_SIDECAR. */
+ob_scene *ob_load_scene(const ob_scene_desc *desc);
+void ob_destroy_scene(ob_scene *scene);
+ob_scene_stats ob_query_scene_stats(const ob_scene *scene);
+const char *ob_query_scene_name(const ob_scene *scene);
+int ob_query_scene_material_count(const ob_scene *scene);
+ob_material_info ob_query_scene_material(const ob_scene *scene, int index);
+/* Suggested AO radius in world units (sidecar, else 5% of the bounds' diagonal). */
+float ob_query_scene_ao_radius(const ob_scene *scene);
+/* The scene's key light (sidecar, else a default from above-front-left). */
+ob_light ob_query_scene_light(const ob_scene *scene);
+
+/* Camera presets: index 0 is always "default", which frames the scene's bounds. */
+int ob_query_camera_count(const ob_scene *scene);
+ob_camera ob_query_camera(const ob_scene *scene, int index);
+/* By name or decimal index. Errors: OB_ERR_UNKNOWN_CAMERA. */
+ob_error ob_find_camera(const ob_scene *scene, const char *name_or_index, ob_camera *out);
+
+/* Directory holding scenes/ (named scene sidecars): the source tree by default, overridden by the
+ * OBSCURA_DATA_DIR environment variable. */
+const char *ob_data_dir(void);
+
+/* Built-in scenes that need no file. */
+int ob_builtin_scene_count(void);
+const char *ob_builtin_scene_name(int index);
+const char *ob_builtin_scene_description(int index);
+
+/* ---- AO methods: the registry --------------------------------------------------------------- */
+#define OB_MAX_PARAMS 16
+
+typedef enum ob_param_type { OB_PARAM_FLOAT = 0, OB_PARAM_INT, OB_PARAM_BOOL } ob_param_type;
+
+typedef struct ob_param_info {
+    const char *name;
+    ob_param_type type;
+    float min, max, def;
+    const char *unit;
+    const char *help;
+    /* When not set explicitly, the renderer uses the scene's suggested AO radius instead of def
+     * (radii are world units, and scenes come in metres, millimetres or anything else). */
+    bool follows_scene_radius;
+} ob_param_info;
+
+typedef struct ob_method_info {
+    const char *name;
+    const char *description;
+    const char *reference; /* seed / paper section */
+    int param_count;
+    const ob_param_info *params;
+} ob_method_info;
+
+int ob_method_count(void);
+const ob_method_info *ob_method_at(int index);
+/* Index of the method, or -1. */
+int ob_find_method(const char *name);
+
+/* ---- per-frame settings --------------------------------------------------------------------- */
+typedef struct ob_settings {
+    int method;                   /* registry index */
+    float params[OB_MAX_PARAMS];  /* in the method's parameter-table order */
+    uint32_t params_set;          /* bit i: params[i] was set explicitly */
+    int blur;                     /* 0 = off, 1 = the classic 4x4 box blur (default) */
+    ob_light light;               /* zero intensity = the scene's light */
+    float ambient[3];             /* ambient radiance multiplied by AO */
+    float background[3];          /* linear RGB of pixels with no geometry */
+} ob_settings;
+
+/* Defaults for a method (by name; NULL = "ssao"). Errors: OB_ERR_UNKNOWN_METHOD. */
+ob_error ob_settings_init(ob_settings *settings, const char *method);
+/* Set "method.param=value" or "param=value" (the current method) from text, validated against
+ * the method's table. Errors: OB_ERR_UNKNOWN_METHOD, OB_ERR_UNKNOWN_PARAM, OB_ERR_OUT_OF_RANGE,
+ * OB_ERR_INVALID_ARGUMENT (malformed, NaN, not an integer, ...). */
+ob_error ob_settings_set(ob_settings *settings, const char *assignment);
+/* The value of a parameter of the current method by name, or NaN if unknown. */
+float ob_settings_get(const ob_settings *settings, const char *param);
+
+/* ---- renderer ------------------------------------------------------------------------------- */
+typedef struct ob_renderer_desc {
+    int width, height; /* zero = 640x480 */
+} ob_renderer_desc;
+
+typedef struct ob_renderer ob_renderer;
+
+/* Errors: OB_ERR_BAD_SIZE (zero, negative or above GL_MAX_TEXTURE_SIZE), OB_ERR_SHADER. */
+ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc);
+void ob_destroy_renderer(ob_renderer *r);
+/* Upload a scene's meshes and textures. The renderer keeps no pointer to the ob_scene. */
+ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene);
+/* G-buffer -> AO -> blur -> compose, each pass timed. */
+ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *settings);
+
+typedef enum ob_image_kind {
+    OB_IMAGE_FINAL_RGBA8 = 0, /* sRGB, rows top to bottom, 4 bytes per pixel */
+    OB_IMAGE_AO_F32,          /* visibility after the blur, 1 float per pixel, bottom row first */
+    OB_IMAGE_AO_RAW_F32,      /* visibility before the blur */
+    OB_IMAGE_DEPTH_F32,       /* linear view depth (0 where no geometry), bottom row first */
+    OB_IMAGE_NORMAL_F32,      /* view-space normal xyz, 3 floats per pixel, bottom row first */
+} ob_image_kind;
+
+/* Bytes needed for an image of the renderer's size. */
+size_t ob_image_size(const ob_renderer *r, ob_image_kind kind);
+ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst_size);
+
+typedef struct ob_pass_timing {
+    const char *name; /* "gbuffer", "ao", "blur", "compose" */
+    double ms;        /* GPU time between GL_TIMESTAMP queries around the pass */
+} ob_pass_timing;
+
+/* Timings of the last frame; returns the count written (at most max). */
+int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max);
+
+/* Run the current method on an engine's own textures (ob_renderer still owns the scratch
+ * targets): linear_depth is R32F positive view depth, normal is RGBA16F/RGBA32F view-space
+ * normal, both of the renderer's size; ao_out is an R8/R16F/R32F texture of that size. proj is the
+ * column-major projection matrix used to rasterise them. */
+ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex,
+                       const float proj[16], const ob_settings *settings, uint32_t ao_out_tex);
+
+/* ---- image files (written atomically: temporary file, then rename) -------------------------- */
+/* Top-row-first RGBA8 or grey (channels 1, 3 or 4). */
+ob_error ob_write_png(const char *path, int width, int height, int channels, const uint8_t *px);
+/* PFM: bottom-row-first floats, channels 1 (Pf) or 3 (PF), little-endian. */
+ob_error ob_write_pfm(const char *path, int width, int height, int channels, const float *px);
+/* Reads a PFM; *px is malloc'd (free it). */
+ob_error ob_read_pfm(const char *path, int *width, int *height, int *channels, float **px);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* OBSCURA_H */

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# make demo: render the built-in scenes, the bunny and FZK-Haus with and without AO into out/.
+# usage: scripts/demo.sh OBSCURA_BINARY OUT_DIR
+set -euo pipefail
+bin=${1:-build/obscura}
+out=${2:-out}
+size=${DEMO_SIZE:-640x480}
+mkdir -p "$out"
+timings="$out/timings.txt"
+: >"$timings"
+
+# scene camera: every scene with its preferred camera, plus a second view of the real scenes.
+shots=(
+    "cornell front"
+    "corner diagonal"
+    "sphere-on-plane default"
+    "cornell-obj front"
+    "bunny front"
+    "bunny side"
+    "fzk-haus exterior"
+    "fzk-haus bedroom"
+    "fzk-haus stair"
+)
+
+start=$(date +%s)
+"$bin" render --scene corner --size 32x24 --out "$out/.probe.png" -v 2>&1 | sed 's/^obscura: /demo: /'
+rm -f "$out/.probe.png"
+for shot in "${shots[@]}"; do
+    read -r scene camera <<<"$shot"
+    name="${scene}_${camera}"
+    printf 'demo: %-26s' "$name"
+    t0=$(date +%s.%N)
+    # Five frames: the first pays for shader compilation, the medians are of warm frames.
+    "$bin" render --scene "$scene" --camera "$camera" --size "$size" --method ssao --frames 5 --timings \
+        --out "$out/$name.png" --ao-png "$out/${name}_ao.png" --ao-out "$out/${name}_ao.pfm" >>"$timings"
+    "$bin" render --scene "$scene" --camera "$camera" --size "$size" --method none --out "$out/${name}_noao.png"
+    awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf " %5.1f s\n", b - a }'
+    echo >>"$timings"
+done
+echo "demo: $(ls "$out"/*.png | wc -l) images in $out/ in $(( $(date +%s) - start )) s; GPU time per pass in $timings"

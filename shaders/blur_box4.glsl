@@ -1,0 +1,32 @@
+#version 450 core
+/* 4x4 box blur (offsets -2..1) of the raw AO. Pixels without geometry are left out of the
+ * average so the sky's AO = 1 does not brighten silhouettes. */
+#include "blur_params.h"
+
+layout(local_size_x = OB_BLUR_GROUP_X, local_size_y = OB_BLUR_GROUP_Y) in;
+
+layout(binding = 0) uniform sampler2D ao_in;
+layout(binding = 1) uniform sampler2D linear_depth;
+layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+
+void main()
+{
+    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(blur.size.xy);
+    if (any(greaterThanEqual(pix, size))) return;
+    if (texelFetch(linear_depth, pix, 0).r <= 0.0) {
+        imageStore(ao_out, pix, vec4(1.0));
+        return;
+    }
+    float sum = 0.0;
+    float weight = 0.0;
+    for (int y = -2; y < 2; ++y) {
+        for (int x = -2; x < 2; ++x) {
+            ivec2 q = clamp(pix + ivec2(x, y), ivec2(0), size - 1);
+            if (texelFetch(linear_depth, q, 0).r <= 0.0) continue;
+            sum += texelFetch(ao_in, q, 0).r;
+            weight += 1.0;
+        }
+    }
+    imageStore(ao_out, pix, vec4(sum / max(weight, 1.0)));
+}

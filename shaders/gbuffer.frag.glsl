@@ -1,0 +1,25 @@
+#version 450 core
+#include "gbuffer_params.h"
+
+in vec3 v_view_pos;
+in vec3 v_view_normal;
+in vec2 v_uv;
+
+layout(binding = 0) uniform sampler2D diffuse_map; /* sRGB texture: sampled as linear */
+
+layout(location = 0) out float out_linear_depth;   /* R32F, positive distance along -Z */
+layout(location = 1) out vec4 out_normal;          /* RGBA16F, view space, unit length */
+layout(location = 2) out vec4 out_albedo;          /* RGBA16F, linear */
+
+void main()
+{
+    vec3 n = normalize(v_view_normal);
+    /* Two-sided: many models (walls, planes) are single sheets seen from either side, and the
+     * hemisphere must open toward the viewer. */
+    if (!gl_FrontFacing) n = -n;
+    out_linear_depth = -v_view_pos.z;
+    out_normal = vec4(n, 1.0);
+    vec3 albedo = gb.diffuse.rgb;
+    if (gb.diffuse.a > 0.5) albedo *= texture(diffuse_map, v_uv).rgb;
+    out_albedo = vec4(albedo, 1.0);
+}

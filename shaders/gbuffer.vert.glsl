@@ -1,0 +1,20 @@
+#version 450 core
+/* G-buffer: the one raster pass. Everything after it is a compute shader. */
+#include "gbuffer_params.h"
+
+layout(location = 0) in vec3 in_position;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
+
+out vec3 v_view_pos;
+out vec3 v_view_normal;
+out vec2 v_uv;
+
+void main()
+{
+    vec4 vp = gb.view * vec4(in_position, 1.0);
+    v_view_pos = vp.xyz;
+    v_view_normal = mat3(gb.normal_matrix) * in_normal;
+    v_uv = in_uv;
+    gl_Position = gb.proj * vp;
+}

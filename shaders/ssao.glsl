@@ -1,0 +1,70 @@
+#version 450 core
+/* Normal-oriented hemisphere SSAO (StarCraft II; Filion & McNaughton 2008), as in seed 004 §2.3
+ * and §3.3 and seed 000 §3.2:
+ *   - a kernel of N points in the unit hemisphere around +Z, denser toward the centre;
+ *   - rotated per pixel by a 4x4 tiled noise vector through a Gram-Schmidt TBN basis;
+ *   - each point P + r * TBN * k is projected; it is occluded when the depth buffer there is in
+ *     front of it by more than `bias`;
+ *   - a range check smoothstep(0, 1, r / |z_P - z_scene|) fades occluders far outside the radius
+ *     so silhouettes in front do not darken the background (seed 004 §3.3);
+ *   - one addition: the occluder must lie above P's tangent plane (see the loop), which removes
+ *     the grazing-angle self-occlusion that the bias alone only hides;
+ *   - AO = (1 - occluded / N) ^ intensity: visibility in [0,1]. */
+#include "ssao_params.h"
+#include "common.glsl"
+
+layout(local_size_x = OB_SSAO_GROUP_X, local_size_y = OB_SSAO_GROUP_Y) in;
+
+layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
+layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
+layout(binding = 2) uniform sampler2D noise;        /* RG32F 4x4 rotation vectors, repeat */
+layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+
+void main()
+{
+    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(ssao.size.xy);
+    if (any(greaterThanEqual(pix, size))) return;
+
+    float d = texelFetch(linear_depth, pix, 0).r;
+    if (d <= 0.0) {
+        imageStore(ao_out, pix, vec4(1.0));
+        return;
+    }
+    vec3 p = ob_view_position(vec2(pix) + 0.5, d, ssao.size, ssao.proj_info);
+    vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
+    vec3 rnd = vec3(texelFetch(noise, pix % OB_SSAO_NOISE_SIZE, 0).xy, 0.0);
+
+    /* Gram-Schmidt: a tangent from the random vector, orthogonal to n. When the random vector is
+     * (nearly) parallel to n, fall back to any perpendicular axis. */
+    vec3 t = rnd - n * dot(rnd, n);
+    if (dot(t, t) < 1e-6) t = abs(n.x) < 0.9 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0));
+    t = normalize(t);
+    mat3 tbn = mat3(t, cross(n, t), n);
+
+    float radius = ssao.params.x;
+    float bias = ssao.params.y;
+    int count = ssao.counts.x;
+    float occlusion = 0.0;
+    for (int i = 0; i < count; ++i) {
+        vec3 s = p + tbn * ssao.kernel[i].xyz * radius;
+        vec4 clip = ssao.proj * vec4(s, 1.0);
+        if (clip.w <= 0.0) continue;
+        vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+        if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
+        float scene_d = texelFetch(linear_depth, ivec2(uv * ssao.size.xy), 0).r;
+        if (scene_d <= 0.0) continue; /* sky: nothing there */
+        float sample_d = -s.z;
+        float range = smoothstep(0.0, 1.0, radius / abs(d - scene_d));
+        /* The depth buffer is read at the pixel centre, not at the sample's exact position: on a
+         * plane seen at a grazing angle, half a pixel of depth gradient puts the plane itself in
+         * front of samples that hug it, and flat floors go grey. An occluder must also rise above
+         * P's tangent plane (by `bias`); a flat surface then never occludes itself, while a wall
+         * or a crease still does. */
+        vec3 scene_p = ob_view_position(floor(uv * ssao.size.xy) + 0.5, scene_d, ssao.size, ssao.proj_info);
+        bool above = dot(scene_p - p, n) > bias;
+        occlusion += (above && scene_d <= sample_d - bias ? 1.0 : 0.0) * range;
+    }
+    float ao = pow(clamp(1.0 - occlusion / float(max(count, 1)), 0.0, 1.0), ssao.params.z);
+    imageStore(ao_out, pix, vec4(ao));
+}

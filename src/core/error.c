@@ -1,0 +1,67 @@
+#include "core/error.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static _Thread_local ob_error last_error = OB_OK;
+static _Thread_local char last_message[1024] = "";
+
+static const char *const error_names[] = {
+#define OB_X_NAME(code, msg) #code,
+    OB_ERRORS(OB_X_NAME)
+#undef OB_X_NAME
+};
+
+static const char *const error_messages[] = {
+#define OB_X_MSG(code, msg) msg,
+    OB_ERRORS(OB_X_MSG)
+#undef OB_X_MSG
+};
+
+ob_error ob_set_error(ob_error err, const char *fmt, ...)
+{
+    last_error = err;
+    if (fmt) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(last_message, sizeof last_message, fmt, ap);
+        va_end(ap);
+    } else {
+        snprintf(last_message, sizeof last_message, "%s",
+                 (unsigned)err < OB_ERROR_COUNT ? error_messages[err] : "unknown error");
+    }
+    /* One line: the CLI prints it as is. */
+    for (char *c = last_message; *c; ++c) {
+        if (*c == '\n' || *c == '\r') *c = ' ';
+    }
+    return err;
+}
+
+ob_error ob_get_error(const char **message)
+{
+    if (message) *message = last_message;
+    return last_error;
+}
+
+const char *ob_error_name(ob_error err)
+{
+    return (unsigned)err < OB_ERROR_COUNT ? error_names[err] : "OB_ERR_?";
+}
+
+void ob_clear_error(void)
+{
+    last_error = OB_OK;
+    last_message[0] = '\0';
+}
+
+const char *ob_data_dir(void)
+{
+    const char *env = getenv("OBSCURA_DATA_DIR");
+    if (env && *env) return env;
+#ifdef OB_DATA_DIR
+    return OB_DATA_DIR;
+#else
+    return ".";
+#endif
+}

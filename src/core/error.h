@@ -1,0 +1,18 @@
+/* Internal error recording: every public entry point that fails calls ob_set_error once. */
+#ifndef OB_CORE_ERROR_H
+#define OB_CORE_ERROR_H
+
+#include "obscura/obscura.h"
+
+#if defined(__GNUC__)
+#define OB_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define OB_PRINTF(a, b)
+#endif
+
+/* Record err with a printf-style one-line message; returns err so callers can
+ * `return ob_set_error(...)`. */
+ob_error ob_set_error(ob_error err, const char *fmt, ...) OB_PRINTF(2, 3);
+
+
+#endif

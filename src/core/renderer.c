@@ -1,0 +1,321 @@
+/* The frame: G-buffer -> AO method -> blur -> compose, each pass timed (DESIGN.md "The frame").
+ * The CLI, the tests and later the viewer all render through here. */
+#include <cglm/cglm.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "methods/method.h"
+#include "passes/passes.h"
+
+struct ob_renderer {
+    ob_context *ctx;
+    int width, height;
+    ob_gbuffer gbuffer;
+    ob_blur_pass blur;
+    ob_compose_pass compose;
+    GLuint ao_raw, ao, final;
+    void **method_states;      /* lazily made, one per registry entry */
+    bool *method_ready;
+    ob_timer_set timers;
+    bool has_scene;
+    float bounds_min[3], bounds_max[3];
+    float scene_radius;
+    ob_light scene_light;
+    uint32_t frame;
+};
+
+void ob_destroy_renderer(ob_renderer *r)
+{
+    if (!r) return;
+    for (int i = 0; i < ob_method_count(); ++i) {
+        const ob_method_impl *m = ob_method_impl_at(i);
+        if (r->method_ready && r->method_ready[i] && m->destroy) m->destroy(r->method_states[i]);
+    }
+    free(r->method_states);
+    free(r->method_ready);
+    ob_gbuffer_destroy(&r->gbuffer);
+    ob_blur_destroy(&r->blur);
+    ob_compose_destroy(&r->compose);
+    GLuint tex[3] = {r->ao_raw, r->ao, r->final};
+    glDeleteTextures(3, tex);
+    ob_timers_destroy(&r->timers);
+    free(r);
+}
+
+ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
+{
+    if (!ctx) {
+        ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_make_renderer: no context");
+        return NULL;
+    }
+    ob_renderer_desc d = desc ? *desc : (ob_renderer_desc){0};
+    if (d.width == 0 && d.height == 0) {
+        d.width = 640;
+        d.height = 480;
+    }
+    if (d.width <= 0 || d.height <= 0 || d.width > ctx->max_texture_size || d.height > ctx->max_texture_size) {
+        ob_set_error(OB_ERR_BAD_SIZE, "size %dx%d is outside 1..%d (GL_MAX_TEXTURE_SIZE of %s)", d.width, d.height,
+                     ctx->max_texture_size, ctx->renderer);
+        return NULL;
+    }
+    ob_renderer *r = calloc(1, sizeof *r);
+    if (!r) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory making the renderer");
+        return NULL;
+    }
+    r->ctx = ctx;
+    r->width = d.width;
+    r->height = d.height;
+    r->method_states = calloc((size_t)ob_method_count(), sizeof *r->method_states);
+    r->method_ready = calloc((size_t)ob_method_count(), sizeof *r->method_ready);
+    ob_timers_init(&r->timers);
+    if (!r->method_states || !r->method_ready) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory making the renderer");
+        ob_destroy_renderer(r);
+        return NULL;
+    }
+    if (ob_gbuffer_init(&r->gbuffer, d.width, d.height) != OB_OK || ob_blur_init(&r->blur) != OB_OK ||
+        ob_compose_init(&r->compose) != OB_OK) {
+        ob_destroy_renderer(r);
+        return NULL;
+    }
+    r->ao_raw = ob_make_texture_2d(GL_R32F, d.width, d.height);
+    r->ao = ob_make_texture_2d(GL_R32F, d.width, d.height);
+    r->final = ob_make_texture_2d(GL_RGBA8, d.width, d.height);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) {
+        ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making %dx%d targets", e, d.width, d.height);
+        ob_destroy_renderer(r);
+        return NULL;
+    }
+    return r;
+}
+
+ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene)
+{
+    if (!r || !scene) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_renderer_set_scene: NULL argument");
+    ob_error err = ob_gbuffer_set_scene(&r->gbuffer, scene);
+    if (err != OB_OK) return err;
+    memcpy(r->bounds_min, scene->bounds_min, sizeof r->bounds_min);
+    memcpy(r->bounds_max, scene->bounds_max, sizeof r->bounds_max);
+    r->scene_radius = scene->ao_radius;
+    r->scene_light = scene->light;
+    r->has_scene = true;
+    return OB_OK;
+}
+
+static void *method_state(ob_renderer *r, int index, ob_error *err)
+{
+    const ob_method_impl *m = ob_method_impl_at(index);
+    *err = OB_OK;
+    if (!r->method_ready[index]) {
+        if (m->init) {
+            r->method_states[index] = m->init();
+            if (!r->method_states[index]) {
+                *err = ob_get_error(NULL);
+                return NULL;
+            }
+        }
+        r->method_ready[index] = true;
+    }
+    return r->method_states[index];
+}
+
+/* Parameters as the method sees them: explicit values, else defaults, with radii that were not
+ * set following the scene. */
+static void resolve_params(const ob_renderer *r, const ob_settings *s, float *out)
+{
+    const ob_method_info *m = ob_method_at(s->method);
+    for (int i = 0; i < m->param_count; ++i) {
+        out[i] = s->params[i];
+        if (m->params[i].follows_scene_radius && !(s->params_set & (1u << i)) && r->scene_radius > 0.0f)
+            out[i] = r->scene_radius;
+    }
+}
+
+static void proj_info_from(const float *proj, float out[4])
+{
+    /* Column-major: P00 = proj[0], P11 = proj[5], P20 = proj[8], P21 = proj[9]. */
+    out[0] = 1.0f / proj[0];
+    out[1] = 1.0f / proj[5];
+    out[2] = proj[8];
+    out[3] = proj[9];
+}
+
+static ob_error run_method(ob_renderer *r, const ob_ao_inputs *in, const ob_settings *s, GLuint ao_out)
+{
+    ob_error err = OB_OK;
+    void *state = method_state(r, s->method, &err);
+    if (err != OB_OK) return err;
+    float params[OB_MAX_PARAMS] = {0};
+    resolve_params(r, s, params);
+    return ob_method_impl_at(s->method)->run(state, in, params, ao_out);
+}
+
+static ob_error check_settings(const ob_settings *s)
+{
+    if (!s || !ob_method_at(s->method)) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "settings are not initialised");
+    return OB_OK;
+}
+
+ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *s)
+{
+    if (!r || !camera) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_frame: NULL argument");
+    if (check_settings(s) != OB_OK) return ob_get_error(NULL);
+    if (!r->has_scene) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_frame: no scene (ob_renderer_set_scene)");
+
+    ob_camera cam = *camera;
+    if (cam.fov_y_deg <= 0.0f) cam.fov_y_deg = 60.0f;
+    if (cam.up[0] == 0.0f && cam.up[1] == 0.0f && cam.up[2] == 0.0f) cam.up[1] = 1.0f;
+    if (cam.near_z <= 0.0f || cam.far_z <= cam.near_z) ob_camera_fit_planes(&cam, r->bounds_min, r->bounds_max);
+    if (!(cam.fov_y_deg < 179.0f) || !isfinite(cam.eye[0] + cam.eye[1] + cam.eye[2] + cam.target[0] + cam.target[1] + cam.target[2]))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "camera is not finite or its fov is not in (0, 179)");
+
+    mat4 view, proj;
+    glm_lookat(cam.eye, cam.target, cam.up, view);
+    glm_perspective(glm_rad(cam.fov_y_deg), (float)r->width / (float)r->height, cam.near_z, cam.far_z, proj);
+
+    ob_ao_inputs in;
+    memset(&in, 0, sizeof in);
+    in.linear_depth = r->gbuffer.linear_depth;
+    in.view_normal = r->gbuffer.normal;
+    in.width = r->width;
+    in.height = r->height;
+    memcpy(in.proj, proj, sizeof in.proj);
+    proj_info_from(in.proj, in.proj_info);
+    in.frame = r->frame++;
+
+    ob_timers_frame_begin(&r->timers);
+    ob_timer_begin(&r->timers, "gbuffer");
+    ob_gbuffer_run(&r->gbuffer, (const float *)view, (const float *)proj);
+
+    /* Each compute pass reads what the previous one wrote with image stores or as attachments. */
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    ob_timer_begin(&r->timers, "ao");
+    ob_error err = run_method(r, &in, s, r->ao_raw);
+    if (err != OB_OK) {
+        ob_timers_frame_end(&r->timers);
+        return err;
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    GLuint ao = r->ao_raw;
+    if (s->blur) {
+        ob_timer_begin(&r->timers, "blur");
+        ob_blur_run(&r->blur, r->ao_raw, r->gbuffer.linear_depth, r->ao, r->width, r->height);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        ao = r->ao;
+    } else {
+        glCopyImageSubData(r->ao_raw, GL_TEXTURE_2D, 0, 0, 0, 0, r->ao, GL_TEXTURE_2D, 0, 0, 0, 0, r->width,
+                           r->height, 1);
+    }
+
+    ob_light light = s->light.intensity > 0.0f ? s->light : r->scene_light;
+    vec3 dir = {light.direction[0], light.direction[1], light.direction[2]};
+    glm_vec3_normalize(dir);
+    vec3 dir_view;
+    glm_mat4_mulv3(view, dir, 0.0f, dir_view);
+    glm_vec3_normalize(dir_view);
+    ob_compose_inputs ci;
+    memset(&ci, 0, sizeof ci);
+    ci.linear_depth = r->gbuffer.linear_depth;
+    ci.normal = r->gbuffer.normal;
+    ci.albedo = r->gbuffer.albedo;
+    ci.ao = ao;
+    ci.width = r->width;
+    ci.height = r->height;
+    memcpy(ci.proj_info, in.proj_info, sizeof ci.proj_info);
+    memcpy(ci.light_dir_view, dir_view, sizeof ci.light_dir_view);
+    for (int i = 0; i < 3; ++i) {
+        ci.light_radiance[i] = light.color[i] * light.intensity;
+        ci.ambient[i] = s->ambient[i];
+        ci.background[i] = s->background[i];
+    }
+    ob_timer_begin(&r->timers, "compose");
+    ob_compose_run(&r->compose, &ci, r->final);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    ob_timers_frame_end(&r->timers);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x during the frame", e);
+    return OB_OK;
+}
+
+ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex, const float proj[16],
+                       const ob_settings *s, uint32_t ao_out_tex)
+{
+    if (!r || !proj || !linear_depth_tex || !normal_tex || !ao_out_tex)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: NULL argument");
+    if (check_settings(s) != OB_OK) return ob_get_error(NULL);
+    ob_ao_inputs in;
+    memset(&in, 0, sizeof in);
+    in.linear_depth = linear_depth_tex;
+    in.view_normal = normal_tex;
+    in.width = r->width;
+    in.height = r->height;
+    memcpy(in.proj, proj, sizeof in.proj);
+    proj_info_from(in.proj, in.proj_info);
+    in.frame = r->frame++;
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    ob_error err = run_method(r, &in, s, ao_out_tex);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    return err;
+}
+
+size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
+{
+    if (!r) return 0;
+    size_t px = (size_t)r->width * (size_t)r->height;
+    switch (kind) {
+    case OB_IMAGE_FINAL_RGBA8: return px * 4;
+    case OB_IMAGE_AO_F32:
+    case OB_IMAGE_AO_RAW_F32:
+    case OB_IMAGE_DEPTH_F32: return px * sizeof(float);
+    case OB_IMAGE_NORMAL_F32: return px * 3 * sizeof(float);
+    }
+    return 0;
+}
+
+ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst_size)
+{
+    size_t need = ob_image_size(r, kind);
+    if (!r || !dst || need == 0) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_read_image: bad argument");
+    if (dst_size < need) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_read_image: buffer of %zu bytes, need %zu", dst_size, need);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    switch (kind) {
+    case OB_IMAGE_FINAL_RGBA8: {
+        glGetTextureImage(r->final, 0, GL_RGBA, GL_UNSIGNED_BYTE, (GLsizei)need, dst);
+        /* GL's rows run bottom to top; image files want top first. */
+        size_t row = (size_t)r->width * 4;
+        unsigned char *p = dst;
+        unsigned char *tmp = malloc(row);
+        if (!tmp) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading the image");
+        for (int y = 0; y < r->height / 2; ++y) {
+            unsigned char *a = p + (size_t)y * row, *b = p + (size_t)(r->height - 1 - y) * row;
+            memcpy(tmp, a, row);
+            memcpy(a, b, row);
+            memcpy(b, tmp, row);
+        }
+        free(tmp);
+        break;
+    }
+    case OB_IMAGE_AO_F32: glGetTextureImage(r->ao, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_AO_RAW_F32: glGetTextureImage(r->ao_raw, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_DEPTH_F32: glGetTextureImage(r->gbuffer.linear_depth, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_NORMAL_F32: glGetTextureImage(r->gbuffer.normal, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
+    }
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x reading an image", e);
+    return OB_OK;
+}
+
+int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max)
+{
+    if (!r || !out) return 0;
+    int n = r->timers.count < max ? r->timers.count : max;
+    for (int i = 0; i < n; ++i) {
+        out[i].name = r->timers.names[i];
+        out[i].ms = r->timers.ms[i];
+    }
+    return n;
+}

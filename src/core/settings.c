@@ -1,0 +1,119 @@
+/* Per-frame settings: method parameters validated against the registry's tables. */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "core/error.h"
+#include "obscura/obscura.h"
+
+ob_error ob_settings_init(ob_settings *s, const char *method)
+{
+    if (!s) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_settings_init: settings is NULL");
+    const char *name = method ? method : "ssao";
+    int index = ob_find_method(name);
+    if (index < 0) {
+        char list[512] = "";
+        for (int i = 0; i < ob_method_count(); ++i) {
+            size_t n = strlen(list);
+            snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "", ob_method_at(i)->name);
+        }
+        return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown method '%s' (known: %s)", name, list);
+    }
+    memset(s, 0, sizeof *s);
+    s->method = index;
+    const ob_method_info *m = ob_method_at(index);
+    for (int i = 0; i < m->param_count && i < OB_MAX_PARAMS; ++i) s->params[i] = m->params[i].def;
+    s->blur = 1;
+    /* Intensity 0 = take the scene's light (sidecar or default). */
+    s->ambient[0] = s->ambient[1] = s->ambient[2] = 0.45f;
+    /* A pale sky grey: AO halos around silhouettes stay visible against it. */
+    s->background[0] = 0.60f;
+    s->background[1] = 0.66f;
+    s->background[2] = 0.74f;
+    return OB_OK;
+}
+
+static int find_param(const ob_method_info *m, const char *name, size_t len)
+{
+    for (int i = 0; i < m->param_count; ++i)
+        if (strlen(m->params[i].name) == len && strncmp(m->params[i].name, name, len) == 0) return i;
+    return -1;
+}
+
+static ob_error parse_value(const ob_method_info *m, const ob_param_info *p, const char *text, float *out)
+{
+    const char *v = text;
+    while (isspace((unsigned char)*v)) ++v;
+    if (p->type == OB_PARAM_BOOL) {
+        if (!strcasecmp(v, "1") || !strcasecmp(v, "true") || !strcasecmp(v, "on")) { *out = 1.0f; return OB_OK; }
+        if (!strcasecmp(v, "0") || !strcasecmp(v, "false") || !strcasecmp(v, "off")) { *out = 0.0f; return OB_OK; }
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s.%s expects on/off, got '%s'", m->name, p->name, text);
+    }
+    char *end = NULL;
+    errno = 0;
+    double d = strtod(v, &end);
+    if (end == v || *end != '\0' || errno == ERANGE)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s.%s expects a number, got '%s'", m->name, p->name, text);
+    if (!isfinite(d))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s.%s must be finite, got '%s'", m->name, p->name, text);
+    if (p->type == OB_PARAM_INT && d != floor(d))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s.%s expects an integer, got '%s'", m->name, p->name, text);
+    if (d < (double)p->min || d > (double)p->max)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "%s.%s = %s is out of range [%g, %g] (%s)", m->name, p->name,
+                            text, (double)p->min, (double)p->max, p->unit);
+    *out = (float)d;
+    return OB_OK;
+}
+
+ob_error ob_settings_set(ob_settings *s, const char *assignment)
+{
+    if (!s || !assignment) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_settings_set: NULL argument");
+    const ob_method_info *m = ob_method_at(s->method);
+    if (!m) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "settings are not initialised");
+    const char *eq = strchr(assignment, '=');
+    if (!eq || eq == assignment || eq[1] == '\0')
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "expected METHOD.PARAM=VALUE, got '%s'", assignment);
+    const char *key = assignment;
+    size_t key_len = (size_t)(eq - assignment);
+    const char *dot = memchr(key, '.', key_len);
+    if (dot) {
+        size_t mlen = (size_t)(dot - key);
+        int mi = -1;
+        for (int i = 0; i < ob_method_count(); ++i)
+            if (strlen(ob_method_at(i)->name) == mlen && strncmp(ob_method_at(i)->name, key, mlen) == 0) mi = i;
+        if (mi < 0) return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown method '%.*s' in '%s'", (int)mlen, key, assignment);
+        if (mi != s->method)
+            return ob_set_error(OB_ERR_INVALID_ARGUMENT, "'%s' sets a parameter of %s, but the method is %s",
+                                assignment, ob_method_at(mi)->name, m->name);
+        key = dot + 1;
+        key_len -= mlen + 1;
+    }
+    int pi = find_param(m, key, key_len);
+    if (pi < 0) {
+        char list[512] = "";
+        for (int i = 0; i < m->param_count; ++i) {
+            size_t n = strlen(list);
+            snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "", m->params[i].name);
+        }
+        return ob_set_error(OB_ERR_UNKNOWN_PARAM, "method %s has no parameter '%.*s' (it has: %s)", m->name,
+                            (int)key_len, key, m->param_count ? list : "none");
+    }
+    float value = 0.0f;
+    ob_error err = parse_value(m, &m->params[pi], eq + 1, &value);
+    if (err != OB_OK) return err;
+    s->params[pi] = value;
+    s->params_set |= 1u << pi;
+    return OB_OK;
+}
+
+float ob_settings_get(const ob_settings *s, const char *param)
+{
+    const ob_method_info *m = s ? ob_method_at(s->method) : NULL;
+    if (!m || !param) return NAN;
+    int pi = find_param(m, param, strlen(param));
+    return pi < 0 ? NAN : s->params[pi];
+}

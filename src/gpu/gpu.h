@@ -1,0 +1,56 @@
+/* Internal GPU layer: the context, programs built from the embedded shaders, timers. */
+#ifndef OB_GPU_H
+#define OB_GPU_H
+
+#include <epoxy/gl.h>
+
+#include "obscura/obscura.h"
+
+struct ob_context {
+    void *egl_display;  /* EGLDisplay */
+    void *egl_context;  /* EGLContext */
+    bool software;
+    int max_texture_size;
+    char renderer[256];
+    char version[256];
+    char device[256];
+};
+
+/* ---- programs (program.c) ------------------------------------------------------------------ */
+/* Build a compute program from an embedded shader (e.g. "ssao.glsl"). `defines` is inserted
+ * after #version (may be NULL). Errors: OB_ERR_SHADER with "shaders/FILE:LINE: driver message". */
+GLuint ob_make_compute_program(const char *name, const char *defines);
+/* Build a raster program from a vertex and a fragment shader. */
+GLuint ob_make_raster_program(const char *vert_name, const char *frag_name, const char *defines);
+/* The resolved (includes expanded) source of an embedded shader, or NULL. */
+const char *ob_shader_source(const char *name);
+/* Map a driver info log's "SOURCE:LINE(COL)" / "SOURCE(LINE)" locations to "shaders/FILE:LINE";
+ * writes one line into out. Exposed for the unit test. */
+void ob_format_shader_log(const char *log, const char *fallback_name, char *out, size_t out_len);
+
+/* Dispatch enough groups of size (gx, gy) to cover w x h. */
+void ob_dispatch_2d(int w, int h, int gx, int gy);
+
+/* ---- textures (texture.c) ------------------------------------------------------------------- */
+GLuint ob_make_texture_2d(GLenum internal_format, int w, int h);
+
+/* ---- timers (timer.c) ----------------------------------------------------------------------- */
+#define OB_MAX_TIMED_PASSES 16
+
+typedef struct ob_timer_set {
+    GLuint queries[2 * OB_MAX_TIMED_PASSES]; /* a GL_TIMESTAMP before and after each pass */
+    const char *names[OB_MAX_TIMED_PASSES];
+    double ms[OB_MAX_TIMED_PASSES];
+    int count;       /* passes begun this frame */
+    int open;        /* index of the running query, -1 if none */
+} ob_timer_set;
+
+void ob_timers_init(ob_timer_set *t);
+void ob_timers_destroy(ob_timer_set *t);
+void ob_timers_frame_begin(ob_timer_set *t);
+void ob_timer_begin(ob_timer_set *t, const char *name); /* name must outlive the frame */
+void ob_timer_end(ob_timer_set *t);
+/* Wait for the queries and fill ms[]. */
+void ob_timers_frame_end(ob_timer_set *t);
+
+#endif

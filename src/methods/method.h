@@ -1,0 +1,31 @@
+/* The internal side of the method registry: what one AO/GI method provides. Adding a method is
+ * one .c (defining an ob_method_impl), one shader and one line in registry.c. */
+#ifndef OB_METHOD_H
+#define OB_METHOD_H
+
+#include "gpu/gpu.h"
+#include "obscura/obscura.h"
+
+/* What every method gets each frame: textures of the renderer's size and the camera. */
+typedef struct ob_ao_inputs {
+    GLuint linear_depth;  /* R32F, positive view depth, 0 = no geometry */
+    GLuint view_normal;   /* RGBA16F, view-space unit normal */
+    int width, height;
+    float proj[16];       /* column-major projection */
+    float proj_info[4];   /* 1/P00, 1/P11, P20, P21 */
+    uint32_t frame;       /* frame counter, for methods that vary noise over time */
+} ob_ao_inputs;
+
+typedef struct ob_method_impl {
+    ob_method_info info;
+    /* Make programs and static resources; return NULL with ob_set_error on failure.
+     * May be NULL for methods that need nothing. */
+    void *(*init)(void);
+    /* Write visibility to ao_out (R32F, inputs' size). params are in table order, validated. */
+    ob_error (*run)(void *state, const ob_ao_inputs *in, const float *params, GLuint ao_out);
+    void (*destroy)(void *state);
+} ob_method_impl;
+
+const ob_method_impl *ob_method_impl_at(int index);
+
+#endif

@@ -1,0 +1,33 @@
+/* The table of AO/GI methods. One line per method. */
+#include <string.h>
+
+#include "methods/method.h"
+
+extern const ob_method_impl ob_method_none;
+extern const ob_method_impl ob_method_ssao;
+
+static const ob_method_impl *const methods[] = {
+    &ob_method_none,
+    &ob_method_ssao,
+};
+
+int ob_method_count(void) { return (int)(sizeof methods / sizeof methods[0]); }
+
+const ob_method_impl *ob_method_impl_at(int index)
+{
+    return index >= 0 && index < ob_method_count() ? methods[index] : NULL;
+}
+
+const ob_method_info *ob_method_at(int index)
+{
+    const ob_method_impl *m = ob_method_impl_at(index);
+    return m ? &m->info : NULL;
+}
+
+int ob_find_method(const char *name)
+{
+    if (!name) return -1;
+    for (int i = 0; i < ob_method_count(); ++i)
+        if (strcmp(methods[i]->info.name, name) == 0) return i;
+    return -1;
+}

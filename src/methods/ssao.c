@@ -1,0 +1,113 @@
+/* `ssao`: normal-oriented hemisphere SSAO (seed 004 §2.3 and §3.3; seed 000 §3.2).
+ * The reference the other methods are compared with. Shader: shaders/ssao.glsl. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "methods/method.h"
+#include "sampling/sampling.h"
+#include "ssao_params.h"
+
+enum { P_RADIUS, P_BIAS, P_INTENSITY, P_SAMPLES, P_COUNT };
+
+static const ob_param_info ssao_params[P_COUNT] = {
+    [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
+                  "hemisphere radius; default: the scene's suggested radius", true},
+    /* Relative to the radius so one default works in metres and millimetres alike; 0.02 removes
+     * the acne of R32F depth on llvmpipe and GPUs without visibly thinning contact shadows. */
+    [P_BIAS] = {"bias", OB_PARAM_FLOAT, 0.0f, 0.5f, 0.02f, "x radius",
+                "depth bias against self-occlusion, as a fraction of the radius", false},
+    [P_INTENSITY] = {"intensity", OB_PARAM_FLOAT, 0.0f, 8.0f, 1.0f, "exponent",
+                     "AO = visibility^intensity: > 1 darkens, < 1 lightens", false},
+    /* 16 taps: the 4x4 noise x 16 kernel points gives 256 distinct directions per tile. */
+    [P_SAMPLES] = {"samples", OB_PARAM_INT, 1.0f, (float)OB_SSAO_MAX_SAMPLES, 16.0f, "count",
+                   "kernel points per pixel", false},
+};
+
+/* Fixed seeds: the same command gives the same AO bytes. */
+#define KERNEL_SEED 0x55A0u
+#define NOISE_SEED 0x4E01u
+
+typedef struct ssao_state {
+    GLuint program;
+    GLuint ubo;
+    GLuint noise;
+    int kernel_count; /* samples the cached kernel was built for */
+    ob_ssao_constants constants;
+} ssao_state;
+
+static void ssao_destroy(void *p)
+{
+    ssao_state *s = p;
+    if (!s) return;
+    glDeleteProgram(s->program);
+    glDeleteBuffers(1, &s->ubo);
+    glDeleteTextures(1, &s->noise);
+    free(s);
+}
+
+static void *ssao_init(void)
+{
+    ssao_state *s = calloc(1, sizeof *s);
+    if (!s) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (ssao)");
+        return NULL;
+    }
+    s->program = ob_make_compute_program("ssao.glsl", NULL);
+    if (!s->program) {
+        free(s);
+        return NULL;
+    }
+    glCreateBuffers(1, &s->ubo);
+    glNamedBufferStorage(s->ubo, sizeof(ob_ssao_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
+    float noise[16 * 2] = {0};
+    ob_rotation_noise_4x4(noise, NOISE_SEED);
+    s->noise = ob_make_texture_2d(GL_RG32F, OB_SSAO_NOISE_SIZE, OB_SSAO_NOISE_SIZE);
+    glTextureSubImage2D(s->noise, 0, 0, 0, OB_SSAO_NOISE_SIZE, OB_SSAO_NOISE_SIZE, GL_RG, GL_FLOAT, noise);
+    return s;
+}
+
+static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, GLuint ao_out)
+{
+    ssao_state *s = p;
+    ob_ssao_constants *c = &s->constants;
+    int count = (int)params[P_SAMPLES];
+    if (count != s->kernel_count) {
+        ob_hemisphere_kernel(&c->kernel[0][0], count, KERNEL_SEED);
+        s->kernel_count = count;
+    }
+    memcpy(c->proj, in->proj, sizeof c->proj);
+    memcpy(c->proj_info, in->proj_info, sizeof c->proj_info);
+    c->size[0] = (float)in->width;
+    c->size[1] = (float)in->height;
+    c->size[2] = 1.0f / (float)in->width;
+    c->size[3] = 1.0f / (float)in->height;
+    c->params[0] = params[P_RADIUS];
+    c->params[1] = params[P_BIAS] * params[P_RADIUS];
+    c->params[2] = params[P_INTENSITY];
+    c->params[3] = 0.0f;
+    c->counts[0] = count;
+    /* Upload only the kernel entries in use. */
+    size_t used = offsetof(ob_ssao_constants, kernel) + (size_t)count * sizeof c->kernel[0];
+    glNamedBufferSubData(s->ubo, 0, (GLsizeiptr)used, c);
+
+    glUseProgram(s->program);
+    glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_PASS, s->ubo);
+    glBindTextureUnit(0, in->linear_depth);
+    glBindTextureUnit(1, in->view_normal);
+    glBindTextureUnit(2, s->noise);
+    glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    ob_dispatch_2d(in->width, in->height, OB_SSAO_GROUP_X, OB_SSAO_GROUP_Y);
+    return OB_OK;
+}
+
+const ob_method_impl ob_method_ssao = {
+    .info = {.name = "ssao",
+             .description = "normal-oriented hemisphere SSAO with range check (StarCraft II)",
+             .reference = "seed 004 §2.3, §3.3; seed 000 §3.2",
+             .param_count = P_COUNT,
+             .params = ssao_params},
+    .init = ssao_init,
+    .run = ssao_run,
+    .destroy = ssao_destroy,
+};

@@ -1,0 +1,170 @@
+/* G-buffer: hardware depth, linear view depth (R32F), view-space normal, albedo.
+ * The only raster pass: every pass after it is a compute shader. */
+#include <cglm/cglm.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "gbuffer_params.h"
+#include "passes/passes.h"
+
+ob_error ob_gbuffer_init(ob_gbuffer *g, int width, int height)
+{
+    memset(g, 0, sizeof *g);
+    g->width = width;
+    g->height = height;
+    g->program = ob_make_raster_program("gbuffer.vert.glsl", "gbuffer.frag.glsl", NULL);
+    if (!g->program) return ob_get_error(NULL);
+    glCreateBuffers(1, &g->ubo);
+    glNamedBufferStorage(g->ubo, sizeof(ob_gbuffer_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
+    g->depth = ob_make_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
+    g->linear_depth = ob_make_texture_2d(GL_R32F, width, height);
+    g->normal = ob_make_texture_2d(GL_RGBA16F, width, height);
+    g->albedo = ob_make_texture_2d(GL_RGBA16F, width, height);
+    glCreateFramebuffers(1, &g->fbo);
+    glNamedFramebufferTexture(g->fbo, GL_DEPTH_ATTACHMENT, g->depth, 0);
+    glNamedFramebufferTexture(g->fbo, GL_COLOR_ATTACHMENT0, g->linear_depth, 0);
+    glNamedFramebufferTexture(g->fbo, GL_COLOR_ATTACHMENT1, g->normal, 0);
+    glNamedFramebufferTexture(g->fbo, GL_COLOR_ATTACHMENT2, g->albedo, 0);
+    const GLenum draw[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glNamedFramebufferDrawBuffers(g->fbo, 3, draw);
+    GLenum status = glCheckNamedFramebufferStatus(g->fbo, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        return ob_set_error(OB_ERR_GL, "G-buffer framebuffer incomplete (0x%x) at %dx%d", status, width, height);
+    return OB_OK;
+}
+
+static void release_scene(ob_gbuffer *g)
+{
+    for (int i = 0; i < g->mesh_count; ++i) {
+        glDeleteVertexArrays(1, &g->meshes[i].vao);
+        glDeleteBuffers(4, g->meshes[i].buffers);
+    }
+    if (g->textures) glDeleteTextures(g->material_count, g->textures);
+    free(g->meshes);
+    free(g->textures);
+    free(g->diffuse);
+    g->meshes = NULL;
+    g->textures = NULL;
+    g->diffuse = NULL;
+    g->mesh_count = g->material_count = 0;
+}
+
+ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene)
+{
+    release_scene(g);
+    g->meshes = calloc((size_t)scene->mesh_count + 1, sizeof *g->meshes);
+    g->textures = calloc((size_t)scene->material_count + 1, sizeof *g->textures);
+    g->diffuse = calloc((size_t)scene->material_count + 1, sizeof *g->diffuse);
+    if (!g->meshes || !g->textures || !g->diffuse) {
+        release_scene(g);
+        return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory uploading the scene");
+    }
+    g->material_count = scene->material_count;
+    for (int i = 0; i < scene->material_count; ++i) {
+        const ob_material *m = &scene->materials[i];
+        memcpy(g->diffuse[i], m->diffuse, sizeof g->diffuse[i]);
+        if (!m->texture) continue;
+        GLuint tex = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+        int levels = 1;
+        for (int s = m->tex_width > m->tex_height ? m->tex_width : m->tex_height; s > 1; s >>= 1) ++levels;
+        /* sRGB storage: the sampler returns linear albedo. */
+        glTextureStorage2D(tex, levels, GL_SRGB8_ALPHA8, m->tex_width, m->tex_height);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTextureSubImage2D(tex, 0, 0, 0, m->tex_width, m->tex_height, GL_RGBA, GL_UNSIGNED_BYTE, m->texture);
+        glGenerateTextureMipmap(tex);
+        glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        g->textures[i] = tex;
+    }
+    for (int i = 0; i < scene->mesh_count; ++i) {
+        const ob_mesh *src = &scene->meshes[i];
+        ob_gpu_mesh *dst = &g->meshes[g->mesh_count++];
+        dst->index_count = (GLsizei)src->index_count;
+        dst->material = src->material;
+        glCreateVertexArrays(1, &dst->vao);
+        glCreateBuffers(4, dst->buffers);
+        size_t vn = (size_t)src->vertex_count;
+        glNamedBufferStorage(dst->buffers[0], (GLsizeiptr)(vn * 3 * sizeof(float)), src->positions, 0);
+        glNamedBufferStorage(dst->buffers[1], (GLsizeiptr)(vn * 3 * sizeof(float)), src->normals, 0);
+        if (src->uvs) glNamedBufferStorage(dst->buffers[2], (GLsizeiptr)(vn * 2 * sizeof(float)), src->uvs, 0);
+        glNamedBufferStorage(dst->buffers[3], (GLsizeiptr)(src->index_count * sizeof(uint32_t)), src->indices, 0);
+        glVertexArrayVertexBuffer(dst->vao, 0, dst->buffers[0], 0, 3 * sizeof(float));
+        glVertexArrayVertexBuffer(dst->vao, 1, dst->buffers[1], 0, 3 * sizeof(float));
+        glVertexArrayElementBuffer(dst->vao, dst->buffers[3]);
+        for (GLuint a = 0; a < 2; ++a) {
+            glEnableVertexArrayAttrib(dst->vao, a);
+            glVertexArrayAttribFormat(dst->vao, a, 3, GL_FLOAT, GL_FALSE, 0);
+            glVertexArrayAttribBinding(dst->vao, a, a);
+        }
+        if (src->uvs) {
+            glVertexArrayVertexBuffer(dst->vao, 2, dst->buffers[2], 0, 2 * sizeof(float));
+            glEnableVertexArrayAttrib(dst->vao, 2);
+            glVertexArrayAttribFormat(dst->vao, 2, 2, GL_FLOAT, GL_FALSE, 0);
+            glVertexArrayAttribBinding(dst->vao, 2, 2);
+        } /* else: a disabled attribute reads (0, 0, 0, 1), and no texture is bound anyway */
+    }
+    return OB_OK;
+}
+
+void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj)
+{
+    ob_gbuffer_constants c;
+    memset(&c, 0, sizeof c);
+    memcpy(c.view, view, sizeof c.view);
+    memcpy(c.proj, proj, sizeof c.proj);
+    /* Normals go to view space with the inverse-transpose of the view's 3x3 (a rigid view makes
+     * it equal to the 3x3 itself, but a scaled camera does not). */
+    mat4 v4, nm;
+    memcpy(v4, view, sizeof v4);
+    glm_mat4_inv(v4, nm);
+    glm_mat4_transpose(nm);
+    memcpy(c.normal_matrix, nm, sizeof c.normal_matrix);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
+    glViewport(0, 0, g->width, g->height);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const float one = 1.0f;
+    glClearNamedFramebufferfv(g->fbo, GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(g->fbo, GL_COLOR, 1, zero);
+    glClearNamedFramebufferfv(g->fbo, GL_COLOR, 2, zero);
+    glClearNamedFramebufferfv(g->fbo, GL_DEPTH, 0, &one);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_CULL_FACE); /* two-sided: the fragment shader flips back-facing normals */
+    glDisable(GL_BLEND);
+    glUseProgram(g->program);
+    glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_PASS, g->ubo);
+    int last_material = -2;
+    for (int i = 0; i < g->mesh_count; ++i) {
+        const ob_gpu_mesh *m = &g->meshes[i];
+        if (m->material != last_material) {
+            int mi = m->material >= 0 && m->material < g->material_count ? m->material : -1;
+            c.diffuse[0] = mi >= 0 ? g->diffuse[mi][0] : 0.8f;
+            c.diffuse[1] = mi >= 0 ? g->diffuse[mi][1] : 0.8f;
+            c.diffuse[2] = mi >= 0 ? g->diffuse[mi][2] : 0.8f;
+            c.diffuse[3] = mi >= 0 && g->textures[mi] ? 1.0f : 0.0f;
+            glNamedBufferSubData(g->ubo, 0, sizeof c, &c);
+            glBindTextureUnit(0, mi >= 0 ? g->textures[mi] : 0);
+            last_material = m->material;
+        }
+        glBindVertexArray(m->vao);
+        glDrawElements(GL_TRIANGLES, m->index_count, GL_UNSIGNED_INT, NULL);
+    }
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void ob_gbuffer_destroy(ob_gbuffer *g)
+{
+    release_scene(g);
+    glDeleteProgram(g->program);
+    glDeleteBuffers(1, &g->ubo);
+    glDeleteFramebuffers(1, &g->fbo);
+    GLuint tex[4] = {g->depth, g->linear_depth, g->normal, g->albedo};
+    glDeleteTextures(4, tex);
+    memset(g, 0, sizeof *g);
+}

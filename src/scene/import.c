@@ -1,0 +1,590 @@
+/* Model import through Assimp's C API: every format Assimp reads becomes one ob_mesh per
+ * material, in world space, Y-up, with unit normals and counter-clockwise front faces.
+ *
+ * The node tree is walked here instead of using aiProcess_PreTransformVertices, because glTF
+ * cameras hang off nodes and need the same world transforms as the meshes; walking once for
+ * both keeps cameras and geometry consistent by construction. */
+#include "scene/scene.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <assimp/cimport.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <stb/stb_image.h>
+
+#include "core/error.h"
+
+#define OB_PI_F 3.14159265358979f
+
+/* Crease angle for aiProcess_GenSmoothNormals. Assimp's default (175 degrees) smooths across
+ * the corners of walls and bends their normals, which darkens flat walls under AO (DESIGN.md:
+ * FZK-Haus mean ray-traced AO 0.78 instead of 0.90). Not 45 exactly: FZK-Haus joins its walls
+ * with 45-degree mitre faces, and Assimp's test (cos >= cos limit) blends a 45-degree pair, which
+ * tilts the inner face of every outer wall by up to 22.5 degrees across its whole width. 40
+ * keeps those mitres hard and still smooths cylinders of 10 or more segments. */
+#define OB_CREASE_ANGLE_DEG 40.0f
+
+#define OB_PATH_MAX 4096
+
+/* Per ob material: where the merged mesh is filled from. */
+typedef struct mat_slot {
+    uint64_t vertices;  /* pass 1: totals */
+    uint64_t indices;
+    bool uvs;
+    ob_mesh *mesh;      /* pass 2: destination and fill cursors */
+    uint32_t vfill, ifill;
+} mat_slot;
+
+typedef struct importer {
+    const char *path;
+    char dir[OB_PATH_MAX];
+    const struct aiScene *ai;
+    ob_scene *s;
+    int *mat_map;       /* assimp material index -> ob material index, -1 = not yet made */
+    mat_slot *slots;    /* by ob material index (at most ai->mNumMaterials of them) */
+    int pass;           /* 1 = count, 2 = fill */
+} importer;
+
+/* ---- small matrix helpers (aiMatrix4x4 is row-major, translation in a4 b4 c4) ---------------- */
+
+static struct aiMatrix4x4 mat_identity(void)
+{
+    struct aiMatrix4x4 m;
+    aiIdentityMatrix4(&m);
+    return m;
+}
+
+/* a * b */
+static struct aiMatrix4x4 mat_mul(const struct aiMatrix4x4 *a, const struct aiMatrix4x4 *b)
+{
+    struct aiMatrix4x4 r = *a;
+    aiMultiplyMatrix4(&r, b);
+    return r;
+}
+
+static void xform_point(const struct aiMatrix4x4 *m, const struct aiVector3D *p, float out[3])
+{
+    out[0] = m->a1 * p->x + m->a2 * p->y + m->a3 * p->z + m->a4;
+    out[1] = m->b1 * p->x + m->b2 * p->y + m->b3 * p->z + m->b4;
+    out[2] = m->c1 * p->x + m->c2 * p->y + m->c3 * p->z + m->c4;
+}
+
+static void xform_dir(const struct aiMatrix4x4 *m, const struct aiVector3D *d, float out[3])
+{
+    out[0] = m->a1 * d->x + m->a2 * d->y + m->a3 * d->z;
+    out[1] = m->b1 * d->x + m->b2 * d->y + m->b3 * d->z;
+    out[2] = m->c1 * d->x + m->c2 * d->y + m->c3 * d->z;
+}
+
+/* Cofactor matrix of the upper 3x3 and its determinant: normals transform by the inverse
+ * transpose, which is cofactor / det; the scale does not matter once normalised, the sign
+ * does (a mirroring node flips normals). */
+static float normal_matrix(const struct aiMatrix4x4 *m, float n[9])
+{
+    float a = m->a1, b = m->a2, c = m->a3;
+    float d = m->b1, e = m->b2, f = m->b3;
+    float g = m->c1, h = m->c2, i = m->c3;
+    n[0] = e * i - f * h;
+    n[1] = f * g - d * i;
+    n[2] = d * h - e * g;
+    n[3] = c * h - b * i;
+    n[4] = a * i - c * g;
+    n[5] = b * g - a * h;
+    n[6] = b * f - c * e;
+    n[7] = c * d - a * f;
+    n[8] = a * e - b * d;
+    return a * n[0] + b * n[1] + c * n[2];
+}
+
+static bool normalize3(float v[3])
+{
+    float len = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (!(len > 1e-20f) || !isfinite(len)) return false;
+    v[0] /= len;
+    v[1] /= len;
+    v[2] /= len;
+    return true;
+}
+
+/* Copy a (possibly long) Assimp string into a fixed field, cutting it to fit: names are labels,
+ * a cut one is still useful. */
+static void copy_name(char *dst, size_t n, const char *src)
+{
+    size_t len = 0;
+    while (len + 1 < n && src[len]) ++len;
+    memcpy(dst, src, len);
+    dst[len] = '\0';
+}
+
+/* ---- materials and textures ------------------------------------------------------------------ */
+
+/* RGBA8 top-row-first from an Assimp embedded texture (compressed or raw BGRA texels). */
+static unsigned char *load_embedded(const struct aiTexture *t, int *w, int *h)
+{
+    if (!t || !t->pcData) return NULL;
+    if (t->mHeight == 0) {
+        int comp = 0;
+        if (t->mWidth > (unsigned)INT32_MAX) return NULL;
+        return stbi_load_from_memory((const stbi_uc *)t->pcData, (int)t->mWidth, w, h, &comp, 4);
+    }
+    if (t->mWidth > 65536u || t->mHeight > 65536u) return NULL;
+    size_t n = (size_t)t->mWidth * t->mHeight;
+    unsigned char *px = malloc(n * 4u);
+    if (!px) return NULL;
+    for (size_t k = 0; k < n; ++k) {
+        px[4 * k + 0] = t->pcData[k].r;
+        px[4 * k + 1] = t->pcData[k].g;
+        px[4 * k + 2] = t->pcData[k].b;
+        px[4 * k + 3] = t->pcData[k].a;
+    }
+    *w = (int)t->mWidth;
+    *h = (int)t->mHeight;
+    return px;
+}
+
+/* The diffuse texture of an Assimp material. A texture that cannot be found or decoded is not
+ * fatal: the material keeps its colour. */
+static void load_texture(importer *im, const struct aiMaterial *mat, ob_material *out)
+{
+    struct aiString tex = {0};
+    enum aiReturn got = aiGetMaterialTexture(mat, aiTextureType_DIFFUSE, 0, &tex, NULL, NULL,
+                                             NULL, NULL, NULL, NULL);
+    /* glTF's base colour lands in DIFFUSE in Assimp 5.2, other PBR importers may use only
+     * BASE_COLOR. */
+    if (got != aiReturn_SUCCESS) {
+        got = aiGetMaterialTexture(mat, aiTextureType_BASE_COLOR, 0, &tex, NULL, NULL, NULL, NULL,
+                                   NULL, NULL);
+    }
+    if (got != aiReturn_SUCCESS || tex.length == 0) return;
+
+    char name[OB_PATH_MAX] = "";
+    snprintf(name, sizeof name, "%s", tex.data);
+    int w = 0, h = 0;
+    unsigned char *px = NULL;
+
+    /* Embedded: "*N", or (FBX, glb) an embedded texture carrying the same file name. */
+    if (name[0] == '*') {
+        char *end = NULL;
+        long idx = strtol(name + 1, &end, 10);
+        if (end && *end == '\0' && idx >= 0 && (unsigned long)idx < im->ai->mNumTextures) {
+            px = load_embedded(im->ai->mTextures[idx], &w, &h);
+        }
+    } else {
+        for (unsigned k = 0; k < im->ai->mNumTextures && !px; ++k) {
+            const struct aiTexture *t = im->ai->mTextures[k];
+            if (t && t->mFilename.length && strcmp(t->mFilename.data, name) == 0) {
+                px = load_embedded(t, &w, &h);
+            }
+        }
+    }
+    if (!px && name[0] != '*') {
+        /* External file: relative to the model, with Windows separators made portable. */
+        for (char *c = name; *c; ++c) {
+            if (*c == '\\') *c = '/';
+        }
+        char full[OB_PATH_MAX * 2] = "";
+        int comp = 0;
+        if (name[0] == '/') {
+            snprintf(full, sizeof full, "%s", name);
+        } else {
+            snprintf(full, sizeof full, "%s/%s", im->dir, name);
+        }
+        px = stbi_load(full, &w, &h, &comp, 4);
+        if (!px) {
+            /* Exporters often store an absolute path from the author's machine: try the file
+             * name beside the model. */
+            const char *base = strrchr(name, '/');
+            if (base) {
+                snprintf(full, sizeof full, "%s/%s", im->dir, base + 1);
+                px = stbi_load(full, &w, &h, &comp, 4);
+            }
+        }
+    }
+    if (px && w > 0 && h > 0) {
+        out->texture = px;
+        out->tex_width = w;
+        out->tex_height = h;
+    } else if (px) {
+        free(px);
+    }
+}
+
+/* The ob material for an Assimp material index, made on first use so materials no triangle
+ * uses (OBJ's unused "blue", Assimp's DefaultMaterial) do not appear. */
+static int map_material(importer *im, unsigned ai_index)
+{
+    if (ai_index >= im->ai->mNumMaterials) ai_index = 0;
+    if (im->mat_map[ai_index] >= 0) return im->mat_map[ai_index];
+    const struct aiMaterial *mat = im->ai->mMaterials[ai_index];
+    struct aiString name = {0};
+    char label[64] = "";
+    if (aiGetMaterialString(mat, AI_MATKEY_NAME, &name) == aiReturn_SUCCESS && name.length) {
+        copy_name(label, sizeof label, name.data);
+    } else {
+        snprintf(label, sizeof label, "material%u", ai_index);
+    }
+    /* 0.8 grey when the file gives no colour: bright enough to show AO, not pure white. */
+    struct aiColor4D c = {0.8f, 0.8f, 0.8f, 1.0f};
+    if (aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) != aiReturn_SUCCESS) {
+        c.r = c.g = c.b = 0.8f;
+    }
+    ob_material probe = {0};
+    load_texture(im, mat, &probe);
+    /* IFC gives every building element its own copy of a material ("Kiefer" 40 times on
+     * FZK-Haus): copies with the same name and colour and no texture share one mesh, which
+     * turns hundreds of draws into a dozen. */
+    if (!probe.texture) {
+        for (int k = 0; k < im->s->material_count; ++k) {
+            const ob_material *m = &im->s->materials[k];
+            if (!m->texture && strcmp(m->name, label) == 0 && m->diffuse[0] == c.r &&
+                m->diffuse[1] == c.g && m->diffuse[2] == c.b) {
+                im->mat_map[ai_index] = k;
+                return k;
+            }
+        }
+    }
+    int idx = ob_scene_add_material(im->s, label, c.r, c.g, c.b);
+    if (idx < 0) {
+        free(probe.texture);
+        return -1;
+    }
+    im->s->materials[idx].texture = probe.texture;
+    im->s->materials[idx].tex_width = probe.tex_width;
+    im->s->materials[idx].tex_height = probe.tex_height;
+    im->mat_map[ai_index] = idx;
+    return idx;
+}
+
+/* ---- geometry -------------------------------------------------------------------------------- */
+
+static uint32_t triangle_count(const struct aiMesh *mesh)
+{
+    if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || !mesh->mVertices) return 0;
+    uint32_t n = 0;
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+        if (mesh->mFaces[f].mNumIndices == 3) ++n;
+    }
+    return n;
+}
+
+/* Area-weighted vertex normals for a mesh that came through without any. */
+static void fallback_normals(const struct aiMesh *mesh, float *nrm)
+{
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+        const struct aiFace *face = &mesh->mFaces[f];
+        if (face->mNumIndices != 3) continue;
+        const struct aiVector3D *a = &mesh->mVertices[face->mIndices[0]];
+        const struct aiVector3D *b = &mesh->mVertices[face->mIndices[1]];
+        const struct aiVector3D *c = &mesh->mVertices[face->mIndices[2]];
+        float e1[3] = {b->x - a->x, b->y - a->y, b->z - a->z};
+        float e2[3] = {c->x - a->x, c->y - a->y, c->z - a->z};
+        float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                      e1[0] * e2[1] - e1[1] * e2[0]};
+        for (int k = 0; k < 3; ++k) {
+            for (int i = 0; i < 3; ++i) nrm[3u * face->mIndices[k] + (unsigned)i] += n[i];
+        }
+    }
+}
+
+static bool add_mesh(importer *im, const struct aiMesh *mesh, const struct aiMatrix4x4 *world)
+{
+    uint32_t tris = triangle_count(mesh);
+    if (tris == 0) return true;
+    int mat = map_material(im, mesh->mMaterialIndex);
+    if (mat < 0) return false;
+    mat_slot *slot = &im->slots[mat];
+
+    if (im->pass == 1) {
+        slot->vertices += mesh->mNumVertices;
+        slot->indices += 3u * (uint64_t)tris;
+        if (mesh->mTextureCoords[0]) slot->uvs = true;
+        return true;
+    }
+
+    ob_mesh *out = slot->mesh;
+    uint32_t base = slot->vfill;
+    float nm[9] = {0.0f};
+    float det = normal_matrix(world, nm);
+    float sign = det < 0.0f ? -1.0f : 1.0f;
+    float *fallback = NULL;
+    if (!mesh->mNormals) {
+        fallback = calloc((size_t)mesh->mNumVertices * 3u, sizeof(float));
+        if (!fallback) {
+            ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory computing normals", im->path);
+            return false;
+        }
+        fallback_normals(mesh, fallback);
+    }
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+        float *p = &out->positions[3u * (base + v)];
+        float *n = &out->normals[3u * (base + v)];
+        xform_point(world, &mesh->mVertices[v], p);
+        float ln[3] = {0.0f, 0.0f, 0.0f};
+        if (mesh->mNormals) {
+            ln[0] = mesh->mNormals[v].x;
+            ln[1] = mesh->mNormals[v].y;
+            ln[2] = mesh->mNormals[v].z;
+        } else {
+            ln[0] = fallback[3u * v];
+            ln[1] = fallback[3u * v + 1u];
+            ln[2] = fallback[3u * v + 2u];
+        }
+        for (int i = 0; i < 3; ++i) {
+            n[i] = sign * (nm[3 * i] * ln[0] + nm[3 * i + 1] * ln[1] + nm[3 * i + 2] * ln[2]);
+        }
+        /* Vertices of degenerate faces get no usable normal from Assimp; any unit vector is
+         * harmless there because their triangles cover no pixels. */
+        if (!normalize3(n)) {
+            n[0] = 0.0f;
+            n[1] = 1.0f;
+            n[2] = 0.0f;
+        }
+        if (out->uvs && mesh->mTextureCoords[0]) {
+            out->uvs[2u * (base + v)] = mesh->mTextureCoords[0][v].x;
+            out->uvs[2u * (base + v) + 1u] = mesh->mTextureCoords[0][v].y;
+        }
+    }
+    free(fallback);
+    /* A mirroring transform turns counter-clockwise faces clockwise: swap two corners back. */
+    bool flip = det < 0.0f;
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+        const struct aiFace *face = &mesh->mFaces[f];
+        if (face->mNumIndices != 3) continue;
+        uint32_t *dst = &out->indices[slot->ifill];
+        dst[0] = base + face->mIndices[0];
+        dst[1] = base + face->mIndices[flip ? 2 : 1];
+        dst[2] = base + face->mIndices[flip ? 1 : 2];
+        slot->ifill += 3u;
+    }
+    slot->vfill += mesh->mNumVertices;
+    return true;
+}
+
+static bool walk(importer *im, const struct aiNode *node, const struct aiMatrix4x4 *parent)
+{
+    struct aiMatrix4x4 world = mat_mul(parent, &node->mTransformation);
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+        unsigned mi = node->mMeshes[k];
+        if (mi < im->ai->mNumMeshes && !add_mesh(im, im->ai->mMeshes[mi], &world)) return false;
+    }
+    for (unsigned k = 0; k < node->mNumChildren; ++k) {
+        if (!walk(im, node->mChildren[k], &world)) return false;
+    }
+    return true;
+}
+
+/* World transform of the node called name (depth first), or false when there is none. */
+static bool find_node(const struct aiNode *node, const char *name,
+                      const struct aiMatrix4x4 *parent, struct aiMatrix4x4 *out)
+{
+    struct aiMatrix4x4 world = mat_mul(parent, &node->mTransformation);
+    if (strcmp(node->mName.data, name) == 0) {
+        *out = world;
+        return true;
+    }
+    for (unsigned k = 0; k < node->mNumChildren; ++k) {
+        if (find_node(node->mChildren[k], name, &world, out)) return true;
+    }
+    return false;
+}
+
+static const struct aiNode *find_node_ptr(const struct aiNode *node, const char *name)
+{
+    if (strcmp(node->mName.data, name) == 0) return node;
+    for (unsigned k = 0; k < node->mNumChildren; ++k) {
+        const struct aiNode *found = find_node_ptr(node->mChildren[k], name);
+        if (found) return found;
+    }
+    return NULL;
+}
+
+/* Cameras stored in the file (glTF, FBX, Collada) become presets after "default". */
+static void add_cameras(importer *im, const struct aiMatrix4x4 *up_fix)
+{
+    ob_scene *s = im->s;
+    for (unsigned k = 0; k < im->ai->mNumCameras; ++k) {
+        const struct aiCamera *c = im->ai->mCameras[k];
+        /* ob_camera is perspective only. */
+        if (c->mOrthographicWidth > 0.0f || !(c->mHorizontalFOV > 0.0f)) continue;
+        struct aiMatrix4x4 world = *up_fix;
+        if (!find_node(im->ai->mRootNode, c->mName.data, up_fix, &world)) world = *up_fix;
+
+        /* Assimp 5.2's glTF2 importer copies the node's translation into mPosition although the
+         * node transform already holds it, which would place the camera twice as far out. A
+         * local position equal to the node's own translation is taken as that copy. */
+        struct aiVector3D local = c->mPosition;
+        const struct aiNode *node = find_node_ptr(im->ai->mRootNode, c->mName.data);
+        if (node && local.x == node->mTransformation.a4 && local.y == node->mTransformation.b4 &&
+            local.z == node->mTransformation.c4) {
+            local.x = local.y = local.z = 0.0f;
+        }
+
+        ob_camera cam = {0};
+        float dir[3] = {0.0f, 0.0f, 0.0f};
+        xform_point(&world, &local, cam.eye);
+        xform_dir(&world, &c->mLookAt, dir);
+        xform_dir(&world, &c->mUp, cam.up);
+        if (!normalize3(dir)) continue;
+        if (!normalize3(cam.up)) {
+            cam.up[0] = 0.0f;
+            cam.up[1] = 1.0f;
+            cam.up[2] = 0.0f;
+        }
+        /* mLookAt is a direction; put the target about as far away as the scene's centre, so an
+         * orbiting viewer turns around something sensible. */
+        float dist = 0.0f;
+        for (int i = 0; i < 3; ++i) {
+            float d = 0.5f * (s->bounds_min[i] + s->bounds_max[i]) - cam.eye[i];
+            dist += d * d;
+        }
+        dist = sqrtf(dist);
+        if (!(dist > 1e-3f * s->ao_radius) || !isfinite(dist)) dist = 1.0f;
+        for (int i = 0; i < 3; ++i) cam.target[i] = cam.eye[i] + dir[i] * dist;
+
+        /* Assimp stores the horizontal fov; aspect 0 means unknown, taken as square. */
+        float aspect = c->mAspect > 0.0f ? c->mAspect : 1.0f;
+        float vfov = 2.0f * atanf(tanf(0.5f * c->mHorizontalFOV) / aspect) * 180.0f / OB_PI_F;
+        cam.fov_y_deg = vfov > 1.0f && vfov < 179.0f ? vfov : 60.0f;
+
+        if (c->mName.length) {
+            copy_name(cam.name, sizeof cam.name, c->mName.data);
+        } else {
+            snprintf(cam.name, sizeof cam.name, "camera%u", k);
+        }
+        /* "default" is the framing camera's name; keep a file camera of that name apart. */
+        if (strcmp(cam.name, "default") == 0) snprintf(cam.name, sizeof cam.name, "camera%u", k);
+        if (!ob_scene_add_camera(s, &cam)) break;
+    }
+}
+
+/* ---- entry ----------------------------------------------------------------------------------- */
+
+static ob_scene *import_scene(importer *im, ob_up_axis up)
+{
+    const struct aiScene *ai = im->ai;
+    /* Z-up to Y-up: (x, y, z) -> (x, z, -y), a rotation (det +1), so winding is kept. */
+    struct aiMatrix4x4 up_fix = mat_identity();
+    if (up == OB_UP_Z) {
+        up_fix.b2 = 0.0f;
+        up_fix.b3 = 1.0f;
+        up_fix.c2 = -1.0f;
+        up_fix.c3 = 0.0f;
+    }
+
+    if (!ai->mRootNode) {
+        ob_set_error(OB_ERR_MODEL, "%s: the file has no scene graph", im->path);
+        return NULL;
+    }
+    im->pass = 1;
+    if (!walk(im, ai->mRootNode, &up_fix)) return NULL;
+
+    uint64_t total = 0;
+    for (int m = 0; m < im->s->material_count; ++m) total += im->slots[m].indices;
+    if (total == 0) {
+        ob_set_error(OB_ERR_MODEL, "%s: no triangles in the file", im->path);
+        return NULL;
+    }
+    for (int m = 0; m < im->s->material_count; ++m) {
+        mat_slot *slot = &im->slots[m];
+        if (slot->indices == 0) continue;
+        if (slot->vertices > UINT32_MAX || slot->indices > UINT32_MAX) {
+            ob_set_error(OB_ERR_MODEL, "%s: material '%s' has more than 2^32 vertices", im->path,
+                         im->s->materials[m].name);
+            return NULL;
+        }
+        slot->mesh = ob_scene_add_mesh(im->s, (uint32_t)slot->vertices, (uint32_t)slot->indices,
+                                       slot->uvs);
+        if (!slot->mesh) return NULL;
+        slot->mesh->material = m;
+    }
+    /* ob_scene_add_mesh may have moved the mesh array: look the meshes up again. */
+    int next = 0;
+    for (int m = 0; m < im->s->material_count; ++m) {
+        if (im->slots[m].indices != 0) im->slots[m].mesh = &im->s->meshes[next++];
+    }
+    im->pass = 2;
+    if (!walk(im, ai->mRootNode, &up_fix)) return NULL;
+
+    ob_scene_finish(im->s);
+    add_cameras(im, &up_fix);
+    return im->s;
+}
+
+ob_scene *ob_scene_import(const char *path, ob_up_axis up)
+{
+    if (!path) {
+        ob_set_error(OB_ERR_INVALID_ARGUMENT, "model path is NULL");
+        return NULL;
+    }
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        ob_set_error(OB_ERR_IO, "%s: cannot open model file", path);
+        return NULL;
+    }
+    fclose(f);
+
+    struct aiPropertyStore *props = aiCreatePropertyStore();
+    aiSetImportPropertyFloat(props, AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, OB_CREASE_ANGLE_DEG);
+    /* Points and lines cover no area for a G-buffer: SortByPType drops them. */
+    aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
+                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    unsigned flags = aiProcess_Triangulate | aiProcess_GenSmoothNormals |
+                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                     aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
+    const struct aiScene *ai = aiImportFileExWithProperties(path, flags, NULL, props);
+    aiReleasePropertyStore(props);
+    if (!ai) {
+        ob_set_error(OB_ERR_MODEL, "%s: %s", path, aiGetErrorString());
+        return NULL;
+    }
+    if (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) {
+        ob_set_error(OB_ERR_MODEL, "%s: incomplete scene (no meshes?)", path);
+        aiReleaseImport(ai);
+        return NULL;
+    }
+
+    /* The scene's name: the file name without directory and extension. */
+    const char *slash = strrchr(path, '/');
+    char name[128] = "";
+    snprintf(name, sizeof name, "%s", slash ? slash + 1 : path);
+    char *dot = strrchr(name, '.');
+    if (dot && dot != name) *dot = '\0';
+
+    importer im = {0};
+    im.path = path;
+    im.ai = ai;
+    if (slash) {
+        size_t len = (size_t)(slash - path);
+        if (len >= sizeof im.dir) len = sizeof im.dir - 1;
+        memcpy(im.dir, path, len);
+        im.dir[len] = '\0';
+        if (len == 0) snprintf(im.dir, sizeof im.dir, "/");
+    } else {
+        snprintf(im.dir, sizeof im.dir, ".");
+    }
+    unsigned nmat = ai->mNumMaterials ? ai->mNumMaterials : 1u;
+    im.mat_map = malloc(nmat * sizeof *im.mat_map);
+    im.slots = calloc(nmat, sizeof *im.slots);
+    im.s = ob_scene_alloc(name);
+    ob_scene *result = NULL;
+    if (!im.mat_map || !im.slots || !im.s) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    } else if (ai->mNumMaterials == 0) {
+        /* Assimp always makes a default material; without one there is nothing to map to. */
+        ob_set_error(OB_ERR_MODEL, "%s: the file has no materials", path);
+    } else {
+        for (unsigned k = 0; k < nmat; ++k) im.mat_map[k] = -1;
+        result = import_scene(&im, up);
+    }
+    if (!result) ob_destroy_scene(im.s);
+    free(im.mat_map);
+    free(im.slots);
+    aiReleaseImport(ai);
+    return result;
+}

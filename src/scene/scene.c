@@ -1,0 +1,499 @@
+/* The scene container (allocation helpers shared by the builders) and the public scene API:
+ * name resolution in ob_load_scene, queries, camera lookup. */
+#if !defined(_POSIX_C_SOURCE) && !defined(_GNU_SOURCE)
+#define _POSIX_C_SOURCE 200809L /* stat() */
+#endif
+
+#include "scene/scene.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "core/error.h"
+#include "scene/sidecar.h"
+
+/* Long enough for any path the loader builds (Linux PATH_MAX). */
+#define OB_PATH_MAX 4096
+
+/* ---- allocation helpers ---------------------------------------------------------------------- */
+
+/* Arrays grow to powers of two (at least 4) without storing a capacity: the count alone says
+ * when the current block is full. Large IFC files add thousands of meshes, so growing one at a
+ * time would copy quadratically. */
+static bool grow_array(void **array, int count, size_t elem_size)
+{
+    bool full = count == 0 || (count >= 4 && (count & (count - 1)) == 0);
+    if (!full) return true;
+    size_t cap = count == 0 ? 4u : (size_t)count * 2u;
+    void *p = realloc(*array, cap * elem_size);
+    if (!p) return false;
+    *array = p;
+    return true;
+}
+
+ob_scene *ob_scene_alloc(const char *name)
+{
+    ob_scene *s = calloc(1, sizeof *s);
+    if (!s) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory allocating scene '%s'", name ? name : "");
+        return NULL;
+    }
+    snprintf(s->name, sizeof s->name, "%s", name ? name : "");
+    return s;
+}
+
+ob_mesh *ob_scene_add_mesh(ob_scene *s, uint32_t vertex_count, uint32_t index_count, bool uvs)
+{
+    if (!s) return NULL;
+    if (!grow_array((void **)&s->meshes, s->mesh_count, sizeof *s->meshes)) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory adding mesh %d", s->name,
+                     s->mesh_count);
+        return NULL;
+    }
+    /* calloc(0) may return NULL, which would read as a failure: ask for at least one. */
+    size_t vc = vertex_count ? vertex_count : 1u;
+    size_t ic = index_count ? index_count : 1u;
+    ob_mesh m = {0};
+    m.positions = calloc(vc * 3u, sizeof(float));
+    m.normals = calloc(vc * 3u, sizeof(float));
+    m.uvs = uvs ? calloc(vc * 2u, sizeof(float)) : NULL;
+    m.indices = calloc(ic, sizeof(uint32_t));
+    if (!m.positions || !m.normals || (uvs && !m.uvs) || !m.indices) {
+        free(m.positions);
+        free(m.normals);
+        free(m.uvs);
+        free(m.indices);
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory for a mesh of %u vertices", s->name,
+                     (unsigned)vertex_count);
+        return NULL;
+    }
+    m.vertex_count = vertex_count;
+    m.index_count = index_count;
+    m.material = 0;
+    s->meshes[s->mesh_count] = m;
+    return &s->meshes[s->mesh_count++];
+}
+
+int ob_scene_add_material(ob_scene *s, const char *name, float r, float g, float b)
+{
+    if (!s) return -1;
+    if (!grow_array((void **)&s->materials, s->material_count, sizeof *s->materials)) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory adding material '%s'", s->name,
+                     name ? name : "");
+        return -1;
+    }
+    ob_material m = {0};
+    snprintf(m.name, sizeof m.name, "%s", name ? name : "");
+    m.diffuse[0] = r;
+    m.diffuse[1] = g;
+    m.diffuse[2] = b;
+    m.texture = NULL;
+    s->materials[s->material_count] = m;
+    return s->material_count++;
+}
+
+bool ob_scene_add_camera(ob_scene *s, const ob_camera *cam)
+{
+    if (!s || !cam) return false;
+    /* A later source (sidecar after glTF) wins by name; a camera named "default" replaces the
+     * framing one at index 0. */
+    for (int i = 0; i < s->camera_count; ++i) {
+        if (strcmp(s->cameras[i].name, cam->name) == 0) {
+            s->cameras[i] = *cam;
+            return true;
+        }
+    }
+    if (s->camera_count >= OB_MAX_CAMERAS) return false;
+    s->cameras[s->camera_count++] = *cam;
+    return true;
+}
+
+void ob_scene_finish(ob_scene *s)
+{
+    if (!s) return;
+    float bmin[3] = {FLT_MAX, FLT_MAX, FLT_MAX};
+    float bmax[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+    bool any = false;
+    for (int m = 0; m < s->mesh_count; ++m) {
+        const ob_mesh *mesh = &s->meshes[m];
+        for (uint32_t v = 0; v < mesh->vertex_count; ++v) {
+            for (int i = 0; i < 3; ++i) {
+                float p = mesh->positions[3u * v + (uint32_t)i];
+                if (p < bmin[i]) bmin[i] = p;
+                if (p > bmax[i]) bmax[i] = p;
+            }
+            any = true;
+        }
+    }
+    for (int i = 0; i < 3; ++i) {
+        s->bounds_min[i] = any ? bmin[i] : 0.0f;
+        s->bounds_max[i] = any ? bmax[i] : 0.0f;
+    }
+
+    /* Every mesh must name a real material, so the renderer never indexes out of range. */
+    bool need_default_material = s->material_count == 0;
+    for (int m = 0; m < s->mesh_count; ++m) {
+        if (s->meshes[m].material < 0 || s->meshes[m].material >= s->material_count) {
+            need_default_material = true;
+        }
+    }
+    if (need_default_material) {
+        int old_count = s->material_count;
+        int def = ob_scene_add_material(s, "default", 0.8f, 0.8f, 0.8f);
+        for (int m = 0; m < s->mesh_count && def >= 0; ++m) {
+            if (s->meshes[m].material < 0 || s->meshes[m].material >= old_count) {
+                s->meshes[m].material = def;
+            }
+        }
+    }
+
+    ob_camera def_cam = ob_camera_frame_bounds(s->bounds_min, s->bounds_max, 60.0f);
+    if (s->camera_count > 0 && strcmp(s->cameras[0].name, "default") == 0) {
+        s->cameras[0] = def_cam; /* finish() called again: refresh the framing */
+    } else {
+        /* Presets added before finish() keep their order behind "default". */
+        int keep = s->camera_count < OB_MAX_CAMERAS ? s->camera_count : OB_MAX_CAMERAS - 1;
+        memmove(&s->cameras[1], &s->cameras[0], (size_t)keep * sizeof s->cameras[0]);
+        s->cameras[0] = def_cam;
+        s->camera_count = keep + 1;
+    }
+
+    if (!(s->light.intensity > 0.0f)) {
+        /* Above, in front and to the left: the default camera sits front-right, so shadows fall
+         * away from it and show the shape instead of hiding behind it. */
+        const float d[3] = {-0.4f, 1.0f, 0.5f};
+        float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int i = 0; i < 3; ++i) {
+            s->light.direction[i] = d[i] / len;
+            s->light.color[i] = 1.0f;
+        }
+        s->light.intensity = 1.0f;
+    }
+
+    if (!(s->ao_radius > 0.0f) || !isfinite(s->ao_radius)) {
+        float d2 = 0.0f;
+        for (int i = 0; i < 3; ++i) {
+            float e = s->bounds_max[i] - s->bounds_min[i];
+            d2 += e * e;
+        }
+        float diag = sqrtf(d2);
+        s->ao_radius = diag > 0.0f ? 0.05f * diag : 1.0f;
+    }
+}
+
+/* ---- ob_load_scene --------------------------------------------------------------------------- */
+
+static bool is_regular_file(const char *path)
+{
+    struct stat st = {0};
+    return path && stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+static bool is_builtin(const char *name)
+{
+    for (int i = 0; i < ob_builtin_scene_count(); ++i) {
+        if (strcmp(ob_builtin_scene_name(i), name) == 0) return true;
+    }
+    return false;
+}
+
+/* Copy src to dst (of size n); false when it does not fit. */
+static bool copy_path(char *dst, size_t n, const char *src)
+{
+    int len = snprintf(dst, n, "%s", src);
+    return len >= 0 && (size_t)len < n;
+}
+
+/* The directory part of path ("." when none), without a trailing slash. */
+static bool dir_of(char *dst, size_t n, const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash) return copy_path(dst, n, ".");
+    size_t len = (size_t)(slash - path);
+    if (len == 0) return copy_path(dst, n, "/");
+    if (len >= n) return false;
+    memcpy(dst, path, len);
+    dst[len] = '\0';
+    return true;
+}
+
+/* The file name of path without its directory and without its last extension. */
+static bool stem_of(char *dst, size_t n, const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    if (!copy_path(dst, n, base)) return false;
+    char *dot = strrchr(dst, '.');
+    if (dot && dot != dst) *dot = '\0';
+    return true;
+}
+
+/* rel resolved against the directory holding file (rel unchanged when absolute). */
+static bool resolve_beside(char *dst, size_t n, const char *file, const char *rel)
+{
+    if (rel[0] == '/') return copy_path(dst, n, rel);
+    char dir[OB_PATH_MAX] = "";
+    if (!dir_of(dir, sizeof dir, file)) return false;
+    int len = snprintf(dst, n, "%s/%s", dir, rel);
+    return len >= 0 && (size_t)len < n;
+}
+
+static ob_scene *path_too_long(const char *what)
+{
+    ob_set_error(OB_ERR_INVALID_ARGUMENT, "path too long while resolving scene '%s'", what);
+    return NULL;
+}
+
+/* Import a model, then apply up to two sidecars in order (either may be NULL). */
+static ob_scene *import_with_sidecars(const char *model, ob_up_axis up, const char *sidecar_a,
+                                      const char *sidecar_b, const char *scene_name)
+{
+    ob_scene *s = ob_scene_import(model, up);
+    if (!s) return NULL;
+    const char *sidecars[2] = {sidecar_a, sidecar_b};
+    for (int i = 0; i < 2; ++i) {
+        if (sidecars[i] && ob_scene_apply_sidecar(s, sidecars[i]) != OB_OK) {
+            ob_destroy_scene(s);
+            return NULL;
+        }
+    }
+    if (scene_name) snprintf(s->name, sizeof s->name, "%s", scene_name);
+    return s;
+}
+
+ob_scene *ob_load_scene(const ob_scene_desc *desc)
+{
+    if (!desc || !desc->name || !desc->name[0]) {
+        ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_load_scene: %s",
+                     !desc ? "desc is NULL" : "scene name is NULL or empty");
+        return NULL;
+    }
+    if ((int)desc->up < (int)OB_UP_DEFAULT || (int)desc->up > (int)OB_UP_Z) {
+        ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_load_scene: invalid up axis %d", (int)desc->up);
+        return NULL;
+    }
+    const char *name = desc->name;
+    const char *explicit_sidecar = desc->sidecar && desc->sidecar[0] ? desc->sidecar : NULL;
+
+    /* The explicit sidecar is checked first (and its "up" read) whatever the scene kind. */
+    ob_up_axis explicit_up = OB_UP_DEFAULT;
+    if (explicit_sidecar && ob_sidecar_peek(explicit_sidecar, NULL, 0, &explicit_up) != OB_OK) {
+        return NULL;
+    }
+
+    /* 1. Built in: Y-up by construction, so "up" does not apply. */
+    if (is_builtin(name)) {
+        ob_scene *s = ob_scene_builtin(name);
+        if (s && explicit_sidecar && ob_scene_apply_sidecar(s, explicit_sidecar) != OB_OK) {
+            ob_destroy_scene(s);
+            return NULL;
+        }
+        return s;
+    }
+
+    /* 2. A named scene: <data>/scenes/NAME.obscura.json with a "model" key. Names with a slash
+     * are paths, never names, so "models/x.obj" cannot reach outside scenes/. */
+    char named[OB_PATH_MAX] = "";
+    if (!strchr(name, '/')) {
+        int len = snprintf(named, sizeof named, "%s/scenes/%s.obscura.json", ob_data_dir(), name);
+        if (len < 0 || (size_t)len >= sizeof named) return path_too_long(name);
+    }
+    if (named[0] && is_regular_file(named)) {
+        char model_rel[OB_PATH_MAX] = "";
+        ob_up_axis named_up = OB_UP_DEFAULT;
+        if (ob_sidecar_peek(named, model_rel, sizeof model_rel, &named_up) != OB_OK) return NULL;
+        if (!model_rel[0]) {
+            ob_set_error(OB_ERR_SIDECAR, "%s: a named scene needs a \"model\" key", named);
+            return NULL;
+        }
+        char model[OB_PATH_MAX] = "";
+        if (!resolve_beside(model, sizeof model, named, model_rel)) return path_too_long(name);
+        if (!is_regular_file(model)) {
+            ob_set_error(OB_ERR_IO, "%s: model '%s' does not exist", named, model);
+            return NULL;
+        }
+        ob_up_axis up = desc->up != OB_UP_DEFAULT  ? desc->up
+                        : explicit_up != OB_UP_DEFAULT ? explicit_up
+                        : named_up != OB_UP_DEFAULT    ? named_up
+                                                       : OB_UP_Y;
+        return import_with_sidecars(model, up, named, explicit_sidecar, name);
+    }
+
+    /* 3. A model path. */
+    if (!is_regular_file(name)) {
+        /* Something that looks like a path is a missing model; a bare word is an unknown name. */
+        if (strchr(name, '/') || strchr(name, '.'))
+            ob_set_error(OB_ERR_IO, "cannot read model '%s': no such file", name);
+        else
+            ob_set_error(OB_ERR_UNKNOWN_SCENE,
+                         "unknown scene '%s' (not built in, not in scenes/, no such file)", name);
+        return NULL;
+    }
+    char stem[OB_PATH_MAX] = "";
+    if (!stem_of(stem, sizeof stem, name)) return path_too_long(name);
+
+    /* Sidecar: explicit, else MODEL.obscura.json beside the model, else scenes/STEM.obscura.json
+     * in the data directory. */
+    char found[OB_PATH_MAX] = "";
+    const char *sidecar = explicit_sidecar;
+    if (!sidecar) {
+        char dir[OB_PATH_MAX] = "";
+        if (!dir_of(dir, sizeof dir, name)) return path_too_long(name);
+        int len = snprintf(found, sizeof found, "%s/%s.obscura.json", dir, stem);
+        if (len < 0 || (size_t)len >= sizeof found) return path_too_long(name);
+        if (is_regular_file(found)) {
+            sidecar = found;
+        } else {
+            len = snprintf(found, sizeof found, "%s/scenes/%s.obscura.json", ob_data_dir(), stem);
+            if (len < 0 || (size_t)len >= sizeof found) return path_too_long(name);
+            if (is_regular_file(found)) sidecar = found;
+        }
+    }
+    ob_up_axis sidecar_up = explicit_up;
+    if (sidecar && sidecar != explicit_sidecar &&
+        ob_sidecar_peek(sidecar, NULL, 0, &sidecar_up) != OB_OK) {
+        return NULL;
+    }
+    ob_up_axis up = desc->up != OB_UP_DEFAULT      ? desc->up
+                    : sidecar_up != OB_UP_DEFAULT ? sidecar_up
+                                                  : OB_UP_Y;
+    return import_with_sidecars(name, up, sidecar, NULL, stem);
+}
+
+void ob_destroy_scene(ob_scene *scene)
+{
+    if (!scene) return;
+    for (int m = 0; m < scene->mesh_count; ++m) {
+        free(scene->meshes[m].positions);
+        free(scene->meshes[m].normals);
+        free(scene->meshes[m].uvs);
+        free(scene->meshes[m].indices);
+    }
+    for (int m = 0; m < scene->material_count; ++m) free(scene->materials[m].texture);
+    free(scene->meshes);
+    free(scene->materials);
+    free(scene);
+}
+
+/* ---- queries --------------------------------------------------------------------------------- */
+
+ob_scene_stats ob_query_scene_stats(const ob_scene *scene)
+{
+    ob_scene_stats st = {0};
+    if (!scene) {
+        ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_query_scene_stats: scene is NULL");
+        return st;
+    }
+    uint64_t tris = 0;
+    uint64_t verts = 0;
+    for (int m = 0; m < scene->mesh_count; ++m) {
+        tris += scene->meshes[m].index_count / 3u;
+        verts += scene->meshes[m].vertex_count;
+    }
+    st.triangles = tris > UINT32_MAX ? UINT32_MAX : (uint32_t)tris;
+    st.vertices = verts > UINT32_MAX ? UINT32_MAX : (uint32_t)verts;
+    st.meshes = (uint32_t)scene->mesh_count;
+    st.materials = (uint32_t)scene->material_count;
+    for (int i = 0; i < 3; ++i) {
+        st.bounds_min[i] = scene->bounds_min[i];
+        st.bounds_max[i] = scene->bounds_max[i];
+    }
+    return st;
+}
+
+const char *ob_query_scene_name(const ob_scene *scene)
+{
+    return scene ? scene->name : "";
+}
+
+int ob_query_scene_material_count(const ob_scene *scene)
+{
+    return scene ? scene->material_count : 0;
+}
+
+ob_material_info ob_query_scene_material(const ob_scene *scene, int index)
+{
+    ob_material_info info = {0};
+    if (!scene || index < 0 || index >= scene->material_count) {
+        ob_set_error(OB_ERR_OUT_OF_RANGE, "material index %d out of range (scene has %d)", index,
+                     scene ? scene->material_count : 0);
+        return info;
+    }
+    const ob_material *m = &scene->materials[index];
+    memcpy(info.name, m->name, sizeof info.name);
+    info.name[sizeof info.name - 1] = '\0';
+    for (int i = 0; i < 3; ++i) info.diffuse[i] = m->diffuse[i];
+    info.has_texture = m->texture != NULL;
+    return info;
+}
+
+float ob_query_scene_ao_radius(const ob_scene *scene)
+{
+    return scene ? scene->ao_radius : 0.0f;
+}
+
+ob_light ob_query_scene_light(const ob_scene *scene)
+{
+    ob_light l = {0};
+    return scene ? scene->light : l;
+}
+
+int ob_query_camera_count(const ob_scene *scene)
+{
+    return scene ? scene->camera_count : 0;
+}
+
+ob_camera ob_query_camera(const ob_scene *scene, int index)
+{
+    ob_camera cam = {0};
+    if (!scene || index < 0 || index >= scene->camera_count) {
+        ob_set_error(OB_ERR_OUT_OF_RANGE, "camera index %d out of range (scene has %d)", index,
+                     scene ? scene->camera_count : 0);
+        return cam;
+    }
+    return scene->cameras[index];
+}
+
+ob_error ob_find_camera(const ob_scene *scene, const char *name_or_index, ob_camera *out)
+{
+    if (!scene || !name_or_index) {
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_find_camera: %s is NULL",
+                            !scene ? "scene" : "camera name");
+    }
+    for (int i = 0; i < scene->camera_count; ++i) {
+        if (strcmp(scene->cameras[i].name, name_or_index) == 0) {
+            if (out) *out = scene->cameras[i];
+            return OB_OK;
+        }
+    }
+    /* A decimal index: digits only, so "1e0", "-0" or " 1" are names, not numbers. */
+    const char *c = name_or_index;
+    long index = 0;
+    bool digits = *c != '\0';
+    for (; *c; ++c) {
+        if (*c < '0' || *c > '9') {
+            digits = false;
+            break;
+        }
+        if (index <= OB_MAX_CAMERAS) index = index * 10 + (*c - '0');
+    }
+    if (digits && index < scene->camera_count) {
+        if (out) *out = scene->cameras[index];
+        return OB_OK;
+    }
+    char names[OB_MAX_CAMERAS * 66] = "";
+    size_t used = 0;
+    for (int i = 0; i < scene->camera_count; ++i) {
+        int len = snprintf(names + used, sizeof names - used, "%s%s", i ? ", " : "",
+                           scene->cameras[i].name);
+        if (len < 0 || (size_t)len >= sizeof names - used) break;
+        used += (size_t)len;
+    }
+    return ob_set_error(OB_ERR_UNKNOWN_CAMERA,
+                        "unknown camera '%s' in scene '%s' (available: %s; or an index 0-%d)",
+                        name_or_index, scene->name, names, scene->camera_count - 1);
+}

@@ -1,0 +1,62 @@
+/* Internal scene representation: what the importers produce and the G-buffer pass uploads. */
+#ifndef OB_SCENE_INTERNAL_H
+#define OB_SCENE_INTERNAL_H
+
+#include "obscura/obscura.h"
+
+/* One draw: triangles that share a material. Arrays are malloc'd and owned by the mesh. */
+typedef struct ob_mesh {
+    float *positions;   /* xyz per vertex, world units, already in the scene's Y-up frame */
+    float *normals;     /* xyz per vertex, unit length */
+    float *uvs;         /* uv per vertex, or NULL */
+    uint32_t *indices;  /* 3 per triangle, counter-clockwise seen from the front */
+    uint32_t vertex_count;
+    uint32_t index_count;
+    int material;       /* index into ob_scene.materials */
+} ob_mesh;
+
+typedef struct ob_material {
+    char name[64];
+    float diffuse[3];        /* linear RGB */
+    unsigned char *texture;  /* RGBA8, top row first, or NULL */
+    int tex_width, tex_height;
+} ob_material;
+
+#define OB_MAX_CAMERAS 32
+
+struct ob_scene {
+    char name[128];
+    ob_mesh *meshes;
+    int mesh_count;
+    ob_material *materials;
+    int material_count;
+    ob_camera cameras[OB_MAX_CAMERAS]; /* [0] = "default", framing the bounds */
+    int camera_count;
+    ob_light light;
+    float ao_radius;       /* suggested, world units */
+    float bounds_min[3];
+    float bounds_max[3];
+};
+
+/* Allocation helpers shared by the importers (scene.c). */
+ob_scene *ob_scene_alloc(const char *name);
+ob_mesh *ob_scene_add_mesh(ob_scene *s, uint32_t vertex_count, uint32_t index_count, bool uvs);
+int ob_scene_add_material(ob_scene *s, const char *name, float r, float g, float b);
+/* Add a camera preset after "default", replacing a preset of the same name ("default" itself
+ * included). Returns false (and sets no error) when all OB_MAX_CAMERAS slots are in use. */
+bool ob_scene_add_camera(ob_scene *s, const ob_camera *cam);
+/* After the meshes are in: bounds, default camera, default light and radius if unset. */
+void ob_scene_finish(ob_scene *s);
+
+/* Builders: return NULL with ob_get_error() set on failure. */
+ob_scene *ob_scene_builtin(const char *name); /* NULL + OB_ERR_UNKNOWN_SCENE if not built in */
+ob_scene *ob_scene_import(const char *path, ob_up_axis up); /* assimp */
+/* Apply a sidecar JSON (cameras, lights, ao_radius, up) to a loaded scene. */
+ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path);
+
+/* The default framing camera for bounds, looking from the front-above-right. */
+ob_camera ob_camera_frame_bounds(const float bmin[3], const float bmax[3], float fov_y_deg);
+/* Near/far planes that enclose the bounds from the camera's eye. */
+void ob_camera_fit_planes(ob_camera *cam, const float bmin[3], const float bmax[3]);
+
+#endif

@@ -1,0 +1,457 @@
+/* Scene sidecar: a small JSON file that gives a model what its file format cannot carry
+ * (camera presets, the key light, a sensible AO radius, the up axis).
+ *
+ * Format (every key optional unless noted; coordinates are in the scene's final Y-up frame,
+ * in the model's units):
+ *
+ *   {
+ *     "_comment": "keys starting with an underscore are ignored, anywhere",
+ *     "model": "/usr/share/glmark2/models/bunny.obj",   model file; absolute or relative to
+ *                                                       this file. Required for a named scene
+ *                                                       (scenes/NAME.obscura.json), else ignored.
+ *     "up": "y" | "z",           the model's up axis; "z" is rotated to Y-up on import. Read by
+ *                                the loader before importing (ob_sidecar_peek).
+ *     "ao_radius": 0.05,         suggested AO radius, > 0
+ *     "cameras": [               presets, added after "default" in this order; a preset with the
+ *       {                        name of an existing one (e.g. from glTF) replaces it, and one
+ *                                named "default" replaces the framing camera (for a model whose
+ *                                open side does not face +Z, like the Cornell box)
+ *         "name": "front",       required, 1-63 characters, unique
+ *         "eye": [x, y, z],      required
+ *         "target": [x, y, z],   required, != eye
+ *         "up": [0, 1, 0],       default +Y; must not be parallel to target - eye
+ *         "fov": 50              vertical field of view in degrees, in (1, 179); default 60
+ *       }
+ *     ],
+ *     "lights": [                the first one is the scene's key light
+ *       {
+ *         "type": "directional", the only type (default)
+ *         "direction": [x, y, z],required, non-zero: FROM the surface TOWARD the light
+ *         "color": [r, g, b],    linear RGB, >= 0, default [1, 1, 1]
+ *         "intensity": 1.0       >= 0, default 1
+ *       }
+ *     ]
+ *   }
+ *
+ * Validation is strict because a silently ignored typo ("camera" for "cameras") would render the
+ * wrong view without any hint: unknown or duplicate keys, wrong types, wrong array lengths and
+ * out-of-range numbers are all OB_ERR_SIDECAR with "path: where: what is wrong". Nothing is
+ * applied unless the whole file is valid. */
+#include "scene/sidecar.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cjson/cJSON.h>
+
+#include "core/error.h"
+#include "scene/scene.h"
+
+/* Sidecars are hand-written and tiny; anything bigger is the wrong file. */
+#define SIDECAR_MAX_BYTES (4u << 20)
+#define SIDECAR_MODEL_MAX 4096
+
+typedef struct sidecar {
+    char model[SIDECAR_MODEL_MAX];
+    ob_up_axis up;
+    float ao_radius; /* 0 = not given */
+    ob_camera cameras[OB_MAX_CAMERAS];
+    int camera_count;
+    ob_light light;
+    bool has_light;
+} sidecar;
+
+/* Record "path: message" as OB_ERR_SIDECAR. */
+static ob_error fail(const char *path, const char *fmt, ...) OB_PRINTF(2, 3);
+static ob_error fail(const char *path, const char *fmt, ...)
+{
+    char msg[512] = "";
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return ob_set_error(OB_ERR_SIDECAR, "%s: %s", path, msg);
+}
+
+static const char *json_type_name(const cJSON *item)
+{
+    if (cJSON_IsNumber(item)) return "a number";
+    if (cJSON_IsString(item)) return "a string";
+    if (cJSON_IsBool(item)) return "a boolean";
+    if (cJSON_IsNull(item)) return "null";
+    if (cJSON_IsArray(item)) return "an array";
+    if (cJSON_IsObject(item)) return "an object";
+    return "an invalid value";
+}
+
+static ob_error read_number(const char *path, const char *where, const cJSON *item, float *out)
+{
+    if (!cJSON_IsNumber(item)) {
+        return fail(path, "%s: expected a number, got %s", where, json_type_name(item));
+    }
+    /* cJSON turns 1e999 into inf; a float overflow would do the same. */
+    double v = item->valuedouble;
+    if (!isfinite(v) || fabs(v) > 3.0e38) return fail(path, "%s: number is not finite", where);
+    *out = (float)v;
+    return OB_OK;
+}
+
+static ob_error read_vec3(const char *path, const char *where, const cJSON *item, float out[3])
+{
+    if (!cJSON_IsArray(item)) {
+        return fail(path, "%s: expected an array of 3 numbers, got %s", where,
+                    json_type_name(item));
+    }
+    int n = cJSON_GetArraySize(item);
+    if (n != 3) {
+        return fail(path, "%s: expected an array of 3 numbers, got %d element%s", where, n,
+                    n == 1 ? "" : "s");
+    }
+    for (int i = 0; i < 3; ++i) {
+        char elem[160] = "";
+        snprintf(elem, sizeof elem, "%s[%d]", where, i);
+        ob_error err = read_number(path, elem, cJSON_GetArrayItem(item, i), &out[i]);
+        if (err != OB_OK) return err;
+    }
+    return OB_OK;
+}
+
+static float len3(const float v[3])
+{
+    return sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+/* True when key was already seen in this object (cJSON keeps duplicates; the first would win
+ * silently). */
+static bool seen_before(const cJSON *obj, const cJSON *item)
+{
+    for (const cJSON *c = obj->child; c && c != item; c = c->next) {
+        if (c->string && strcmp(c->string, item->string) == 0) return true;
+    }
+    return false;
+}
+
+static bool is_comment_key(const char *key)
+{
+    return key && key[0] == '_';
+}
+
+static ob_error parse_camera(const char *path, int index, const cJSON *obj, ob_camera *cam)
+{
+    char where[96] = "";
+    snprintf(where, sizeof where, "cameras[%d]", index);
+    if (!cJSON_IsObject(obj)) {
+        return fail(path, "%s: expected an object, got %s", where, json_type_name(obj));
+    }
+    memset(cam, 0, sizeof *cam);
+    bool has_name = false, has_eye = false, has_target = false, has_up = false;
+    for (const cJSON *it = obj->child; it; it = it->next) {
+        const char *key = it->string;
+        char field[160] = "";
+        snprintf(field, sizeof field, "%s.%s", where, key);
+        if (is_comment_key(key)) continue;
+        if (seen_before(obj, it)) return fail(path, "%s: duplicate key", field);
+        ob_error err = OB_OK;
+        if (strcmp(key, "name") == 0) {
+            if (!cJSON_IsString(it)) {
+                return fail(path, "%s: expected a string, got %s", field, json_type_name(it));
+            }
+            size_t len = strlen(it->valuestring);
+            if (len == 0 || len >= sizeof cam->name) {
+                return fail(path, "%s: must be 1 to %zu characters", field,
+                            sizeof cam->name - 1);
+            }
+            memcpy(cam->name, it->valuestring, len + 1);
+            has_name = true;
+        } else if (strcmp(key, "eye") == 0) {
+            err = read_vec3(path, field, it, cam->eye);
+            has_eye = true;
+        } else if (strcmp(key, "target") == 0) {
+            err = read_vec3(path, field, it, cam->target);
+            has_target = true;
+        } else if (strcmp(key, "up") == 0) {
+            err = read_vec3(path, field, it, cam->up);
+            has_up = true;
+        } else if (strcmp(key, "fov") == 0) {
+            err = read_number(path, field, it, &cam->fov_y_deg);
+            if (err == OB_OK && !(cam->fov_y_deg > 1.0f && cam->fov_y_deg < 179.0f)) {
+                return fail(path, "%s: %g degrees is outside (1, 179)", field,
+                            (double)cam->fov_y_deg);
+            }
+        } else {
+            return fail(path, "%s: unknown key (expected name, eye, target, up, fov)", field);
+        }
+        if (err != OB_OK) return err;
+    }
+    if (!has_name) return fail(path, "%s: missing \"name\"", where);
+    if (!has_eye) return fail(path, "%s (\"%s\"): missing \"eye\"", where, cam->name);
+    if (!has_target) return fail(path, "%s (\"%s\"): missing \"target\"", where, cam->name);
+
+    float fwd[3] = {cam->target[0] - cam->eye[0], cam->target[1] - cam->eye[1],
+                    cam->target[2] - cam->eye[2]};
+    float fwd_len = len3(fwd);
+    if (!(fwd_len > 0.0f)) return fail(path, "%s (\"%s\"): eye == target", where, cam->name);
+    float up[3] = {0.0f, 1.0f, 0.0f};
+    if (has_up) {
+        float up_len = len3(cam->up);
+        if (!(up_len > 0.0f)) return fail(path, "%s (\"%s\"): up is zero", where, cam->name);
+        for (int i = 0; i < 3; ++i) up[i] = cam->up[i] / up_len;
+    }
+    /* Parallel up and view direction leave the camera's roll undefined. */
+    float cx = (fwd[1] * up[2] - fwd[2] * up[1]) / fwd_len;
+    float cy = (fwd[2] * up[0] - fwd[0] * up[2]) / fwd_len;
+    float cz = (fwd[0] * up[1] - fwd[1] * up[0]) / fwd_len;
+    if (sqrtf(cx * cx + cy * cy + cz * cz) < 1e-4f) {
+        return fail(path, "%s (\"%s\"): up is parallel to the view direction%s", where,
+                    cam->name, has_up ? "" : " (give an \"up\")");
+    }
+    return OB_OK;
+}
+
+static ob_error parse_light(const char *path, int index, const cJSON *obj, ob_light *light)
+{
+    char where[96] = "";
+    snprintf(where, sizeof where, "lights[%d]", index);
+    if (!cJSON_IsObject(obj)) {
+        return fail(path, "%s: expected an object, got %s", where, json_type_name(obj));
+    }
+    ob_light l = {.color = {1.0f, 1.0f, 1.0f}, .intensity = 1.0f};
+    bool has_direction = false;
+    for (const cJSON *it = obj->child; it; it = it->next) {
+        const char *key = it->string;
+        char field[160] = "";
+        snprintf(field, sizeof field, "%s.%s", where, key);
+        if (is_comment_key(key)) continue;
+        if (seen_before(obj, it)) return fail(path, "%s: duplicate key", field);
+        ob_error err = OB_OK;
+        if (strcmp(key, "type") == 0) {
+            if (!cJSON_IsString(it) || strcmp(it->valuestring, "directional") != 0) {
+                return fail(path, "%s: expected \"directional\" (the only light type)", field);
+            }
+        } else if (strcmp(key, "direction") == 0) {
+            err = read_vec3(path, field, it, l.direction);
+            if (err == OB_OK) {
+                float len = len3(l.direction);
+                if (!(len > 0.0f)) return fail(path, "%s: direction is zero", field);
+                for (int i = 0; i < 3; ++i) l.direction[i] /= len;
+            }
+            has_direction = true;
+        } else if (strcmp(key, "color") == 0) {
+            err = read_vec3(path, field, it, l.color);
+            if (err == OB_OK && (l.color[0] < 0.0f || l.color[1] < 0.0f || l.color[2] < 0.0f)) {
+                return fail(path, "%s: colour components must be >= 0", field);
+            }
+        } else if (strcmp(key, "intensity") == 0) {
+            err = read_number(path, field, it, &l.intensity);
+            if (err == OB_OK && l.intensity < 0.0f) {
+                return fail(path, "%s: intensity must be >= 0", field);
+            }
+        } else {
+            return fail(path, "%s: unknown key (expected type, direction, color, intensity)",
+                        field);
+        }
+        if (err != OB_OK) return err;
+    }
+    if (!has_direction) return fail(path, "%s: missing \"direction\"", where);
+    *light = l;
+    return OB_OK;
+}
+
+/* Read the whole file as a NUL-terminated string (malloc'd). */
+static ob_error read_text(const char *path, char **out)
+{
+    *out = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f) return ob_set_error(OB_ERR_IO, "%s: cannot open sidecar", path);
+    size_t cap = 4096, len = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        if (len + 1 >= cap) {
+            if (cap >= SIDECAR_MAX_BYTES) break;
+            char *bigger = realloc(buf, cap * 2);
+            if (!bigger) {
+                free(buf);
+                buf = NULL;
+                break;
+            }
+            buf = bigger;
+            cap *= 2;
+        }
+        size_t got = fread(buf + len, 1, cap - 1 - len, f);
+        len += got;
+        if (got == 0) break;
+    }
+    bool read_error = ferror(f) != 0;
+    fclose(f);
+    if (!buf) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory reading", path);
+    if (read_error) {
+        free(buf);
+        return ob_set_error(OB_ERR_IO, "%s: read error (is it a directory?)", path);
+    }
+    if (len + 1 >= cap && cap >= SIDECAR_MAX_BYTES) {
+        free(buf);
+        return fail(path, "larger than %u bytes: not a sidecar", SIDECAR_MAX_BYTES);
+    }
+    buf[len] = '\0';
+    if (strlen(buf) != len) {
+        free(buf);
+        return fail(path, "contains a NUL byte: not JSON text");
+    }
+    *out = buf;
+    return OB_OK;
+}
+
+static ob_error parse_file(const char *path, sidecar *sc)
+{
+    memset(sc, 0, sizeof *sc);
+    if (!path) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "sidecar path is NULL");
+    char *text = NULL;
+    ob_error err = read_text(path, &text);
+    if (err != OB_OK) return err;
+
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
+    if (!root) {
+        /* Line and column of the parse failure, counted from the start of the text. */
+        int line = 1, col = 1;
+        for (const char *c = text; end && c < end && *c; ++c) {
+            if (*c == '\n') {
+                ++line;
+                col = 1;
+            } else {
+                ++col;
+            }
+        }
+        free(text);
+        return fail(path, "not valid JSON (error near line %d, column %d)", line, col);
+    }
+    free(text);
+    if (!cJSON_IsObject(root)) {
+        err = fail(path, "top level: expected an object, got %s", json_type_name(root));
+        cJSON_Delete(root);
+        return err;
+    }
+
+    for (const cJSON *it = root->child; it && err == OB_OK; it = it->next) {
+        const char *key = it->string;
+        if (is_comment_key(key)) continue;
+        if (seen_before(root, it)) {
+            err = fail(path, "%s: duplicate key", key);
+        } else if (strcmp(key, "model") == 0) {
+            if (!cJSON_IsString(it) || !it->valuestring[0]) {
+                err = fail(path, "model: expected a non-empty path string");
+            } else if (strlen(it->valuestring) >= sizeof sc->model) {
+                err = fail(path, "model: path too long");
+            } else {
+                memcpy(sc->model, it->valuestring, strlen(it->valuestring) + 1);
+            }
+        } else if (strcmp(key, "up") == 0) {
+            const char *v = cJSON_IsString(it) ? it->valuestring : "";
+            if (strcmp(v, "y") == 0 || strcmp(v, "Y") == 0) {
+                sc->up = OB_UP_Y;
+            } else if (strcmp(v, "z") == 0 || strcmp(v, "Z") == 0) {
+                sc->up = OB_UP_Z;
+            } else {
+                err = fail(path, "up: expected \"y\" or \"z\"");
+            }
+        } else if (strcmp(key, "ao_radius") == 0) {
+            err = read_number(path, "ao_radius", it, &sc->ao_radius);
+            if (err == OB_OK && !(sc->ao_radius > 0.0f)) {
+                err = fail(path, "ao_radius: must be > 0, got %g", (double)sc->ao_radius);
+            }
+        } else if (strcmp(key, "cameras") == 0) {
+            if (!cJSON_IsArray(it)) {
+                err = fail(path, "cameras: expected an array, got %s", json_type_name(it));
+                break;
+            }
+            int n = cJSON_GetArraySize(it);
+            if (n > OB_MAX_CAMERAS - 1) {
+                err = fail(path, "cameras: %d presets, at most %d", n, OB_MAX_CAMERAS - 1);
+                break;
+            }
+            for (int i = 0; i < n && err == OB_OK; ++i) {
+                err = parse_camera(path, i, cJSON_GetArrayItem(it, i), &sc->cameras[i]);
+                for (int j = 0; j < i && err == OB_OK; ++j) {
+                    if (strcmp(sc->cameras[j].name, sc->cameras[i].name) == 0) {
+                        err = fail(path, "cameras[%d]: name \"%s\" already used by cameras[%d]",
+                                   i, sc->cameras[i].name, j);
+                    }
+                }
+            }
+            sc->camera_count = n;
+        } else if (strcmp(key, "lights") == 0) {
+            if (!cJSON_IsArray(it)) {
+                err = fail(path, "lights: expected an array, got %s", json_type_name(it));
+                break;
+            }
+            int n = cJSON_GetArraySize(it);
+            for (int i = 0; i < n && err == OB_OK; ++i) {
+                ob_light l = {0};
+                err = parse_light(path, i, cJSON_GetArrayItem(it, i), &l);
+                /* One key light for now; the others are validated so they can be used later. */
+                if (err == OB_OK && i == 0) {
+                    sc->light = l;
+                    sc->has_light = true;
+                }
+            }
+        } else {
+            err = fail(path, "%s: unknown key (expected model, up, ao_radius, cameras, lights, "
+                             "or _comment)", key);
+        }
+    }
+    cJSON_Delete(root);
+    return err;
+}
+
+ob_error ob_sidecar_peek(const char *path, char *model_out, size_t model_len, ob_up_axis *up_out)
+{
+    sidecar *sc = malloc(sizeof *sc);
+    if (!sc) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading sidecar");
+    ob_error err = parse_file(path, sc);
+    if (err == OB_OK && model_out && model_len > 0) {
+        if (strlen(sc->model) >= model_len) {
+            err = fail(path, "model: path too long");
+        } else {
+            memcpy(model_out, sc->model, strlen(sc->model) + 1);
+        }
+    }
+    if (err == OB_OK && up_out) *up_out = sc->up;
+    free(sc);
+    return err;
+}
+
+ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path)
+{
+    if (!s) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_scene_apply_sidecar: scene is NULL");
+    sidecar *sc = malloc(sizeof *sc);
+    if (!sc) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading sidecar");
+    ob_error err = parse_file(json_path, sc);
+    if (err != OB_OK) {
+        free(sc);
+        return err;
+    }
+    /* Count the slots the new presets need before touching the scene, so a failure leaves it as
+     * it was. */
+    int fresh = 0;
+    for (int i = 0; i < sc->camera_count; ++i) {
+        bool replaces = false;
+        for (int j = 0; j < s->camera_count; ++j) {
+            if (strcmp(s->cameras[j].name, sc->cameras[i].name) == 0) replaces = true;
+        }
+        if (!replaces) ++fresh;
+    }
+    if (s->camera_count + fresh > OB_MAX_CAMERAS) {
+        err = fail(json_path, "cameras: %d presets would exceed the limit of %d", fresh,
+                   OB_MAX_CAMERAS);
+        free(sc);
+        return err;
+    }
+    for (int i = 0; i < sc->camera_count; ++i) ob_scene_add_camera(s, &sc->cameras[i]);
+    if (sc->ao_radius > 0.0f) s->ao_radius = sc->ao_radius;
+    if (sc->has_light) s->light = sc->light;
+    free(sc);
+    return OB_OK;
+}

@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# CLI tests: every bad-input case gives one clear line, its exit code, and leaves no file; the
+# outputs decode to the expected size and values; the same command twice gives the same bytes.
+set -u
+OBSCURA=$1
+IMGCHECK=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); }
+bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
+
+# expect CODE PATTERN -- ARGS...: exit code, a one-line stderr matching PATTERN, no output left.
+expect() {
+    local code=$1 pattern=$2
+    shift 3
+    rm -f "$dir"/out.png "$dir"/ao.pfm
+    "$OBSCURA" "$@" >"$dir/stdout" 2>"$dir/stderr"
+    local got=$?
+    local lines
+    lines=$(wc -l <"$dir/stderr")
+    if [ "$got" -ne "$code" ]; then bad "obscura $* exited $got, want $code: $(cat "$dir/stderr")"; return; fi
+    if [ "$lines" -ne 1 ]; then bad "obscura $* printed $lines lines on stderr: $(cat "$dir/stderr")"; return; fi
+    if ! grep -qiE "$pattern" "$dir/stderr"; then bad "obscura $*: '$(cat "$dir/stderr")' lacks /$pattern/"; return; fi
+    if ls "$dir" | grep -qE '\.(png|pfm)|tmp-'; then bad "obscura $* left files: $(ls "$dir")"; return; fi
+    ok
+}
+
+R=(render --size 64x48 --out "$dir/out.png" --ao-out "$dir/ao.pfm")
+expect 2 "unknown scene 'nosuch'" -- "${R[@]}" --scene nosuch
+expect 2 "unknown method 'nosuch'" -- "${R[@]}" --method nosuch
+expect 2 "no parameter 'nosuch'" -- "${R[@]}" --set ssao.nosuch=1
+expect 2 "out of range" -- "${R[@]}" --set ssao.radius=-1
+expect 2 "out of range" -- "${R[@]}" --set ssao.samples=100000
+expect 2 "finite" -- "${R[@]}" --set ssao.radius=nan
+expect 2 "expects a number" -- "${R[@]}" --set ssao.bias=abc
+expect 2 "integer" -- "${R[@]}" --set ssao.samples=3.5
+expect 2 "WIDTHxHEIGHT" -- "${R[@]}" --size abc
+expect 2 "WIDTHxHEIGHT" -- "${R[@]}" --size 0x0
+expect 2 "WIDTHxHEIGHT" -- "${R[@]}" --size 640x
+expect 2 "WIDTHxHEIGHT" -- "${R[@]}" --size -5x3
+expect 2 "GL_MAX_TEXTURE_SIZE" -- "${R[@]}" --size 100000x8 --scene corner
+expect 2 "unknown camera" -- "${R[@]}" --scene corner --camera nosuch
+expect 2 "fov" -- "${R[@]}" --scene corner --fov 200
+expect 2 "eye" -- "${R[@]}" --scene corner --eye 1,2 --target 0,0,0
+expect 2 "unknown option" -- "${R[@]}" --frobnicate 3
+expect 2 "unknown command" -- frobnicate
+expect 3 "cannot read|no such file" -- "${R[@]}" --scene "$dir/missing.obj"
+head -c 3000 /dev/urandom >"$dir/corrupt.ply"
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1 2\nzzz\n' >"$dir/corrupt2.ply"
+expect 3 "corrupt.ply" -- "${R[@]}" --scene "$dir/corrupt.ply"
+expect 3 "corrupt2.ply" -- "${R[@]}" --scene "$dir/corrupt2.ply"
+rm -f "$dir"/corrupt*.ply
+echo '{"cameras": [ {"name": "x", "eye": [1, 2]} ]' >"$dir/bad.json"
+expect 3 "bad.json" -- "${R[@]}" --scene corner --sidecar "$dir/bad.json"
+expect 3 "missing.json" -- "${R[@]}" --scene /usr/share/glmark2/models/bunny.obj --sidecar "$dir/missing.json"
+expect 4 "cannot write" -- render --scene corner --size 32x24 --out /nonexistent-dir/x.png
+expect 4 "cannot write" -- render --scene corner --size 32x24 --out "$dir/out.png" --ao-out /nonexistent-dir/ao.pfm
+# No EGL vendor at all: the context error names what was tried, with its own exit code.
+__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent expect 5 "no GPU context" -- "${R[@]}" --scene corner
+
+# --gpu hw: a hardware device if the machine has one, else exit 5 naming the devices tried.
+"$OBSCURA" "${R[@]}" --scene corner --gpu hw -v >/dev/null 2>"$dir/stderr"
+code=$?
+if [ $code -eq 0 ] || { [ $code -eq 5 ] && grep -q "no GPU context (--gpu hw)" "$dir/stderr"; }; then ok; else bad "--gpu hw: exit $code: $(cat "$dir/stderr")"; fi
+rm -f "$dir"/out.png "$dir"/ao.pfm
+
+# Outputs decode to the expected size and values.
+if "$OBSCURA" render --scene corner --size 96x64 --gpu sw -v --out "$dir/c.png" --ao-out "$dir/c.pfm" \
+    --ao-png "$dir/c_ao.png" --depth-out "$dir/d.pfm" --normal-out "$dir/n.pfm" --timings >"$dir/stdout" 2>"$dir/stderr"; then
+    ok
+else
+    bad "corner render failed: $(cat "$dir/stderr")"
+fi
+grep -q "llvmpipe" "$dir/stderr" && ok || bad "-v does not print GL_RENDERER: $(cat "$dir/stderr")"
+for pass in gbuffer ao blur compose total; do
+    grep -qE "^$pass +[0-9]+\.[0-9]+" "$dir/stdout" && ok || bad "--timings lacks $pass: $(cat "$dir/stdout")"
+done
+read -r w h c lo hi mean < <("$IMGCHECK" "$dir/c.png")
+[ "$w $h $c" = "96 64 4" ] && [ "$hi" -gt 0 ] && ok || bad "final PNG is '$w $h $c $lo $hi'"
+read -r w h c lo hi mean < <("$IMGCHECK" "$dir/c_ao.png")
+[ "$w $h $c" = "96 64 1" ] && [ "$hi" -eq 255 ] && [ "$lo" -lt 245 ] && ok || bad "AO PNG is '$w $h $c $lo $hi'"
+read -r w h c lo hi mean < <("$IMGCHECK" "$dir/c.pfm")
+awk -v w="$w" -v h="$h" -v c="$c" -v lo="$lo" -v hi="$hi" 'BEGIN { exit !(w == 96 && h == 64 && c == 1 && lo >= 0 && lo < 0.95 && hi == 1) }' \
+    && ok || bad "AO PFM is '$w $h $c $lo $hi'"
+read -r w h c lo hi mean < <("$IMGCHECK" "$dir/n.pfm")
+awk -v c="$c" -v lo="$lo" -v hi="$hi" 'BEGIN { exit !(c == 3 && lo >= -1.001 && hi <= 1.001) }' && ok || bad "normal PFM is '$c $lo $hi'"
+read -r w h c lo hi mean < <("$IMGCHECK" "$dir/d.pfm")
+awk -v lo="$lo" -v hi="$hi" 'BEGIN { exit !(lo == 0 && hi > 1) }' && ok || bad "depth PFM is '$lo $hi'"
+
+# The same command twice: identical AO bytes and images.
+"$OBSCURA" render --scene corner --size 96x64 --gpu sw --out "$dir/c2.png" --ao-out "$dir/c2.pfm" 2>/dev/null
+cmp -s "$dir/c.pfm" "$dir/c2.pfm" && ok || bad "AO differs between two identical runs"
+cmp -s "$dir/c.png" "$dir/c2.png" && ok || bad "final image differs between two identical runs"
+
+# list --json carries every method with its parameter table, and the built-in scenes.
+if "$OBSCURA" list --json >"$dir/list.json" && python3 - "$dir/list.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+names = [m["name"] for m in d["methods"]]
+assert "ssao" in names and "none" in names, names
+ssao = next(m for m in d["methods"] if m["name"] == "ssao")
+p = {x["name"]: x for x in ssao["params"]}
+for k in ("radius", "bias", "intensity", "samples"):
+    assert k in p, k
+    assert p[k]["min"] <= p[k]["default"] <= p[k]["max"], p[k]
+scenes = [s["name"] for s in d["builtin_scenes"]]
+assert scenes == ["cornell", "corner", "sphere-on-plane"], scenes
+assert "bunny" in d["named_scenes"] and "fzk-haus" in d["named_scenes"], d["named_scenes"]
+PY
+then ok; else bad "list --json"; fi
+"$OBSCURA" list | grep -q "ssao" && ok || bad "list"
+"$OBSCURA" render --help | grep -q -- "--ao-out" && ok || bad "render --help"
+"$OBSCURA" list --help | grep -q -- "--json" && ok || bad "list --help"
+
+echo "test_cli: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,162 @@
+/* CPU unit tests (run again under ASan + UBSan): settings validation against the registry,
+ * sampling kernels, PNG/PFM files, shader-log mapping and the embedded shaders. */
+#include <stb/stb_image.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "gpu/gpu.h"
+#include "gpu/shaders_embedded.h"
+#include "obscura/obscura.h"
+#include "sampling/sampling.h"
+
+static void test_registry_and_settings(void)
+{
+    CHECK(ob_method_count() >= 2, "methods: %d", ob_method_count());
+    CHECK(ob_find_method("ssao") >= 0 && ob_find_method("none") >= 0, "ssao and none registered");
+    CHECK(ob_find_method("nope") == -1, "unknown method index");
+    for (int i = 0; i < ob_method_count(); ++i) {
+        const ob_method_info *m = ob_method_at(i);
+        CHECK(m->param_count <= OB_MAX_PARAMS, "%s has %d params", m->name, m->param_count);
+        for (int p = 0; p < m->param_count; ++p) {
+            const ob_param_info *pi = &m->params[p];
+            CHECK(pi->min <= pi->def && pi->def <= pi->max, "%s.%s default %g in [%g,%g]", m->name, pi->name,
+                  (double)pi->def, (double)pi->min, (double)pi->max);
+            CHECK(pi->unit && pi->help && *pi->help, "%s.%s documented", m->name, pi->name);
+        }
+    }
+
+    ob_settings s;
+    CHECK(ob_settings_init(&s, "ssao") == OB_OK, "init ssao");
+    CHECK(s.params_set == 0, "nothing set explicitly");
+    CHECK(ob_settings_set(&s, "ssao.radius=0.25") == OB_OK, "set radius");
+    CHECK_NEAR(ob_settings_get(&s, "radius"), 0.25, 0.0, "radius value");
+    CHECK(s.params_set != 0, "radius marked as set");
+    CHECK(ob_settings_set(&s, "samples=32") == OB_OK, "set samples without prefix");
+    CHECK_NEAR(ob_settings_get(&s, "samples"), 32, 0.0, "samples value");
+
+    const char *msg = NULL;
+    struct { const char *text; ob_error want; } bad[] = {
+        {"ssao.nope=1", OB_ERR_UNKNOWN_PARAM},     {"foo.radius=1", OB_ERR_UNKNOWN_METHOD},
+        {"ssao.radius=-1", OB_ERR_OUT_OF_RANGE},   {"ssao.radius=nan", OB_ERR_INVALID_ARGUMENT},
+        {"ssao.radius=inf", OB_ERR_INVALID_ARGUMENT}, {"ssao.radius=abc", OB_ERR_INVALID_ARGUMENT},
+        {"ssao.radius=", OB_ERR_INVALID_ARGUMENT}, {"ssao.radius", OB_ERR_INVALID_ARGUMENT},
+        {"ssao.samples=2.5", OB_ERR_INVALID_ARGUMENT}, {"ssao.samples=100000", OB_ERR_OUT_OF_RANGE},
+        {"none.radius=1", OB_ERR_INVALID_ARGUMENT}, {"=3", OB_ERR_INVALID_ARGUMENT},
+        {"ssao.radius=1e99", OB_ERR_OUT_OF_RANGE},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        ob_error e = ob_settings_set(&s, bad[i].text);
+        ob_get_error(&msg);
+        CHECK(e == bad[i].want, "'%s' gave %s (%s), want %s", bad[i].text, ob_error_name(e), msg,
+              ob_error_name(bad[i].want));
+        CHECK(msg && *msg && !strchr(msg, '\n'), "'%s' has a one-line message", bad[i].text);
+    }
+    /* Rejected values leave the previous ones alone. */
+    CHECK_NEAR(ob_settings_get(&s, "radius"), 0.25, 0.0, "radius unchanged");
+    CHECK(ob_settings_init(&s, "bogus") == OB_ERR_UNKNOWN_METHOD, "unknown method at init");
+    ob_get_error(&msg);
+    CHECK(strstr(msg, "ssao") != NULL, "message lists the known methods: %s", msg);
+}
+
+static void test_kernel(void)
+{
+    enum { N = 64 };
+    float k[N * 4];
+    ob_hemisphere_kernel(k, N, 7);
+    float inner = 0.0f, outer = 0.0f;
+    for (int i = 0; i < N; ++i) {
+        float x = k[4 * i], y = k[4 * i + 1], z = k[4 * i + 2];
+        float len = sqrtf(x * x + y * y + z * z);
+        CHECK(z > 0.0f, "sample %d below the tangent plane (z %g)", i, (double)z);
+        CHECK(len <= 1.0f + 1e-5f && len >= 0.099f, "sample %d length %g outside [0.1, 1]", i, (double)len);
+        if (i < N / 2) inner += len; else outer += len;
+    }
+    /* Seed 004 §3.3: the accelerating scale puts the first half of the kernel nearer the centre. */
+    CHECK(inner < outer * 0.6f, "first half mean length %g vs second half %g", (double)(inner / 32), (double)(outer / 32));
+    float k2[N * 4];
+    ob_hemisphere_kernel(k2, N, 7);
+    CHECK(memcmp(k, k2, sizeof k) == 0, "kernel is deterministic");
+
+    float noise[32];
+    ob_rotation_noise_4x4(noise, 3);
+    int sectors = 0;
+    for (int i = 0; i < 16; ++i) {
+        float len = sqrtf(noise[2 * i] * noise[2 * i] + noise[2 * i + 1] * noise[2 * i + 1]);
+        CHECK_NEAR(len, 1.0, 1e-5, "noise vector is unit length");
+        float a = atan2f(noise[2 * i + 1], noise[2 * i]);
+        if (a < 0.0f) a += 6.2831853f;
+        sectors |= 1 << ((int)(a / (6.2831853f / 16.0f)) & 15);
+    }
+    CHECK(sectors == 0xFFFF, "the 16 rotations cover all 16 sectors (mask 0x%x)", (unsigned)sectors);
+}
+
+static void test_files(void)
+{
+    char dir[] = "/tmp/obscura-test-XXXXXX";
+    CHECK(mkdtemp(dir) != NULL, "temp dir");
+    char pfm[256], png[256];
+    snprintf(pfm, sizeof pfm, "%s/a.pfm", dir);
+    snprintf(png, sizeof png, "%s/a.png", dir);
+
+    enum { W = 5, H = 3 };
+    float px[W * H * 3];
+    for (int i = 0; i < W * H * 3; ++i) px[i] = (float)i * 0.37f - 2.0f;
+    for (int c = 1; c <= 3; c += 2) {
+        CHECK(ob_write_pfm(pfm, W, H, c, px) == OB_OK, "write pfm");
+        int w = 0, h = 0, ch = 0;
+        float *back = NULL;
+        CHECK(ob_read_pfm(pfm, &w, &h, &ch, &back) == OB_OK, "read pfm");
+        CHECK(w == W && h == H && ch == c, "pfm header %dx%dx%d", w, h, ch);
+        CHECK(back && memcmp(back, px, sizeof(float) * W * H * (size_t)c) == 0, "pfm values exact");
+        free(back);
+    }
+    uint8_t rgba[W * H * 4];
+    for (int i = 0; i < W * H * 4; ++i) rgba[i] = (uint8_t)(i * 7);
+    CHECK(ob_write_png(png, W, H, 4, rgba) == OB_OK, "write png");
+    int w = 0, h = 0, n = 0;
+    unsigned char *dec = stbi_load(png, &w, &h, &n, 4);
+    CHECK(dec && w == W && h == H && memcmp(dec, rgba, sizeof rgba) == 0, "png decodes to the same pixels");
+    stbi_image_free(dec);
+
+    /* Failures leave nothing behind: an unwritable path, and no temporary files. */
+    CHECK(ob_write_png("/nonexistent-dir/x.png", W, H, 4, rgba) == OB_ERR_IO, "unwritable png path");
+    CHECK(ob_read_pfm(png, &w, &h, &n, &(float *){NULL}) == OB_ERR_IO, "a PNG is not a PFM");
+    unlink(pfm);
+    unlink(png);
+    CHECK(rmdir(dir) == 0, "no temporary files left in %s", dir);
+}
+
+static void test_shader_log(void)
+{
+    char out[512];
+    /* Mesa: "0:LINE(COL): error: ...", NVIDIA "0(LINE) : error ...", LINE = file id * 10000 + line. */
+    int id = 0;
+    for (int i = 0; i < ob_shader_file_count; ++i)
+        if (!strcmp(ob_shader_file_names[i], "ssao.glsl")) id = i + 1;
+    CHECK(id > 0, "ssao.glsl is embedded");
+    char log[256];
+    snprintf(log, sizeof log, "0:%d(7): error: `foo' undeclared\n0:%d(1): warning: x\n", id * 10000 + 42, id * 10000 + 43);
+    ob_format_shader_log(log, "x.glsl", out, sizeof out);
+    CHECK(strcmp(out, "shaders/ssao.glsl:42: error: `foo' undeclared") == 0, "mesa log -> '%s'", out);
+    snprintf(log, sizeof log, "0(%d) : error C1008: undefined variable \"bar\"\n", id * 10000 + 12);
+    ob_format_shader_log(log, "x.glsl", out, sizeof out);
+    CHECK(strcmp(out, "shaders/ssao.glsl:12: error C1008: undefined variable \"bar\"") == 0, "nvidia log -> '%s'", out);
+
+    /* Includes are resolved at build time and #line markers keep file positions. */
+    const char *src = ob_shader_source("ssao.glsl");
+    CHECK(src && !strstr(src, "#include"), "no #include left in the embedded ssao.glsl");
+    CHECK(src && strncmp(src, "#version 450", 12) == 0, "#version stays first");
+    CHECK(src && strstr(src, "ob_view_position") && strstr(src, "OB_SSAO_MAX_SAMPLES"), "includes expanded");
+}
+
+int main(void)
+{
+    test_registry_and_settings();
+    test_kernel();
+    test_files();
+    test_shader_log();
+    return check_finish("test_cpu");
+}

@@ -1,0 +1,758 @@
+/* Scene module tests (CPU only): built-in scenes, Assimp import of the test models, sidecars,
+ * name resolution and error codes. Runs on tests/check.h: the exit status is the failure count
+ * and the last line "scene: N passed, N failed".
+ *
+ * The system models (glmark2-data, assimp test models, python3-tinyobjloader) are skipped with a
+ * note when absent, so the test still runs on a machine without them. */
+#if !defined(_POSIX_C_SOURCE) && !defined(_GNU_SOURCE)
+#define _POSIX_C_SOURCE 200809L /* mkdtemp, setenv */
+#endif
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "obscura/obscura.h"
+#include "scene/scene.h" /* mesh data: normals and winding are not in the public API */
+
+#define BUNNY_OBJ "/usr/share/glmark2/models/bunny.obj"
+#define CORNELL_OBJ "/usr/share/doc/python3-tinyobjloader/examples/cornell_box.obj"
+#define FZK_IFC "/usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc"
+#define CAMERAS_GLTF "/usr/share/assimp/models/glTF2/cameras/Cameras.gltf"
+#define BOX_GLTF "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf"
+#define BOX_GLB "/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb"
+
+/* Counts observed with Assimp 5.2.5 on Debian 12 (see the printed lines). */
+#define BUNNY_TRIANGLES 69666u
+
+static bool near(float a, float b, float tol)
+{
+    return fabsf(a - b) <= tol;
+}
+
+static bool file_exists(const char *path)
+{
+    return access(path, R_OK) == 0;
+}
+
+static char tmpdir[256] = "";
+
+static void tmp_path(char *out, size_t n, const char *name)
+{
+    snprintf(out, n, "%s/%s", tmpdir, name);
+}
+
+static void write_file(const char *path, const char *data, size_t len)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        CHECK(false, "cannot write %s", path);
+        return;
+    }
+    fwrite(data, 1, len, f);
+    fclose(f);
+}
+
+static void write_text(const char *path, const char *text)
+{
+    write_file(path, text, strlen(text));
+}
+
+static ob_scene *load(const char *name, const char *sidecar, ob_up_axis up)
+{
+    ob_scene_desc desc = {.name = name, .sidecar = sidecar, .up = up};
+    return ob_load_scene(&desc);
+}
+
+static const char *last_message(void)
+{
+    const char *msg = "";
+    ob_get_error(&msg);
+    return msg;
+}
+
+/* Every normal unit length, every triangle counter-clockwise about its vertex normals. */
+static void check_mesh_sanity(const ob_scene *s)
+{
+    uint32_t bad_normals = 0, bad_winding = 0, bad_index = 0;
+    for (int m = 0; m < s->mesh_count; ++m) {
+        const ob_mesh *mesh = &s->meshes[m];
+        for (uint32_t v = 0; v < mesh->vertex_count; ++v) {
+            const float *n = &mesh->normals[3u * v];
+            float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            if (!near(len, 1.0f, 1e-4f)) ++bad_normals;
+        }
+        for (uint32_t t = 0; t + 2u < mesh->index_count; t += 3u) {
+            const uint32_t *ix = &mesh->indices[t];
+            if (ix[0] >= mesh->vertex_count || ix[1] >= mesh->vertex_count ||
+                ix[2] >= mesh->vertex_count) {
+                ++bad_index;
+                continue;
+            }
+            const float *a = &mesh->positions[3u * ix[0]];
+            const float *b = &mesh->positions[3u * ix[1]];
+            const float *c = &mesh->positions[3u * ix[2]];
+            float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+            float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+            float f[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                          e1[0] * e2[1] - e1[1] * e2[0]};
+            float d = 0.0f;
+            for (int i = 0; i < 3; ++i) {
+                d += f[i] * (mesh->normals[3u * ix[0] + (uint32_t)i] +
+                             mesh->normals[3u * ix[1] + (uint32_t)i] +
+                             mesh->normals[3u * ix[2] + (uint32_t)i]);
+            }
+            /* Zero-area slivers (FZK-Haus has a few) have no orientation and cover no pixels. */
+            float area2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
+            if (area2 > 1e-20f && !(d > 0.0f)) ++bad_winding;
+        }
+        CHECK(mesh->material >= 0 && mesh->material < s->material_count,
+              "%s mesh %d: material %d out of range", s->name, m, mesh->material);
+    }
+    CHECK(bad_normals == 0, "%s: %u normals are not unit length", s->name, bad_normals);
+    CHECK(bad_winding == 0, "%s: %u triangles are not counter-clockwise about their normals",
+          s->name, bad_winding);
+    CHECK(bad_index == 0, "%s: %u indices out of range", s->name, bad_index);
+}
+
+static void check_bounds(const char *what, const ob_scene_stats *st, const float lo[3],
+                         const float hi[3], float tol)
+{
+    for (int i = 0; i < 3; ++i) {
+        CHECK(near(st->bounds_min[i], lo[i], tol) && near(st->bounds_max[i], hi[i], tol),
+              "%s: bounds axis %d = [%g, %g], expected [%g, %g]", what, i,
+              (double)st->bounds_min[i], (double)st->bounds_max[i], (double)lo[i],
+              (double)hi[i]);
+    }
+}
+
+static void print_stats(const char *what, const ob_scene *s)
+{
+    ob_scene_stats st = ob_query_scene_stats(s);
+    printf("%s: %u triangles, %u vertices, %u meshes, %u materials, bounds [%.4f %.4f %.4f] - "
+           "[%.4f %.4f %.4f], ao_radius %.4g, %d cameras\n",
+           what, st.triangles, st.vertices, st.meshes, st.materials, (double)st.bounds_min[0],
+           (double)st.bounds_min[1], (double)st.bounds_min[2], (double)st.bounds_max[0],
+           (double)st.bounds_max[1], (double)st.bounds_max[2],
+           (double)ob_query_scene_ao_radius(s), ob_query_camera_count(s));
+}
+
+static bool bounds_sane(const ob_scene_stats *st)
+{
+    for (int i = 0; i < 3; ++i) {
+        if (!isfinite(st->bounds_min[i]) || !isfinite(st->bounds_max[i])) return false;
+        if (!(st->bounds_max[i] > st->bounds_min[i])) return false;
+    }
+    return true;
+}
+
+/* ---- built-ins ------------------------------------------------------------------------------- */
+
+static void test_builtins(void)
+{
+    CHECK(ob_builtin_scene_count() == 3, "3 built-in scenes, got %d", ob_builtin_scene_count());
+    for (int i = 0; i < ob_builtin_scene_count(); ++i) {
+        CHECK(ob_builtin_scene_name(i) && ob_builtin_scene_description(i) &&
+                  ob_builtin_scene_description(i)[0],
+              "built-in %d has a name and a description", i);
+    }
+    CHECK(ob_builtin_scene_name(3) == NULL, "built-in name out of range is NULL");
+
+    const struct {
+        const char *name;
+        uint32_t triangles;
+        float lo[3], hi[3];
+        float radius;
+        const char *preset;
+    } expect[] = {
+        /* 16 quads; x reaches 556 mm at the ceiling's edge in the published data */
+        {"cornell", 32u, {0.0f, 0.0f, 0.0f}, {0.556f, 0.5488f, 0.5592f}, 0.1f, "front"},
+        /* 3 planes x 8 x 8 quads */
+        {"corner", 384u, {0.0f, 0.0f, 0.0f}, {4.0f, 4.0f, 4.0f}, 0.5f, "diagonal"},
+        /* sphere 48 x 24 without the degenerate pole halves: 48 * 46; plane 20 x 20 quads */
+        {"sphere-on-plane", 2208u + 800u, {-5.0f, 0.0f, -5.0f}, {5.0f, 2.0f, 5.0f}, 0.5f,
+         "contact"},
+    };
+    for (size_t k = 0; k < sizeof expect / sizeof expect[0]; ++k) {
+        ob_scene *s = load(expect[k].name, NULL, OB_UP_DEFAULT);
+        CHECK(s != NULL, "built-in %s loads: %s", expect[k].name, last_message());
+        if (!s) continue;
+        print_stats(expect[k].name, s);
+        ob_scene_stats st = ob_query_scene_stats(s);
+        CHECK(st.triangles == expect[k].triangles, "%s: %u triangles, expected %u",
+              expect[k].name, st.triangles, expect[k].triangles);
+        check_bounds(expect[k].name, &st, expect[k].lo, expect[k].hi, 1e-5f);
+        CHECK(near(ob_query_scene_ao_radius(s), expect[k].radius, 1e-6f), "%s: ao_radius %g",
+              expect[k].name, (double)ob_query_scene_ao_radius(s));
+        CHECK(strcmp(ob_query_scene_name(s), expect[k].name) == 0, "%s: scene name '%s'",
+              expect[k].name, ob_query_scene_name(s));
+        CHECK(ob_query_camera_count(s) >= 2 &&
+                  strcmp(ob_query_camera(s, 0).name, "default") == 0,
+              "%s: camera 0 is \"default\" followed by presets", expect[k].name);
+        ob_camera cam = {0};
+        CHECK(ob_find_camera(s, expect[k].preset, &cam) == OB_OK, "%s: preset %s",
+              expect[k].name, expect[k].preset);
+        ob_light light = ob_query_scene_light(s);
+        float ll = sqrtf(light.direction[0] * light.direction[0] +
+                         light.direction[1] * light.direction[1] +
+                         light.direction[2] * light.direction[2]);
+        CHECK(light.intensity > 0.0f && near(ll, 1.0f, 1e-5f) && light.direction[1] > 0.0f,
+              "%s: a unit light from above", expect[k].name);
+        check_mesh_sanity(s);
+        ob_destroy_scene(s);
+    }
+
+    /* Corner: the analytic scene needs exact, axis-aligned normals. */
+    ob_scene *s = load("corner", NULL, OB_UP_DEFAULT);
+    if (s) {
+        uint32_t bad = 0;
+        for (int m = 0; m < s->mesh_count; ++m) {
+            const ob_mesh *mesh = &s->meshes[m];
+            for (uint32_t v = 0; v < mesh->vertex_count; ++v) {
+                const float *n = &mesh->normals[3u * v];
+                const float *p = &mesh->positions[3u * v];
+                int ones = 0, zeros = 0;
+                for (int i = 0; i < 3; ++i) {
+                    if (n[i] == 1.0f) ++ones;
+                    if (n[i] == 0.0f) ++zeros;
+                }
+                /* The normal's axis is the axis on which the vertex lies at 0. */
+                int axis = n[0] == 1.0f ? 0 : (n[1] == 1.0f ? 1 : 2);
+                if (ones != 1 || zeros != 2 || p[axis] != 0.0f) ++bad;
+            }
+        }
+        CHECK(bad == 0, "corner: %u normals not exact +x/+y/+z of their plane", bad);
+        /* The diagonal preset sees all three planes: their far corners project inside a square
+         * frame (any landscape image is at least as wide). */
+        ob_camera cam = {0};
+        ob_find_camera(s, "diagonal", &cam);
+        const float corners[6][3] = {{4.0f, 0.0f, 0.0f}, {0.0f, 4.0f, 0.0f}, {0.0f, 0.0f, 4.0f},
+                                     {4.0f, 0.0f, 4.0f}, {0.0f, 4.0f, 4.0f}, {4.0f, 4.0f, 0.0f}};
+        float f[3] = {cam.target[0] - cam.eye[0], cam.target[1] - cam.eye[1],
+                      cam.target[2] - cam.eye[2]};
+        float fl = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        for (int i = 0; i < 3; ++i) f[i] /= fl;
+        /* right = f x (0,1,0), up = right x f */
+        float r[3] = {-f[2], 0.0f, f[0]};
+        float rl = sqrtf(r[0] * r[0] + r[2] * r[2]);
+        r[0] /= rl;
+        r[2] /= rl;
+        float u[3] = {r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2],
+                      r[0] * f[1] - r[1] * f[0]};
+        float half = tanf(0.5f * cam.fov_y_deg * 3.14159265f / 180.0f);
+        int outside = 0;
+        for (int k = 0; k < 6; ++k) {
+            float d[3] = {corners[k][0] - cam.eye[0], corners[k][1] - cam.eye[1],
+                          corners[k][2] - cam.eye[2]};
+            float z = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
+            float x = (d[0] * r[0] + d[1] * r[1] + d[2] * r[2]) / (z * half);
+            float y = (d[0] * u[0] + d[1] * u[1] + d[2] * u[2]) / (z * half);
+            if (!(z > 0.0f && fabsf(x) < 1.0f && fabsf(y) < 1.0f)) ++outside;
+        }
+        CHECK(outside == 0, "corner: diagonal camera sees all plane corners (%d outside)",
+              outside);
+        ob_destroy_scene(s);
+    }
+
+    /* Cornell: red on the viewer's left (x ~ 0.55), green on the right (x = 0). */
+    s = load("cornell", NULL, OB_UP_DEFAULT);
+    if (s) {
+        for (int m = 0; m < s->mesh_count; ++m) {
+            const ob_material *mat = &s->materials[s->meshes[m].material];
+            if (strcmp(mat->name, "red") == 0) {
+                CHECK(s->meshes[m].positions[0] > 0.5f, "cornell: red wall at x ~ 0.55");
+            }
+            if (strcmp(mat->name, "green") == 0) {
+                CHECK(s->meshes[m].positions[0] == 0.0f, "cornell: green wall at x = 0");
+            }
+        }
+        ob_camera cam = {0};
+        CHECK(ob_find_camera(s, "front", &cam) == OB_OK && near(cam.eye[2], -0.8f, 1e-6f) &&
+                  near(cam.fov_y_deg, 39.3f, 1e-4f),
+              "cornell: published camera in metres");
+        ob_destroy_scene(s);
+    }
+}
+
+/* ---- cameras --------------------------------------------------------------------------------- */
+
+static void test_cameras(void)
+{
+    ob_scene *s = load("cornell", NULL, OB_UP_DEFAULT);
+    if (!s) return;
+    ob_camera cam = {0};
+    CHECK(ob_find_camera(s, "front", &cam) == OB_OK && strcmp(cam.name, "front") == 0,
+          "find camera by name");
+    CHECK(ob_find_camera(s, "1", &cam) == OB_OK && strcmp(cam.name, "front") == 0,
+          "find camera by index 1");
+    CHECK(ob_find_camera(s, "0", &cam) == OB_OK && strcmp(cam.name, "default") == 0,
+          "find camera by index 0");
+    ob_error err = ob_find_camera(s, "nope", &cam);
+    CHECK(err == OB_ERR_UNKNOWN_CAMERA && strstr(last_message(), "default") &&
+              strstr(last_message(), "front"),
+          "unknown camera lists the presets: %s", last_message());
+    CHECK(ob_find_camera(s, "2", &cam) == OB_ERR_UNKNOWN_CAMERA, "index out of range");
+    CHECK(ob_find_camera(s, "-1", &cam) == OB_ERR_UNKNOWN_CAMERA, "negative index");
+    CHECK(ob_find_camera(s, "", &cam) == OB_ERR_UNKNOWN_CAMERA, "empty camera name");
+    CHECK(ob_find_camera(NULL, "0", &cam) == OB_ERR_INVALID_ARGUMENT, "NULL scene");
+
+    /* Default camera frames the bounds; planes are positive and ordered, also from inside. */
+    ob_camera def = ob_query_camera(s, 0);
+    ob_camera_fit_planes(&def, s->bounds_min, s->bounds_max);
+    CHECK(def.near_z > 0.0f && def.far_z > def.near_z, "default camera planes %g %g",
+          (double)def.near_z, (double)def.far_z);
+    ob_camera inside = {.eye = {0.278f, 0.27f, 0.3f}, .target = {0.278f, 0.27f, 0.5f}};
+    ob_camera_fit_planes(&inside, s->bounds_min, s->bounds_max);
+    CHECK(inside.near_z > 0.0f && inside.near_z < 0.01f && inside.far_z > 0.5f,
+          "interior camera planes %g %g", (double)inside.near_z, (double)inside.far_z);
+    ob_destroy_scene(s);
+
+    float lo[3] = {-1.0f, -2.0f, -3.0f}, hi[3] = {1.0f, 2.0f, 3.0f};
+    ob_camera f = ob_camera_frame_bounds(lo, hi, 0.0f);
+    float d[3] = {f.eye[0] - f.target[0], f.eye[1] - f.target[1], f.eye[2] - f.target[2]};
+    float dist = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    float r = sqrtf(1.0f + 4.0f + 9.0f);
+    CHECK(near(f.fov_y_deg, 60.0f, 1e-6f) && near(dist, 1.1f * r / 0.5f, 1e-3f) &&
+              f.target[0] == 0.0f && f.eye[2] > 0.0f,
+          "frame_bounds: sphere fits 60 degrees with 10%% margin (dist %g)", (double)dist);
+}
+
+/* ---- imported models ------------------------------------------------------------------------- */
+
+static void test_bunny(void)
+{
+    if (!file_exists(BUNNY_OBJ)) {
+        printf("skip: %s not installed\n", BUNNY_OBJ);
+        return;
+    }
+    ob_scene *s = load(BUNNY_OBJ, NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "bunny loads: %s", last_message());
+    if (!s) return;
+    print_stats("bunny.obj", s);
+    ob_scene_stats st = ob_query_scene_stats(s);
+    CHECK(st.triangles == BUNNY_TRIANGLES, "bunny: %u triangles, expected %u", st.triangles,
+          BUNNY_TRIANGLES);
+    CHECK(bounds_sane(&st), "bunny: finite, non-degenerate bounds");
+    check_mesh_sanity(s);
+    ob_destroy_scene(s);
+
+    /* The named scene: scenes/bunny.obscura.json in the data directory. */
+    s = load("bunny", NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "named scene bunny loads: %s", last_message());
+    if (s) {
+        ob_camera cam = {0};
+        CHECK(strcmp(ob_query_scene_name(s), "bunny") == 0, "named scene keeps its name");
+        CHECK(ob_find_camera(s, "front", &cam) == OB_OK &&
+                  ob_find_camera(s, "side", &cam) == OB_OK &&
+                  ob_find_camera(s, "closeup", &cam) == OB_OK,
+              "bunny presets front, side, closeup");
+        ob_destroy_scene(s);
+    }
+}
+
+static const ob_material_info *find_material(const ob_material_info *m, int n, const char *name)
+{
+    for (int i = 0; i < n; ++i) {
+        if (strcmp(m[i].name, name) == 0) return &m[i];
+    }
+    return NULL;
+}
+
+static void test_cornell_obj(void)
+{
+    if (!file_exists(CORNELL_OBJ)) {
+        printf("skip: %s not installed\n", CORNELL_OBJ);
+        return;
+    }
+    ob_scene *s = load(CORNELL_OBJ, NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "cornell_box.obj loads: %s", last_message());
+    if (!s) return;
+    print_stats("cornell_box.obj", s);
+    ob_scene_stats st = ob_query_scene_stats(s);
+    /* 18 quads (the floor carries the blocks' footprints too; the front wall is commented
+     * out). */
+    CHECK(st.triangles == 36u, "cornell_box.obj: %u triangles, expected 36", st.triangles);
+    const float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {556.0f, 548.8f, 559.2f};
+    check_bounds("cornell_box.obj", &st, lo, hi, 1e-3f);
+    ob_material_info mats[16] = {0};
+    int n = ob_query_scene_material_count(s);
+    for (int i = 0; i < n && i < 16; ++i) mats[i] = ob_query_scene_material(s, i);
+    const ob_material_info *red = find_material(mats, n, "red");
+    const ob_material_info *green = find_material(mats, n, "green");
+    const ob_material_info *white = find_material(mats, n, "white");
+    CHECK(red && near(red->diffuse[0], 1.0f, 1e-6f) && near(red->diffuse[1], 0.0f, 1e-6f) &&
+              near(red->diffuse[2], 0.0f, 1e-6f),
+          "cornell_box.obj: red is (1, 0, 0)");
+    CHECK(green && near(green->diffuse[0], 0.0f, 1e-6f) &&
+              near(green->diffuse[1], 1.0f, 1e-6f) && near(green->diffuse[2], 0.0f, 1e-6f),
+          "cornell_box.obj: green is (0, 1, 0)");
+    CHECK(white && near(white->diffuse[0], 1.0f, 1e-6f) &&
+              near(white->diffuse[1], 1.0f, 1e-6f) && near(white->diffuse[2], 1.0f, 1e-6f),
+          "cornell_box.obj: white is (1, 1, 1)");
+    CHECK(find_material(mats, n, "blue") == NULL, "cornell_box.obj: unused blue is left out");
+    CHECK(!mats[0].has_texture, "cornell_box.obj: no textures");
+    check_mesh_sanity(s);
+    ob_destroy_scene(s);
+
+    s = load("cornell-obj", NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "named scene cornell-obj loads: %s", last_message());
+    if (s) {
+        ob_camera cam = {0};
+        CHECK(ob_find_camera(s, "front", &cam) == OB_OK && near(cam.eye[2], -800.0f, 1e-3f) &&
+                  near(cam.fov_y_deg, 39.3f, 1e-4f),
+              "cornell-obj: front camera from the sidecar");
+        CHECK(near(ob_query_scene_ao_radius(s), 100.0f, 1e-4f), "cornell-obj: ao_radius 100");
+        ob_camera def = ob_query_camera(s, 0);
+        CHECK(strcmp(def.name, "default") == 0 && near(def.eye[2], -800.0f, 1e-3f) &&
+                  ob_query_camera_count(s) == 2,
+              "cornell-obj: the sidecar's \"default\" replaces the framing camera");
+        ob_destroy_scene(s);
+    }
+}
+
+static void test_fzk_haus(void)
+{
+    if (!file_exists(FZK_IFC)) {
+        printf("skip: %s not installed\n", FZK_IFC);
+        return;
+    }
+    /* As the file comes, then as the named scene (with its sidecar's cameras). */
+    ob_scene *s = load(FZK_IFC, NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "FZK-Haus loads: %s", last_message());
+    if (!s) return;
+    print_stats("AC14-FZK-Haus.ifc", s);
+    ob_scene_stats st = ob_query_scene_stats(s);
+    CHECK(st.triangles > 1000u, "FZK-Haus: %u triangles > 1000", st.triangles);
+    CHECK(bounds_sane(&st), "FZK-Haus: finite, non-degenerate bounds");
+    /* A house is wider than tall: after import the short axis must be Y (the importer already
+     * turns IFC's Z-up into Y-up). */
+    float ex = st.bounds_max[0] - st.bounds_min[0], ey = st.bounds_max[1] - st.bounds_min[1];
+    float ez = st.bounds_max[2] - st.bounds_min[2];
+    CHECK(ey < ex && ey < ez, "FZK-Haus: Y is up after import (extent %g %g %g)", (double)ex,
+          (double)ey, (double)ez);
+    check_mesh_sanity(s);
+    /* Flat walls keep flat normals: the painted walls ("Anstrich") are planar quads, so every
+     * vertex normal must equal its triangle's face normal. A crease angle of 45 degrees or
+     * more blends the walls' 45-degree mitres into them. */
+    uint32_t bent = 0, wall_vertices = 0;
+    for (int m = 0; m < s->mesh_count; ++m) {
+        const ob_mesh *mesh = &s->meshes[m];
+        if (strcmp(s->materials[mesh->material].name, "Anstrich") != 0) continue;
+        for (uint32_t t = 0; t + 2u < mesh->index_count; t += 3u) {
+            const uint32_t *ix = &mesh->indices[t];
+            const float *a = &mesh->positions[3u * ix[0]];
+            const float *b = &mesh->positions[3u * ix[1]];
+            const float *c = &mesh->positions[3u * ix[2]];
+            float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+            float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+            float f[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                          e1[0] * e2[1] - e1[1] * e2[0]};
+            float fl = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+            if (!(fl > 1e-6f)) continue;
+            for (int k = 0; k < 3; ++k) {
+                const float *n = &mesh->normals[3u * ix[k]];
+                float cosang = (n[0] * f[0] + n[1] * f[1] + n[2] * f[2]) / fl;
+                ++wall_vertices;
+                if (cosang < cosf(1.0f * 3.14159265f / 180.0f)) ++bent;
+            }
+        }
+    }
+    CHECK(wall_vertices > 0 && bent == 0,
+          "FZK-Haus: %u of %u wall triangle corners have normals bent > 1 degree", bent,
+          wall_vertices);
+    ob_destroy_scene(s);
+
+    s = load("fzk-haus", NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "named scene fzk-haus loads: %s", last_message());
+    if (s) {
+        print_stats("fzk-haus (named)", s);
+        for (int i = 0; i < ob_query_camera_count(s); ++i) {
+            ob_camera c = ob_query_camera(s, i);
+            printf("  camera %d %s eye (%.2f %.2f %.2f) target (%.2f %.2f %.2f) fov %.1f\n", i,
+                   c.name, (double)c.eye[0], (double)c.eye[1], (double)c.eye[2],
+                   (double)c.target[0], (double)c.target[1], (double)c.target[2],
+                   (double)c.fov_y_deg);
+        }
+        CHECK(ob_query_camera_count(s) >= 4, "fzk-haus: exterior and two interior presets");
+        ob_destroy_scene(s);
+    }
+}
+
+static void test_gltf_cameras(void)
+{
+    if (!file_exists(CAMERAS_GLTF)) {
+        printf("skip: %s not installed\n", CAMERAS_GLTF);
+        return;
+    }
+    ob_scene *s = load(CAMERAS_GLTF, NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "Cameras.gltf loads: %s", last_message());
+    if (!s) return;
+    /* One perspective camera (yfov 0.7 rad, aspect 1) at node translation (0.5, 0.5, 3)
+     * looking down -Z; the orthographic one is skipped. */
+    CHECK(ob_query_camera_count(s) == 2, "Cameras.gltf: default + 1 perspective preset, got %d",
+          ob_query_camera_count(s));
+    if (ob_query_camera_count(s) >= 2) {
+        ob_camera c = ob_query_camera(s, 1);
+        printf("Cameras.gltf: preset '%s' eye (%g %g %g) target (%g %g %g) fov %g\n", c.name,
+               (double)c.eye[0], (double)c.eye[1], (double)c.eye[2], (double)c.target[0],
+               (double)c.target[1], (double)c.target[2], (double)c.fov_y_deg);
+        CHECK(near(c.eye[0], 0.5f, 1e-5f) && near(c.eye[1], 0.5f, 1e-5f) &&
+                  near(c.eye[2], 3.0f, 1e-5f),
+              "Cameras.gltf: eye from the node transform");
+        CHECK(c.target[2] < c.eye[2] && near(c.target[0], c.eye[0], 1e-5f),
+              "Cameras.gltf: looks down -Z");
+        CHECK(near(c.fov_y_deg, 0.7f * 180.0f / 3.14159265f, 1e-3f),
+              "Cameras.gltf: vertical fov %g from the horizontal one", (double)c.fov_y_deg);
+    }
+    ob_destroy_scene(s);
+}
+
+static void test_textures(void)
+{
+    /* External PNG beside the glTF, then the same image embedded in a .glb ("*0"). */
+    const char *files[2] = {BOX_GLTF, BOX_GLB};
+    for (int k = 0; k < 2; ++k) {
+        if (!file_exists(files[k])) {
+            printf("skip: %s not installed\n", files[k]);
+            continue;
+        }
+        ob_scene *s = load(files[k], NULL, OB_UP_DEFAULT);
+        CHECK(s != NULL, "%s loads: %s", files[k], last_message());
+        if (!s) continue;
+        bool textured = false;
+        for (int m = 0; m < s->mesh_count; ++m) {
+            const ob_material *mat = &s->materials[s->meshes[m].material];
+            if (mat->texture && mat->tex_width == 211 && mat->tex_height == 211 &&
+                s->meshes[m].uvs) {
+                textured = true;
+            }
+        }
+        CHECK(textured, "%s: 211 x 211 diffuse texture and uvs", files[k]);
+        CHECK(ob_query_scene_material(s, 0).has_texture, "%s: has_texture", files[k]);
+        ob_destroy_scene(s);
+    }
+
+    /* A texture that cannot be found is not fatal. */
+    char obj[512], mtl[512];
+    tmp_path(obj, sizeof obj, "tex.obj");
+    tmp_path(mtl, sizeof mtl, "tex.mtl");
+    write_text(mtl, "newmtl m\nKd 0.5 0.25 0.125\nmap_Kd missing_texture.png\n");
+    write_text(obj, "mtllib tex.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
+                    "usemtl m\nf 1/1 2/2 3/3\n");
+    ob_scene *s = load(obj, NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "model with a missing texture still loads: %s", last_message());
+    if (s) {
+        ob_material_info info = ob_query_scene_material(s, 0);
+        CHECK(!info.has_texture && near(info.diffuse[1], 0.25f, 1e-6f),
+              "missing texture: colour kept, no texture");
+        ob_destroy_scene(s);
+    }
+    unlink(obj);
+    unlink(mtl);
+}
+
+/* ---- sidecars, name resolution, errors ------------------------------------------------------- */
+
+static const char quad_obj[] = "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+static void test_resolution_and_sidecars(void)
+{
+    char obj[512], json[512], path[512];
+
+    /* A model with MODEL.obscura.json beside it: "up": "z" turns the XY quad into XZ. */
+    tmp_path(obj, sizeof obj, "quad.obj");
+    write_text(obj, quad_obj);
+    tmp_path(json, sizeof json, "quad.obscura.json");
+    write_text(json, "{ \"_comment\": \"test\", \"up\": \"z\", \"ao_radius\": 0.25,\n"
+                     "  \"cameras\": [ {\"name\": \"top\", \"eye\": [1, 5, 0.5],"
+                     " \"target\": [1, 0, 0.5], \"up\": [0, 0, -1], \"fov\": 30} ],\n"
+                     "  \"lights\": [ {\"type\": \"directional\", \"direction\": [0, 2, 0],"
+                     " \"color\": [1, 0.5, 0.25], \"intensity\": 2} ] }\n");
+    ob_scene *s = load(obj, NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "quad.obj with sidecar loads: %s", last_message());
+    if (s) {
+        ob_scene_stats st = ob_query_scene_stats(s);
+        const float lo[3] = {0.0f, 0.0f, -1.0f}, hi[3] = {2.0f, 0.0f, 0.0f};
+        check_bounds("quad z-up", &st, lo, hi, 1e-6f);
+        CHECK(near(ob_query_scene_ao_radius(s), 0.25f, 1e-6f), "sidecar ao_radius");
+        ob_light l = ob_query_scene_light(s);
+        CHECK(near(l.direction[1], 1.0f, 1e-6f) && near(l.color[1], 0.5f, 1e-6f) &&
+                  near(l.intensity, 2.0f, 1e-6f),
+              "sidecar light (direction normalised)");
+        ob_camera c = {0};
+        CHECK(ob_find_camera(s, "top", &c) == OB_OK && near(c.fov_y_deg, 30.0f, 1e-6f) &&
+                  near(c.up[2], -1.0f, 1e-6f),
+              "sidecar camera");
+        CHECK(strcmp(ob_query_scene_name(s), "quad") == 0, "model scene named by its stem");
+        check_mesh_sanity(s);
+        ob_destroy_scene(s);
+    }
+    /* desc->up overrides the sidecar's. */
+    s = load(obj, NULL, OB_UP_Y);
+    if (s) {
+        ob_scene_stats st = ob_query_scene_stats(s);
+        const float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {2.0f, 1.0f, 0.0f};
+        check_bounds("quad desc.up = y", &st, lo, hi, 1e-6f);
+        ob_destroy_scene(s);
+    }
+
+    /* A named scene from the data directory with a model path relative to the JSON. */
+    const char *old_env = getenv("OBSCURA_DATA_DIR");
+    char saved[512] = "";
+    if (old_env) snprintf(saved, sizeof saved, "%s", old_env);
+    tmp_path(path, sizeof path, "scenes");
+    mkdir(path, 0700);
+    tmp_path(json, sizeof json, "scenes/flat.obscura.json");
+    write_text(json, "{\"model\": \"../quad.obj\", \"cameras\": [{\"name\": \"a\","
+                     " \"eye\": [1, 1, 3], \"target\": [1, 0.5, 0]}]}");
+    setenv("OBSCURA_DATA_DIR", tmpdir, 1);
+    s = load("flat", NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "named scene with a relative model: %s", last_message());
+    if (s) {
+        ob_scene_stats st = ob_query_scene_stats(s);
+        /* quad.obscura.json beside the model is not used for a named scene: Y stays up. */
+        const float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {2.0f, 1.0f, 0.0f};
+        check_bounds("named flat", &st, lo, hi, 1e-6f);
+        CHECK(strcmp(ob_query_scene_name(s), "flat") == 0 && ob_query_camera_count(s) == 2,
+              "named scene: name and preset");
+        ob_destroy_scene(s);
+    }
+    write_text(json, "{\"cameras\": []}");
+    s = load("flat", NULL, OB_UP_DEFAULT);
+    CHECK(!s && ob_get_error(NULL) == OB_ERR_SIDECAR, "named scene without model: %s",
+          last_message());
+    write_text(json, "{\"model\": \"missing.obj\"}");
+    s = load("flat", NULL, OB_UP_DEFAULT);
+    CHECK(!s && ob_get_error(NULL) == OB_ERR_IO, "named scene with a missing model: %s",
+          last_message());
+    if (old_env) {
+        setenv("OBSCURA_DATA_DIR", saved, 1);
+    } else {
+        unsetenv("OBSCURA_DATA_DIR");
+    }
+
+    /* Malformed sidecars, given explicitly to a built-in. */
+#define CAM_A "{\"cameras\": [{\"name\": \"a\", "
+    const struct {
+        const char *text;
+        const char *why;
+    } bad[] = {
+        {"{\"cameras\": [", "bad JSON"},
+        {"", "empty file"},
+        {"[1, 2]", "not an object"},
+        {CAM_A "\"eye\": [1, 2], \"target\": [0, 0, 0]}]}", "eye of length 2"},
+        {"{\"camera\": []}", "unknown key"},
+        {"{\"ao_radius\": 0}", "ao_radius 0"},
+        {"{\"ao_radius\": -1}", "ao_radius < 0"},
+        {"{\"ao_radius\": \"big\"}", "ao_radius string"},
+        {"{\"ao_radius\": 1e999}", "ao_radius infinite"},
+        {"{\"up\": \"x\"}", "unknown up"},
+        {CAM_A "\"eye\": [1, 2, 3], \"target\": [1, 2, 3]}]}", "eye == target"},
+        {CAM_A "\"eye\": [0, 0, 1], \"target\": [0, 0, 0], \"fov\": 179}]}", "fov 179"},
+        {CAM_A "\"eye\": [0, 0, 1], \"target\": [0, 0, 0], \"fov\": 1}]}", "fov 1"},
+        {"{\"cameras\": [{\"eye\": [0, 0, 1], \"target\": [0, 0, 0]}]}", "camera without name"},
+        {CAM_A "\"eye\": [0, 5, 0], \"target\": [0, 0, 0]}]}", "view parallel to up"},
+        {CAM_A "\"eye\": [0, 0, 1], \"target\": [0, 0, 0], \"zoom\": 2}]}", "unknown camera key"},
+        {CAM_A "\"eye\": [0, 0, 1], \"target\": [0, 0, 0]},"
+               " {\"name\": \"a\", \"eye\": [0, 0, 2], \"target\": [0, 0, 0]}]}",
+         "duplicate camera name"},
+        {"{\"cameras\": [{\"name\": \"\", \"eye\": [0, 0, 1], \"target\": [0, 0, 0]}]}",
+         "empty camera name"},
+        {"{\"cameras\": {\"name\": \"a\"}}", "cameras not an array"},
+        {CAM_A "\"eye\": [0, 0, \"1\"], \"target\": [0, 0, 0]}]}", "string coordinate"},
+        {"{\"lights\": [{\"type\": \"point\", \"direction\": [0, 1, 0]}]}", "point light"},
+        {"{\"lights\": [{\"direction\": [0, 0, 0]}]}", "zero light direction"},
+        {"{\"ao_radius\": 1, \"ao_radius\": 2}", "duplicate key"},
+        {"{\"up\": \"y\"} trailing", "trailing garbage"},
+    };
+    tmp_path(json, sizeof json, "bad.obscura.json");
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; ++k) {
+        write_text(json, bad[k].text);
+        s = load("corner", json, OB_UP_DEFAULT);
+        ob_error err = ob_get_error(NULL);
+        CHECK(!s && err == OB_ERR_SIDECAR && strstr(last_message(), json),
+              "sidecar with %s: %s %s", bad[k].why, ob_error_name(err), last_message());
+        if (k < 5 || k == 10) printf("  %s -> %s\n", bad[k].why, last_message());
+        ob_destroy_scene(s);
+    }
+#undef CAM_A
+    /* A good explicit sidecar on a built-in adds its presets. */
+    write_text(json, "{\"_note\": 1, \"cameras\": [{\"name\": \"low\", \"eye\": [3, 0.3, 3],"
+                     " \"target\": [0, 0.5, 0]}]}");
+    s = load("corner", json, OB_UP_DEFAULT);
+    CHECK(s && ob_find_camera(s, "low", NULL) == OB_OK && ob_query_camera_count(s) == 3,
+          "explicit sidecar on a built-in: %s", last_message());
+    ob_destroy_scene(s);
+    unlink(json);
+    tmp_path(path, sizeof path, "no-such.obscura.json");
+    s = load("corner", path, OB_UP_DEFAULT);
+    CHECK(!s && ob_get_error(NULL) == OB_ERR_IO, "missing explicit sidecar: %s",
+          last_message());
+
+    /* Unknown names and broken models. */
+    s = load("/nonexistent/model.obj", NULL, OB_UP_DEFAULT);
+    CHECK(!s && ob_get_error(NULL) == OB_ERR_IO, "missing model: %s",
+          last_message());
+    s = load("no-such-scene", NULL, OB_UP_DEFAULT);
+    CHECK(!s && ob_get_error(NULL) == OB_ERR_UNKNOWN_SCENE, "unknown name: %s", last_message());
+    CHECK(ob_load_scene(NULL) == NULL && ob_get_error(NULL) == OB_ERR_INVALID_ARGUMENT,
+          "NULL desc");
+    ob_scene_desc empty = {0};
+    CHECK(ob_load_scene(&empty) == NULL && ob_get_error(NULL) == OB_ERR_INVALID_ARGUMENT,
+          "NULL name");
+
+    char garbage[4096] = {0};
+    uint32_t x = 12345u;
+    for (size_t i = 0; i < sizeof garbage; ++i) {
+        x = x * 1664525u + 1013904223u; /* deterministic noise */
+        garbage[i] = (char)(x >> 24);
+    }
+    const char *bad_models[] = {"garbage.obj", "garbage.ply", "empty.obj"};
+    for (int k = 0; k < 3; ++k) {
+        tmp_path(path, sizeof path, bad_models[k]);
+        write_file(path, garbage, k == 2 ? 0u : sizeof garbage);
+        s = load(path, NULL, OB_UP_DEFAULT);
+        CHECK(!s && ob_get_error(NULL) == OB_ERR_MODEL, "corrupt %s: %s %s", bad_models[k],
+              ob_error_name(ob_get_error(NULL)), last_message());
+        printf("  %s -> %s\n", bad_models[k], last_message());
+        unlink(path);
+    }
+    /* An OBJ with only a line: no triangles. */
+    tmp_path(path, sizeof path, "line.obj");
+    write_text(path, "v 0 0 0\nv 1 0 0\nl 1 2\n");
+    s = load(path, NULL, OB_UP_DEFAULT);
+    CHECK(!s && ob_get_error(NULL) == OB_ERR_MODEL, "lines only: %s", last_message());
+    unlink(path);
+
+    tmp_path(path, sizeof path, "quad.obj");
+    unlink(path);
+    tmp_path(path, sizeof path, "quad.obscura.json");
+    unlink(path);
+    tmp_path(path, sizeof path, "scenes/flat.obscura.json");
+    unlink(path);
+    tmp_path(path, sizeof path, "scenes");
+    rmdir(path);
+}
+
+int main(void)
+{
+    snprintf(tmpdir, sizeof tmpdir, "%s", "/tmp/obscura_test_scene_XXXXXX");
+    if (!mkdtemp(tmpdir)) {
+        CHECK(false, "cannot make a temporary directory");
+        return check_finish("scene");
+    }
+    test_builtins();
+    test_cameras();
+    test_resolution_and_sidecars();
+    test_cornell_obj();
+    test_gltf_cameras();
+    test_textures();
+    test_bunny();
+    test_fzk_haus();
+    rmdir(tmpdir);
+    return check_finish("scene");
+}

@@ -13,7 +13,7 @@ timings="$out/timings.txt"
 shots=(
     "cornell front"
     "corner diagonal"
-    "sphere-on-plane default"
+    "sphere-on-plane contact"
     "cornell-obj front"
     "bunny front"
     "bunny side"

@@ -29,7 +29,7 @@ ob_error ob_settings_init(ob_settings *s, const char *method)
     for (int i = 0; i < m->param_count && i < OB_MAX_PARAMS; ++i) s->params[i] = m->params[i].def;
     s->blur = 1;
     /* Intensity 0 = take the scene's light (sidecar or default). */
-    s->ambient[0] = s->ambient[1] = s->ambient[2] = 0.45f;
+    s->ambient[0] = s->ambient[1] = s->ambient[2] = 0.3f;
     /* A pale sky grey: AO halos around silhouettes stay visible against it. */
     s->background[0] = 0.60f;
     s->background[1] = 0.66f;

@@ -116,9 +116,15 @@ ob_context *ob_make_context(const ob_context_desc *desc)
         if (want_sw && d.gpu == OB_GPU_HW) break;
         if (!want_sw && d.gpu == OB_GPU_SW) continue;
         for (EGLint i = 0; i < count && !made; ++i) {
-            if (device_is_software(devices[i]) != want_sw) continue;
             char label[192] = "";
             describe_device(devices[i], (int)i, label, sizeof label);
+            if (device_is_software(devices[i]) != want_sw) {
+                if (d.gpu == OB_GPU_HW) { /* say why the only devices there are were not used */
+                    size_t used = strlen(tried);
+                    snprintf(tried + used, sizeof tried - used, "%s%s: not hardware", used ? "; " : "", label);
+                }
+                continue;
+            }
             if (try_device(ctx, devices[i], label, tried, sizeof tried)) {
                 made = true;
                 ctx->software = want_sw;

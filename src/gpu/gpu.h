@@ -28,7 +28,7 @@ const char *ob_shader_source(const char *name);
  * writes one line into out. Exposed for the unit test. */
 void ob_format_shader_log(const char *log, const char *fallback_name, char *out, size_t out_len);
 
-/* Dispatch enough groups of size (gx, gy) to cover w x h. */
+/* Dispatch enough groups of size (gx, gy) to cover w x h (texture.c). */
 void ob_dispatch_2d(int w, int h, int gx, int gy);
 
 /* ---- textures (texture.c) ------------------------------------------------------------------- */

@@ -218,7 +218,7 @@ static void set_light(ob_scene *s, float x, float y, float z)
         s->light.direction[i] = d[i];
         s->light.color[i] = 1.0f;
     }
-    s->light.intensity = 1.0f;
+    s->light.intensity = 0.8f;
 }
 
 /* ---- cornell --------------------------------------------------------------------------------- */

@@ -171,7 +171,7 @@ void ob_scene_finish(ob_scene *s)
             s->light.direction[i] = d[i] / len;
             s->light.color[i] = 1.0f;
         }
-        s->light.intensity = 1.0f;
+        s->light.intensity = 0.8f; /* direct + ambient stays below 1 on white: no clipping before HDR exists */
     }
 
     if (!(s->ao_radius > 0.0f) || !isfinite(s->ao_radius)) {

@@ -28,10 +28,24 @@ const char *ob_shader_source(const char *name);
  * writes one line into out. Exposed for the unit test. */
 void ob_format_shader_log(const char *log, const char *fallback_name, char *out, size_t out_len);
 
-/* Dispatch enough groups of size (gx, gy) to cover w x h (texture.c). */
+/* Dispatch enough groups of size (gx, gy) to cover w x h (pass.c). */
 void ob_dispatch_2d(int w, int h, int gx, int gy);
 
-/* ---- textures (texture.c) ------------------------------------------------------------------- */
+/* ---- a compute pass: program + its std140 constant block (pass.c) ------------------------
+ * Every screen-space pass and method holds one; the constants struct comes from the pass's
+ * shaders/NAME_params.h. */
+typedef struct ob_compute_pass {
+    GLuint program;
+    GLuint ubo;
+    size_t constants_size;
+} ob_compute_pass;
+
+ob_error ob_compute_pass_init(ob_compute_pass *p, const char *shader, const char *defines, size_t constants_size);
+/* Upload the first `size` bytes of the constants, bind the program and the block at OB_BINDING_PASS. */
+void ob_compute_pass_use(ob_compute_pass *p, const void *constants, size_t size);
+void ob_compute_pass_destroy(ob_compute_pass *p);
+
+/* ---- textures (pass.c) ------------------------------------------------------------------- */
 GLuint ob_make_texture_2d(GLenum internal_format, int w, int h);
 
 /* ---- timers (timer.c) ----------------------------------------------------------------------- */

@@ -29,8 +29,7 @@ static const ob_param_info ssao_params[P_COUNT] = {
 #define NOISE_SEED 0x4E01u
 
 typedef struct ssao_state {
-    GLuint program;
-    GLuint ubo;
+    ob_compute_pass pass;
     GLuint noise;
     int kernel_count; /* samples the cached kernel was built for */
     ob_ssao_constants constants;
@@ -40,8 +39,7 @@ static void ssao_destroy(void *p)
 {
     ssao_state *s = p;
     if (!s) return;
-    glDeleteProgram(s->program);
-    glDeleteBuffers(1, &s->ubo);
+    ob_compute_pass_destroy(&s->pass);
     glDeleteTextures(1, &s->noise);
     free(s);
 }
@@ -53,13 +51,10 @@ static void *ssao_init(void)
         ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (ssao)");
         return NULL;
     }
-    s->program = ob_make_compute_program("ssao.glsl", NULL);
-    if (!s->program) {
+    if (ob_compute_pass_init(&s->pass, "ssao.glsl", NULL, sizeof(ob_ssao_constants)) != OB_OK) {
         free(s);
         return NULL;
     }
-    glCreateBuffers(1, &s->ubo);
-    glNamedBufferStorage(s->ubo, sizeof(ob_ssao_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
     float noise[16 * 2] = {0};
     ob_rotation_noise_4x4(noise, NOISE_SEED);
     s->noise = ob_make_texture_2d(GL_RG32F, OB_SSAO_NOISE_SIZE, OB_SSAO_NOISE_SIZE);
@@ -89,10 +84,7 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, G
     c->counts[0] = count;
     /* Upload only the kernel entries in use. */
     size_t used = offsetof(ob_ssao_constants, kernel) + (size_t)count * sizeof c->kernel[0];
-    glNamedBufferSubData(s->ubo, 0, (GLsizeiptr)used, c);
-
-    glUseProgram(s->program);
-    glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_PASS, s->ubo);
+    ob_compute_pass_use(&s->pass, c, used);
     glBindTextureUnit(0, in->linear_depth);
     glBindTextureUnit(1, in->view_normal);
     glBindTextureUnit(2, s->noise);

@@ -13,12 +13,7 @@
 
 ob_error ob_compose_init(ob_compose_pass *c)
 {
-    memset(c, 0, sizeof *c);
-    c->program = ob_make_compute_program("compose.glsl", NULL);
-    if (!c->program) return ob_get_error(NULL);
-    glCreateBuffers(1, &c->ubo);
-    glNamedBufferStorage(c->ubo, sizeof(ob_compose_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
-    return OB_OK;
+    return ob_compute_pass_init(&c->pass, "compose.glsl", NULL, sizeof(ob_compose_constants));
 }
 
 void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint final_out)
@@ -36,9 +31,7 @@ void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint fina
     memcpy(k.background, in->background, 3 * sizeof(float));
     k.specular[0] = SPECULAR_KS;
     k.specular[1] = SPECULAR_SHININESS;
-    glNamedBufferSubData(c->ubo, 0, sizeof k, &k);
-    glUseProgram(c->program);
-    glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_PASS, c->ubo);
+    ob_compute_pass_use(&c->pass, &k, sizeof k);
     glBindTextureUnit(0, in->linear_depth);
     glBindTextureUnit(1, in->normal);
     glBindTextureUnit(2, in->albedo);
@@ -47,9 +40,4 @@ void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint fina
     ob_dispatch_2d(in->width, in->height, OB_COMPOSE_GROUP_X, OB_COMPOSE_GROUP_Y);
 }
 
-void ob_compose_destroy(ob_compose_pass *c)
-{
-    glDeleteProgram(c->program);
-    glDeleteBuffers(1, &c->ubo);
-    memset(c, 0, sizeof *c);
-}
+void ob_compose_destroy(ob_compose_pass *c) { ob_compute_pass_destroy(&c->pass); }

@@ -33,13 +33,13 @@ void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj);
 void ob_gbuffer_destroy(ob_gbuffer *g);
 
 /* ---- 4x4 box blur (blur.c, shaders/blur_box4.glsl) ------------------------------------------ */
-typedef struct ob_blur_pass { GLuint program, ubo; } ob_blur_pass;
+typedef struct ob_blur_pass { ob_compute_pass pass; } ob_blur_pass;
 ob_error ob_blur_init(ob_blur_pass *b);
 void ob_blur_run(ob_blur_pass *b, GLuint ao_in, GLuint linear_depth, GLuint ao_out, int width, int height);
 void ob_blur_destroy(ob_blur_pass *b);
 
 /* ---- lighting + compose (compose.c, shaders/compose.glsl) ----------------------------------- */
-typedef struct ob_compose_pass { GLuint program, ubo; } ob_compose_pass;
+typedef struct ob_compose_pass { ob_compute_pass pass; } ob_compose_pass;
 
 typedef struct ob_compose_inputs {
     GLuint linear_depth, normal, albedo, ao;

@@ -1,0 +1,48 @@
+/* Compute-pass plumbing shared by every pass and method: program + constants, dispatch, textures. */
+#include <string.h>
+
+#include "core/error.h"
+#include "gpu/gpu.h"
+#include "ob_shared.h"
+
+ob_error ob_compute_pass_init(ob_compute_pass *p, const char *shader, const char *defines, size_t constants_size)
+{
+    memset(p, 0, sizeof *p);
+    p->program = ob_make_compute_program(shader, defines);
+    if (!p->program) return ob_get_error(NULL);
+    p->constants_size = constants_size;
+    glCreateBuffers(1, &p->ubo);
+    glNamedBufferStorage(p->ubo, (GLsizeiptr)constants_size, NULL, GL_DYNAMIC_STORAGE_BIT);
+    return OB_OK;
+}
+
+void ob_compute_pass_use(ob_compute_pass *p, const void *constants, size_t size)
+{
+    glNamedBufferSubData(p->ubo, 0, (GLsizeiptr)(size < p->constants_size ? size : p->constants_size), constants);
+    glUseProgram(p->program);
+    glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_PASS, p->ubo);
+}
+
+void ob_compute_pass_destroy(ob_compute_pass *p)
+{
+    if (p->program) glDeleteProgram(p->program);
+    if (p->ubo) glDeleteBuffers(1, &p->ubo);
+    memset(p, 0, sizeof *p);
+}
+
+void ob_dispatch_2d(int w, int h, int gx, int gy)
+{
+    glDispatchCompute((GLuint)((w + gx - 1) / gx), (GLuint)((h + gy - 1) / gy), 1);
+}
+
+GLuint ob_make_texture_2d(GLenum internal_format, int w, int h)
+{
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, internal_format, w, h);
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return tex;
+}

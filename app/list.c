@@ -9,7 +9,7 @@
 
 static const char *type_name(ob_param_type t)
 {
-    return t == OB_PARAM_INT ? "int" : t == OB_PARAM_BOOL ? "bool" : "float";
+    return t == OB_PARAM_INT ? "int" : t == OB_PARAM_BOOL ? "bool" : t == OB_PARAM_ENUM ? "enum" : "float";
 }
 
 /* Named scenes: scenes/NAME.obscura.json under the data directory. */
@@ -54,6 +54,11 @@ static int list_json(void)
             cJSON_AddStringToObject(jp, "unit", pi->unit);
             cJSON_AddStringToObject(jp, "help", pi->help);
             cJSON_AddBoolToObject(jp, "follows_scene_radius", pi->follows_scene_radius);
+            if (pi->type == OB_PARAM_ENUM) {
+                cJSON *opts = cJSON_AddArrayToObject(jp, "options");
+                for (int o = 0; o <= (int)pi->max; ++o) cJSON_AddItemToArray(opts, cJSON_CreateString(pi->options[o]));
+                cJSON_ReplaceItemInObject(jp, "default", cJSON_CreateString(pi->options[(int)pi->def]));
+            }
             cJSON_AddItemToArray(params, jp);
         }
         cJSON_AddItemToArray(methods, jm);
@@ -85,6 +90,16 @@ static int list_human(void)
         printf("\n  %-10s %s\n             [%s]\n", m->name, m->description, m->reference);
         for (int p = 0; p < m->param_count; ++p) {
             const ob_param_info *pi = &m->params[p];
+            if (pi->type == OB_PARAM_ENUM) {
+                char opts[128] = "";
+                for (int o = 0; o <= (int)pi->max; ++o) {
+                    size_t n = strlen(opts);
+                    snprintf(opts + n, sizeof opts - n, "%s%s", o ? "|" : "", pi->options[o]);
+                }
+                printf("    %-12s %-5s default %-8s %-30s %s\n", pi->name, type_name(pi->type), pi->options[(int)pi->def],
+                       opts, pi->help);
+                continue;
+            }
             printf("    %-12s %-5s default %-8g range [%g, %g] %-9s %s\n", pi->name, type_name(pi->type),
                    (double)pi->def, (double)pi->min, (double)pi->max, pi->unit, pi->help);
         }

@@ -17,6 +17,9 @@ static void render_usage(FILE *f)
           "  --up y|z              the model's up axis (overrides the sidecar)\n"
           "  --method NAME         AO method: see `obscura list` (default ssao)\n"
           "  --set M.P=V           set a method parameter, validated (repeatable), e.g. ssao.radius=0.5\n"
+          "  --quality Q           low|medium|high|ultra = 12/24/36/64 samples per pixel (seed 000);\n"
+          "                        HBAO takes them as directions x steps\n"
+          "  --samples N           samples per pixel, overriding --quality\n"
           "  --blur on|off         the 4x4 box blur after the AO pass (default on)\n"
           "  --size WxH            image size (default 640x480)\n"
           "  --camera NAME|INDEX   a camera preset of the scene (default: 'default', which frames the\n"
@@ -38,7 +41,7 @@ typedef struct render_opts {
     const char *sets[64];
     int set_count;
     ob_up_axis up;
-    int width, height, frames;
+    int width, height, frames, samples, quality_samples;
     bool blur, timings, verbose, has_eye, has_target, has_fov;
     float eye[3], target[3], fov;
     ob_gpu_kind gpu;
@@ -72,7 +75,15 @@ static int parse(int argc, char **argv, render_opts *o)
         else if (!strcmp(a, "--ao-png")) o->ao_png = v;
         else if (!strcmp(a, "--depth-out")) o->depth_out = v;
         else if (!strcmp(a, "--normal-out")) o->normal_out = v;
-        else if (!strcmp(a, "--set")) {
+        else if (!strcmp(a, "--quality")) {
+            o->quality_samples = ob_quality_samples(v);
+            if (o->quality_samples < 0) return cli_fail(EXIT_USAGE, "--quality: expected low, medium, high or ultra, got '%s'", v);
+        } else if (!strcmp(a, "--samples")) {
+            char *end = NULL;
+            long n = strtol(v, &end, 10);
+            if (end == v || *end || n < 1 || n > 4096) return cli_fail(EXIT_USAGE, "--samples: expected 1..4096, got '%s'", v);
+            o->samples = (int)n;
+        } else if (!strcmp(a, "--set")) {
             if (o->set_count >= 64) return cli_fail(EXIT_USAGE, "--set: too many");
             o->sets[o->set_count++] = v;
         } else if (!strcmp(a, "--up")) {
@@ -214,6 +225,12 @@ int cmd_render(int argc, char **argv)
     ob_settings settings;
     if (ob_settings_init(&settings, o.method) != OB_OK) return cli_fail_from_library();
     settings.blur = o.blur ? 1 : 0;
+    /* A method with no sample count (none) ignores --quality/--samples; anything else that the
+     * method refuses (out of its range) is an error. */
+    int sample_count = o.samples > 0 ? o.samples : o.quality_samples;
+    if (sample_count > 0 && ob_settings_set_samples(&settings, sample_count) != OB_OK &&
+        ob_get_error(NULL) != OB_ERR_INVALID_ARGUMENT)
+        return cli_fail_from_library();
     for (int i = 0; i < o.set_count; ++i)
         if (ob_settings_set(&settings, o.sets[i]) != OB_OK) return cli_fail_from_library();
 

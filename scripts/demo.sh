@@ -37,4 +37,12 @@ for shot in "${shots[@]}"; do
     awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf " %5.1f s\n", b - a }'
     echo >>"$timings"
 done
+# Contact sheets: every method side by side (final image and AO map), with its AO pass time.
+for shot in "cornell front" "bunny front" "fzk-haus stair"; do
+    read -r scene camera <<<"$shot"
+    printf 'demo: %-26s' "sheet_$scene"
+    t0=$(date +%s.%N)
+    "$bin" sheet --scene "$scene" --camera "$camera" --size 320x240 --out "$out/sheet_$scene.png" >/dev/null
+    awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf " %5.1f s\n", b - a }'
+done
 echo "demo: $(ls "$out"/*.png | wc -l) images in $out/ in $(( $(date +%s) - start )) s; GPU time per pass in $timings"

@@ -12,12 +12,13 @@
  *   - AO = (1 - occluded / N) ^ intensity: visibility in [0,1]. */
 #include "ssao_params.h"
 #include "common.glsl"
+#include "noise.glsl"
 
 layout(local_size_x = OB_SSAO_GROUP_X, local_size_y = OB_SSAO_GROUP_Y) in;
 
 layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
 layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
-layout(binding = 2) uniform sampler2D noise;        /* RG32F 4x4 rotation vectors, repeat */
+layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
 layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 
 void main()
@@ -33,7 +34,7 @@ void main()
     }
     vec3 p = ob_view_position(vec2(pix) + 0.5, d, ssao.size, ssao.proj_info);
     vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
-    vec3 rnd = vec3(texelFetch(noise, pix % OB_SSAO_NOISE_SIZE, 0).xy, 0.0);
+    vec3 rnd = vec3(ob_rotation(pix, ssao.counts.y, noise_tile), 0.0);
 
     /* Gram-Schmidt: a tangent from the random vector, orthogonal to n. When the random vector is
      * (nearly) parallel to n, fall back to any perpendicular axis. */

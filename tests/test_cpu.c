@@ -28,6 +28,62 @@ static void test_registry_and_settings(void)
         }
     }
 
+    /* Every parameter of every method is validated from its table. */
+    for (int i = 0; i < ob_method_count(); ++i) {
+        const ob_method_info *m = ob_method_at(i);
+        ob_settings t;
+        CHECK(ob_settings_init(&t, m->name) == OB_OK, "init %s", m->name);
+        for (int p = 0; p < m->param_count; ++p) {
+            const ob_param_info *pi = &m->params[p];
+            char text[128];
+            struct bad_case { double v; const char *word; ob_error want; } cases[4] = {
+                {(double)pi->min - fmax(1.0, fabs((double)pi->min)), NULL, OB_ERR_OUT_OF_RANGE},
+                {(double)pi->max + fmax(1.0, fabs((double)pi->max)), NULL, OB_ERR_OUT_OF_RANGE},
+                {0.0, "nan", OB_ERR_INVALID_ARGUMENT},
+                {0.0, "bogus", OB_ERR_INVALID_ARGUMENT}};
+            int ncases = 4;
+            if (pi->type == OB_PARAM_ENUM || pi->type == OB_PARAM_BOOL) {
+                /* Named values: an index past the last option and words are refused. */
+                cases[0] = (struct bad_case){(double)pi->max + 1.0, NULL, OB_ERR_INVALID_ARGUMENT};
+                cases[1] = (struct bad_case){-1.0, NULL, OB_ERR_INVALID_ARGUMENT};
+            }
+            for (int c = 0; c < ncases; ++c) {
+                if (cases[c].word) snprintf(text, sizeof text, "%s.%s=%s", m->name, pi->name, cases[c].word);
+                else snprintf(text, sizeof text, "%s.%s=%.9g", m->name, pi->name, cases[c].v);
+                ob_error e = ob_settings_set(&t, text);
+                CHECK(e == cases[c].want, "'%s' gave %s, want %s", text, ob_error_name(e), ob_error_name(cases[c].want));
+            }
+            /* The default itself, by value (or by name for enums), is accepted. */
+            if (pi->type == OB_PARAM_ENUM) snprintf(text, sizeof text, "%s.%s=%s", m->name, pi->name, pi->options[(int)pi->def]);
+            else snprintf(text, sizeof text, "%s.%s=%.9g", m->name, pi->name, (double)pi->def);
+            CHECK(ob_settings_set(&t, text) == OB_OK, "'%s' refused", text);
+            CHECK(t.params[p] == pi->def, "%s keeps its value", text);
+        }
+    }
+
+    /* Quality presets: seed 000's 12/24/36/64, applied through each method's mapping. */
+    CHECK(ob_quality_samples("low") == 12 && ob_quality_samples("medium") == 24 && ob_quality_samples("high") == 36 &&
+              ob_quality_samples("ultra") == 64 && ob_quality_samples("extreme") == -1,
+          "quality presets");
+    {
+        ob_settings q;
+        ob_settings_init(&q, "ssao");
+        CHECK(ob_settings_set_samples(&q, 36) == OB_OK && ob_settings_get(&q, "samples") == 36.0f, "ssao high = 36");
+        CHECK(ob_settings_set_samples(&q, 100000) == OB_ERR_OUT_OF_RANGE, "ssao refuses 100000 samples");
+        ob_settings_init(&q, "none");
+        CHECK(ob_settings_set_samples(&q, 12) == OB_ERR_INVALID_ARGUMENT, "none takes no sample count");
+        if (ob_settings_init(&q, "hbao") == OB_OK) {
+            const int presets[4][3] = {{12, 4, 3}, {24, 6, 4}, {36, 6, 6}, {64, 8, 8}};
+            for (int i = 0; i < 4; ++i) {
+                CHECK(ob_settings_set_samples(&q, presets[i][0]) == OB_OK, "hbao %d samples", presets[i][0]);
+                CHECK(ob_settings_get(&q, "directions") == (float)presets[i][1] &&
+                          ob_settings_get(&q, "steps") == (float)presets[i][2],
+                      "hbao %d = %d x %d, got %g x %g", presets[i][0], presets[i][1], presets[i][2],
+                      (double)ob_settings_get(&q, "directions"), (double)ob_settings_get(&q, "steps"));
+            }
+        }
+    }
+
     ob_settings s;
     CHECK(ob_settings_init(&s, "ssao") == OB_OK, "init ssao");
     CHECK(s.params_set == 0, "nothing set explicitly");
@@ -65,19 +121,19 @@ static void test_kernel(void)
 {
     enum { N = 64 };
     float k[N * 4];
-    ob_hemisphere_kernel(k, N, 7);
+    ob_hemisphere_kernel(k, N, OB_SAMPLING_RANDOM, OB_DIRECTIONS_UNIFORM, 7);
     float inner = 0.0f, outer = 0.0f;
     for (int i = 0; i < N; ++i) {
         float x = k[4 * i], y = k[4 * i + 1], z = k[4 * i + 2];
         float len = sqrtf(x * x + y * y + z * z);
-        CHECK(z > 0.0f, "sample %d below the tangent plane (z %g)", i, (double)z);
+        CHECK(z >= 0.0f, "sample %d below the tangent plane (z %g)", i, (double)z);
         CHECK(len <= 1.0f + 1e-5f && len >= 0.099f, "sample %d length %g outside [0.1, 1]", i, (double)len);
         if (i < N / 2) inner += len; else outer += len;
     }
     /* Seed 004 §3.3: the accelerating scale puts the first half of the kernel nearer the centre. */
     CHECK(inner < outer * 0.6f, "first half mean length %g vs second half %g", (double)(inner / 32), (double)(outer / 32));
     float k2[N * 4];
-    ob_hemisphere_kernel(k2, N, 7);
+    ob_hemisphere_kernel(k2, N, OB_SAMPLING_RANDOM, OB_DIRECTIONS_UNIFORM, 7);
     CHECK(memcmp(k, k2, sizeof k) == 0, "kernel is deterministic");
 
     float noise[32];
@@ -91,6 +147,61 @@ static void test_kernel(void)
         sectors |= 1 << ((int)(a / (6.2831853f / 16.0f)) & 15);
     }
     CHECK(sectors == 0xFFFF, "the 16 rotations cover all 16 sectors (mask 0x%x)", (unsigned)sectors);
+}
+
+static void test_halton(void)
+{
+    /* Seed 003 Table 3.1: Phi_2 and Phi_3 of 1..6, exactly. */
+    const double phi2[6] = {0.5, 0.25, 0.75, 0.125, 0.625, 0.375};
+    const double phi3[6] = {1.0 / 3.0, 2.0 / 3.0, 1.0 / 9.0, 4.0 / 9.0, 7.0 / 9.0, 2.0 / 9.0};
+    for (uint32_t i = 1; i <= 6; ++i) {
+        CHECK(ob_radical_inverse(i, 2) == phi2[i - 1], "Phi_2(%u) = %.17g", i, ob_radical_inverse(i, 2));
+        CHECK(fabs(ob_radical_inverse(i, 3) - phi3[i - 1]) < 1e-15, "Phi_3(%u) = %.17g", i, ob_radical_inverse(i, 3));
+    }
+    /* Seed 003 §3.4's periodicity example, exactly. */
+    CHECK(ob_radical_inverse(50, 2) == 0.296875, "Phi_2(50)");
+    CHECK(ob_radical_inverse(66, 2) == 0.2578125, "Phi_2(66)");
+    CHECK(ob_radical_inverse(82, 2) == 0.2890625, "Phi_2(82)");
+    CHECK(ob_radical_inverse(114, 2) == 0.3046875, "Phi_2(114)");
+    CHECK(ob_radical_inverse(0, 7) == 0.0 && ob_radical_inverse(1, 7) == 1.0 / 7.0, "base 7");
+
+    /* Period 10 of bases 2 x 5 (seed 003 §4.1): points 1..10 fall in 10 different cells of
+     * (halves of Phi_2) x (fifths of Phi_5), i.e. they split the hemisphere evenly. */
+    int cells = 0;
+    for (uint32_t i = 1; i <= 10; ++i)
+        cells |= 1 << ((int)(ob_radical_inverse(i, 2) * 2.0) * 5 + (int)(ob_radical_inverse(i, 5) * 5.0));
+    CHECK(cells == 0x3FF, "the first 10 Halton points cover all 10 cells (mask 0x%x)", (unsigned)cells);
+
+    /* Directions: unit, in the hemisphere; mean cos(theta) = 2/3 (cosine) and 1/2 (uniform). */
+    enum { M = 3000 };
+    double mean_cos = 0.0, mean_uni = 0.0;
+    int bad = 0;
+    for (uint32_t i = 1; i <= M; ++i) {
+        float c[3], u[3];
+        ob_direction_cosine(ob_radical_inverse(i, 5), ob_radical_inverse(i, 2), c);
+        ob_direction_uniform(ob_radical_inverse(i, 5), ob_radical_inverse(i, 2), u);
+        double lc = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), lu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        bad += fabs(lc - 1.0) > 1e-6 || fabs(lu - 1.0) > 1e-6 || c[2] < 0.0f || u[2] < 0.0f;
+        mean_cos += c[2];
+        mean_uni += u[2];
+    }
+    CHECK(bad == 0, "%d directions not unit or below the horizon", bad);
+    CHECK_NEAR(mean_cos / M, 2.0 / 3.0, 2e-3, "cosine-weighted mean cos(theta)");
+    CHECK_NEAR(mean_uni / M, 0.5, 2e-3, "uniform solid-angle mean cos(theta)");
+
+    /* Halton kernels: deterministic, in the hemisphere (or the sphere for Crytek). */
+    float k[64 * 4], sphere[64 * 4];
+    ob_hemisphere_kernel(k, 64, OB_SAMPLING_HALTON, OB_DIRECTIONS_COSINE, 1);
+    ob_sphere_kernel(sphere, 64, OB_SAMPLING_HALTON, 1);
+    int below = 0, above = 0, too_long = 0;
+    for (int i = 0; i < 64; ++i) {
+        below += k[4 * i + 2] < 0.0f;
+        above += sphere[4 * i + 2] > 0.0f;
+        float l = sqrtf(sphere[4 * i] * sphere[4 * i] + sphere[4 * i + 1] * sphere[4 * i + 1] + sphere[4 * i + 2] * sphere[4 * i + 2]);
+        too_long += l > 1.0f + 1e-5f;
+    }
+    CHECK(below == 0, "hemisphere kernel has %d points below", below);
+    CHECK(above >= 24 && above <= 40 && too_long == 0, "sphere kernel: %d of 64 above, %d too long", above, too_long);
 }
 
 static void test_files(void)
@@ -156,6 +267,7 @@ int main(void)
 {
     test_registry_and_settings();
     test_kernel();
+    test_halton();
     test_files();
     test_shader_log();
     return check_finish("test_cpu");

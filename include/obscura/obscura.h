@@ -162,7 +162,8 @@ const char *ob_builtin_scene_description(int index);
 /* ---- AO methods: the registry --------------------------------------------------------------- */
 #define OB_MAX_PARAMS 16
 
-typedef enum ob_param_type { OB_PARAM_FLOAT = 0, OB_PARAM_INT, OB_PARAM_BOOL } ob_param_type;
+/* ENUM values are stored as the option's index (0, 1, ...) and set by name or index. */
+typedef enum ob_param_type { OB_PARAM_FLOAT = 0, OB_PARAM_INT, OB_PARAM_BOOL, OB_PARAM_ENUM } ob_param_type;
 
 typedef struct ob_param_info {
     const char *name;
@@ -173,6 +174,7 @@ typedef struct ob_param_info {
     /* When not set explicitly, the renderer uses the scene's suggested AO radius instead of def
      * (radii are world units, and scenes come in metres, millimetres or anything else). */
     bool follows_scene_radius;
+    const char *const *options; /* OB_PARAM_ENUM: option names, max+1 of them */
 } ob_param_info;
 
 typedef struct ob_method_info {
@@ -207,6 +209,15 @@ ob_error ob_settings_init(ob_settings *settings, const char *method);
 ob_error ob_settings_set(ob_settings *settings, const char *assignment);
 /* The value of a parameter of the current method by name, or NaN if unknown. */
 float ob_settings_get(const ob_settings *settings, const char *param);
+
+/* Quality presets (seed 000 §3.2.3, §5.1): "low" 12, "medium" 24, "high" 36, "ultra" 64 samples
+ * per pixel. Returns the count, or -1 for an unknown name. */
+int ob_quality_samples(const char *name);
+/* Give the current method `samples` samples per pixel: the `samples` parameter, or what the
+ * method makes of the count (HBAO: directions x steps). Marks what it sets as explicit.
+ * Errors: OB_ERR_OUT_OF_RANGE (beyond the method's table), OB_ERR_INVALID_ARGUMENT (the method
+ * takes no sample count, e.g. none — then nothing changes). */
+ob_error ob_settings_set_samples(ob_settings *settings, int samples);
 
 /* ---- renderer ------------------------------------------------------------------------------- */
 typedef struct ob_renderer_desc {

@@ -8,6 +8,7 @@
 #include <strings.h>
 
 #include "core/error.h"
+#include "methods/method.h"
 #include "obscura/obscura.h"
 
 ob_error ob_settings_init(ob_settings *s, const char *method)
@@ -48,6 +49,22 @@ static ob_error parse_value(const ob_method_info *m, const ob_param_info *p, con
 {
     const char *v = text;
     while (isspace((unsigned char)*v)) ++v;
+    if (p->type == OB_PARAM_ENUM) {
+        for (int i = 0; p->options && i <= (int)p->max; ++i) {
+            char index[16];
+            snprintf(index, sizeof index, "%d", i);
+            if (!strcmp(v, p->options[i]) || !strcmp(v, index)) {
+                *out = (float)i;
+                return OB_OK;
+            }
+        }
+        char list[256] = "";
+        for (int i = 0; p->options && i <= (int)p->max; ++i) {
+            size_t n = strlen(list);
+            snprintf(list + n, sizeof list - n, "%s%s", i ? "|" : "", p->options[i]);
+        }
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s.%s expects %s, got '%s'", m->name, p->name, list, text);
+    }
     if (p->type == OB_PARAM_BOOL) {
         if (!strcasecmp(v, "1") || !strcasecmp(v, "true") || !strcasecmp(v, "on")) { *out = 1.0f; return OB_OK; }
         if (!strcasecmp(v, "0") || !strcasecmp(v, "false") || !strcasecmp(v, "off")) { *out = 0.0f; return OB_OK; }
@@ -116,4 +133,25 @@ float ob_settings_get(const ob_settings *s, const char *param)
     if (!m || !param) return NAN;
     int pi = find_param(m, param, strlen(param));
     return pi < 0 ? NAN : s->params[pi];
+}
+
+int ob_quality_samples(const char *name)
+{
+    static const struct { const char *name; int samples; } presets[] = {
+        {"low", 12}, {"medium", 24}, {"high", 36}, {"ultra", 64}};
+    for (size_t i = 0; name && i < sizeof presets / sizeof presets[0]; ++i)
+        if (!strcmp(name, presets[i].name)) return presets[i].samples;
+    return -1;
+}
+
+ob_error ob_settings_set_samples(ob_settings *s, int samples)
+{
+    const ob_method_impl *m = s ? ob_method_impl_at(s->method) : NULL;
+    if (!m) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "settings are not initialised");
+    if (m->set_samples) return m->set_samples(s->params, &s->params_set, samples);
+    char assignment[64];
+    snprintf(assignment, sizeof assignment, "samples=%d", samples);
+    if (isnan(ob_settings_get(s, "samples")))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "method %s takes no sample count", m->info.name);
+    return ob_settings_set(s, assignment);
 }

@@ -24,8 +24,18 @@ typedef struct ob_method_impl {
     /* Write visibility to ao_out (R32F, inputs' size). params are in table order, validated. */
     ob_error (*run)(void *state, const ob_ao_inputs *in, const float *params, GLuint ao_out);
     void (*destroy)(void *state);
+    /* How `samples` per pixel map onto this method's parameters, when that is more than setting
+     * a parameter named "samples" (HBAO: directions x steps). Sets the bits of what it changed in
+     * *params_set. NULL for the default. */
+    ob_error (*set_samples)(float *params, uint32_t *params_set, int samples);
 } ob_method_impl;
 
 const ob_method_impl *ob_method_impl_at(int index);
+
+/* Option lists shared by methods' enum parameters (registry.c), in the order of the enums in
+ * sampling/sampling.h and the OB_NOISE_* modes of shaders/noise.glsl. */
+extern const char *const ob_sampling_options[];  /* random, halton */
+extern const char *const ob_direction_options[]; /* uniform, cosine */
+extern const char *const ob_noise_options[];     /* texture4, ign */
 
 #endif

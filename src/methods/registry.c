@@ -5,11 +5,21 @@
 
 extern const ob_method_impl ob_method_none;
 extern const ob_method_impl ob_method_ssao;
+extern const ob_method_impl ob_method_hbao;
+extern const ob_method_impl ob_method_crytek;
+extern const ob_method_impl ob_method_alchemy;
 
 static const ob_method_impl *const methods[] = {
     &ob_method_none,
     &ob_method_ssao,
+    &ob_method_hbao,
+    &ob_method_crytek,
+    &ob_method_alchemy,
 };
+
+const char *const ob_sampling_options[] = {"random", "halton"};
+const char *const ob_direction_options[] = {"uniform", "cosine"};
+const char *const ob_noise_options[] = {"texture4", "ign"};
 
 int ob_method_count(void) { return (int)(sizeof methods / sizeof methods[0]); }
 

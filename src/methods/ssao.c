@@ -8,7 +8,7 @@
 #include "sampling/sampling.h"
 #include "ssao_params.h"
 
-enum { P_RADIUS, P_BIAS, P_INTENSITY, P_SAMPLES, P_COUNT };
+enum { P_RADIUS, P_BIAS, P_INTENSITY, P_SAMPLES, P_SAMPLING, P_DIRECTIONS, P_NOISE, P_COUNT };
 
 static const ob_param_info ssao_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -22,6 +22,14 @@ static const ob_param_info ssao_params[P_COUNT] = {
     /* 16 taps: the 4x4 noise x 16 kernel points gives 256 distinct directions per tile. */
     [P_SAMPLES] = {"samples", OB_PARAM_INT, 1.0f, (float)OB_SSAO_MAX_SAMPLES, 16.0f, "count",
                    "kernel points per pixel", false},
+    [P_SAMPLING] = {"sampling", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "kernel numbers: seeded random (seed) or Halton 2,5,3",
+                    false, ob_sampling_options},
+    /* Uniform in solid angle, as the seed's kernel; cosine-weighted makes each sample count as
+     * much as the cosine-weighted AO integral asks (seed 003 eq. 5.2). */
+    [P_DIRECTIONS] = {"directions", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "kernel directions: uniform (eq. 5.3) or cosine (eq. 5.2)",
+                      false, ob_direction_options},
+    [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "per-pixel rotation: 4x4 texture or interleaved gradient noise",
+                 false, ob_noise_options},
 };
 
 /* Fixed seeds: the same command gives the same AO bytes. */
@@ -31,7 +39,8 @@ static const ob_param_info ssao_params[P_COUNT] = {
 typedef struct ssao_state {
     ob_compute_pass pass;
     GLuint noise;
-    int kernel_count; /* samples the cached kernel was built for */
+    int kernel_count; /* the cached kernel was built for these */
+    int kernel_sampling, kernel_directions;
     ob_ssao_constants constants;
 } ssao_state;
 
@@ -67,9 +76,12 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, G
     ssao_state *s = p;
     ob_ssao_constants *c = &s->constants;
     int count = (int)params[P_SAMPLES];
-    if (count != s->kernel_count) {
-        ob_hemisphere_kernel(&c->kernel[0][0], count, KERNEL_SEED);
+    int sampling = (int)params[P_SAMPLING], directions = (int)params[P_DIRECTIONS];
+    if (count != s->kernel_count || sampling != s->kernel_sampling || directions != s->kernel_directions) {
+        ob_hemisphere_kernel(&c->kernel[0][0], count, (ob_sampling)sampling, (ob_direction_pdf)directions, KERNEL_SEED);
         s->kernel_count = count;
+        s->kernel_sampling = sampling;
+        s->kernel_directions = directions;
     }
     memcpy(c->proj, in->proj, sizeof c->proj);
     memcpy(c->proj_info, in->proj_info, sizeof c->proj_info);
@@ -82,6 +94,7 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, G
     c->params[2] = params[P_INTENSITY];
     c->params[3] = 0.0f;
     c->counts[0] = count;
+    c->counts[1] = (int)params[P_NOISE];
     /* Upload only the kernel entries in use. */
     size_t used = offsetof(ob_ssao_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     ob_compute_pass_use(&s->pass, c, used);

@@ -26,31 +26,59 @@ float ob_rng_float(ob_rng *r)
     return (float)(ob_rng_next(r) >> 8) * (1.0f / 16777216.0f);
 }
 
-void ob_hemisphere_kernel(float *out, int count, uint64_t seed)
+/* The three numbers behind kernel point i: direction (r1, r2) and length r3. */
+static void kernel_numbers(ob_sampling sampling, ob_rng *rng, int i, double r[3])
+{
+    if (sampling == OB_SAMPLING_HALTON) {
+        /* Index from 1: Phi(0) = 0 in every base would put the first point on the pole at the
+         * centre. r1 (azimuth) from base 5, r2 (elevation) from base 2, as in seed 003 §5.3. */
+        uint32_t k = (uint32_t)i + 1u;
+        r[0] = ob_radical_inverse(k, 5);
+        r[1] = ob_radical_inverse(k, 2);
+        r[2] = ob_radical_inverse(k, 3);
+    } else {
+        r[0] = ob_rng_float(rng);
+        r[1] = ob_rng_float(rng);
+        r[2] = ob_rng_float(rng);
+    }
+}
+
+/* lerp(0.1, 1, (i/count)^2) x r3, kept at least 0.1 so the innermost points still probe. */
+static float kernel_length(int i, int count, double r3)
+{
+    float t = (float)i / (float)count;
+    float len = (float)r3 * (0.1f + 0.9f * t * t);
+    return len < 0.1f ? 0.1f : len;
+}
+
+void ob_hemisphere_kernel(float *out, int count, ob_sampling sampling, ob_direction_pdf pdf, uint64_t seed)
 {
     ob_rng rng;
     ob_rng_seed(&rng, seed, 1u);
     for (int i = 0; i < count; ++i) {
-        /* Rejection-free: a random direction in the hemisphere (z in (0,1]) and a random length,
-         * then the accelerating scale. z is kept away from 0 so no sample lies in the tangent
-         * plane, where depth precision alone would decide occlusion. */
-        float x = 0.0f, y = 0.0f, z = 0.0f, len2 = 0.0f;
-        do {
-            x = ob_rng_float(&rng) * 2.0f - 1.0f;
-            y = ob_rng_float(&rng) * 2.0f - 1.0f;
-            z = 0.05f + 0.95f * ob_rng_float(&rng);
-            len2 = x * x + y * y + z * z;
-        } while (len2 > 1.0f || len2 < 1e-4f);
-        float inv = 1.0f / sqrtf(len2);
-        float len = ob_rng_float(&rng);
-        float t = (float)i / (float)count;
-        float scale = 0.1f + 0.9f * t * t; /* lerp(0.1, 1, t^2) */
-        float k = inv * len * scale;
-        /* Keep at least a tenth of the radius so the innermost samples still probe something. */
-        if (len * scale < 0.1f) k = inv * 0.1f;
-        out[4 * i + 0] = x * k;
-        out[4 * i + 1] = y * k;
-        out[4 * i + 2] = z * k;
+        double r[3];
+        kernel_numbers(sampling, &rng, i, r);
+        float d[3];
+        if (pdf == OB_DIRECTIONS_COSINE) ob_direction_cosine(r[0], r[1], d);
+        else ob_direction_uniform(r[0], r[1], d);
+        float len = kernel_length(i, count, r[2]);
+        for (int c = 0; c < 3; ++c) out[4 * i + c] = d[c] * len;
+        out[4 * i + 3] = 0.0f;
+    }
+}
+
+void ob_sphere_kernel(float *out, int count, ob_sampling sampling, uint64_t seed)
+{
+    ob_rng rng;
+    ob_rng_seed(&rng, seed, 3u);
+    for (int i = 0; i < count; ++i) {
+        double r[3];
+        kernel_numbers(sampling, &rng, i, r);
+        /* Uniform over the sphere: eq. 5.3 with z = 2 r2 - 1 covers both hemispheres. */
+        float d[3];
+        ob_direction_uniform(r[0], 2.0 * r[1] - 1.0, d);
+        float len = kernel_length(i, count, r[2]);
+        for (int c = 0; c < 3; ++c) out[4 * i + c] = d[c] * len;
         out[4 * i + 3] = 0.0f;
     }
 }

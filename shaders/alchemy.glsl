@@ -1,0 +1,66 @@
+#version 450 core
+/* Alchemy screen-space ambient obscurance (McGuire, Osman, Bukowski, Hennessy 2011; seed 004
+ * §2.5 and §3.4). Samples lie on a spiral in a disk of world radius r around C, projected to the
+ * screen (r_px = r * scale / z); each gives v_i = P_i - C and the final equation (seed 004 §2.5):
+ *
+ *   A = max(0, 1 - (2 sigma / s) * sum_i max(0, v_i . n - beta z_C) / (v_i . v_i + eps))^k
+ *
+ * with the Heaviside H(r - |v_i|) of the step before it, so nothing beyond r occludes.
+ * Two deliberate choices, both documented in docs/methods.md:
+ *   - v_i is measured in units of r: the sum has units 1/length, so in metres and millimetres the
+ *     same sigma would differ 1000x; with r = 1 this is the paper's equation exactly.
+ *   - z_C is the view-space z (negative in front of the camera, as in the paper), so the bias
+ *     term subtracts beta * depth: seed 004 §3.4's code adds beta*z to the normal instead. */
+#include "alchemy_params.h"
+#include "common.glsl"
+#include "noise.glsl"
+
+layout(local_size_x = OB_ALCHEMY_GROUP_X, local_size_y = OB_ALCHEMY_GROUP_Y) in;
+
+layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
+layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
+layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
+layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+
+void main()
+{
+    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(alchemy.size.xy);
+    if (any(greaterThanEqual(pix, size))) return;
+    float d = texelFetch(linear_depth, pix, 0).r;
+    if (d <= 0.0) {
+        imageStore(ao_out, pix, vec4(1.0));
+        return;
+    }
+    vec3 c = ob_view_position(vec2(pix) + 0.5, d, alchemy.size, alchemy.proj_info);
+    vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
+    vec2 rot = ob_rotation(pix, alchemy.counts.y, noise_tile);
+    float phi = atan(rot.y, rot.x);
+
+    float r = alchemy.params.x;
+    float sigma = alchemy.params.y;
+    float k = alchemy.params.z;
+    float bias = alchemy.params.w * d / r; /* beta * |z_C|, in units of r */
+    float eps = alchemy.params2.x;
+    float turns = alchemy.params2.y;
+    float r_px = r * alchemy.params2.z / d;
+    int s = alchemy.counts.x;
+
+    float sum = 0.0;
+    for (int i = 0; i < s; ++i) {
+        /* Spiral: alpha in (0,1) sets the turn and, through sqrt, an even density over the disk. */
+        float alpha = (float(i) + 0.5) / float(s);
+        float theta = 6.28318530718 * alpha * turns + phi;
+        vec2 q = vec2(pix) + 0.5 + sqrt(alpha) * r_px * vec2(cos(theta), sin(theta));
+        ivec2 qi = ivec2(floor(q));
+        if (any(lessThan(qi, ivec2(0))) || any(greaterThanEqual(qi, size))) continue;
+        float qd = texelFetch(linear_depth, qi, 0).r;
+        if (qd <= 0.0) continue;
+        vec3 v = (ob_view_position(vec2(qi) + 0.5, qd, alchemy.size, alchemy.proj_info) - c) / r;
+        float vv = dot(v, v);
+        if (vv > 1.0) continue; /* H(r - |v|) */
+        sum += max(0.0, dot(v, n) - bias) / (vv + eps);
+    }
+    float a = pow(max(0.0, 1.0 - 2.0 * sigma / float(max(s, 1)) * sum), k);
+    imageStore(ao_out, pix, vec4(clamp(a, 0.0, 1.0)));
+}

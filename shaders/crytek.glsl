@@ -1,0 +1,54 @@
+#version 450 core
+/* Crytek SSAO (Mittring 2007, "Finding next gen: CryEngine 2"; seed 004 §2.2):
+ *   - N points in a sphere of radius r around the pixel's view-space position, no normals;
+ *   - rotated per pixel about the view axis by the 4x4 noise (or IGN);
+ *   - a point is occluded when the depth buffer in front of it is closer than it by more than
+ *     `bias`, faded by the range check smoothstep(0, 1, r / |z_P - z_scene|);
+ *   - occlusion factor = occluded / N, AO = 1 - occlusion factor (seed 004 §2.2).
+ * Half of a sphere around a point on a plane lies inside the plane, so flat surfaces read about
+ * 0.5: that is the method (its characteristic grey look), not a bug. The optional correction of
+ * seed 003 §5.4 rescales AO' = min(1, 2 AO) so open planes read 1, wasting half the samples. */
+#include "crytek_params.h"
+#include "common.glsl"
+#include "noise.glsl"
+
+layout(local_size_x = OB_CRYTEK_GROUP_X, local_size_y = OB_CRYTEK_GROUP_Y) in;
+
+layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
+layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
+layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+
+void main()
+{
+    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pix, ivec2(crytek.size.xy)))) return;
+    float d = texelFetch(linear_depth, pix, 0).r;
+    if (d <= 0.0) {
+        imageStore(ao_out, pix, vec4(1.0));
+        return;
+    }
+    vec3 p = ob_view_position(vec2(pix) + 0.5, d, crytek.size, crytek.proj_info);
+    vec2 rot = ob_rotation(pix, crytek.counts.y, noise_tile);
+    /* Rotation about the view axis: a sphere has no preferred frame, and the depth buffer's. */
+    mat2 r2 = mat2(rot.x, rot.y, -rot.y, rot.x);
+
+    float radius = crytek.params.x;
+    float bias = crytek.params.y;
+    int count = crytek.counts.x;
+    float occlusion = 0.0;
+    for (int i = 0; i < count; ++i) {
+        vec3 k = crytek.kernel[i].xyz;
+        vec3 s = p + vec3(r2 * k.xy, k.z) * radius;
+        vec4 clip = crytek.proj * vec4(s, 1.0);
+        if (clip.w <= 0.0) continue;
+        vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+        if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
+        float scene_d = texelFetch(linear_depth, ivec2(uv * crytek.size.xy), 0).r;
+        if (scene_d <= 0.0) continue;
+        float range = smoothstep(0.0, 1.0, radius / abs(d - scene_d));
+        occlusion += (scene_d <= -s.z - bias ? 1.0 : 0.0) * range;
+    }
+    float ao = clamp(1.0 - occlusion / float(max(count, 1)), 0.0, 1.0);
+    if (crytek.params.w > 0.5) ao = min(1.0, 2.0 * ao);
+    imageStore(ao_out, pix, vec4(pow(ao, crytek.params.z)));
+}

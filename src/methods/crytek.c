@@ -1,0 +1,108 @@
+/* `crytek`: Crytek SSAO (Mittring 2007; seed 004 §2.2), the first SSAO: a sphere of samples and
+ * a depth-only test. Flat surfaces self-occlude to about 0.5 by design; `correction` applies
+ * seed 003 §5.4's factor (off by default). Shader: shaders/crytek.glsl. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "crytek_params.h"
+#include "methods/method.h"
+#include "sampling/sampling.h"
+
+enum { P_RADIUS, P_BIAS, P_INTENSITY, P_SAMPLES, P_CORRECTION, P_SAMPLING, P_NOISE, P_COUNT };
+
+static const ob_param_info crytek_params[P_COUNT] = {
+    [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
+                  "sphere radius; default: the scene's suggested radius", true},
+    [P_BIAS] = {"bias", OB_PARAM_FLOAT, 0.0f, 0.5f, 0.02f, "x radius",
+                "depth bias, as a fraction of the radius", false},
+    [P_INTENSITY] = {"intensity", OB_PARAM_FLOAT, 0.0f, 8.0f, 1.0f, "exponent",
+                     "AO = visibility^intensity", false},
+    [P_SAMPLES] = {"samples", OB_PARAM_INT, 1.0f, (float)OB_CRYTEK_MAX_SAMPLES, 16.0f, "count",
+                   "sphere points per pixel", false},
+    [P_CORRECTION] = {"correction", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
+                      "seed 003 §5.4: AO' = min(1, 2 AO), so open planes read 1 instead of ~0.5", false},
+    [P_SAMPLING] = {"sampling", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "kernel numbers: seeded random or Halton 2,5,3",
+                    false, ob_sampling_options},
+    [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "per-pixel rotation: 4x4 texture or interleaved gradient noise",
+                 false, ob_noise_options},
+};
+
+#define KERNEL_SEED 0xC4E7u
+#define NOISE_SEED 0x4E01u
+
+typedef struct crytek_state {
+    ob_compute_pass pass;
+    GLuint noise;
+    int kernel_count, kernel_sampling; /* what the cached kernel was built for */
+    ob_crytek_constants constants;
+} crytek_state;
+
+static void crytek_destroy(void *p)
+{
+    crytek_state *s = p;
+    if (!s) return;
+    ob_compute_pass_destroy(&s->pass);
+    glDeleteTextures(1, &s->noise);
+    free(s);
+}
+
+static void *crytek_init(void)
+{
+    crytek_state *s = calloc(1, sizeof *s);
+    if (!s) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (crytek)");
+        return NULL;
+    }
+    if (ob_compute_pass_init(&s->pass, "crytek.glsl", NULL, sizeof(ob_crytek_constants)) != OB_OK) {
+        free(s);
+        return NULL;
+    }
+    float noise[16 * 2] = {0};
+    ob_rotation_noise_4x4(noise, NOISE_SEED);
+    s->noise = ob_make_texture_2d(GL_RG32F, 4, 4);
+    glTextureSubImage2D(s->noise, 0, 0, 0, 4, 4, GL_RG, GL_FLOAT, noise);
+    s->kernel_count = -1;
+    return s;
+}
+
+static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params, GLuint ao_out)
+{
+    crytek_state *s = p;
+    ob_crytek_constants *c = &s->constants;
+    int count = (int)params[P_SAMPLES], sampling = (int)params[P_SAMPLING];
+    if (count != s->kernel_count || sampling != s->kernel_sampling) {
+        ob_sphere_kernel(&c->kernel[0][0], count, (ob_sampling)sampling, KERNEL_SEED);
+        s->kernel_count = count;
+        s->kernel_sampling = sampling;
+    }
+    memcpy(c->proj, in->proj, sizeof c->proj);
+    memcpy(c->proj_info, in->proj_info, sizeof c->proj_info);
+    c->size[0] = (float)in->width;
+    c->size[1] = (float)in->height;
+    c->size[2] = 1.0f / (float)in->width;
+    c->size[3] = 1.0f / (float)in->height;
+    c->params[0] = params[P_RADIUS];
+    c->params[1] = params[P_BIAS] * params[P_RADIUS];
+    c->params[2] = params[P_INTENSITY];
+    c->params[3] = params[P_CORRECTION];
+    c->counts[0] = count;
+    c->counts[1] = (int)params[P_NOISE];
+    ob_compute_pass_use(&s->pass, c, offsetof(ob_crytek_constants, kernel) + (size_t)count * sizeof c->kernel[0]);
+    glBindTextureUnit(0, in->linear_depth);
+    glBindTextureUnit(2, s->noise);
+    glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    ob_dispatch_2d(in->width, in->height, OB_CRYTEK_GROUP_X, OB_CRYTEK_GROUP_Y);
+    return OB_OK;
+}
+
+const ob_method_impl ob_method_crytek = {
+    .info = {.name = "crytek",
+             .description = "Crytek SSAO: sphere samples, depth-only test (flat surfaces read ~0.5 by design)",
+             .reference = "seed 004 §2.2; seed 003 §5.4 (correction); Mittring 2007",
+             .param_count = P_COUNT,
+             .params = crytek_params},
+    .init = crytek_init,
+    .run = crytek_run,
+    .destroy = crytek_destroy,
+};

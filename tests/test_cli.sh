@@ -110,6 +110,18 @@ assert scenes == ["cornell", "corner", "sphere-on-plane"], scenes
 assert "bunny" in d["named_scenes"] and "fzk-haus" in d["named_scenes"], d["named_scenes"]
 PY
 then ok; else bad "list --json"; fi
+# docs/methods.md documents every registered method and each of its parameters.
+if python3 - "$dir/list.json" "$(dirname "$0")/../docs/methods.md" <<'PY'
+import json, re, sys
+methods = json.load(open(sys.argv[1]))["methods"]
+doc = open(sys.argv[2]).read()
+sections = dict(re.findall(r"^### (\S+)\n(.*?)(?=^### |\Z)", doc, re.S | re.M))
+for m in methods:
+    assert m["name"] in sections, "no section for " + m["name"]
+    for p in m["params"]:
+        assert "`%s`" % p["name"] in sections[m["name"]], "%s.%s undocumented" % (m["name"], p["name"])
+PY
+then ok; else bad "docs/methods.md lags the registry"; fi
 "$OBSCURA" list | grep -q "ssao" && ok || bad "list"
 "$OBSCURA" render --help | grep -q -- "--ao-out" && ok || bad "render --help"
 "$OBSCURA" list --help | grep -q -- "--json" && ok || bad "list --help"

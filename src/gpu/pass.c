@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "gpu/gpu.h"
 #include "ob_shared.h"
+#include "sampling/sampling.h"
 
 ob_error ob_compute_pass_init(ob_compute_pass *p, const char *shader, const char *defines, size_t constants_size)
 {
@@ -44,5 +45,14 @@ GLuint ob_make_texture_2d(GLenum internal_format, int w, int h)
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return tex;
+}
+
+GLuint ob_make_rotation_noise_texture(void)
+{
+    float noise[16 * 2] = {0};
+    ob_rotation_noise_4x4(noise, 0x4E01u);
+    GLuint tex = ob_make_texture_2d(GL_RG32F, 4, 4);
+    glTextureSubImage2D(tex, 0, 0, 0, 4, 4, GL_RG, GL_FLOAT, noise);
     return tex;
 }

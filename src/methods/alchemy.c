@@ -30,7 +30,6 @@ static const ob_param_info alchemy_params[P_COUNT] = {
                  false, ob_noise_options},
 };
 
-#define NOISE_SEED 0x4E01u
 
 typedef struct alchemy_state {
     ob_compute_pass pass;
@@ -57,10 +56,7 @@ static void *alchemy_init(void)
         free(s);
         return NULL;
     }
-    float noise[16 * 2] = {0};
-    ob_rotation_noise_4x4(noise, NOISE_SEED);
-    s->noise = ob_make_texture_2d(GL_RG32F, 4, 4);
-    glTextureSubImage2D(s->noise, 0, 0, 0, 4, 4, GL_RG, GL_FLOAT, noise);
+    s->noise = ob_make_rotation_noise_texture();
     return s;
 }
 

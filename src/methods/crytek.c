@@ -29,7 +29,6 @@ static const ob_param_info crytek_params[P_COUNT] = {
 };
 
 #define KERNEL_SEED 0xC4E7u
-#define NOISE_SEED 0x4E01u
 
 typedef struct crytek_state {
     ob_compute_pass pass;
@@ -58,10 +57,7 @@ static void *crytek_init(void)
         free(s);
         return NULL;
     }
-    float noise[16 * 2] = {0};
-    ob_rotation_noise_4x4(noise, NOISE_SEED);
-    s->noise = ob_make_texture_2d(GL_RG32F, 4, 4);
-    glTextureSubImage2D(s->noise, 0, 0, 0, 4, 4, GL_RG, GL_FLOAT, noise);
+    s->noise = ob_make_rotation_noise_texture();
     s->kernel_count = -1;
     return s;
 }

@@ -42,8 +42,6 @@ static const ob_param_info hbao_params[P_COUNT] = {
                  false, ob_noise_options},
 };
 
-/* The same rotations as ssao's (same seed), so the two methods show the same noise tile. */
-#define NOISE_SEED 0x4E01u
 
 typedef struct hbao_state {
     ob_compute_pass pass;
@@ -71,10 +69,7 @@ static void *hbao_init(void)
         free(s);
         return NULL;
     }
-    float noise[OB_HBAO_NOISE_SIZE * OB_HBAO_NOISE_SIZE * 2] = {0};
-    ob_rotation_noise_4x4(noise, NOISE_SEED);
-    s->noise = ob_make_texture_2d(GL_RG32F, OB_HBAO_NOISE_SIZE, OB_HBAO_NOISE_SIZE);
-    glTextureSubImage2D(s->noise, 0, 0, 0, OB_HBAO_NOISE_SIZE, OB_HBAO_NOISE_SIZE, GL_RG, GL_FLOAT, noise);
+    s->noise = ob_make_rotation_noise_texture();
     return s;
 }
 

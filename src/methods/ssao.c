@@ -34,7 +34,6 @@ static const ob_param_info ssao_params[P_COUNT] = {
 
 /* Fixed seeds: the same command gives the same AO bytes. */
 #define KERNEL_SEED 0x55A0u
-#define NOISE_SEED 0x4E01u
 
 typedef struct ssao_state {
     ob_compute_pass pass;
@@ -64,10 +63,7 @@ static void *ssao_init(void)
         free(s);
         return NULL;
     }
-    float noise[16 * 2] = {0};
-    ob_rotation_noise_4x4(noise, NOISE_SEED);
-    s->noise = ob_make_texture_2d(GL_RG32F, OB_SSAO_NOISE_SIZE, OB_SSAO_NOISE_SIZE);
-    glTextureSubImage2D(s->noise, 0, 0, 0, OB_SSAO_NOISE_SIZE, OB_SSAO_NOISE_SIZE, GL_RG, GL_FLOAT, noise);
+    s->noise = ob_make_rotation_noise_texture();
     return s;
 }
 

@@ -20,7 +20,13 @@ static void render_usage(FILE *f)
           "  --quality Q           low|medium|high|ultra = 12/24/36/64 samples per pixel (seed 000);\n"
           "                        HBAO takes them as directions x steps\n"
           "  --samples N           samples per pixel, overriding --quality\n"
-          "  --blur on|off         the 4x4 box blur after the AO pass (default on)\n"
+          "  --filter NAME         denoising after the AO pass: none, box4, gaussian, bilateral,\n"
+          "                        bilateral_sep, geometry (default); parameters with --set NAME.P=V\n"
+          "  --ao-scale S          run the AO at 1, 0.5 or 0.25 of the size, then joint bilateral\n"
+          "                        upsampling (default 1)\n"
+          "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off)\n"
+          "  --view final|ao|samples  what --out shows: the lit image, the AO map, or the samples\n"
+          "                        per pixel (grey, white = the most any pixel took)\n"
           "  --size WxH            image size (default 640x480)\n"
           "  --camera NAME|INDEX   a camera preset of the scene (default: 'default', which frames the\n"
           "                        scene's bounds unless its sidecar defines it)\n"
@@ -37,12 +43,14 @@ static void render_usage(FILE *f)
 }
 
 typedef struct render_opts {
-    const char *scene, *sidecar, *method, *camera, *out, *ao_out, *ao_png, *depth_out, *normal_out;
+    const char *scene, *sidecar, *method, *filter, *view, *camera, *out, *ao_out, *ao_png, *depth_out, *normal_out;
+    float ao_scale;
+    bool adaptive;
     const char *sets[64];
     int set_count;
     ob_up_axis up;
     int width, height, frames, samples, quality_samples;
-    bool blur, timings, verbose, has_eye, has_target, has_fov;
+    bool timings, verbose, has_eye, has_target, has_fov;
     float eye[3], target[3], fov;
     ob_gpu_kind gpu;
 } render_opts;
@@ -55,7 +63,8 @@ static int cmp_double(const void *a, const void *b)
 
 static int parse(int argc, char **argv, render_opts *o)
 {
-    *o = (render_opts){.scene = "cornell", .method = "ssao", .width = 640, .height = 480, .frames = 1, .blur = true};
+    *o = (render_opts){.scene = "cornell", .method = "ssao", .filter = "geometry", .view = "final", .ao_scale = 1.0f,
+                       .width = 640, .height = 480, .frames = 1};
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -90,10 +99,21 @@ static int parse(int argc, char **argv, render_opts *o)
             if (!strcmp(v, "y")) o->up = OB_UP_Y;
             else if (!strcmp(v, "z")) o->up = OB_UP_Z;
             else return cli_fail(EXIT_USAGE, "--up: expected y or z, got '%s'", v);
-        } else if (!strcmp(a, "--blur")) {
-            if (!strcmp(v, "on")) o->blur = true;
-            else if (!strcmp(v, "off")) o->blur = false;
-            else return cli_fail(EXIT_USAGE, "--blur: expected on or off, got '%s'", v);
+        } else if (!strcmp(a, "--filter")) {
+            o->filter = v;
+        } else if (!strcmp(a, "--view")) {
+            if (strcmp(v, "final") && strcmp(v, "ao") && strcmp(v, "samples"))
+                return cli_fail(EXIT_USAGE, "--view: expected final, ao or samples, got '%s'", v);
+            o->view = v;
+        } else if (!strcmp(a, "--ao-scale")) {
+            if (!strcmp(v, "1")) o->ao_scale = 1.0f;
+            else if (!strcmp(v, "0.5")) o->ao_scale = 0.5f;
+            else if (!strcmp(v, "0.25")) o->ao_scale = 0.25f;
+            else return cli_fail(EXIT_USAGE, "--ao-scale: expected 1, 0.5 or 0.25, got '%s'", v);
+        } else if (!strcmp(a, "--adaptive")) {
+            if (!strcmp(v, "on")) o->adaptive = true;
+            else if (!strcmp(v, "off")) o->adaptive = false;
+            else return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
         } else if (!strcmp(a, "--size")) {
             if (!cli_parse_size(v, &o->width, &o->height))
                 return cli_fail(EXIT_USAGE, "--size: expected WIDTHxHEIGHT with positive integers, got '%s'", v);
@@ -176,10 +196,29 @@ static int write_outputs_tracked(ob_renderer *r, const render_opts *o)
         code = cli_fail(EXIT_RUNTIME, "out of memory for %dx%d outputs", o->width, o->height);
         goto done;
     }
-    if (ob_read_image(r, OB_IMAGE_FINAL_RGBA8, rgba, px * 4) != OB_OK ||
-        track(ob_write_png(o->out, o->width, o->height, 4, rgba), o->out) != OB_OK) {
-        code = cli_fail_library_as(EXIT_OUTPUT);
-        goto done;
+    if (!strcmp(o->view, "final")) {
+        if (ob_read_image(r, OB_IMAGE_FINAL_RGBA8, rgba, px * 4) != OB_OK ||
+            track(ob_write_png(o->out, o->width, o->height, 4, rgba), o->out) != OB_OK) {
+            code = cli_fail_library_as(EXIT_OUTPUT);
+            goto done;
+        }
+    } else {
+        /* ao: visibility as grey; samples: the count as grey, white = the largest count. */
+        bool samples = !strcmp(o->view, "samples");
+        if (ob_read_image(r, samples ? OB_IMAGE_SAMPLES_F32 : OB_IMAGE_AO_F32, buf, px * sizeof(float)) != OB_OK) {
+            code = cli_fail_library_as(EXIT_OUTPUT);
+            goto done;
+        }
+        if (samples) {
+            float most = 0.0f;
+            for (size_t i = 0; i < px; ++i) most = buf[i] > most ? buf[i] : most;
+            for (size_t i = 0; i < px; ++i) buf[i] = most > 0.0f ? buf[i] / most : 0.0f;
+        }
+        flip_rows_to_grey(buf, o->width, o->height, grey);
+        if (track(ob_write_png(o->out, o->width, o->height, 1, grey), o->out) != OB_OK) {
+            code = cli_fail_library_as(EXIT_OUTPUT);
+            goto done;
+        }
     }
     if (o->ao_out || o->ao_png) {
         if (ob_read_image(r, OB_IMAGE_AO_F32, buf, px * sizeof(float)) != OB_OK) {
@@ -224,7 +263,9 @@ int cmd_render(int argc, char **argv)
     /* Everything that can be checked without a GPU is checked first. */
     ob_settings settings;
     if (ob_settings_init(&settings, o.method) != OB_OK) return cli_fail_from_library();
-    settings.blur = o.blur ? 1 : 0;
+    if (ob_settings_set_filter(&settings, o.filter) != OB_OK || ob_settings_set_ao_scale(&settings, o.ao_scale) != OB_OK)
+        return cli_fail_from_library();
+    settings.adaptive = o.adaptive;
     /* A method with no sample count (none) ignores --quality/--samples; anything else that the
      * method refuses (out of its range) is an error. */
     int sample_count = o.samples > 0 ? o.samples : o.quality_samples;

@@ -16,6 +16,7 @@ layout(local_size_x = OB_CRYTEK_GROUP_X, local_size_y = OB_CRYTEK_GROUP_Y) in;
 
 layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
 layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
+layout(binding = 3) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
 layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 
 void main()
@@ -34,7 +35,9 @@ void main()
 
     float radius = crytek.params.x;
     float bias = crytek.params.y;
-    int count = crytek.counts.x;
+    /* Adaptive (seed 003 §4.1): base x 1, 2 or 3 from the edge pass; the Halton kernel's prefixes
+     * are kernels of their own. */
+    int count = crytek.counts.z != 0 ? crytek.counts.w * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r) : crytek.counts.x;
     float occlusion = 0.0;
     for (int i = 0; i < count; ++i) {
         vec3 k = crytek.kernel[i].xyz;

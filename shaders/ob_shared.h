@@ -21,6 +21,11 @@ typedef float ob_gl_mat4[16];
 #define OB_CONSTANTS_END(type, instance) } type;
 #endif
 
+/* The adaptive-sampling edge pass works on blocks of this many AO pixels per side (seed 003
+ * §4.1: computed "in much lower resolutions" to get wider areas around discontinuities); the
+ * methods read their block's sample multiplier at pixel / OB_EDGE_BLOCK. */
+#define OB_EDGE_BLOCK 4
+
 /* Uniform-buffer binding points, one per constant block in a pass. */
 #define OB_BINDING_PASS 0
 

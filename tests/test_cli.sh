@@ -45,6 +45,13 @@ expect 2 "unknown camera" -- "${R[@]}" --scene corner --camera nosuch
 expect 2 "fov" -- "${R[@]}" --scene corner --fov 200
 expect 2 "eye" -- "${R[@]}" --scene corner --eye 1,2 --target 0,0,0
 expect 2 "unknown option" -- "${R[@]}" --frobnicate 3
+expect 2 "unknown filter 'nosuch'" -- "${R[@]}" --filter nosuch
+expect 2 "ao-scale" -- "${R[@]}" --ao-scale 0.3
+expect 2 "adaptive" -- "${R[@]}" --adaptive maybe
+expect 2 "view" -- "${R[@]}" --view bogus
+expect 2 "out of range" -- "${R[@]}" --set geometry.radius=99
+expect 2 "but the filter is geometry" -- "${R[@]}" --set gaussian.sigma=1
+expect 2 "no parameter 'nosuch'" -- "${R[@]}" --filter bilateral --set bilateral.nosuch=1
 expect 2 "unknown command" -- frobnicate
 expect 3 "cannot read|no such file" -- "${R[@]}" --scene "$dir/missing.obj"
 head -c 3000 /dev/urandom >"$dir/corrupt.ply"
@@ -74,7 +81,7 @@ else
     bad "corner render failed: $(cat "$dir/stderr")"
 fi
 grep -q "llvmpipe" "$dir/stderr" && ok || bad "-v does not print GL_RENDERER: $(cat "$dir/stderr")"
-for pass in gbuffer ao blur compose total; do
+for pass in gbuffer ao filter compose total; do
     grep -qE "^$pass +[0-9]+\.[0-9]+" "$dir/stdout" && ok || bad "--timings lacks $pass: $(cat "$dir/stdout")"
 done
 read -r w h c lo hi mean < <("$IMGCHECK" "$dir/c.png")
@@ -88,6 +95,15 @@ read -r w h c lo hi mean < <("$IMGCHECK" "$dir/n.pfm")
 awk -v c="$c" -v lo="$lo" -v hi="$hi" 'BEGIN { exit !(c == 3 && lo >= -1.001 && hi <= 1.001) }' && ok || bad "normal PFM is '$c $lo $hi'"
 read -r w h c lo hi mean < <("$IMGCHECK" "$dir/d.pfm")
 awk -v lo="$lo" -v hi="$hi" 'BEGIN { exit !(lo == 0 && hi > 1) }' && ok || bad "depth PFM is '$lo $hi'"
+
+# --view samples with --adaptive on: a grey image with more than one level.
+if "$OBSCURA" render --scene cornell --size 96x64 --adaptive on --samples 30 --set ssao.sampling=halton --view samples \
+    --out "$dir/samples.png" 2>"$dir/stderr"; then
+    read -r w h c lo hi mean < <("$IMGCHECK" "$dir/samples.png")
+    [ "$w $h $c" = "96 64 1" ] && [ "$hi" -eq 255 ] && [ "$lo" -lt 128 ] && ok || bad "samples view is '$w $h $c $lo $hi'"
+else
+    bad "--view samples failed: $(cat "$dir/stderr")"
+fi
 
 # The same command twice: identical AO bytes and images.
 "$OBSCURA" render --scene corner --size 96x64 --gpu sw --out "$dir/c2.png" --ao-out "$dir/c2.pfm" 2>/dev/null

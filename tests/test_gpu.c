@@ -272,6 +272,7 @@ int main(void)
     ob_renderer *r = make(ctx, scene);
     ob_settings s;
     ob_settings_init(&s, "ssao");
+    ob_settings_set_filter(&s, "box4"); /* the tolerances below are the box blur's */
     if (r) {
         test_gbuffer(r, &s);
         test_ssao(r, &s);

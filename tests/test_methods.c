@@ -57,9 +57,12 @@ static float at(const float *ao, const ob_camera *cam, float x, float y, float z
     return ao[py * W + px];
 }
 
+/* The method's own behaviour: the seeds' 4x4 box blur after it (the default geometry-aware
+ * filter is tested in test_filters.c). */
 static void settings_for(ob_settings *s, const char *method, const char *radius)
 {
     ob_settings_init(s, method);
+    ob_settings_set_filter(s, "box4");
     if (!radius) return;
     char set[64];
     snprintf(set, sizeof set, "radius=%s", radius);
@@ -116,7 +119,7 @@ static void test_edges(ob_renderer *r, const char *m)
 {
     ob_settings s;
     settings_for(&s, m, NULL);
-    s.blur = 0;
+    ob_settings_set_filter(&s, "none");
     float *ao = render(r, &cornell_cam, &s, OB_IMAGE_AO_RAW_F32);
     float concave = 0.0f, convex = 0.0f;
     int n = 0;
@@ -158,7 +161,7 @@ static void test_convergence(ob_renderer *r, const char *m)
 {
     ob_settings s;
     settings_for(&s, m, "1.5");
-    s.blur = 0;
+    ob_settings_set_filter(&s, "none");
     CHECK(ob_settings_set_samples(&s, 12) == OB_OK, "%s: 12 samples", m);
     double low = patch_noise(r, &s);
     CHECK(ob_settings_set_samples(&s, 64) == OB_OK, "%s: 64 samples", m);

@@ -1,8 +1,8 @@
 /*
  * obscura.h — public API of libobscura: screen-space ambient occlusion and indirect light.
  *
- * The frame flows one way (see ../shared/DESIGN.md): scene -> G-buffer -> AO method -> blur ->
- * compose -> sRGB. Every screen-space pass is a GLSL compute shader with its own GPU timer.
+ * The frame flows one way (see ../shared/DESIGN.md): scene -> G-buffer -> AO method -> filter ->
+ * [upsample] -> compose -> sRGB. Every screen-space pass is a GLSL compute shader with its own GPU timer.
  *
  * Conventions
  *   - AO value = visibility in [0,1]; 1 = open sky.
@@ -190,12 +190,24 @@ const ob_method_info *ob_method_at(int index);
 /* Index of the method, or -1. */
 int ob_find_method(const char *name);
 
+/* ---- filters: the denoising registry (same table shape as the methods) --------------------- */
+typedef ob_method_info ob_filter_info;
+
+int ob_filter_count(void);
+const ob_filter_info *ob_filter_at(int index);
+/* Index of the filter, or -1. */
+int ob_find_filter(const char *name);
+
 /* ---- per-frame settings --------------------------------------------------------------------- */
 typedef struct ob_settings {
     int method;                   /* registry index */
     float params[OB_MAX_PARAMS];  /* in the method's parameter-table order */
     uint32_t params_set;          /* bit i: params[i] was set explicitly */
-    int blur;                     /* 0 = off, 1 = the classic 4x4 box blur (default) */
+    int filter;                   /* filter registry index (default "geometry") */
+    float filter_params[OB_MAX_PARAMS];
+    uint32_t filter_params_set;   /* bit i: filter_params[i] was set explicitly */
+    float ao_scale;               /* 1, 0.5 or 0.25: the AO runs at this fraction of the size */
+    bool adaptive;                /* per-pixel sample counts from an edge pre-pass (seed 003 §4.1) */
     ob_light light;               /* zero intensity = the scene's light */
     float ambient[3];             /* ambient radiance multiplied by AO */
     float background[3];          /* linear RGB of pixels with no geometry */
@@ -203,12 +215,19 @@ typedef struct ob_settings {
 
 /* Defaults for a method (by name; NULL = "ssao"). Errors: OB_ERR_UNKNOWN_METHOD. */
 ob_error ob_settings_init(ob_settings *settings, const char *method);
-/* Set "method.param=value" or "param=value" (the current method) from text, validated against
- * the method's table. Errors: OB_ERR_UNKNOWN_METHOD, OB_ERR_UNKNOWN_PARAM, OB_ERR_OUT_OF_RANGE,
- * OB_ERR_INVALID_ARGUMENT (malformed, NaN, not an integer, ...). */
+/* Set "method.param=value", "filter.param=value" (the current filter) or "param=value" (the
+ * current method) from text, validated against the table. Errors: OB_ERR_UNKNOWN_METHOD (an
+ * unknown prefix), OB_ERR_UNKNOWN_PARAM, OB_ERR_OUT_OF_RANGE, OB_ERR_INVALID_ARGUMENT
+ * (malformed, NaN, not an integer, a parameter of a method or filter not in use). */
 ob_error ob_settings_set(ob_settings *settings, const char *assignment);
 /* The value of a parameter of the current method by name, or NaN if unknown. */
 float ob_settings_get(const ob_settings *settings, const char *param);
+/* Pick the filter (its parameters reset to their defaults). Errors: OB_ERR_UNKNOWN_METHOD. */
+ob_error ob_settings_set_filter(ob_settings *settings, const char *filter);
+/* The value of a parameter of the current filter, or NaN. */
+float ob_settings_get_filter(const ob_settings *settings, const char *param);
+/* 1, 0.5 or 0.25 (seed 000 §4.7.1, seed 003 §4.4). Errors: OB_ERR_OUT_OF_RANGE. */
+ob_error ob_settings_set_ao_scale(ob_settings *settings, float scale);
 
 /* Quality presets (seed 000 §3.2.3, §5.1): "low" 12, "medium" 24, "high" 36, "ultra" 64 samples
  * per pixel. Returns the count, or -1 for an unknown name. */
@@ -231,15 +250,16 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc);
 void ob_destroy_renderer(ob_renderer *r);
 /* Upload a scene's meshes and textures. The renderer keeps no pointer to the ob_scene. */
 ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene);
-/* G-buffer -> AO -> blur -> compose, each pass timed. */
+/* G-buffer -> [downsample] -> [edges] -> AO -> filter -> [upsample] -> compose, each pass timed. */
 ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *settings);
 
 typedef enum ob_image_kind {
     OB_IMAGE_FINAL_RGBA8 = 0, /* sRGB, rows top to bottom, 4 bytes per pixel */
-    OB_IMAGE_AO_F32,          /* visibility after the blur, 1 float per pixel, bottom row first */
-    OB_IMAGE_AO_RAW_F32,      /* visibility before the blur */
+    OB_IMAGE_AO_F32,          /* visibility after filter and upsampling, 1 float per pixel, bottom row first */
+    OB_IMAGE_AO_RAW_F32,      /* visibility before the filter, at the AO resolution (ao_scale) */
     OB_IMAGE_DEPTH_F32,       /* linear view depth (0 where no geometry), bottom row first */
     OB_IMAGE_NORMAL_F32,      /* view-space normal xyz, 3 floats per pixel, bottom row first */
+    OB_IMAGE_SAMPLES_F32,     /* samples each pixel took (adaptive sampling varies it), bottom row first */
 } ob_image_kind;
 
 /* Bytes needed for an image of the renderer's size. */
@@ -247,7 +267,7 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind);
 ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst_size);
 
 typedef struct ob_pass_timing {
-    const char *name; /* "gbuffer", "ao", "blur", "compose" */
+    const char *name; /* "gbuffer", "downsample", "edges", "ao", "filter", "upsample", "compose" */
     double ms;        /* GPU time between GL_TIMESTAMP queries around the pass */
 } ob_pass_timing;
 

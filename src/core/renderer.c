@@ -1,4 +1,6 @@
-/* The frame: G-buffer -> AO method -> blur -> compose, each pass timed (DESIGN.md "The frame").
+/* The frame (DESIGN.md "The frame"), each pass timed:
+ *   gbuffer -> [downsample to the AO resolution] -> [edges, for adaptive sample counts] -> ao
+ *   -> filter (at the AO resolution) -> [joint bilateral upsample] -> compose.
  * The CLI, the tests and later the viewer all render through here. */
 #include <cglm/cglm.h>
 #include <math.h>
@@ -6,24 +8,43 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "filters/filter.h"
 #include "methods/method.h"
 #include "passes/passes.h"
+
+/* Targets at one AO resolution (k = 1, 2 or 4), made when a frame first asks for it. */
+typedef struct ao_targets {
+    ob_ao_grid grid;
+    GLuint depth, normal;      /* k > 1: downsampled (owned); k = 1: the G-buffer's (not owned) */
+    GLuint raw, filtered, scratch;
+    GLuint multiplier;         /* adaptive sample counts, one per OB_EDGE_BLOCK^2 pixels */
+    bool ready;
+} ao_targets;
+
+enum { SCALES = 3 }; /* k = 1, 2, 4 */
 
 struct ob_renderer {
     ob_context *ctx;
     int width, height;
     ob_gbuffer gbuffer;
-    ob_blur_pass blur;
+    ob_compute_pass downsample, upsample, edges;
     ob_compose_pass compose;
-    GLuint ao_raw, ao, final;
+    ao_targets scales[SCALES];
+    int last_scale;            /* index into scales of the last frame */
+    GLuint ao, final;          /* full resolution */
     void **method_states;      /* lazily made, one per registry entry */
     bool *method_ready;
+    void **filter_states;      /* the same for filters */
+    bool *filter_ready;
     ob_timer_set timers;
     bool has_scene;
     float bounds_min[3], bounds_max[3];
     float scene_radius;
     ob_light scene_light;
     uint32_t frame;
+    int last_method;           /* what the last frame ran, for the sample-count view */
+    float last_params[OB_MAX_PARAMS];
+    bool last_adaptive;
 };
 
 void ob_destroy_renderer(ob_renderer *r)
@@ -33,13 +54,30 @@ void ob_destroy_renderer(ob_renderer *r)
         const ob_method_impl *m = ob_method_impl_at(i);
         if (r->method_ready && r->method_ready[i] && m->destroy) m->destroy(r->method_states[i]);
     }
+    for (int i = 0; i < ob_filter_count(); ++i) {
+        const ob_filter_impl *f = ob_filter_impl_at(i);
+        if (r->filter_ready && r->filter_ready[i] && f->destroy) f->destroy(r->filter_states[i]);
+    }
     free(r->method_states);
     free(r->method_ready);
+    free(r->filter_states);
+    free(r->filter_ready);
+    for (int i = 0; i < SCALES; ++i) {
+        ao_targets *t = &r->scales[i];
+        GLuint tex[4] = {t->raw, t->filtered, t->scratch, t->multiplier};
+        glDeleteTextures(4, tex);
+        if (t->grid.k > 1) {
+            GLuint own[2] = {t->depth, t->normal};
+            glDeleteTextures(2, own);
+        }
+    }
     ob_gbuffer_destroy(&r->gbuffer);
-    ob_blur_destroy(&r->blur);
+    ob_compute_pass_destroy(&r->downsample);
+    ob_compute_pass_destroy(&r->upsample);
+    ob_compute_pass_destroy(&r->edges);
     ob_compose_destroy(&r->compose);
-    GLuint tex[3] = {r->ao_raw, r->ao, r->final};
-    glDeleteTextures(3, tex);
+    GLuint tex[2] = {r->ao, r->final};
+    glDeleteTextures(2, tex);
     ob_timers_destroy(&r->timers);
     free(r);
 }
@@ -70,18 +108,20 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
     r->height = d.height;
     r->method_states = calloc((size_t)ob_method_count(), sizeof *r->method_states);
     r->method_ready = calloc((size_t)ob_method_count(), sizeof *r->method_ready);
+    r->filter_states = calloc((size_t)ob_filter_count(), sizeof *r->filter_states);
+    r->filter_ready = calloc((size_t)ob_filter_count(), sizeof *r->filter_ready);
     ob_timers_init(&r->timers);
-    if (!r->method_states || !r->method_ready) {
+    if (!r->method_states || !r->method_ready || !r->filter_states || !r->filter_ready) {
         ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory making the renderer");
         ob_destroy_renderer(r);
         return NULL;
     }
-    if (ob_gbuffer_init(&r->gbuffer, d.width, d.height) != OB_OK || ob_blur_init(&r->blur) != OB_OK ||
-        ob_compose_init(&r->compose) != OB_OK) {
+    if (ob_gbuffer_init(&r->gbuffer, d.width, d.height) != OB_OK || ob_compose_init(&r->compose) != OB_OK ||
+        ob_downsample_init(&r->downsample) != OB_OK || ob_upsample_init(&r->upsample) != OB_OK ||
+        ob_edges_init(&r->edges) != OB_OK) {
         ob_destroy_renderer(r);
         return NULL;
     }
-    r->ao_raw = ob_make_texture_2d(GL_R32F, d.width, d.height);
     r->ao = ob_make_texture_2d(GL_R32F, d.width, d.height);
     r->final = ob_make_texture_2d(GL_RGBA8, d.width, d.height);
     GLenum e = glGetError();
@@ -104,6 +144,66 @@ ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene)
     r->scene_light = scene->light;
     r->has_scene = true;
     return OB_OK;
+}
+
+static void *filter_state(ob_renderer *r, int index, ob_error *err)
+{
+    const ob_filter_impl *f = ob_filter_impl_at(index);
+    *err = OB_OK;
+    if (!r->filter_ready[index]) {
+        if (f->init) {
+            r->filter_states[index] = f->init();
+            if (!r->filter_states[index]) {
+                *err = ob_get_error(NULL);
+                return NULL;
+            }
+        }
+        r->filter_ready[index] = true;
+    }
+    return r->filter_states[index];
+}
+
+static int scale_index(float scale) { return scale == 0.5f ? 1 : scale == 0.25f ? 2 : 0; }
+
+static ao_targets *targets_for(ob_renderer *r, int index)
+{
+    ao_targets *t = &r->scales[index];
+    if (t->ready) return t;
+    t->grid = ob_ao_grid_make(r->width, r->height, 1 << index);
+    int w = t->grid.width, h = t->grid.height;
+    if (index == 0) {
+        t->depth = r->gbuffer.linear_depth;
+        t->normal = r->gbuffer.normal;
+    } else {
+        t->depth = ob_make_texture_2d(GL_R32F, w, h);
+        t->normal = ob_make_texture_2d(GL_RGBA16F, w, h);
+    }
+    t->raw = ob_make_texture_2d(GL_R32F, w, h);
+    t->filtered = ob_make_texture_2d(GL_R32F, w, h);
+    t->scratch = ob_make_texture_2d(GL_R32F, w, h);
+    t->multiplier = ob_make_texture_2d(GL_R32F, (w + OB_EDGE_BLOCK - 1) / OB_EDGE_BLOCK,
+                                       (h + OB_EDGE_BLOCK - 1) / OB_EDGE_BLOCK);
+    t->ready = true;
+    return t;
+}
+
+/* The projection as seen from the AO grid. AO pixel i sits at full pixel k i + o, so along x
+ * ndc_grid = a ndc_full + b with a = W / (k w) and b = a - 1 + (1 - (2o + 1)/k) / w (from
+ * ndc_full = 2 (k i + o + 1/2) / W - 1 and ndc_grid = 2 (i + 1/2) / w - 1). Folding that into
+ * P00, P20 (and P11, P21) keeps every method's reconstruction and projection exact. */
+static void grid_projection(const ob_ao_grid *g, const float *proj, float *out)
+{
+    memcpy(out, proj, 16 * sizeof(float));
+    if (g->k == 1) return;
+    float ax = (float)g->full_width / (float)(g->k * g->width);
+    float ay = (float)g->full_height / (float)(g->k * g->height);
+    float bx = ax - 1.0f + (1.0f - (2.0f * (float)g->o + 1.0f) / (float)g->k) / (float)g->width;
+    float by = ay - 1.0f + (1.0f - (2.0f * (float)g->o + 1.0f) / (float)g->k) / (float)g->height;
+    /* ndc = (P00 X + P20 Z) / -Z  ->  a ndc + b = (a P00 X + (a P20 - b) Z) / -Z */
+    out[0] = ax * proj[0];
+    out[8] = ax * proj[8] - bx;
+    out[5] = ay * proj[5];
+    out[9] = ay * proj[9] - by;
 }
 
 static void *method_state(ob_renderer *r, int index, ob_error *err)
@@ -135,6 +235,7 @@ static void resolve_params(const ob_renderer *r, const ob_settings *s, float *ou
     }
 }
 
+static void proj_info_from(const float *proj, float out[4]);
 static void proj_info_from(const float *proj, float out[4])
 {
     /* Column-major: P00 = proj[0], P11 = proj[5], P20 = proj[8], P21 = proj[9]. */
@@ -151,12 +252,18 @@ static ob_error run_method(ob_renderer *r, const ob_ao_inputs *in, const ob_sett
     if (err != OB_OK) return err;
     float params[OB_MAX_PARAMS] = {0};
     resolve_params(r, s, params);
+    r->last_method = s->method;
+    memcpy(r->last_params, params, sizeof params);
+    r->last_adaptive = in->sample_multiplier != 0;
     return ob_method_impl_at(s->method)->run(state, in, params, ao_out);
 }
 
 static ob_error check_settings(const ob_settings *s)
 {
-    if (!s || !ob_method_at(s->method)) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "settings are not initialised");
+    if (!s || !ob_method_at(s->method) || !ob_filter_at(s->filter))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "settings are not initialised");
+    if (s->ao_scale != 1.0f && s->ao_scale != 0.5f && s->ao_scale != 0.25f)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "ao scale %g is not 1, 0.5 or 0.25", (double)s->ao_scale);
     return OB_OK;
 }
 
@@ -177,39 +284,66 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     glm_lookat(cam.eye, cam.target, cam.up, view);
     glm_perspective(glm_rad(cam.fov_y_deg), (float)r->width / (float)r->height, cam.near_z, cam.far_z, proj);
 
+    int si = scale_index(s->ao_scale);
+    ao_targets *t = targets_for(r, si);
+    r->last_scale = si;
+    const ob_ao_grid *g = &t->grid;
+
     ob_ao_inputs in;
     memset(&in, 0, sizeof in);
-    in.linear_depth = r->gbuffer.linear_depth;
-    in.view_normal = r->gbuffer.normal;
-    in.width = r->width;
-    in.height = r->height;
-    memcpy(in.proj, proj, sizeof in.proj);
+    in.linear_depth = t->depth;
+    in.view_normal = t->normal;
+    in.width = g->width;
+    in.height = g->height;
+    grid_projection(g, (const float *)proj, in.proj);
     proj_info_from(in.proj, in.proj_info);
     in.frame = r->frame++;
+    in.sample_multiplier = s->adaptive ? t->multiplier : 0;
 
     ob_timers_frame_begin(&r->timers);
     ob_timer_begin(&r->timers, "gbuffer");
     ob_gbuffer_run(&r->gbuffer, (const float *)view, (const float *)proj);
-
     /* Each compute pass reads what the previous one wrote with image stores or as attachments. */
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    const GLbitfield barrier = GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
+    glMemoryBarrier(barrier | GL_FRAMEBUFFER_BARRIER_BIT);
+    if (g->k > 1) {
+        ob_timer_begin(&r->timers, "downsample");
+        ob_downsample_run(&r->downsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal);
+        glMemoryBarrier(barrier);
+    }
+    if (s->adaptive) {
+        ob_timer_begin(&r->timers, "edges");
+        ob_edges_run(&r->edges, g, t->depth, t->normal, t->multiplier);
+        glMemoryBarrier(barrier);
+    }
     ob_timer_begin(&r->timers, "ao");
-    ob_error err = run_method(r, &in, s, r->ao_raw);
+    ob_error err = run_method(r, &in, s, t->raw);
     if (err != OB_OK) {
         ob_timers_frame_end(&r->timers);
         return err;
     }
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    GLuint ao = r->ao_raw;
-    if (s->blur) {
-        ob_timer_begin(&r->timers, "blur");
-        ob_blur_run(&r->blur, r->ao_raw, r->gbuffer.linear_depth, r->ao, r->width, r->height);
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        ao = r->ao;
-    } else {
-        glCopyImageSubData(r->ao_raw, GL_TEXTURE_2D, 0, 0, 0, 0, r->ao, GL_TEXTURE_2D, 0, 0, 0, 0, r->width,
-                           r->height, 1);
+    glMemoryBarrier(barrier);
+    ob_timer_begin(&r->timers, "filter");
+    void *fstate = filter_state(r, s->filter, &err);
+    if (err != OB_OK) {
+        ob_timers_frame_end(&r->timers);
+        return err;
     }
+    const ob_filter_inputs fin = {t->raw, g->k > 1 ? t->filtered : r->ao, t->scratch, t->depth, t->normal, g->width,
+                                  g->height};
+    err = ob_filter_impl_at(s->filter)->run(fstate, &fin, s->filter_params);
+    if (err != OB_OK) {
+        ob_timers_frame_end(&r->timers);
+        return err;
+    }
+    glMemoryBarrier(barrier);
+    if (g->k > 1) {
+        ob_timer_begin(&r->timers, "upsample");
+        ob_upsample_run(&r->upsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal, t->filtered,
+                        r->ao);
+        glMemoryBarrier(barrier);
+    }
+    GLuint ao = r->ao;
 
     ob_light light = s->light.intensity > 0.0f ? s->light : r->scene_light;
     vec3 dir = {light.direction[0], light.direction[1], light.direction[2]};
@@ -262,14 +396,54 @@ ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t norma
     return err;
 }
 
+/* Per-pixel sample counts of the last frame at full resolution: the method's count, or under
+ * adaptive sampling its base x the edge pass's multiplier. */
+static ob_error read_sample_counts(ob_renderer *r, float *dst)
+{
+    const ao_targets *t = &r->scales[r->last_scale];
+    if (!t->ready) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "no frame rendered yet");
+    const ob_method_impl *m = ob_method_impl_at(r->last_method);
+    int samples = ob_method_samples(m, r->last_params);
+    int bw = (t->grid.width + OB_EDGE_BLOCK - 1) / OB_EDGE_BLOCK, bh = (t->grid.height + OB_EDGE_BLOCK - 1) / OB_EDGE_BLOCK;
+    float *mult = NULL;
+    float *depth = malloc((size_t)r->width * (size_t)r->height * sizeof(float));
+    if (!depth) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading sample counts");
+    glGetTextureImage(r->gbuffer.linear_depth, 0, GL_RED, GL_FLOAT,
+                      (GLsizei)((size_t)r->width * (size_t)r->height * sizeof(float)), depth);
+    if (r->last_adaptive && m->adapts) {
+        mult = malloc((size_t)bw * (size_t)bh * sizeof(float));
+        if (!mult) {
+            free(depth);
+            return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading sample counts");
+        }
+        glGetTextureImage(t->multiplier, 0, GL_RED, GL_FLOAT, (GLsizei)((size_t)bw * (size_t)bh * sizeof(float)), mult);
+    }
+    for (int y = 0; y < r->height; ++y)
+        for (int x = 0; x < r->width; ++x) {
+            int bx = (x / t->grid.k) / OB_EDGE_BLOCK, by = (y / t->grid.k) / OB_EDGE_BLOCK;
+            size_t i = (size_t)y * (size_t)r->width + (size_t)x;
+            float count = (float)samples;
+            if (mult) count = (float)ob_adaptive_base(samples) * mult[(size_t)by * (size_t)bw + (size_t)bx];
+            dst[i] = depth[i] > 0.0f ? count : 0.0f; /* the sky takes no samples */
+        }
+    free(mult);
+    free(depth);
+    return OB_OK;
+}
+
 size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
 {
     if (!r) return 0;
     size_t px = (size_t)r->width * (size_t)r->height;
     switch (kind) {
     case OB_IMAGE_FINAL_RGBA8: return px * 4;
+    case OB_IMAGE_AO_RAW_F32: {
+        const ob_ao_grid *g = &r->scales[r->last_scale].grid;
+        return (size_t)(g->width > 0 ? g->width : r->width) * (size_t)(g->height > 0 ? g->height : r->height) *
+               sizeof(float);
+    }
+    case OB_IMAGE_SAMPLES_F32:
     case OB_IMAGE_AO_F32:
-    case OB_IMAGE_AO_RAW_F32:
     case OB_IMAGE_DEPTH_F32: return px * sizeof(float);
     case OB_IMAGE_NORMAL_F32: return px * 3 * sizeof(float);
     }
@@ -300,7 +474,15 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
         break;
     }
     case OB_IMAGE_AO_F32: glGetTextureImage(r->ao, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst); break;
-    case OB_IMAGE_AO_RAW_F32: glGetTextureImage(r->ao_raw, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_AO_RAW_F32:
+        if (!r->scales[r->last_scale].ready) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "no frame rendered yet");
+        glGetTextureImage(r->scales[r->last_scale].raw, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst);
+        break;
+    case OB_IMAGE_SAMPLES_F32: {
+        ob_error e = read_sample_counts(r, dst);
+        if (e != OB_OK) return e;
+        break;
+    }
     case OB_IMAGE_DEPTH_F32: glGetTextureImage(r->gbuffer.linear_depth, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst); break;
     case OB_IMAGE_NORMAL_F32: glGetTextureImage(r->gbuffer.normal, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
     }

@@ -8,6 +8,7 @@
 #include <strings.h>
 
 #include "core/error.h"
+#include "filters/filter.h"
 #include "methods/method.h"
 #include "obscura/obscura.h"
 
@@ -28,7 +29,12 @@ ob_error ob_settings_init(ob_settings *s, const char *method)
     s->method = index;
     const ob_method_info *m = ob_method_at(index);
     for (int i = 0; i < m->param_count && i < OB_MAX_PARAMS; ++i) s->params[i] = m->params[i].def;
-    s->blur = 1;
+    /* Seed 003 §3.5's separable geometry-aware bilateral: the filter that keeps creases and
+     * silhouettes while removing the rotation noise. */
+    s->filter = -1;
+    s->ao_scale = 1.0f;
+    ob_error err = ob_settings_set_filter(s, "geometry");
+    if (err != OB_OK) return err;
     /* Intensity 0 = take the scene's light (sidecar or default). */
     s->ambient[0] = s->ambient[1] = s->ambient[2] = 0.3f;
     /* A pale sky grey: AO halos around silhouettes stay visible against it. */
@@ -91,6 +97,9 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
     if (!s || !assignment) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_settings_set: NULL argument");
     const ob_method_info *m = ob_method_at(s->method);
     if (!m) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "settings are not initialised");
+    /* The table the assignment is for: the method's, unless the prefix names the filter. */
+    float *values = s->params;
+    uint32_t *set_bits = &s->params_set;
     const char *eq = strchr(assignment, '=');
     if (!eq || eq == assignment || eq[1] == '\0')
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "expected METHOD.PARAM=VALUE, got '%s'", assignment);
@@ -99,13 +108,27 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
     const char *dot = memchr(key, '.', key_len);
     if (dot) {
         size_t mlen = (size_t)(dot - key);
-        int mi = -1;
+        int mi = -1, fi = -1;
         for (int i = 0; i < ob_method_count(); ++i)
             if (strlen(ob_method_at(i)->name) == mlen && strncmp(ob_method_at(i)->name, key, mlen) == 0) mi = i;
-        if (mi < 0) return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown method '%.*s' in '%s'", (int)mlen, key, assignment);
-        if (mi != s->method)
+        for (int i = 0; i < ob_filter_count(); ++i)
+            if (strlen(ob_filter_at(i)->name) == mlen && strncmp(ob_filter_at(i)->name, key, mlen) == 0) fi = i;
+        if (mi < 0 && fi < 0)
+            return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown method or filter '%.*s' in '%s'", (int)mlen, key,
+                                assignment);
+        if (mi >= 0 && mi == s->method) {
+            /* the method's own parameter */
+        } else if (fi >= 0 && fi == s->filter) {
+            m = ob_filter_at(fi);
+            values = s->filter_params;
+            set_bits = &s->filter_params_set;
+        } else if (mi >= 0) {
             return ob_set_error(OB_ERR_INVALID_ARGUMENT, "'%s' sets a parameter of %s, but the method is %s",
                                 assignment, ob_method_at(mi)->name, m->name);
+        } else {
+            return ob_set_error(OB_ERR_INVALID_ARGUMENT, "'%s' sets a parameter of filter %s, but the filter is %s",
+                                assignment, ob_filter_at(fi)->name, ob_filter_at(s->filter)->name);
+        }
         key = dot + 1;
         key_len -= mlen + 1;
     }
@@ -116,14 +139,14 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
             size_t n = strlen(list);
             snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "", m->params[i].name);
         }
-        return ob_set_error(OB_ERR_UNKNOWN_PARAM, "method %s has no parameter '%.*s' (it has: %s)", m->name,
+        return ob_set_error(OB_ERR_UNKNOWN_PARAM, "%s has no parameter '%.*s' (it has: %s)", m->name,
                             (int)key_len, key, m->param_count ? list : "none");
     }
     float value = 0.0f;
     ob_error err = parse_value(m, &m->params[pi], eq + 1, &value);
     if (err != OB_OK) return err;
-    s->params[pi] = value;
-    s->params_set |= 1u << pi;
+    values[pi] = value;
+    *set_bits |= 1u << pi;
     return OB_OK;
 }
 
@@ -154,4 +177,40 @@ ob_error ob_settings_set_samples(ob_settings *s, int samples)
     if (isnan(ob_settings_get(s, "samples")))
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "method %s takes no sample count", m->info.name);
     return ob_settings_set(s, assignment);
+}
+
+ob_error ob_settings_set_filter(ob_settings *s, const char *name)
+{
+    if (!s || !name) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_settings_set_filter: NULL argument");
+    int index = ob_find_filter(name);
+    if (index < 0) {
+        char list[512] = "";
+        for (int i = 0; i < ob_filter_count(); ++i) {
+            size_t n = strlen(list);
+            snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "", ob_filter_at(i)->name);
+        }
+        return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown filter '%s' (known: %s)", name, list);
+    }
+    const ob_filter_info *f = ob_filter_at(index);
+    s->filter = index;
+    s->filter_params_set = 0;
+    for (int i = 0; i < OB_MAX_PARAMS; ++i) s->filter_params[i] = i < f->param_count ? f->params[i].def : 0.0f;
+    return OB_OK;
+}
+
+float ob_settings_get_filter(const ob_settings *s, const char *param)
+{
+    const ob_filter_info *f = s ? ob_filter_at(s->filter) : NULL;
+    if (!f || !param) return NAN;
+    int pi = find_param(f, param, strlen(param));
+    return pi < 0 ? NAN : s->filter_params[pi];
+}
+
+ob_error ob_settings_set_ao_scale(ob_settings *s, float scale)
+{
+    if (!s) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_settings_set_ao_scale: NULL settings");
+    if (scale != 1.0f && scale != 0.5f && scale != 0.25f)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "ao scale %g is not 1, 0.5 or 0.25", (double)scale);
+    s->ao_scale = scale;
+    return OB_OK;
 }

@@ -67,6 +67,13 @@ static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params,
     crytek_state *s = p;
     ob_crytek_constants *c = &s->constants;
     int count = (int)params[P_SAMPLES], sampling = (int)params[P_SAMPLING];
+    /* Adaptive counts: Halton prefixes of one kernel, as in ssao.c. */
+    int base = ob_adaptive_base(count);
+    if (in->sample_multiplier) {
+        count = 3 * base > OB_CRYTEK_MAX_SAMPLES ? OB_CRYTEK_MAX_SAMPLES / 3 * 3 : 3 * base;
+        base = count / 3;
+        sampling = OB_SAMPLING_HALTON;
+    }
     if (count != s->kernel_count || sampling != s->kernel_sampling) {
         ob_sphere_kernel(&c->kernel[0][0], count, (ob_sampling)sampling, KERNEL_SEED);
         s->kernel_count = count;
@@ -84,9 +91,12 @@ static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params,
     c->params[3] = params[P_CORRECTION];
     c->counts[0] = count;
     c->counts[1] = (int)params[P_NOISE];
+    c->counts[2] = in->sample_multiplier ? 1 : 0;
+    c->counts[3] = base;
     ob_compute_pass_use(&s->pass, c, offsetof(ob_crytek_constants, kernel) + (size_t)count * sizeof c->kernel[0]);
     glBindTextureUnit(0, in->linear_depth);
     glBindTextureUnit(2, s->noise);
+    glBindTextureUnit(3, in->sample_multiplier ? in->sample_multiplier : s->noise);
     glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     ob_dispatch_2d(in->width, in->height, OB_CRYTEK_GROUP_X, OB_CRYTEK_GROUP_Y);
     return OB_OK;
@@ -101,4 +111,5 @@ const ob_method_impl ob_method_crytek = {
     .init = crytek_init,
     .run = crytek_run,
     .destroy = crytek_destroy,
+    .adapts = true,
 };

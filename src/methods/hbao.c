@@ -111,6 +111,8 @@ static int clamp_int(long v, int lo, int hi) { return v < lo ? lo : v > hi ? hi 
  * get hand-picked splits: few directions leave star-shaped streaks that the 4x4 blur cannot
  * remove, few steps miss thin occluders, so both grow together. Other counts split near
  * sqrt(N) x sqrt(N). */
+static int hbao_count_samples(const float *params) { return (int)params[P_DIRECTIONS] * (int)params[P_STEPS]; }
+
 static ob_error hbao_set_samples(float *params, uint32_t *params_set, int samples)
 {
     if (!params) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "hbao: params is NULL");
@@ -145,4 +147,5 @@ const ob_method_impl ob_method_hbao = {
     .run = hbao_run,
     .destroy = hbao_destroy,
     .set_samples = hbao_set_samples,
+    .count_samples = hbao_count_samples,
 };

@@ -14,7 +14,14 @@ typedef struct ob_ao_inputs {
     float proj[16];       /* column-major projection */
     float proj_info[4];   /* 1/P00, 1/P11, P20, P21 */
     uint32_t frame;       /* frame counter, for methods that vary noise over time */
+    /* Adaptive sample counts (seed 003 §4.1): when set, a method with a sample count takes
+     * samples/3 (at least 1) x the multiplier (1, 2 or 3) of its OB_EDGE_BLOCK^2 block of this
+     * R32F texture; methods without one ignore it. */
+    GLuint sample_multiplier; /* 0 = off */
 } ob_ao_inputs;
+
+/* The base count that the multiplier scales under adaptive sampling. */
+static inline int ob_adaptive_base(int samples) { return samples / 3 > 1 ? (samples + 1) / 3 : 1; }
 
 typedef struct ob_method_impl {
     ob_method_info info;
@@ -28,7 +35,15 @@ typedef struct ob_method_impl {
      * a parameter named "samples" (HBAO: directions x steps). Sets the bits of what it changed in
      * *params_set. NULL for the default. */
     ob_error (*set_samples)(float *params, uint32_t *params_set, int samples);
+    /* Samples per pixel these params ask for, when not a parameter named "samples" (HBAO:
+     * directions x steps). NULL for the default. */
+    int (*count_samples)(const float *params);
+    /* Honours ob_ao_inputs.sample_multiplier (adaptive sample counts). */
+    bool adapts;
 } ob_method_impl;
+
+/* Samples per pixel of a method with these (resolved) params; 0 for none. */
+int ob_method_samples(const ob_method_impl *m, const float *params);
 
 const ob_method_impl *ob_method_impl_at(int index);
 

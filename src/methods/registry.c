@@ -41,3 +41,11 @@ int ob_find_method(const char *name)
         if (strcmp(methods[i]->info.name, name) == 0) return i;
     return -1;
 }
+
+int ob_method_samples(const ob_method_impl *m, const float *params)
+{
+    if (m->count_samples) return m->count_samples(params);
+    for (int i = 0; i < m->info.param_count; ++i)
+        if (!strcmp(m->info.params[i].name, "samples")) return (int)params[i];
+    return 0;
+}

@@ -73,6 +73,14 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, G
     ob_ssao_constants *c = &s->constants;
     int count = (int)params[P_SAMPLES];
     int sampling = (int)params[P_SAMPLING], directions = (int)params[P_DIRECTIONS];
+    /* Adaptive counts take base x 1..3 prefixes of one kernel: Halton's prefixes are evenly
+     * spread (seed 003 §4.1), random ones are not. */
+    int base = ob_adaptive_base(count);
+    if (in->sample_multiplier) {
+        count = 3 * base > OB_SSAO_MAX_SAMPLES ? OB_SSAO_MAX_SAMPLES / 3 * 3 : 3 * base;
+        base = count / 3;
+        sampling = OB_SAMPLING_HALTON;
+    }
     if (count != s->kernel_count || sampling != s->kernel_sampling || directions != s->kernel_directions) {
         ob_hemisphere_kernel(&c->kernel[0][0], count, (ob_sampling)sampling, (ob_direction_pdf)directions, KERNEL_SEED);
         s->kernel_count = count;
@@ -91,12 +99,15 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, G
     c->params[3] = 0.0f;
     c->counts[0] = count;
     c->counts[1] = (int)params[P_NOISE];
+    c->counts[2] = in->sample_multiplier ? 1 : 0;
+    c->counts[3] = base;
     /* Upload only the kernel entries in use. */
     size_t used = offsetof(ob_ssao_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     ob_compute_pass_use(&s->pass, c, used);
     glBindTextureUnit(0, in->linear_depth);
     glBindTextureUnit(1, in->view_normal);
     glBindTextureUnit(2, s->noise);
+    glBindTextureUnit(3, in->sample_multiplier ? in->sample_multiplier : s->noise);
     glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     ob_dispatch_2d(in->width, in->height, OB_SSAO_GROUP_X, OB_SSAO_GROUP_Y);
     return OB_OK;
@@ -111,4 +122,5 @@ const ob_method_impl ob_method_ssao = {
     .init = ssao_init,
     .run = ssao_run,
     .destroy = ssao_destroy,
+    .adapts = true,
 };

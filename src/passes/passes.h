@@ -4,6 +4,7 @@
 #define OB_PASSES_H
 
 #include "gpu/gpu.h"
+#include "resample_params.h"
 #include "scene/scene.h"
 
 /* ---- G-buffer (gbuffer.c, shaders/gbuffer.{vert,frag}.glsl): the one raster pass ------------ */
@@ -32,11 +33,31 @@ ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene);
 void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj);
 void ob_gbuffer_destroy(ob_gbuffer *g);
 
-/* ---- 4x4 box blur (blur.c, shaders/blur_box4.glsl) ------------------------------------------ */
-typedef struct ob_blur_pass { ob_compute_pass pass; } ob_blur_pass;
-ob_error ob_blur_init(ob_blur_pass *b);
-void ob_blur_run(ob_blur_pass *b, GLuint ao_in, GLuint linear_depth, GLuint ao_out, int width, int height);
-void ob_blur_destroy(ob_blur_pass *b);
+/* ---- subsampling: downsample.c, upsample.c, edges.c (shaders of the same names) ----------- */
+/* The AO resolution: k full pixels per AO pixel (1, 2 or 4); AO pixel i samples full pixel k i + o. */
+typedef struct ob_ao_grid {
+    int full_width, full_height;
+    int width, height; /* AO resolution */
+    int k, o;
+} ob_ao_grid;
+
+ob_ao_grid ob_ao_grid_make(int full_width, int full_height, int k);
+/* The sizes and factors of a grid into the constants the three passes share. */
+void ob_resample_fill(ob_resample_constants *c, const ob_ao_grid *g);
+
+/* Depth and normals at the AO resolution: one representative pixel per block, no averaging. */
+ob_error ob_downsample_init(ob_compute_pass *p);
+void ob_downsample_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_depth, GLuint full_normal, GLuint low_depth,
+                       GLuint low_normal);
+
+/* Joint bilateral upsampling of the AO to full resolution (seed 003 eq. 3.12). */
+ob_error ob_upsample_init(ob_compute_pass *p);
+void ob_upsample_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_depth, GLuint full_normal, GLuint low_depth,
+                     GLuint low_normal, GLuint low_ao, GLuint ao_out);
+
+/* Adaptive sample counts: a multiplier 1/2/3 per OB_EDGE_BLOCK^2 AO pixels (seed 003 §4.1). */
+ob_error ob_edges_init(ob_compute_pass *p);
+void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLuint ao_normal, GLuint multiplier);
 
 /* ---- lighting + compose (compose.c, shaders/compose.glsl) ----------------------------------- */
 typedef struct ob_compose_pass { ob_compute_pass pass; } ob_compose_pass;

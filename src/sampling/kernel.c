@@ -43,9 +43,13 @@ static void kernel_numbers(ob_sampling sampling, ob_rng *rng, int i, double r[3]
     }
 }
 
-/* lerp(0.1, 1, (i/count)^2) x r3, kept at least 0.1 so the innermost points still probe. */
-static float kernel_length(int i, int count, double r3)
+/* Random (the seed's kernel): lerp(0.1, 1, (i/count)^2) x r3, kept at least 0.1 so the innermost
+ * points still probe. Halton: lerp(0.1, 1, r3^2), which concentrates toward the centre as much
+ * without depending on the count, so every prefix of 10, 20, 30 points (the Halton period,
+ * seed 003 §4.1) is itself a well-spread kernel: what adaptive sample counts need. */
+static float kernel_length(ob_sampling sampling, int i, int count, double r3)
 {
+    if (sampling == OB_SAMPLING_HALTON) return 0.1f + 0.9f * (float)(r3 * r3);
     float t = (float)i / (float)count;
     float len = (float)r3 * (0.1f + 0.9f * t * t);
     return len < 0.1f ? 0.1f : len;
@@ -61,7 +65,7 @@ void ob_hemisphere_kernel(float *out, int count, ob_sampling sampling, ob_direct
         float d[3];
         if (pdf == OB_DIRECTIONS_COSINE) ob_direction_cosine(r[0], r[1], d);
         else ob_direction_uniform(r[0], r[1], d);
-        float len = kernel_length(i, count, r[2]);
+        float len = kernel_length(sampling, i, count, r[2]);
         for (int c = 0; c < 3; ++c) out[4 * i + c] = d[c] * len;
         out[4 * i + 3] = 0.0f;
     }
@@ -77,7 +81,7 @@ void ob_sphere_kernel(float *out, int count, ob_sampling sampling, uint64_t seed
         /* Uniform over the sphere: eq. 5.3 with z = 2 r2 - 1 covers both hemispheres. */
         float d[3];
         ob_direction_uniform(r[0], 2.0 * r[1] - 1.0, d);
-        float len = kernel_length(i, count, r[2]);
+        float len = kernel_length(sampling, i, count, r[2]);
         for (int c = 0; c < 3; ++c) out[4 * i + c] = d[c] * len;
         out[4 * i + 3] = 0.0f;
     }

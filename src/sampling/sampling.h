@@ -28,8 +28,9 @@ typedef enum ob_sampling { OB_SAMPLING_RANDOM = 0, OB_SAMPLING_HALTON = 1 } ob_s
 typedef enum ob_direction_pdf { OB_DIRECTIONS_UNIFORM = 0, OB_DIRECTIONS_COSINE = 1 } ob_direction_pdf;
 
 /* Normal-oriented hemisphere kernel (seed 004 §3.3): `count` points inside the unit hemisphere
- * around +Z; point i has length r3 * lerp(0.1, 1, (i/count)^2) (at least 0.1), so more samples
- * lie near the centre, where occluders matter most. Writes xyz0 quadruples (std140 vec4s). */
+ * around +Z, more of them near the centre, where occluders matter most: point i has length
+ * r3 * lerp(0.1, 1, (i/count)^2) (at least 0.1) for random numbers, lerp(0.1, 1, r3^2) for Halton
+ * (independent of the count, so prefixes are kernels too). Writes xyz0 quadruples (std140 vec4s). */
 void ob_hemisphere_kernel(float *out_xyzw, int count, ob_sampling sampling, ob_direction_pdf pdf, uint64_t seed);
 
 /* Crytek's kernel (seed 004 §2.2): the same lengths, directions uniform over the whole sphere. */

@@ -1,9 +1,11 @@
 #version 450 core
-/* 4x4 box blur (offsets -2..1) of the raw AO. Pixels without geometry are left out of the
- * average so the sky's AO = 1 does not brighten silhouettes. */
-#include "blur_params.h"
+/* 4x4 box blur (offsets -2..1) of the raw AO, the seeds' classic (seed 004 §3.3): it spans
+ * exactly one tile of the 4x4 rotation noise, so the noise pattern averages out. Pixels without
+ * geometry are left out of the average so the sky's AO = 1 does not brighten silhouettes. Kept as
+ * the baseline the geometry-aware filters are measured against. */
+#include "filter_params.h"
 
-layout(local_size_x = OB_BLUR_GROUP_X, local_size_y = OB_BLUR_GROUP_Y) in;
+layout(local_size_x = OB_FILTER_GROUP_X, local_size_y = OB_FILTER_GROUP_Y) in;
 
 layout(binding = 0) uniform sampler2D ao_in;
 layout(binding = 1) uniform sampler2D linear_depth;
@@ -12,7 +14,7 @@ layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = ivec2(blur.size.xy);
+    ivec2 size = ivec2(flt.size.xy);
     if (any(greaterThanEqual(pix, size))) return;
     if (texelFetch(linear_depth, pix, 0).r <= 0.0) {
         imageStore(ao_out, pix, vec4(1.0));

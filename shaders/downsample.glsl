@@ -1,0 +1,24 @@
+#version 450 core
+/* Depth and normals at the AO resolution (seed 000 §4.7.1, seed 003 §4.4). Each AO pixel takes
+ * ONE representative full-resolution pixel, the same sub-pixel o of every k x k block: averaging
+ * normals would bend them where surfaces meet and create false occlusion (seed 003 §6.3, the dark
+ * window border of Figure 6.10), and averaging depths would invent surfaces between foreground
+ * and background. The renderer shifts the projection so that view positions reconstructed at
+ * the AO pixel centres are exactly the chosen pixels' (renderer.c, low_res_projection). */
+#include "resample_params.h"
+
+layout(local_size_x = OB_RESAMPLE_GROUP_X, local_size_y = OB_RESAMPLE_GROUP_Y) in;
+
+layout(binding = 0) uniform sampler2D full_depth;
+layout(binding = 1) uniform sampler2D full_normal;
+layout(binding = 0, r32f) uniform writeonly image2D low_depth;
+layout(binding = 1, rgba16f) uniform writeonly image2D low_normal;
+
+void main()
+{
+    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pix, rs.full_size.zw))) return;
+    ivec2 src = min(pix * rs.factor.x + rs.factor.y, rs.full_size.xy - 1);
+    imageStore(low_depth, pix, texelFetch(full_depth, src, 0));
+    imageStore(low_normal, pix, texelFetch(full_normal, src, 0));
+}

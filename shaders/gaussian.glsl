@@ -1,0 +1,28 @@
+#version 450 core
+/* One direction of the separable Gaussian blur (seed 000 §4.3.1, eq. 4.4), run along x then y.
+ * No depth, no normals: every pixel, sky included, is averaged with its neighbours, so the AO of a
+ * foreground object smears onto the background and the sky's 1 brightens silhouettes. That is the
+ * point: it is the geometry-blind baseline. Taps past the image border repeat the edge pixel, so
+ * the CPU-normalised weights always sum to 1. */
+#include "filter_params.h"
+
+layout(local_size_x = OB_FILTER_GROUP_X, local_size_y = OB_FILTER_GROUP_Y) in;
+
+layout(binding = 0) uniform sampler2D ao_in;
+layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+
+void main()
+{
+    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(flt.size.xy);
+    if (any(greaterThanEqual(pix, size))) return;
+    ivec2 dir = flt.axis.xy;
+    int radius = flt.axis.z;
+    float sum = flt.weights[0].x * texelFetch(ao_in, pix, 0).r;
+    for (int i = 1; i <= radius; ++i) {
+        ivec2 a = clamp(pix + i * dir, ivec2(0), size - 1);
+        ivec2 b = clamp(pix - i * dir, ivec2(0), size - 1);
+        sum += flt.weights[i].x * (texelFetch(ao_in, a, 0).r + texelFetch(ao_in, b, 0).r);
+    }
+    imageStore(ao_out, pix, vec4(sum));
+}

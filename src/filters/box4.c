@@ -1,0 +1,53 @@
+/* `box4`: the classic 4x4 box blur after SSAO (seed 004 §3.3). Shader: shaders/box4.glsl. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "filter_params.h"
+#include "filters/filter.h"
+
+static void *box4_init(void)
+{
+    ob_compute_pass *p = calloc(1, sizeof *p);
+    if (!p) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (box4)");
+        return NULL;
+    }
+    if (ob_compute_pass_init(p, "box4.glsl", NULL, sizeof(ob_filter_constants)) != OB_OK) {
+        free(p);
+        return NULL;
+    }
+    return p;
+}
+
+static ob_error box4_run(void *state, const ob_filter_inputs *in, const float *params)
+{
+    (void)params;
+    ob_filter_constants c;
+    memset(&c, 0, sizeof c);
+    c.size[0] = (float)in->width;
+    c.size[1] = (float)in->height;
+    c.size[2] = 1.0f / (float)in->width;
+    c.size[3] = 1.0f / (float)in->height;
+    ob_compute_pass_use(state, &c, offsetof(ob_filter_constants, weights));
+    glBindTextureUnit(0, in->src);
+    glBindTextureUnit(1, in->linear_depth);
+    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
+    return OB_OK;
+}
+
+static void box4_destroy(void *state)
+{
+    if (!state) return;
+    ob_compute_pass_destroy(state);
+    free(state);
+}
+
+const ob_filter_impl ob_filter_box4 = {
+    .info = {.name = "box4", .description = "the classic 4x4 box blur (one noise tile), the baseline",
+             .reference = "seed 004 §3.3", .param_count = 0, .params = NULL},
+    .init = box4_init,
+    .run = box4_run,
+    .destroy = box4_destroy,
+};

@@ -1,0 +1,47 @@
+/* The internal side of the filter registry: denoising passes that run after any AO method, at
+ * the AO's resolution (seed 000 §4.3; seed 003 §3.5, §4.3). Adding a filter is one .c (defining
+ * an ob_filter_impl), one shader and one line in registry.c. */
+#ifndef OB_FILTER_H
+#define OB_FILTER_H
+
+#include "filter_params.h"
+#include "gpu/gpu.h"
+#include "obscura/obscura.h"
+
+/* What a filter gets: textures of one size (the AO resolution). */
+typedef struct ob_filter_inputs {
+    GLuint src;           /* R32F AO to filter (visibility, sky pixels hold 1) */
+    GLuint dst;           /* R32F result */
+    GLuint scratch;       /* R32F, free for the first pass of a separable filter */
+    GLuint linear_depth;  /* R32F, positive view depth, 0 = no geometry */
+    GLuint view_normal;   /* RGBA16F view-space unit normal */
+    int width, height;
+} ob_filter_inputs;
+
+typedef struct ob_filter_impl {
+    ob_filter_info info;
+    /* Programs and static resources; NULL + ob_set_error on failure. May be NULL. */
+    void *(*init)(void);
+    /* src -> dst (may use scratch). params in table order, validated. Images written with
+     * imageStore; the caller puts the memory barrier after. Between the passes of a separable
+     * filter the filter itself calls glMemoryBarrier. */
+    ob_error (*run)(void *state, const ob_filter_inputs *in, const float *params);
+    void (*destroy)(void *state);
+} ob_filter_impl;
+
+const ob_filter_impl *ob_filter_impl_at(int index);
+
+/* ---- shared by the Gaussian-family filters (kernel.c) ------------------------------------- */
+/* Fill size, radius (clamped to 0..OB_FILTER_MAX_RADIUS), sigma, falloff and the spatial weights:
+ * seed 000 eq. 4.4 sampled at the integer taps 0..radius and normalised so that the 1D kernel
+ * (w0 + 2 sum w_i) sums to 1. sigma_depth / sigma_normal (radians) <= 0 leave that range term off. */
+void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in, int radius, float sigma_px,
+                              float sigma_depth, float sigma_normal);
+/* The two dispatches of a separable filter (seed 000 eq. 4.6-4.7): along x from in->src into
+ * in->scratch, a barrier, then along y into in->dst. Binds AO at texture unit 0, linear depth at
+ * 1, view normals at 2 and the output image at 0. */
+void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, const ob_filter_inputs *in);
+/* Bytes of c worth uploading: the block up to the last weight in use. */
+size_t ob_filter_constants_used(const ob_filter_constants *c);
+
+#endif

@@ -1,0 +1,74 @@
+/* What the Gaussian-family filters share (gaussian, bilateral, bilateral_sep, geometry): the
+ * spatial kernel of seed 000 eq. 4.4, the range falloffs of eq. 4.5-4.7 / seed 003 §3.5, and the
+ * two-dispatch driver of a separable pass (seed 000 eq. 4.6-4.7; seed 003 §4.3). Keeping them in
+ * one place means bilateral and bilateral_sep weigh taps identically, so their RMSE difference
+ * measures the separable approximation and nothing else. */
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+#include "filters/filter.h"
+
+void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in, int radius, float sigma_px,
+                              float sigma_depth, float sigma_normal)
+{
+    memset(c, 0, sizeof *c);
+    c->size[0] = (float)in->width;
+    c->size[1] = (float)in->height;
+    c->size[2] = 1.0f / (float)in->width;
+    c->size[3] = 1.0f / (float)in->height;
+    if (radius < 0) radius = 0;
+    if (radius > OB_FILTER_MAX_RADIUS) radius = OB_FILTER_MAX_RADIUS;
+    c->axis[2] = radius;
+    c->sigma[0] = sigma_px;
+    c->sigma[1] = sigma_depth;
+    c->sigma[2] = sigma_normal;
+    /* falloff = -1/(2 sigma^2): the shaders evaluate a range Gaussian as exp(x^2 * falloff), and
+     * a product of two as one exp() of the sum. 0 turns a term into a constant 1. */
+    c->falloff[0] = sigma_depth > 0.0f ? -1.0f / (2.0f * sigma_depth * sigma_depth) : 0.0f;
+    c->falloff[1] = sigma_normal > 0.0f ? -1.0f / (2.0f * sigma_normal * sigma_normal) : 0.0f;
+
+    /* Eq. 4.4 at x = 0..radius with mu = 0. The 1/(sigma sqrt(2 pi)) factor is replaced by the sum
+     * over the taps actually used, so a kernel truncated at 2 sigma still keeps the AO's mean
+     * (the plain Gaussian relies on that; the bilateral ones renormalise anyway). */
+    float s = sigma_px > 1e-3f ? sigma_px : 1e-3f;
+    float sum = 0.0f;
+    for (int i = 0; i <= radius; ++i) {
+        float w = expf(-(float)(i * i) / (2.0f * s * s));
+        c->weights[i][0] = w;
+        sum += i == 0 ? w : 2.0f * w;
+    }
+    for (int i = 0; i <= radius; ++i) c->weights[i][0] /= sum;
+}
+
+size_t ob_filter_constants_used(const ob_filter_constants *c)
+{
+    return offsetof(ob_filter_constants, weights) + (size_t)(c->axis[2] + 1) * sizeof c->weights[0];
+}
+
+void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, const ob_filter_inputs *in)
+{
+    size_t used = ob_filter_constants_used(c);
+    glBindTextureUnit(1, in->linear_depth);
+    glBindTextureUnit(2, in->view_normal);
+
+    /* eq. 4.6: along x, src -> scratch. */
+    c->axis[0] = 1;
+    c->axis[1] = 0;
+    ob_compute_pass_use(pass, c, used);
+    glBindTextureUnit(0, in->src);
+    glBindImageTexture(0, in->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
+
+    /* The y pass samples what the x pass stored with imageStore. */
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+    /* eq. 4.7: along y, scratch -> dst. Re-uploading the small block between the dispatches is
+     * ordered by GL like any other buffer update, so the x pass still sees (1,0). */
+    c->axis[0] = 0;
+    c->axis[1] = 1;
+    ob_compute_pass_use(pass, c, used);
+    glBindTextureUnit(0, in->scratch);
+    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
+}

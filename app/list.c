@@ -32,12 +32,12 @@ static int named_scenes(char names[][64], int max)
     return n;
 }
 
-static int list_json(void)
+/* One registry (methods or filters) as a JSON array of tables. */
+static void add_tables_json(cJSON *root, const char *key, int count, const ob_method_info *(*at)(int))
 {
-    cJSON *root = cJSON_CreateObject();
-    cJSON *methods = cJSON_AddArrayToObject(root, "methods");
-    for (int i = 0; i < ob_method_count(); ++i) {
-        const ob_method_info *m = ob_method_at(i);
+    cJSON *arr = cJSON_AddArrayToObject(root, key);
+    for (int i = 0; i < count; ++i) {
+        const ob_method_info *m = at(i);
         cJSON *jm = cJSON_CreateObject();
         cJSON_AddStringToObject(jm, "name", m->name);
         cJSON_AddStringToObject(jm, "description", m->description);
@@ -61,8 +61,15 @@ static int list_json(void)
             }
             cJSON_AddItemToArray(params, jp);
         }
-        cJSON_AddItemToArray(methods, jm);
+        cJSON_AddItemToArray(arr, jm);
     }
+}
+
+static int list_json(void)
+{
+    cJSON *root = cJSON_CreateObject();
+    add_tables_json(root, "methods", ob_method_count(), ob_method_at);
+    add_tables_json(root, "filters", ob_filter_count(), ob_filter_at);
     cJSON *builtin = cJSON_AddArrayToObject(root, "builtin_scenes");
     for (int i = 0; i < ob_builtin_scene_count(); ++i) {
         cJSON *js = cJSON_CreateObject();
@@ -82,12 +89,11 @@ static int list_json(void)
     return code;
 }
 
-static int list_human(void)
+static void print_tables(int count, const ob_method_info *(*at)(int))
 {
-    printf("methods (--method NAME, --set NAME.PARAM=VALUE):\n");
-    for (int i = 0; i < ob_method_count(); ++i) {
-        const ob_method_info *m = ob_method_at(i);
-        printf("\n  %-10s %s\n             [%s]\n", m->name, m->description, m->reference);
+    for (int i = 0; i < count; ++i) {
+        const ob_method_info *m = at(i);
+        printf("\n  %-14s %s\n                 [%s]\n", m->name, m->description, m->reference);
         for (int p = 0; p < m->param_count; ++p) {
             const ob_param_info *pi = &m->params[p];
             if (pi->type == OB_PARAM_ENUM) {
@@ -96,14 +102,22 @@ static int list_human(void)
                     size_t n = strlen(opts);
                     snprintf(opts + n, sizeof opts - n, "%s%s", o ? "|" : "", pi->options[o]);
                 }
-                printf("    %-12s %-5s default %-8s %-30s %s\n", pi->name, type_name(pi->type), pi->options[(int)pi->def],
+                printf("    %-14s %-5s default %-8s %-30s %s\n", pi->name, type_name(pi->type), pi->options[(int)pi->def],
                        opts, pi->help);
                 continue;
             }
-            printf("    %-12s %-5s default %-8g range [%g, %g] %-9s %s\n", pi->name, type_name(pi->type),
+            printf("    %-14s %-5s default %-8g range [%g, %g] %-9s %s\n", pi->name, type_name(pi->type),
                    (double)pi->def, (double)pi->min, (double)pi->max, pi->unit, pi->help);
         }
     }
+}
+
+static int list_human(void)
+{
+    printf("methods (--method NAME, --set NAME.PARAM=VALUE):\n");
+    print_tables(ob_method_count(), ob_method_at);
+    printf("\nfilters (--filter NAME, --set NAME.PARAM=VALUE):\n");
+    print_tables(ob_filter_count(), ob_filter_at);
     printf("\nbuilt-in scenes (--scene NAME):\n");
     for (int i = 0; i < ob_builtin_scene_count(); ++i)
         printf("  %-16s %s\n", ob_builtin_scene_name(i), ob_builtin_scene_description(i));

@@ -126,18 +126,21 @@ assert scenes == ["cornell", "corner", "sphere-on-plane"], scenes
 assert "bunny" in d["named_scenes"] and "fzk-haus" in d["named_scenes"], d["named_scenes"]
 PY
 then ok; else bad "list --json"; fi
-# docs/methods.md documents every registered method and each of its parameters.
-if python3 - "$dir/list.json" "$(dirname "$0")/../docs/methods.md" <<'PY'
+# docs/methods.md and docs/filters.md document every registered method and filter and each of
+# their parameters.
+for kind in methods filters; do
+    if python3 - "$dir/list.json" "$(dirname "$0")/../docs/$kind.md" "$kind" <<'PY'
 import json, re, sys
-methods = json.load(open(sys.argv[1]))["methods"]
+tables = json.load(open(sys.argv[1]))[sys.argv[3]]
 doc = open(sys.argv[2]).read()
-sections = dict(re.findall(r"^### (\S+)\n(.*?)(?=^### |\Z)", doc, re.S | re.M))
-for m in methods:
+sections = dict(re.findall(r"^### (\S+)\n(.*?)(?=^### |^## |\Z)", doc, re.S | re.M))
+for m in tables:
     assert m["name"] in sections, "no section for " + m["name"]
     for p in m["params"]:
         assert "`%s`" % p["name"] in sections[m["name"]], "%s.%s undocumented" % (m["name"], p["name"])
 PY
-then ok; else bad "docs/methods.md lags the registry"; fi
+    then ok; else bad "docs/$kind.md lags the registry"; fi
+done
 "$OBSCURA" list | grep -q "ssao" && ok || bad "list"
 "$OBSCURA" render --help | grep -q -- "--ao-out" && ok || bad "render --help"
 "$OBSCURA" list --help | grep -q -- "--json" && ok || bad "list --help"

@@ -28,11 +28,14 @@ static void test_registry_and_settings(void)
         }
     }
 
-    /* Every parameter of every method is validated from its table. */
-    for (int i = 0; i < ob_method_count(); ++i) {
-        const ob_method_info *m = ob_method_at(i);
+    /* Every parameter of every method and filter is validated from its table. */
+    for (int i = 0; i < ob_method_count() + ob_filter_count(); ++i) {
+        bool is_filter = i >= ob_method_count();
+        const ob_method_info *m = is_filter ? ob_filter_at(i - ob_method_count()) : ob_method_at(i);
         ob_settings t;
-        CHECK(ob_settings_init(&t, m->name) == OB_OK, "init %s", m->name);
+        CHECK(ob_settings_init(&t, is_filter ? "ssao" : m->name) == OB_OK, "init %s", m->name);
+        if (is_filter) CHECK(ob_settings_set_filter(&t, m->name) == OB_OK, "filter %s", m->name);
+        float *values = is_filter ? t.filter_params : t.params;
         for (int p = 0; p < m->param_count; ++p) {
             const ob_param_info *pi = &m->params[p];
             char text[128];
@@ -57,7 +60,7 @@ static void test_registry_and_settings(void)
             if (pi->type == OB_PARAM_ENUM) snprintf(text, sizeof text, "%s.%s=%s", m->name, pi->name, pi->options[(int)pi->def]);
             else snprintf(text, sizeof text, "%s.%s=%.9g", m->name, pi->name, (double)pi->def);
             CHECK(ob_settings_set(&t, text) == OB_OK, "'%s' refused", text);
-            CHECK(t.params[p] == pi->def, "%s keeps its value", text);
+            CHECK(values[p] == pi->def, "%s keeps its value", text);
         }
     }
 

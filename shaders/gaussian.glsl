@@ -18,11 +18,12 @@ void main()
     if (any(greaterThanEqual(pix, size))) return;
     ivec2 dir = flt.axis.xy;
     int radius = flt.axis.z;
-    float sum = flt.weights[0].x * texelFetch(ao_in, pix, 0).r;
-    for (int i = 1; i <= radius; ++i) {
-        ivec2 a = clamp(pix + i * dir, ivec2(0), size - 1);
-        ivec2 b = clamp(pix - i * dir, ivec2(0), size - 1);
-        sum += flt.weights[i].x * (texelFetch(ao_in, a, 0).r + texelFetch(ao_in, b, 0).r);
+    float sum = 0.0;
+    /* One fetch per iteration over -r..r, like the bilateral passes: folding the symmetric taps
+     * into one iteration (w_i (a + b)) ran 2.5x slower on llvmpipe (~90 vs ~35 ms, 1280x720). */
+    for (int i = -radius; i <= radius; ++i) {
+        ivec2 q = clamp(pix + i * dir, ivec2(0), size - 1);
+        sum += flt.weights[abs(i)].x * texelFetch(ao_in, q, 0).r;
     }
     imageStore(ao_out, pix, vec4(sum));
 }

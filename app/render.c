@@ -1,5 +1,6 @@
 /* obscura render: one scene, one method, one camera -> PNG (+ AO as PFM/PNG). */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,8 +26,27 @@ static void render_usage(FILE *f)
           "  --ao-scale S          run the AO at 1, 0.5 or 0.25 of the size, then joint bilateral\n"
           "                        upsampling (default 1)\n"
           "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off)\n"
-          "  --view final|ao|samples  what --out shows: the lit image, the AO map, or the samples\n"
-          "                        per pixel (grey, white = the most any pixel took)\n"
+          "  --view V              what --out shows: final (default), ao, normals, depth, shadow (the key\n"
+          "                        light's visibility), radiance (direct light, tone mapped), samples\n"
+          "                        (per pixel, grey, white = the most any pixel took)\n"
+          "  --light SPEC          replaces the scene's lights (repeatable, up to 8), e.g.\n"
+          "                        'directional dir=0.3,1,0.2 color=1,0.9,0.8 intensity=2',\n"
+          "                        'point pos=0,2,0 intensity=8 range=10',\n"
+          "                        'spot pos=0,3,0 dir=0,-1,0 cone=20,30 intensity=20'\n"
+          "  --ambient MODE        constant (default), hemisphere (sky/ground) or env (needs --env)\n"
+          "  --ambient-color R,G,B the constant ambient radiance (default 0.3,0.3,0.3)\n"
+          "  --env FILE.hdr        equirectangular environment map (Radiance .hdr)\n"
+          "  --ao-light ambient|all  AO darkens the ambient term (default) or all light\n"
+          "  --shadow none|hard|pcf|vsm  shadow maps for the lights (default pcf)\n"
+          "  --shadow-size N       shadow map resolution (default 2048)\n"
+          "  --shadow-bias B       constant bias in map texels; --shadow-slope-bias S slope-scaled\n"
+          "  --pcf-radius R        PCF kernel taps each side (1 = 3x3); --vsm-blur SIGMA (texels);\n"
+          "                        --vsm-bleed T (light-bleeding reduction, 0..1)\n"
+          "  --hdr on|off          tone mapping (Reinhard, auto key, bloom) or a plain clamp (default on)\n"
+          "  --exposure E          linear scale before tone mapping (default 1)\n"
+          "  --key A               Reinhard key (0.045..0.9); default automatic from the log-average\n"
+          "  --white L             L_white: the scaled luminance mapped to white (0 = eq. 2.3)\n"
+          "  --bloom S             bloom strength (0 = off); --bloom-threshold T\n"
           "  --size WxH            image size (default 640x480)\n"
           "  --camera NAME|INDEX   a camera preset of the scene (default: 'default', which frames the\n"
           "                        scene's bounds unless its sidecar defines it)\n"
@@ -46,6 +66,15 @@ typedef struct render_opts {
     const char *scene, *sidecar, *method, *filter, *view, *camera, *out, *ao_out, *ao_png, *depth_out, *normal_out;
     float ao_scale;
     bool adaptive;
+    const char *lights[OB_MAX_LIGHTS];
+    int light_count;
+    const char *env;
+    int ambient_mode;
+    bool has_ambient_color, ao_all_light, hdr_off;
+    float ambient_color[3];
+    int shadow_method, shadow_size, pcf_radius;
+    float shadow_bias, shadow_slope_bias, vsm_blur, vsm_bleed, exposure, key, white, bloom, bloom_threshold;
+    unsigned set_mask; /* which of the optional numbers above were given */
     const char *sets[64];
     int set_count;
     ob_up_axis up;
@@ -61,8 +90,50 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The numeric lighting/shadow/HDR options: validated ranges, one line each. Returns false with
+ * *code set when the option is not one of them or its value is bad. */
+static bool parse_number_option(render_opts *o, const char *a, const char *v, int *code)
+{
+    static const struct {
+        const char *name;
+        size_t offset;
+        float min, max;
+        bool integer;
+        unsigned bit;
+    } opts[] = {
+        {"--shadow-size", offsetof(render_opts, shadow_size), 16.0f, 16384.0f, true, 1},
+        {"--shadow-bias", offsetof(render_opts, shadow_bias), 0.0f, 100.0f, false, 2},
+        {"--shadow-slope-bias", offsetof(render_opts, shadow_slope_bias), 0.0f, 100.0f, false, 3},
+        {"--pcf-radius", offsetof(render_opts, pcf_radius), 1.0f, 8.0f, true, 4},
+        {"--vsm-blur", offsetof(render_opts, vsm_blur), 0.0f, 16.0f, false, 5},
+        {"--vsm-bleed", offsetof(render_opts, vsm_bleed), 0.0f, 0.99f, false, 6},
+        {"--exposure", offsetof(render_opts, exposure), 1e-6f, 1e6f, false, 7},
+        {"--key", offsetof(render_opts, key), 0.001f, 10.0f, false, 8},
+        {"--white", offsetof(render_opts, white), 0.0f, 1e6f, false, 9},
+        {"--bloom", offsetof(render_opts, bloom), 0.0f, 10.0f, false, 10},
+        {"--bloom-threshold", offsetof(render_opts, bloom_threshold), 0.0f, 1e6f, false, 11},
+    };
+    for (size_t i = 0; i < sizeof opts / sizeof opts[0]; ++i) {
+        if (strcmp(a, opts[i].name) != 0) continue;
+        float x = 0.0f;
+        if (!cli_parse_float(v, &x) || x < opts[i].min || x > opts[i].max || (opts[i].integer && x != floorf(x))) {
+            *code = cli_fail(EXIT_USAGE, "%s: expected %s in [%g, %g], got '%s'", a, opts[i].integer ? "an integer" : "a number",
+                             (double)opts[i].min, (double)opts[i].max, v);
+            return false;
+        }
+        char *field = (char *)o + opts[i].offset;
+        if (opts[i].integer) *(int *)field = (int)x;
+        else *(float *)field = x;
+        o->set_mask |= 1u << opts[i].bit;
+        return true;
+    }
+    *code = cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura render --help)", a);
+    return false;
+}
+
 static int parse(int argc, char **argv, render_opts *o)
 {
+    int code = 0;
     *o = (render_opts){.scene = "cornell", .method = "ssao", .filter = "geometry", .view = "final", .ao_scale = 1.0f,
                        .width = 640, .height = 480, .frames = 1};
     for (int i = 1; i < argc; ++i) {
@@ -102,9 +173,43 @@ static int parse(int argc, char **argv, render_opts *o)
         } else if (!strcmp(a, "--filter")) {
             o->filter = v;
         } else if (!strcmp(a, "--view")) {
-            if (strcmp(v, "final") && strcmp(v, "ao") && strcmp(v, "samples"))
-                return cli_fail(EXIT_USAGE, "--view: expected final, ao or samples, got '%s'", v);
+            const char *views[] = {"final", "ao", "normals", "depth", "shadow", "radiance", "samples"};
+            bool known = false;
+            for (size_t k = 0; k < sizeof views / sizeof views[0]; ++k) known = known || !strcmp(v, views[k]);
+            if (!known)
+                return cli_fail(EXIT_USAGE, "--view: expected final, ao, normals, depth, shadow, radiance or samples, got '%s'", v);
             o->view = v;
+        } else if (!strcmp(a, "--light")) {
+            if (o->light_count >= OB_MAX_LIGHTS) return cli_fail(EXIT_USAGE, "--light: at most %d lights", OB_MAX_LIGHTS);
+            o->lights[o->light_count++] = v;
+        } else if (!strcmp(a, "--env")) {
+            o->env = v;
+        } else if (!strcmp(a, "--ambient")) {
+            if (!strcmp(v, "constant")) o->ambient_mode = OB_AMBIENT_CONSTANT;
+            else if (!strcmp(v, "hemisphere")) o->ambient_mode = OB_AMBIENT_HEMISPHERE;
+            else if (!strcmp(v, "env")) o->ambient_mode = OB_AMBIENT_ENVIRONMENT;
+            else return cli_fail(EXIT_USAGE, "--ambient: expected constant, hemisphere or env, got '%s'", v);
+        } else if (!strcmp(a, "--ambient-color")) {
+            if (!cli_parse_vec3(v, o->ambient_color) || o->ambient_color[0] < 0.0f || o->ambient_color[1] < 0.0f ||
+                o->ambient_color[2] < 0.0f)
+                return cli_fail(EXIT_USAGE, "--ambient-color: expected R,G,B >= 0, got '%s'", v);
+            o->has_ambient_color = true;
+        } else if (!strcmp(a, "--ao-light")) {
+            if (!strcmp(v, "ambient")) o->ao_all_light = false;
+            else if (!strcmp(v, "all")) o->ao_all_light = true;
+            else return cli_fail(EXIT_USAGE, "--ao-light: expected ambient or all, got '%s'", v);
+        } else if (!strcmp(a, "--shadow")) {
+            if (!strcmp(v, "none")) o->shadow_method = OB_SHADOW_NONE;
+            else if (!strcmp(v, "hard")) o->shadow_method = OB_SHADOW_HARD;
+            else if (!strcmp(v, "pcf")) o->shadow_method = OB_SHADOW_PCF;
+            else if (!strcmp(v, "vsm")) o->shadow_method = OB_SHADOW_VSM;
+            else return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
+            o->set_mask |= 1u << 0;
+        } else if (!strcmp(a, "--hdr")) {
+            if (!strcmp(v, "on")) o->hdr_off = false;
+            else if (!strcmp(v, "off")) o->hdr_off = true;
+            else return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
+
         } else if (!strcmp(a, "--ao-scale")) {
             if (!strcmp(v, "1")) o->ao_scale = 1.0f;
             else if (!strcmp(v, "0.5")) o->ao_scale = 0.5f;
@@ -137,8 +242,8 @@ static int parse(int argc, char **argv, render_opts *o)
             else if (!strcmp(v, "hw")) o->gpu = OB_GPU_HW;
             else if (!strcmp(v, "sw")) o->gpu = OB_GPU_SW;
             else return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
-        } else {
-            return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura render --help)", a);
+        } else if (!parse_number_option(o, a, v, &code)) {
+            return code;
         }
     }
     if (!o->out) return cli_fail(EXIT_USAGE, "--out FILE.png is required (see obscura render --help)");
@@ -161,6 +266,49 @@ static void flip_rows_to_grey(const float *ao, int w, int h, unsigned char *out)
             v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
             out[(size_t)y * (size_t)w + (size_t)x] = (unsigned char)lrintf(v * 255.0f);
         }
+}
+
+static unsigned char to_byte(float v)
+{
+    v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
+    return (unsigned char)lrintf(v * 255.0f);
+}
+
+static float srgb(float c)
+{
+    c = c < 0.0f ? 0.0f : c > 1.0f ? 1.0f : c;
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+}
+
+/* The debug views as an RGB image (top row first): ao, shadow and samples as grey, normals as
+ * n * 0.5 + 0.5, depth as grey from near (white) to far (black), radiance clamped to [0,1] and
+ * sRGB-encoded. buf holds 3 floats per pixel. */
+static ob_error view_image(ob_renderer *r, const render_opts *o, float *buf, unsigned char *rgb)
+{
+    int w = o->width, h = o->height;
+    size_t px = (size_t)w * (size_t)h;
+    const char *v = o->view;
+    ob_image_kind kind = !strcmp(v, "ao") ? OB_IMAGE_AO_F32 : !strcmp(v, "samples") ? OB_IMAGE_SAMPLES_F32
+                         : !strcmp(v, "normals") ? OB_IMAGE_NORMAL_F32 : !strcmp(v, "depth") ? OB_IMAGE_DEPTH_F32
+                         : !strcmp(v, "shadow") ? OB_IMAGE_SHADOW_F32 : OB_IMAGE_RADIANCE_F32;
+    ob_error err = ob_read_image(r, kind, buf, ob_image_size(r, kind));
+    if (err != OB_OK) return err;
+    int channels = kind == OB_IMAGE_NORMAL_F32 || kind == OB_IMAGE_RADIANCE_F32 ? 3 : 1;
+    float most = 0.0f;
+    for (size_t i = 0; i < px && channels == 1; ++i) most = buf[i] > most ? buf[i] : most;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            size_t src = (size_t)(h - 1 - y) * (size_t)w + (size_t)x, dst = 3 * ((size_t)y * (size_t)w + (size_t)x);
+            for (int c = 0; c < 3; ++c) {
+                float value = buf[src * (size_t)channels + (size_t)(channels == 3 ? c : 0)];
+                if (kind == OB_IMAGE_NORMAL_F32) value = value * 0.5f + 0.5f;
+                else if (kind == OB_IMAGE_RADIANCE_F32) value = srgb(value);
+                else if (kind == OB_IMAGE_SAMPLES_F32) value = most > 0.0f ? value / most : 0.0f;
+                else if (kind == OB_IMAGE_DEPTH_F32) value = value > 0.0f && most > 0.0f ? 1.0f - value / most : 0.0f;
+                rgb[dst + (size_t)c] = to_byte(value);
+            }
+        }
+    return OB_OK;
 }
 
 /* Outputs written so far in this run: removed again if a later one fails, so a failed run
@@ -203,19 +351,8 @@ static int write_outputs_tracked(ob_renderer *r, const render_opts *o)
             goto done;
         }
     } else {
-        /* ao: visibility as grey; samples: the count as grey, white = the largest count. */
-        bool samples = !strcmp(o->view, "samples");
-        if (ob_read_image(r, samples ? OB_IMAGE_SAMPLES_F32 : OB_IMAGE_AO_F32, buf, px * sizeof(float)) != OB_OK) {
-            code = cli_fail_library_as(EXIT_OUTPUT);
-            goto done;
-        }
-        if (samples) {
-            float most = 0.0f;
-            for (size_t i = 0; i < px; ++i) most = buf[i] > most ? buf[i] : most;
-            for (size_t i = 0; i < px; ++i) buf[i] = most > 0.0f ? buf[i] / most : 0.0f;
-        }
-        flip_rows_to_grey(buf, o->width, o->height, grey);
-        if (track(ob_write_png(o->out, o->width, o->height, 1, grey), o->out) != OB_OK) {
+        if (view_image(r, o, buf, rgba) != OB_OK ||
+            track(ob_write_png(o->out, o->width, o->height, 3, rgba), o->out) != OB_OK) {
             code = cli_fail_library_as(EXIT_OUTPUT);
             goto done;
         }
@@ -266,6 +403,29 @@ int cmd_render(int argc, char **argv)
     if (ob_settings_set_filter(&settings, o.filter) != OB_OK || ob_settings_set_ao_scale(&settings, o.ao_scale) != OB_OK)
         return cli_fail_from_library();
     settings.adaptive = o.adaptive;
+    for (int i = 0; i < o.light_count; ++i)
+        if (ob_parse_light(o.lights[i], &settings.lights[i]) != OB_OK) return cli_fail_from_library();
+    settings.light_count = o.light_count;
+    settings.ambient_mode = (ob_ambient_mode)o.ambient_mode;
+    if (o.has_ambient_color) memcpy(settings.ambient, o.ambient_color, sizeof settings.ambient);
+    if (settings.ambient_mode == OB_AMBIENT_ENVIRONMENT && !o.env)
+        return cli_fail(EXIT_USAGE, "--ambient env needs --env FILE.hdr");
+    settings.ao_all_light = o.ao_all_light;
+    ob_shadow_settings *sh = &settings.shadow;
+    if (o.set_mask & (1u << 0)) sh->method = (ob_shadow_method)o.shadow_method;
+    if (o.set_mask & (1u << 1)) sh->size = o.shadow_size;
+    if (o.set_mask & (1u << 2)) sh->bias = o.shadow_bias;
+    if (o.set_mask & (1u << 3)) sh->slope_bias = o.shadow_slope_bias;
+    if (o.set_mask & (1u << 4)) sh->pcf_radius = o.pcf_radius;
+    if (o.set_mask & (1u << 5)) sh->vsm_blur = o.vsm_blur;
+    if (o.set_mask & (1u << 6)) sh->vsm_bleed = o.vsm_bleed;
+    ob_hdr_settings *hdr = &settings.hdr;
+    hdr->enabled = !o.hdr_off;
+    if (o.set_mask & (1u << 7)) hdr->exposure = o.exposure;
+    if (o.set_mask & (1u << 8)) hdr->key = o.key;
+    if (o.set_mask & (1u << 9)) hdr->l_white = o.white;
+    if (o.set_mask & (1u << 10)) hdr->bloom_strength = o.bloom;
+    if (o.set_mask & (1u << 11)) hdr->bloom_threshold = o.bloom_threshold;
     /* A method with no sample count (none) ignores --quality/--samples; anything else that the
      * method refuses (out of its range) is an error. */
     int sample_count = o.samples > 0 ? o.samples : o.quality_samples;
@@ -303,6 +463,10 @@ int cmd_render(int argc, char **argv)
                 ob_query_gl_version(ctx), ob_query_device(ctx));
     ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.width, .height = o.height});
     if (!r || ob_renderer_set_scene(r, scene) != OB_OK) {
+        code = cli_fail_from_library();
+        goto cleanup;
+    }
+    if (o.env && ob_renderer_set_environment(r, o.env) != OB_OK) {
         code = cli_fail_from_library();
         goto cleanup;
     }

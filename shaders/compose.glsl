@@ -1,6 +1,9 @@
 #version 450 core
-/* Direct light (Lambert + Blinn-Phong) + ambient x AO, then sRGB. HDR tone mapping comes later;
- * here radiance is clamped to [0,1] before the sRGB transfer. */
+/* Compose (DESIGN.md "The frame"): direct radiance (lighting.glsl) + ambient x albedo x AO into
+ * linear HDR radiance for the tone map; AO darkens the ambient term, or all light on request.
+ * Ambient: a constant, a sky/ground hemisphere by the world normal, or the environment map's
+ * diffuse irradiance from 9 spherical harmonics (Ramamoorthi & Hanrahan 2001, eq. 13), so that a
+ * constant environment of radiance L gives exactly the constant ambient L. */
 #include "compose_params.h"
 #include "common.glsl"
 
@@ -9,29 +12,49 @@ layout(local_size_x = OB_COMPOSE_GROUP_X, local_size_y = OB_COMPOSE_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D linear_depth;
 layout(binding = 1) uniform sampler2D view_normal;
 layout(binding = 2) uniform sampler2D albedo_map;
-layout(binding = 3) uniform sampler2D ao_map;
-layout(binding = 0, rgba8) uniform writeonly image2D final_out;
+layout(binding = 3) uniform sampler2D ao_map;         /* R32F visibility */
+layout(binding = 4) uniform sampler2D direct_map;     /* RGBA16F direct radiance */
+layout(binding = 5) uniform sampler2D environment;    /* equirectangular radiance, for the background */
+layout(binding = 0, rgba16f) uniform writeonly image2D hdr_out;
+
+/* Irradiance / pi for a world normal from the SH coefficients (already convolved on the CPU). */
+vec3 ob_sh_irradiance(vec3 n)
+{
+    return cmp.sh[0].rgb + cmp.sh[1].rgb * n.y + cmp.sh[2].rgb * n.z + cmp.sh[3].rgb * n.x +
+           cmp.sh[4].rgb * (n.x * n.y) + cmp.sh[5].rgb * (n.y * n.z) + cmp.sh[6].rgb * (3.0 * n.z * n.z - 1.0) +
+           cmp.sh[7].rgb * (n.x * n.z) + cmp.sh[8].rgb * (n.x * n.x - n.y * n.y);
+}
+
+vec3 ob_environment_radiance(vec3 dir)
+{
+    /* Equirectangular, +Y up: u from atan2(x, -z), v from the elevation. */
+    vec2 uv = vec2(atan(dir.x, -dir.z) * (0.5 / 3.14159265) + 0.5, acos(clamp(dir.y, -1.0, 1.0)) / 3.14159265);
+    return textureLod(environment, uv, 0.0).rgb;
+}
 
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pix, ivec2(cmp.size.xy)))) return;
     float d = texelFetch(linear_depth, pix, 0).r;
-    vec3 color = cmp.background.rgb;
-    if (d > 0.0) {
-        vec3 p = ob_view_position(vec2(pix) + 0.5, d, cmp.size, cmp.proj_info);
-        vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
-        vec3 albedo = texelFetch(albedo_map, pix, 0).rgb;
-        float ao = texelFetch(ao_map, pix, 0).r;
-        vec3 l = cmp.light_dir.xyz;
-        vec3 v = normalize(-p);
-        vec3 h = normalize(l + v);
-        float ndl = max(dot(n, l), 0.0);
-        /* Blinn-Phong lobe, normalised so the highlight's energy does not grow with shininess. */
-        float shininess = cmp.specular.y;
-        float spec = ndl > 0.0 ? cmp.specular.x * (shininess + 8.0) / 8.0 * pow(max(dot(n, h), 0.0), shininess) : 0.0;
-        vec3 direct = (albedo * ndl + spec * ndl) * cmp.light_color.rgb;
-        color = direct + cmp.ambient.rgb * albedo * ao;
+    int mode = int(cmp.ambient.w);
+    if (d <= 0.0) {
+        vec3 view_dir = normalize(mat3(cmp.inv_view) * ob_view_position(vec2(pix) + 0.5, 1.0, cmp.size, cmp.proj_info));
+        vec3 bg = mode == OB_AMBIENT_MODE_ENVIRONMENT ? ob_environment_radiance(view_dir)
+                : mode == OB_AMBIENT_MODE_HEMISPHERE  ? mix(cmp.ground.rgb, cmp.sky.rgb, 0.5 + 0.5 * view_dir.y)
+                                                      : cmp.background.rgb;
+        imageStore(hdr_out, pix, vec4(bg, 1.0));
+        return;
     }
-    imageStore(final_out, pix, vec4(ob_linear_to_srgb(color), 1.0));
+    vec3 n = normalize(mat3(cmp.inv_view) * texelFetch(view_normal, pix, 0).xyz);
+    vec3 albedo = texelFetch(albedo_map, pix, 0).rgb;
+    float ao = texelFetch(ao_map, pix, 0).r;
+    vec3 direct = texelFetch(direct_map, pix, 0).rgb;
+
+    vec3 ambient = cmp.ambient.rgb;
+    if (mode == OB_AMBIENT_MODE_HEMISPHERE) ambient = mix(cmp.ground.rgb, cmp.sky.rgb, 0.5 + 0.5 * n.y);
+    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) ambient = max(ob_sh_irradiance(n), vec3(0.0));
+
+    vec3 color = (cmp.flags.x != 0 ? direct * ao : direct) + ambient * albedo * ao;
+    imageStore(hdr_out, pix, vec4(color, 1.0));
 }

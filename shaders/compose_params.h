@@ -1,5 +1,4 @@
-/* Lighting/compose constants: one directional light (Lambert + Blinn-Phong, seed 000 §4.5) plus
- * an ambient term multiplied by AO. */
+/* Compose constants: direct light + ambient x AO, in linear HDR radiance. */
 #ifndef OB_COMPOSE_PARAMS_H
 #define OB_COMPOSE_PARAMS_H
 #include "ob_shared.h"
@@ -7,14 +6,21 @@
 #define OB_COMPOSE_GROUP_X 8
 #define OB_COMPOSE_GROUP_Y 8
 
+/* ambient.w: the ambient mode, as ob_ambient_mode */
+#define OB_AMBIENT_MODE_CONSTANT 0
+#define OB_AMBIENT_MODE_HEMISPHERE 1
+#define OB_AMBIENT_MODE_ENVIRONMENT 2
+
 OB_CONSTANTS_BEGIN(ob_compose_constants, OB_BINDING_PASS)
     OB_VEC4 size;          /* width, height, 1/width, 1/height */
     OB_VEC4 proj_info;     /* 1/P00, 1/P11, P20, P21 */
-    OB_VEC4 light_dir;     /* view space, toward the light, unit */
-    OB_VEC4 light_color;   /* linear RGB x intensity */
-    OB_VEC4 ambient;       /* linear RGB */
-    OB_VEC4 background;    /* linear RGB */
-    OB_VEC4 specular;      /* ks, shininess, unused, unused */
+    OB_MAT4 inv_view;      /* view -> world */
+    OB_VEC4 ambient;       /* constant ambient radiance; w = mode */
+    OB_VEC4 sky;           /* hemisphere: radiance from +Y */
+    OB_VEC4 ground;        /* hemisphere: radiance from -Y */
+    OB_VEC4 background;    /* radiance of pixels with no geometry (constant mode) */
+    OB_IVEC4 flags;        /* AO darkens all light (0/1), unused... */
+    OB_VEC4 sh[9];         /* environment: irradiance SH coefficients E_lm / pi (rgb), order l=0..2 */
 OB_CONSTANTS_END(ob_compose_constants, cmp)
 
 #endif

@@ -100,7 +100,7 @@ awk -v lo="$lo" -v hi="$hi" 'BEGIN { exit !(lo == 0 && hi > 1) }' && ok || bad "
 if "$OBSCURA" render --scene cornell --size 96x64 --adaptive on --samples 30 --set ssao.sampling=halton --view samples \
     --out "$dir/samples.png" 2>"$dir/stderr"; then
     read -r w h c lo hi mean < <("$IMGCHECK" "$dir/samples.png")
-    [ "$w $h $c" = "96 64 1" ] && [ "$hi" -eq 255 ] && [ "$lo" -lt 128 ] && ok || bad "samples view is '$w $h $c $lo $hi'"
+    [ "$w $h $c" = "96 64 3" ] && [ "$hi" -eq 255 ] && [ "$lo" -lt 128 ] && ok || bad "samples view is '$w $h $c $lo $hi'"
 else
     bad "--view samples failed: $(cat "$dir/stderr")"
 fi

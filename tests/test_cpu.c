@@ -9,6 +9,7 @@
 #include "check.h"
 #include "gpu/gpu.h"
 #include "gpu/shaders_embedded.h"
+#include "passes/passes.h"
 #include "obscura/obscura.h"
 #include "sampling/sampling.h"
 
@@ -266,6 +267,59 @@ static void test_shader_log(void)
     CHECK(src && strstr(src, "ob_view_position") && strstr(src, "OB_SSAO_MAX_SAMPLES"), "includes expanded");
 }
 
+static float sh_eval(float sh[9][3], int c, float x, float y, float z)
+{
+    return sh[0][c] + sh[1][c] * y + sh[2][c] * z + sh[3][c] * x + sh[4][c] * x * y + sh[5][c] * y * z +
+           sh[6][c] * (3.0f * z * z - 1.0f) + sh[7][c] * x * z + sh[8][c] * (x * x - y * y);
+}
+
+static void test_environment_sh(void)
+{
+    enum { EW = 128, EH = 64 };
+    static float env[EW * EH * 3];
+    /* A constant environment of radiance L gives irradiance / pi = L in every direction. */
+    for (int i = 0; i < EW * EH * 3; ++i) env[i] = 0.7f;
+    float sh[9][3];
+    ob_environment_sh(env, EW, EH, sh);
+    CHECK_NEAR(sh_eval(sh, 0, 0.0f, 1.0f, 0.0f), 0.7, 2e-3, "constant environment, up");
+    CHECK_NEAR(sh_eval(sh, 1, 1.0f, 0.0f, 0.0f), 0.7, 2e-3, "constant environment, side");
+    CHECK_NEAR(sh_eval(sh, 2, 0.0f, -1.0f, 0.0f), 0.7, 2e-3, "constant environment, down");
+    /* A sky of radiance max(0, y): irradiance / pi is 2/3 facing up (the integral of cos^2 over the
+     * hemisphere, 2 pi / 3, over pi) and 0 facing down; 9 terms approximate it within a few %. */
+    for (int j = 0; j < EH; ++j)
+        for (int i = 0; i < EW; ++i) {
+            float y = cosf(((float)j + 0.5f) / (float)EH * 3.14159265f);
+            for (int c = 0; c < 3; ++c) env[3 * (j * EW + i) + c] = y > 0.0f ? y : 0.0f;
+        }
+    ob_environment_sh(env, EW, EH, sh);
+    float up = sh_eval(sh, 0, 0.0f, 1.0f, 0.0f), down = sh_eval(sh, 0, 0.0f, -1.0f, 0.0f);
+    CHECK(fabsf(up - 2.0f / 3.0f) < 0.03f, "sky irradiance facing up %g, want 0.667", (double)up);
+    CHECK(fabsf(down) < 0.03f, "sky irradiance facing down %g, want 0", (double)down);
+}
+
+static void test_lights(void)
+{
+    ob_light l;
+    CHECK(ob_parse_light("directional dir=0,2,0 color=1,0.5,0.25 intensity=3", &l) == OB_OK, "directional");
+    CHECK(l.type == OB_LIGHT_DIRECTIONAL && l.direction[1] == 1.0f && l.intensity == 3.0f && l.color[2] == 0.25f,
+          "directional parsed and normalised");
+    CHECK(ob_parse_light("point pos=1,2,3 intensity=8 range=10", &l) == OB_OK && l.type == OB_LIGHT_POINT &&
+              l.position[2] == 3.0f && l.range == 10.0f,
+          "point");
+    CHECK(ob_parse_light("spot pos=0,3,0 dir=0,-1,0 cone=15,25", &l) == OB_OK && l.type == OB_LIGHT_SPOT &&
+              l.spot_inner_deg == 15.0f && l.spot_outer_deg == 25.0f,
+          "spot");
+    const char *bad[] = {"", "laser dir=0,1,0", "directional", "directional dir=0,0,0", "point intensity=2",
+                         "spot pos=0,1,0", "spot pos=0,1,0 dir=0,-1,0 cone=30,20", "point pos=1,2 intensity=1",
+                         "point pos=0,0,0 intensity=-1", "point pos=0,0,0 colour=1,1,1", "point pos=0,0,0 range=0"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        const char *msg = NULL;
+        ob_error e = ob_parse_light(bad[i], &l);
+        ob_get_error(&msg);
+        CHECK(e == OB_ERR_INVALID_ARGUMENT && msg && *msg, "'%s' refused (%s)", bad[i], ob_error_name(e));
+    }
+}
+
 int main(void)
 {
     test_registry_and_settings();
@@ -273,5 +327,7 @@ int main(void)
     test_halton();
     test_files();
     test_shader_log();
+    test_environment_sh();
+    test_lights();
     return check_finish("test_cpu");
 }

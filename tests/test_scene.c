@@ -196,12 +196,23 @@ static void test_builtins(void)
         ob_camera cam = {0};
         CHECK(ob_find_camera(s, expect[k].preset, &cam) == OB_OK, "%s: preset %s",
               expect[k].name, expect[k].preset);
-        ob_light light = ob_query_scene_light(s);
+        ob_light light = ob_query_scene_light(s, 0);
         float ll = sqrtf(light.direction[0] * light.direction[0] +
                          light.direction[1] * light.direction[1] +
                          light.direction[2] * light.direction[2]);
-        CHECK(light.intensity > 0.0f && near(ll, 1.0f, 1e-5f) && light.direction[1] > 0.0f,
-              "%s: a unit light from above", expect[k].name);
+        if (light.type == OB_LIGHT_DIRECTIONAL) {
+            CHECK(light.intensity > 0.0f && near(ll, 1.0f, 1e-5f) && light.direction[1] > 0.0f,
+                  "%s: a unit light from above", expect[k].name);
+        } else {
+            /* Cornell's stand-in for its ceiling patch: a point light inside the box, near the top. */
+            ob_scene_stats bounds = ob_query_scene_stats(s);
+            bool inside = true;
+            for (int i = 0; i < 3; ++i)
+                inside = inside && light.position[i] > bounds.bounds_min[i] && light.position[i] < bounds.bounds_max[i];
+            CHECK(light.type == OB_LIGHT_POINT && light.intensity > 0.0f && inside &&
+                      light.position[1] > 0.9f * bounds.bounds_max[1],
+                  "%s: a point light inside, near the top", expect[k].name);
+        }
         check_mesh_sanity(s);
         ob_destroy_scene(s);
     }
@@ -579,7 +590,7 @@ static void test_resolution_and_sidecars(void)
         const float lo[3] = {0.0f, 0.0f, -1.0f}, hi[3] = {2.0f, 0.0f, 0.0f};
         check_bounds("quad z-up", &st, lo, hi, 1e-6f);
         CHECK(near(ob_query_scene_ao_radius(s), 0.25f, 1e-6f), "sidecar ao_radius");
-        ob_light l = ob_query_scene_light(s);
+        ob_light l = ob_query_scene_light(s, 0);
         CHECK(near(l.direction[1], 1.0f, 1e-6f) && near(l.color[1], 0.5f, 1e-6f) &&
                   near(l.intensity, 2.0f, 1e-6f),
               "sidecar light (direction normalised)");
@@ -738,6 +749,45 @@ static void test_resolution_and_sidecars(void)
     rmdir(path);
 }
 
+/* Sidecar lights of every type, and the ones that must be refused. */
+static void test_sidecar_lights(void)
+{
+    char path[512];
+    tmp_path(path, sizeof path, "lights.obscura.json");
+    write_text(path, "{\"lights\": ["
+                     "{\"direction\": [0, 2, 0], \"intensity\": 2},"
+                     "{\"type\": \"point\", \"position\": [1, 2, 3], \"range\": 5, \"color\": [1, 0.5, 0]},"
+                     "{\"type\": \"spot\", \"position\": [0, 3, 0], \"direction\": [0, -1, 0], \"cone\": [10, 20]}]}");
+    ob_scene *s = load("corner", path, OB_UP_DEFAULT);
+    CHECK(s != NULL, "three lights: %s", last_message());
+    if (s) {
+        CHECK(ob_query_scene_light_count(s) == 3, "3 lights, got %d", ob_query_scene_light_count(s));
+        ob_light a = ob_query_scene_light(s, 0), b = ob_query_scene_light(s, 1), c = ob_query_scene_light(s, 2);
+        CHECK(a.type == OB_LIGHT_DIRECTIONAL && near(a.direction[1], 1.0f, 1e-6f) && near(a.intensity, 2.0f, 1e-6f),
+              "directional");
+        CHECK(b.type == OB_LIGHT_POINT && near(b.position[2], 3.0f, 1e-6f) && near(b.range, 5.0f, 1e-6f) &&
+                  near(b.color[1], 0.5f, 1e-6f),
+              "point");
+        CHECK(c.type == OB_LIGHT_SPOT && near(c.spot_inner_deg, 10.0f, 1e-6f) && near(c.spot_outer_deg, 20.0f, 1e-6f),
+              "spot");
+        ob_destroy_scene(s);
+    }
+    const char *bad[] = {
+        "{\"lights\": [{\"type\": \"point\"}]}",
+        "{\"lights\": [{\"type\": \"spot\", \"position\": [0, 1, 0]}]}",
+        "{\"lights\": [{\"type\": \"spot\", \"position\": [0, 1, 0], \"direction\": [0, -1, 0], \"cone\": [30, 20]}]}",
+        "{\"lights\": [{\"type\": \"point\", \"position\": [0, 1, 0], \"range\": 0}]}",
+        "{\"lights\": [{\"type\": \"area\", \"position\": [0, 1, 0]}]}",
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        write_text(path, bad[i]);
+        s = load("corner", path, OB_UP_DEFAULT);
+        CHECK(!s && ob_get_error(NULL) == OB_ERR_SIDECAR, "bad light %zu refused: %s", i, last_message());
+        ob_destroy_scene(s);
+    }
+    unlink(path);
+}
+
 int main(void)
 {
     snprintf(tmpdir, sizeof tmpdir, "%s", "/tmp/obscura_test_scene_XXXXXX");
@@ -748,6 +798,7 @@ int main(void)
     test_builtins();
     test_cameras();
     test_resolution_and_sidecars();
+    test_sidecar_lights();
     test_cornell_obj();
     test_gltf_cameras();
     test_textures();

@@ -109,11 +109,40 @@ typedef struct ob_camera {
     char name[64];
 } ob_camera;
 
+#define OB_MAX_LIGHTS 8
+
+typedef enum ob_light_type { OB_LIGHT_DIRECTIONAL = 0, OB_LIGHT_POINT, OB_LIGHT_SPOT } ob_light_type;
+
 typedef struct ob_light {
-    float direction[3]; /* world space, pointing FROM the surface TOWARD the light */
-    float color[3];
-    float intensity;
+    float direction[3];  /* directional: world, FROM the surface TOWARD the light; spot: the axis
+                            the cone points along, away from the light */
+    float color[3];      /* linear RGB */
+    float intensity;     /* directional: irradiance scale; point/spot: falls off as 1/d^2 */
+    ob_light_type type;
+    float position[3];   /* point, spot: world position */
+    float range;         /* point, spot: smooth cut-off distance; 0 = pure 1/d^2 */
+    float spot_inner_deg, spot_outer_deg; /* spot: half-angles, full inside inner, 0 outside outer */
 } ob_light;
+
+/* A light from text, as the CLI's --light takes it: a type, then key=value pairs separated by
+ * spaces, e.g. "directional dir=0.3,1,0.2 color=1,0.9,0.8 intensity=2",
+ * "point pos=0,2,0 intensity=8 range=10", "spot pos=0,3,0 dir=0,-1,0 cone=20,30 intensity=20".
+ * Errors: OB_ERR_INVALID_ARGUMENT with what is wrong. */
+ob_error ob_parse_light(const char *text, ob_light *out);
+
+typedef enum ob_shadow_method { OB_SHADOW_NONE = 0, OB_SHADOW_HARD, OB_SHADOW_PCF, OB_SHADOW_VSM } ob_shadow_method;
+
+/* Shadow maps (seed 003 §2.1, §5.1, §6.1) for every light up to 4: directional and spot lights
+ * through one 2D map each, point lights through a cube map. */
+typedef struct ob_shadow_settings {
+    ob_shadow_method method;
+    int size;             /* map resolution (square, per face for cube maps); default 2048 */
+    float bias;           /* constant depth bias, in map texels' world size */
+    float slope_bias;     /* slope-scaled bias, x tan(angle to the light) */
+    int pcf_radius;       /* PCF: taps each side of the kernel (1 = 3x3 bilinear comparisons) */
+    float vsm_blur;       /* VSM: Gaussian sigma of the moment blur, in map texels */
+    float vsm_bleed;      /* VSM: light-bleeding reduction threshold in [0, 1) */
+} ob_shadow_settings;
 
 typedef struct ob_material_info {
     char name[64];
@@ -141,8 +170,10 @@ int ob_query_scene_material_count(const ob_scene *scene);
 ob_material_info ob_query_scene_material(const ob_scene *scene, int index);
 /* Suggested AO radius in world units (sidecar, else 5% of the bounds' diagonal). */
 float ob_query_scene_ao_radius(const ob_scene *scene);
-/* The scene's key light (sidecar, else a default from above-front-left). */
-ob_light ob_query_scene_light(const ob_scene *scene);
+/* The scene's lights (sidecar or glTF KHR_lights_punctual, else one default directional light
+ * from above-front-left); index 0 is the key light. */
+int ob_query_scene_light_count(const ob_scene *scene);
+ob_light ob_query_scene_light(const ob_scene *scene, int index);
 
 /* Camera presets: index 0 is always "default", which frames the scene's bounds. */
 int ob_query_camera_count(const ob_scene *scene);
@@ -198,7 +229,28 @@ const ob_filter_info *ob_filter_at(int index);
 /* Index of the filter, or -1. */
 int ob_find_filter(const char *name);
 
+/* ---- HDR (seed 003 §2.2, §5.5, §6.5) -------------------------------------------------------- */
+typedef struct ob_hdr_settings {
+    bool enabled;          /* false (--hdr off): radiance clamped to [0,1] before sRGB */
+    float exposure;        /* linear scale applied to the radiance first (default 1) */
+    float key;             /* Reinhard's key alpha (eq. 2.2); 0 = automatic from the log-average (§6.5) */
+    float l_white;         /* eq. 2.4: the smallest scaled luminance mapped to white; 0 = eq. 2.3 */
+    float bloom_threshold; /* scaled luminance above which the bright pass keeps the excess */
+    float bloom_strength;  /* how much of the blurred excess is added back; 0 = no bloom */
+} ob_hdr_settings;
+
+/* The HDR math on the CPU, the same formulas the shaders use (for tests and tools):
+ * log-average luminance (eq. 2.1) of n values, Reinhard with L_white (eq. 2.4, eq. 2.3 when
+ * l_white <= 0) and the automatic key for a log-average. */
+double ob_hdr_log_average(const float *luminance, size_t n);
+float ob_hdr_reinhard(float scaled_luminance, float l_white);
+float ob_hdr_auto_key(float log_average);
+
 /* ---- per-frame settings --------------------------------------------------------------------- */
+/* Ambient light: a constant, a sky/ground hemisphere, or the environment map given to
+ * ob_renderer_set_environment (its diffuse irradiance through 9 spherical-harmonic terms). */
+typedef enum ob_ambient_mode { OB_AMBIENT_CONSTANT = 0, OB_AMBIENT_HEMISPHERE, OB_AMBIENT_ENVIRONMENT } ob_ambient_mode;
+
 typedef struct ob_settings {
     int method;                   /* registry index */
     float params[OB_MAX_PARAMS];  /* in the method's parameter-table order */
@@ -208,8 +260,14 @@ typedef struct ob_settings {
     uint32_t filter_params_set;   /* bit i: filter_params[i] was set explicitly */
     float ao_scale;               /* 1, 0.5 or 0.25: the AO runs at this fraction of the size */
     bool adaptive;                /* per-pixel sample counts from an edge pre-pass (seed 003 §4.1) */
-    ob_light light;               /* zero intensity = the scene's light */
-    float ambient[3];             /* ambient radiance multiplied by AO */
+    ob_hdr_settings hdr;
+    ob_light lights[OB_MAX_LIGHTS];
+    int light_count;              /* 0 = the scene's lights */
+    ob_shadow_settings shadow;
+    ob_ambient_mode ambient_mode;
+    float ambient[3];             /* constant ambient radiance (multiplied by AO) */
+    float sky[3], ground[3];      /* hemisphere ambient: radiance from above and from below */
+    bool ao_all_light;            /* AO darkens all light, not only the ambient term */
     float background[3];          /* linear RGB of pixels with no geometry */
 } ob_settings;
 
@@ -250,7 +308,12 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc);
 void ob_destroy_renderer(ob_renderer *r);
 /* Upload a scene's meshes and textures. The renderer keeps no pointer to the ob_scene. */
 ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene);
-/* G-buffer -> [downsample] -> [edges] -> AO -> filter -> [upsample] -> compose, each pass timed. */
+/* The environment map (equirectangular Radiance .hdr) for OB_AMBIENT_ENVIRONMENT and SSDO.
+ * Errors: OB_ERR_IO. */
+ob_error ob_renderer_set_environment(ob_renderer *r, const char *hdr_path);
+
+/* shadow maps -> G-buffer -> direct light -> [downsample] -> [edges] -> AO -> filter -> [upsample]
+ * -> compose -> HDR (luminance, bloom, tone map), each pass timed. */
 ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *settings);
 
 typedef enum ob_image_kind {
@@ -260,6 +323,9 @@ typedef enum ob_image_kind {
     OB_IMAGE_DEPTH_F32,       /* linear view depth (0 where no geometry), bottom row first */
     OB_IMAGE_NORMAL_F32,      /* view-space normal xyz, 3 floats per pixel, bottom row first */
     OB_IMAGE_SAMPLES_F32,     /* samples each pixel took (adaptive sampling varies it), bottom row first */
+    OB_IMAGE_RADIANCE_F32,    /* direct light (all lights, shadowed), linear RGB, 3 floats, bottom row first */
+    OB_IMAGE_SHADOW_F32,      /* the key light's visibility (0 where it faces away), bottom row first */
+    OB_IMAGE_HDR_F32,         /* the composed linear radiance before tone mapping, 3 floats */
 } ob_image_kind;
 
 /* Bytes needed for an image of the renderer's size. */
@@ -267,7 +333,8 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind);
 ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst_size);
 
 typedef struct ob_pass_timing {
-    const char *name; /* "gbuffer", "downsample", "edges", "ao", "filter", "upsample", "compose" */
+    const char *name; /* "shadow", "gbuffer", "lighting", "downsample", "edges", "ao", "filter",
+                         "upsample", "compose", "luminance", "bloom", "tonemap" */
     double ms;        /* GPU time between GL_TIMESTAMP queries around the pass */
 } ob_pass_timing;
 

@@ -1,6 +1,7 @@
 /* The frame (DESIGN.md "The frame"), each pass timed:
- *   gbuffer -> [downsample to the AO resolution] -> [edges, for adaptive sample counts] -> ao
- *   -> filter (at the AO resolution) -> [joint bilateral upsample] -> compose.
+ *   [shadow maps] -> gbuffer -> lighting (direct light, shadowed) -> [downsample to the AO
+ *   resolution] -> [edges, for adaptive sample counts] -> ao -> filter (at the AO resolution)
+ *   -> [joint bilateral upsample] -> compose (HDR radiance) -> luminance, bloom, tonemap.
  * The CLI, the tests and later the viewer all render through here. */
 #include <cglm/cglm.h>
 #include <math.h>
@@ -29,9 +30,15 @@ struct ob_renderer {
     ob_gbuffer gbuffer;
     ob_compute_pass downsample, upsample, edges;
     ob_compose_pass compose;
+    ob_lighting_pass lighting;
+    ob_shadow_maps shadows;
+    ob_hdr_pass hdr;
+    ob_environment environment;
     ao_targets scales[SCALES];
     int last_scale;            /* index into scales of the last frame */
     GLuint ao, final;          /* full resolution */
+    GLuint direct;             /* RGBA16F direct radiance; alpha = the key light's visibility */
+    GLuint radiance;           /* RGBA16F composed HDR radiance, before tone mapping */
     void **method_states;      /* lazily made, one per registry entry */
     bool *method_ready;
     void **filter_states;      /* the same for filters */
@@ -40,7 +47,8 @@ struct ob_renderer {
     bool has_scene;
     float bounds_min[3], bounds_max[3];
     float scene_radius;
-    ob_light scene_light;
+    ob_light scene_lights[OB_MAX_LIGHTS];
+    int scene_light_count;
     uint32_t frame;
     int last_method;           /* what the last frame ran, for the sample-count view */
     float last_params[OB_MAX_PARAMS];
@@ -76,8 +84,12 @@ void ob_destroy_renderer(ob_renderer *r)
     ob_compute_pass_destroy(&r->upsample);
     ob_compute_pass_destroy(&r->edges);
     ob_compose_destroy(&r->compose);
-    GLuint tex[2] = {r->ao, r->final};
-    glDeleteTextures(2, tex);
+    ob_lighting_destroy(&r->lighting);
+    ob_shadows_destroy(&r->shadows);
+    ob_hdr_destroy(&r->hdr);
+    ob_environment_destroy(&r->environment);
+    GLuint tex[4] = {r->ao, r->final, r->direct, r->radiance};
+    glDeleteTextures(4, tex);
     ob_timers_destroy(&r->timers);
     free(r);
 }
@@ -118,12 +130,15 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
     }
     if (ob_gbuffer_init(&r->gbuffer, d.width, d.height) != OB_OK || ob_compose_init(&r->compose) != OB_OK ||
         ob_downsample_init(&r->downsample) != OB_OK || ob_upsample_init(&r->upsample) != OB_OK ||
-        ob_edges_init(&r->edges) != OB_OK) {
+        ob_edges_init(&r->edges) != OB_OK || ob_lighting_init(&r->lighting) != OB_OK ||
+        ob_shadows_init(&r->shadows) != OB_OK || ob_hdr_init(&r->hdr, d.width, d.height) != OB_OK) {
         ob_destroy_renderer(r);
         return NULL;
     }
     r->ao = ob_make_texture_2d(GL_R32F, d.width, d.height);
     r->final = ob_make_texture_2d(GL_RGBA8, d.width, d.height);
+    r->direct = ob_make_texture_2d(GL_RGBA16F, d.width, d.height);
+    r->radiance = ob_make_texture_2d(GL_RGBA16F, d.width, d.height);
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) {
         ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making %dx%d targets", e, d.width, d.height);
@@ -141,7 +156,8 @@ ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene)
     memcpy(r->bounds_min, scene->bounds_min, sizeof r->bounds_min);
     memcpy(r->bounds_max, scene->bounds_max, sizeof r->bounds_max);
     r->scene_radius = scene->ao_radius;
-    r->scene_light = scene->light;
+    memcpy(r->scene_lights, scene->lights, sizeof r->scene_lights);
+    r->scene_light_count = scene->light_count;
     r->has_scene = true;
     return OB_OK;
 }
@@ -272,6 +288,8 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     if (!r || !camera) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_frame: NULL argument");
     if (check_settings(s) != OB_OK) return ob_get_error(NULL);
     if (!r->has_scene) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_frame: no scene (ob_renderer_set_scene)");
+    if (s->ambient_mode == OB_AMBIENT_ENVIRONMENT && !r->environment.texture)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "environment ambient without an environment map (--env FILE.hdr)");
 
     ob_camera cam = *camera;
     if (cam.fov_y_deg <= 0.0f) cam.fov_y_deg = 60.0f;
@@ -300,12 +318,30 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     in.frame = r->frame++;
     in.sample_multiplier = s->adaptive ? t->multiplier : 0;
 
+    const ob_light *lights = s->light_count > 0 ? s->lights : r->scene_lights;
+    int light_count = s->light_count > 0 ? s->light_count : r->scene_light_count;
+    mat4 inv_view;
+    glm_mat4_inv(view, inv_view);
+    float full_info[4];
+    proj_info_from((const float *)proj, full_info);
+
     ob_timers_frame_begin(&r->timers);
+    ob_error err = ob_shadows_render(&r->shadows, &r->gbuffer, lights, light_count, r->bounds_min, r->bounds_max,
+                                     &s->shadow, &r->timers);
+    if (err != OB_OK) {
+        ob_timers_frame_end(&r->timers);
+        return err;
+    }
     ob_timer_begin(&r->timers, "gbuffer");
     ob_gbuffer_run(&r->gbuffer, (const float *)view, (const float *)proj);
     /* Each compute pass reads what the previous one wrote with image stores or as attachments. */
     const GLbitfield barrier = GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
     glMemoryBarrier(barrier | GL_FRAMEBUFFER_BARRIER_BIT);
+    ob_timer_begin(&r->timers, "lighting");
+    ob_lighting_setup(&r->lighting, lights, light_count, (const float *)inv_view, full_info, r->width, r->height);
+    ob_shadows_fill(&r->shadows, &r->lighting.constants);
+    ob_lighting_run(&r->lighting, r->gbuffer.linear_depth, r->gbuffer.normal, r->gbuffer.albedo, r->direct);
+    glMemoryBarrier(barrier);
     if (g->k > 1) {
         ob_timer_begin(&r->timers, "downsample");
         ob_downsample_run(&r->downsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal);
@@ -317,7 +353,7 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
         glMemoryBarrier(barrier);
     }
     ob_timer_begin(&r->timers, "ao");
-    ob_error err = run_method(r, &in, s, t->raw);
+    err = run_method(r, &in, s, t->raw);
     if (err != OB_OK) {
         ob_timers_frame_end(&r->timers);
         return err;
@@ -345,30 +381,30 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     }
     GLuint ao = r->ao;
 
-    ob_light light = s->light.intensity > 0.0f ? s->light : r->scene_light;
-    vec3 dir = {light.direction[0], light.direction[1], light.direction[2]};
-    glm_vec3_normalize(dir);
-    vec3 dir_view;
-    glm_mat4_mulv3(view, dir, 0.0f, dir_view);
-    glm_vec3_normalize(dir_view);
     ob_compose_inputs ci;
     memset(&ci, 0, sizeof ci);
     ci.linear_depth = r->gbuffer.linear_depth;
     ci.normal = r->gbuffer.normal;
     ci.albedo = r->gbuffer.albedo;
     ci.ao = ao;
+    ci.direct = r->direct;
+    ci.environment = r->environment.texture;
     ci.width = r->width;
     ci.height = r->height;
-    memcpy(ci.proj_info, in.proj_info, sizeof ci.proj_info);
-    memcpy(ci.light_dir_view, dir_view, sizeof ci.light_dir_view);
-    for (int i = 0; i < 3; ++i) {
-        ci.light_radiance[i] = light.color[i] * light.intensity;
-        ci.ambient[i] = s->ambient[i];
-        ci.background[i] = s->background[i];
-    }
+    memcpy(ci.proj_info, full_info, sizeof ci.proj_info);
+    memcpy(ci.inv_view, inv_view, sizeof ci.inv_view);
+    ci.ambient_mode = s->ambient_mode;
+    memcpy(ci.ambient, s->ambient, sizeof ci.ambient);
+    memcpy(ci.sky, s->sky, sizeof ci.sky);
+    memcpy(ci.ground, s->ground, sizeof ci.ground);
+    memcpy(ci.background, s->background, sizeof ci.background);
+    memcpy(ci.sh, r->environment.sh, sizeof ci.sh);
+    ci.ao_all_light = s->ao_all_light;
     ob_timer_begin(&r->timers, "compose");
-    ob_compose_run(&r->compose, &ci, r->final);
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    ob_compose_run(&r->compose, &ci, r->radiance);
+    glMemoryBarrier(barrier);
+    ob_hdr_run(&r->hdr, r->radiance, &s->hdr, r->final, &r->timers);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | barrier);
     ob_timers_frame_end(&r->timers);
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x during the frame", e);
@@ -445,7 +481,10 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
     case OB_IMAGE_SAMPLES_F32:
     case OB_IMAGE_AO_F32:
     case OB_IMAGE_DEPTH_F32: return px * sizeof(float);
-    case OB_IMAGE_NORMAL_F32: return px * 3 * sizeof(float);
+    case OB_IMAGE_NORMAL_F32:
+    case OB_IMAGE_RADIANCE_F32:
+    case OB_IMAGE_HDR_F32: return px * 3 * sizeof(float);
+    case OB_IMAGE_SHADOW_F32: return px * sizeof(float);
     }
     return 0;
 }
@@ -485,6 +524,18 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
     }
     case OB_IMAGE_DEPTH_F32: glGetTextureImage(r->gbuffer.linear_depth, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst); break;
     case OB_IMAGE_NORMAL_F32: glGetTextureImage(r->gbuffer.normal, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_RADIANCE_F32: glGetTextureImage(r->direct, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_HDR_F32: glGetTextureImage(r->radiance, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_SHADOW_F32: {
+        /* The key light's visibility is the direct-light target's alpha. */
+        size_t n = (size_t)r->width * (size_t)r->height;
+        float *rgba = malloc(n * 4 * sizeof(float));
+        if (!rgba) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading the shadow view");
+        glGetTextureImage(r->direct, 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
+        for (size_t i = 0; i < n; ++i) ((float *)dst)[i] = rgba[4 * i + 3];
+        free(rgba);
+        break;
+    }
     }
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x reading an image", e);
@@ -500,4 +551,10 @@ int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max)
         out[i].ms = r->timers.ms[i];
     }
     return n;
+}
+
+ob_error ob_renderer_set_environment(ob_renderer *r, const char *hdr_path)
+{
+    if (!r || !hdr_path) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_renderer_set_environment: NULL argument");
+    return ob_environment_load(&r->environment, hdr_path);
 }

@@ -35,8 +35,25 @@ ob_error ob_settings_init(ob_settings *s, const char *method)
     s->ao_scale = 1.0f;
     ob_error err = ob_settings_set_filter(s, "geometry");
     if (err != OB_OK) return err;
-    /* Intensity 0 = take the scene's light (sidecar or default). */
+    /* light_count 0 = the scene's lights (sidecar, glTF or default). */
+    s->ambient_mode = OB_AMBIENT_CONSTANT;
     s->ambient[0] = s->ambient[1] = s->ambient[2] = 0.3f;
+    /* A pale blue sky over a dim warm ground: a hemisphere ambient that still reads as daylight. */
+    s->sky[0] = 0.35f;
+    s->sky[1] = 0.40f;
+    s->sky[2] = 0.50f;
+    s->ground[0] = 0.12f;
+    s->ground[1] = 0.10f;
+    s->ground[2] = 0.08f;
+    /* Biases from the shadow pass's sweep of light elevations (no acne for hard and PCF at 10-85
+     * degrees); 2048 texels is about 1 cm on a 20 m scene. */
+    s->shadow = (ob_shadow_settings){.method = OB_SHADOW_PCF, .size = 2048, .bias = 1.0f, .slope_bias = 0.75f,
+                                     .pcf_radius = 1, .vsm_blur = 2.0f, .vsm_bleed = 0.25f};
+    /* L_white 3 keeps brightly lit faces apart (none burn at 4x the default light); a bloom
+     * threshold of half of it halos only what is over-bright (tools' HDR helper measurements,
+     * see docs/lighting.md). */
+    s->hdr = (ob_hdr_settings){.enabled = true, .exposure = 1.0f, .key = 0.0f, .l_white = 3.0f,
+                               .bloom_threshold = 1.5f, .bloom_strength = 0.3f};
     /* A pale sky grey: AO halos around silhouettes stay visible against it. */
     s->background[0] = 0.60f;
     s->background[1] = 0.66f;

@@ -4,6 +4,7 @@
 #define OB_PASSES_H
 
 #include "gpu/gpu.h"
+#include "lighting_params.h"
 #include "resample_params.h"
 #include "scene/scene.h"
 
@@ -59,21 +60,145 @@ void ob_upsample_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_depth,
 ob_error ob_edges_init(ob_compute_pass *p);
 void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLuint ao_normal, GLuint multiplier);
 
-/* ---- lighting + compose (compose.c, shaders/compose.glsl) ----------------------------------- */
+/* ---- direct light: lighting.c, shaders/lighting.glsl ---------------------------------------- */
+typedef struct ob_lighting_pass { ob_compute_pass pass; ob_lighting_constants constants; } ob_lighting_pass;
+
+ob_error ob_lighting_init(ob_lighting_pass *l);
+/* Fill the light part of the constants (world space) for this camera; the shadow part is
+ * ob_shadows_fill's. */
+void ob_lighting_setup(ob_lighting_pass *l, const ob_light *lights, int count, const float inv_view[16],
+                       const float proj_info[4], int width, int height);
+void ob_lighting_run(ob_lighting_pass *l, GLuint linear_depth, GLuint normal, GLuint albedo, GLuint radiance_out);
+void ob_lighting_destroy(ob_lighting_pass *l);
+
+/* ---- the environment map: environment.c (CPU: load, spherical harmonics) ------------------- */
+typedef struct ob_environment {
+    GLuint texture;   /* RGBA16F equirectangular radiance with mipmaps; 0 = none */
+    float sh[9][3];   /* diffuse irradiance / pi, convolved (Ramamoorthi & Hanrahan 2001) */
+    char path[512];
+} ob_environment;
+
+/* Load an equirectangular .hdr (stb_image). Errors: OB_ERR_IO. */
+ob_error ob_environment_load(ob_environment *e, const char *path);
+/* Project equirectangular radiance (w x h RGB floats, top row first) onto 9 SH and convolve with
+ * the clamped cosine: out = E_lm / pi. Exposed for the unit test. */
+void ob_environment_sh(const float *rgb, int w, int h, float out[9][3]);
+void ob_environment_destroy(ob_environment *e);
+
+/* ---- compose: compose.c, shaders/compose.glsl ----------------------------------------------- */
 typedef struct ob_compose_pass { ob_compute_pass pass; } ob_compose_pass;
 
 typedef struct ob_compose_inputs {
-    GLuint linear_depth, normal, albedo, ao;
+    GLuint linear_depth, normal, albedo, ao, direct, environment;
     int width, height;
     float proj_info[4];
-    float light_dir_view[3]; /* unit, toward the light */
-    float light_radiance[3]; /* colour x intensity */
-    float ambient[3];
-    float background[3];
+    float inv_view[16];
+    ob_ambient_mode ambient_mode;
+    float ambient[3], sky[3], ground[3], background[3];
+    float sh[9][3];
+    bool ao_all_light;      /* AO multiplies the direct light too */
 } ob_compose_inputs;
 
 ob_error ob_compose_init(ob_compose_pass *c);
-void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint final_out);
+/* Writes linear HDR radiance (RGBA16F). */
+void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_out);
 void ob_compose_destroy(ob_compose_pass *c);
+
+/* ---- HDR (seed 003 §2.2, §5.5, §6.5): luminance.c, bloom.c, tonemap.c, driven by hdr.c ------
+ * radiance (RGBA16F, linear) -> luminance: log-average (eq. 2.1) + key -> a small GPU buffer
+ *                            -> bloom: bright pass at 1/4 resolution + separable Gaussian
+ *                            -> tonemap: scale (eq. 2.2) + bloom, Reinhard (eq. 2.4), sRGB RGBA8 */
+typedef struct ob_luminance_pass {
+    ob_compute_pass partial, final; /* shaders/luminance.glsl without / with OB_LUMINANCE_FINAL */
+    GLuint result;                  /* SSBO: vec4 (L_avg, key, exposure key / L_avg, 0), partial sums */
+    int width, height, groups_x, groups_y;
+} ob_luminance_pass;
+
+ob_error ob_luminance_init(ob_luminance_pass *p, int width, int height);
+/* key <= 0: the automatic key of §6.5, chosen on the GPU. */
+void ob_luminance_run(ob_luminance_pass *p, GLuint radiance, float exposure, float key);
+void ob_luminance_destroy(ob_luminance_pass *p);
+
+typedef struct ob_bloom_pass {
+    ob_compute_pass bright, blur;   /* shaders/bloom.glsl with / without OB_BLOOM_BRIGHT */
+    GLuint bloom, scratch;          /* RGBA16F at 1/OB_BLOOM_FACTOR; bloom is sampled bilinearly */
+    int width, height, bloom_width, bloom_height;
+} ob_bloom_pass;
+
+ob_error ob_bloom_init(ob_bloom_pass *b, int width, int height);
+/* result: the luminance pass's buffer (its scale); threshold in scaled luminance (eq. 2.2). */
+void ob_bloom_run(ob_bloom_pass *b, GLuint radiance, GLuint result, float threshold);
+void ob_bloom_destroy(ob_bloom_pass *b);
+
+typedef struct ob_tonemap_pass { ob_compute_pass pass; } ob_tonemap_pass;
+
+typedef struct ob_tonemap_inputs {
+    GLuint radiance, result;        /* result: the luminance pass's buffer (unused with HDR off) */
+    GLuint bloom;                   /* 0 = no bloom */
+    int width, height, bloom_width, bloom_height;
+} ob_tonemap_inputs;
+
+ob_error ob_tonemap_init(ob_tonemap_pass *t);
+void ob_tonemap_run(ob_tonemap_pass *t, const ob_tonemap_inputs *in, const ob_hdr_settings *s, GLuint final_out);
+void ob_tonemap_destroy(ob_tonemap_pass *t);
+
+typedef struct ob_hdr_pass {
+    ob_luminance_pass luminance;
+    ob_bloom_pass bloom;
+    ob_tonemap_pass tonemap;
+    int width, height;
+} ob_hdr_pass;
+
+/* Errors: OB_ERR_BAD_SIZE, OB_ERR_SHADER. On failure h is left destroyed (safe to destroy again). */
+ob_error ob_hdr_init(ob_hdr_pass *h, int width, int height);
+/* radiance: RGBA16F full-resolution linear radiance; final: RGBA8 of the same size. Times its passes
+ * with ob_timer_begin(timers, "luminance" / "bloom" / "tonemap") (timers may be NULL). With
+ * s->enabled false only "tonemap" runs (exposure x radiance clamped, sRGB); bloom runs only when
+ * s->bloom_strength > 0. Issues the barriers its passes need, and one after the last so `final`
+ * can be read, sampled or copied. */
+void ob_hdr_run(ob_hdr_pass *h, GLuint radiance, const ob_hdr_settings *s, GLuint final, ob_timer_set *timers);
+/* After a frame: the log-average luminance and the key used (reads a few bytes back; for tests and
+ * -v). Both 0 after a frame with HDR off or before the first frame. Either pointer may be NULL. */
+void ob_hdr_query(ob_hdr_pass *h, float *log_average, float *key);
+void ob_hdr_destroy(ob_hdr_pass *h);
+
+/* ---- shadow maps (seed 003 §2.1, §5.1, §6.1): shadow.c, shaders/shadow_depth.{vert,frag}.glsl,
+ * shaders/shadow_vsm.glsl; looked up by shaders/shadow.glsl (units 8..10, see shadow_params.h) ----
+ * Directional lights: an orthographic map along the light, fitted to the scene bounds. Spot lights:
+ * a perspective map (fov = 2 x outer half-angle + 2 degrees, at most 160), storing distance/far.
+ * Point lights: a cube map storing distance/far. The first OB_MAX_SHADOW_MAPS lights get a map. */
+typedef struct ob_shadow_maps {
+    GLuint depth_program;    /* orthographic maps: hardware depth */
+    GLuint distance_program; /* spot and point maps: distance to the light / far */
+    GLuint ubo, fbo;
+    ob_compute_pass vsm_x, vsm_y; /* VSM: depth -> moments blurred along x; then along y */
+    GLuint maps_2d;   /* DEPTH_COMPONENT32F 2D array: a layer per directional or spot map */
+    GLuint maps_cube; /* DEPTH_COMPONENT32F cube-map array: a cube per point-light map */
+    GLuint moments;   /* RG32F 2D array (VSM only): blurred (z, z^2) per directional or spot map */
+    GLuint scratch;   /* RG32F 2D (VSM only): the blur's intermediate */
+    int size, layers_2d, cubes, moment_layers; /* what is allocated */
+    ob_shadow_method method; /* of the last ob_shadows_render; NONE = no maps this frame */
+    int light_map[OB_MAX_LIGHTS]; /* map index of each light, -1 = unshadowed */
+    float matrix[OB_MAX_SHADOW_MAPS][16]; /* -> ob_lighting_constants.shadow_matrix */
+    float params[OB_MAX_SHADOW_MAPS][4];  /* -> shadow_params */
+    float options[4];                     /* -> shadow_options */
+} ob_shadow_maps;
+
+/* Builds the programs; allocates no maps yet. Errors: OB_ERR_SHADER. */
+ob_error ob_shadows_init(ob_shadow_maps *s);
+/* Maps for the first OB_MAX_SHADOW_MAPS lights (any type) when settings->method != NONE, from
+ * the G-buffer's uploaded meshes; (re)allocates when the size or the number of maps of a kind
+ * changes; timed as "shadow" (timers may be NULL; nothing is timed with method NONE). Leaves
+ * framebuffer 0 bound and restores the viewport and depth-test state. Errors: OB_ERR_OUT_OF_RANGE
+ * (size, bias, slope_bias, pcf_radius, vsm_blur or vsm_bleed outside its range; only the fields
+ * the method uses are checked), OB_ERR_OUT_OF_MEMORY (the GL could not allocate the maps). */
+ob_error ob_shadows_render(ob_shadow_maps *s, const ob_gbuffer *g, const ob_light *lights, int light_count,
+                           const float bounds_min[3], const float bounds_max[3], const ob_shadow_settings *settings,
+                           ob_timer_set *timers);
+/* Fill the shadow_* members and each light's light_direction[i].w (map index or -1; call after the
+ * lights are filled, e.g. after ob_lighting_setup), and bind the textures to the units shadow.glsl
+ * declares (0 where a kind has no map). Call after ob_shadows_render, before the lighting dispatch. */
+void ob_shadows_fill(const ob_shadow_maps *s, ob_lighting_constants *c);
+void ob_shadows_destroy(ob_shadow_maps *s);
 
 #endif

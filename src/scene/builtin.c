@@ -215,10 +215,12 @@ static void set_light(ob_scene *s, float x, float y, float z)
     float d[3] = {x, y, z};
     normalize3(d);
     for (int i = 0; i < 3; ++i) {
-        s->light.direction[i] = d[i];
-        s->light.color[i] = 1.0f;
+        s->lights[0].direction[i] = d[i];
+        s->lights[0].color[i] = 1.0f;
     }
-    s->light.intensity = 0.8f;
+    s->lights[0].type = OB_LIGHT_DIRECTIONAL;
+    s->lights[0].intensity = 0.8f;
+    s->light_count = 1;
 }
 
 /* ---- cornell --------------------------------------------------------------------------------- */
@@ -297,10 +299,12 @@ static bool build_cornell(ob_scene *s)
 
     /* Radius: about a fifth of the box, so the blocks' contact creases read clearly. */
     s->ao_radius = 0.1f;
-    /* The published box is lit from the ceiling patch. A directional light straight down would
-     * be blocked entirely by the ceiling once shadows are on, so it comes from above and in
-     * front, through the open side. */
-    set_light(s, 0.25f, 0.7f, -1.0f);
+    /* The published box is lit by its ceiling patch (130 x 105 mm at y = 548 mm): a point light
+     * 2 cm below the patch's centre stands in for it. 0.2 / d^2 puts about 0.8 on the floor
+     * 0.53 m below, the exposure of the other scenes. */
+    s->lights[0] = (ob_light){.type = OB_LIGHT_POINT, .position = {0.278f, 0.528f, 0.2795f},
+                              .color = {1.0f, 1.0f, 1.0f}, .intensity = 0.2f};
+    s->light_count = 1;
     ob_scene_finish(s);
     /* The published camera: eye (278, 273, -800) mm looking down +z, 35 mm lens on a 25 mm
      * film: 2 atan(12.5 / 35) = 39.3 degrees. */

@@ -463,6 +463,53 @@ static void add_cameras(importer *im, const struct aiMatrix4x4 *up_fix)
     }
 }
 
+/* Lights stored in the file (glTF KHR_lights_punctual, FBX, Collada) replace the default light.
+ * glTF intensities are photometric (lux, candela); they are taken as they are, so a file lit for
+ * a physical camera wants --exposure or the automatic HDR key. */
+static void add_lights(importer *im, const struct aiMatrix4x4 *up_fix)
+{
+    ob_scene *s = im->s;
+    int count = 0;
+    for (unsigned k = 0; k < im->ai->mNumLights && count < OB_MAX_LIGHTS; ++k) {
+        const struct aiLight *l = im->ai->mLights[k];
+        ob_light out = {0};
+        if (l->mType == aiLightSource_DIRECTIONAL) out.type = OB_LIGHT_DIRECTIONAL;
+        else if (l->mType == aiLightSource_POINT) out.type = OB_LIGHT_POINT;
+        else if (l->mType == aiLightSource_SPOT) out.type = OB_LIGHT_SPOT;
+        else continue; /* area and ambient lights have no place here */
+        struct aiMatrix4x4 world = *up_fix;
+        if (!find_node(im->ai->mRootNode, l->mName.data, up_fix, &world)) world = *up_fix;
+        /* As with cameras, assimp's glTF2 importer may copy the node translation into mPosition. */
+        struct aiVector3D local = l->mPosition;
+        const struct aiNode *node = find_node_ptr(im->ai->mRootNode, l->mName.data);
+        if (node && local.x == node->mTransformation.a4 && local.y == node->mTransformation.b4 &&
+            local.z == node->mTransformation.c4) {
+            local.x = local.y = local.z = 0.0f;
+        }
+        float dir[3] = {0.0f, 0.0f, -1.0f};
+        xform_point(&world, &local, out.position);
+        xform_dir(&world, &l->mDirection, dir);
+        if (out.type != OB_LIGHT_POINT && !normalize3(dir)) continue;
+        for (int i = 0; i < 3; ++i) {
+            /* ob_light's directional vector points toward the light; assimp's along the light. */
+            out.direction[i] = out.type == OB_LIGHT_DIRECTIONAL ? -dir[i] : dir[i];
+        }
+        float peak = fmaxf(l->mColorDiffuse.r, fmaxf(l->mColorDiffuse.g, l->mColorDiffuse.b));
+        if (!(peak > 0.0f)) continue;
+        out.intensity = peak;
+        out.color[0] = l->mColorDiffuse.r / peak;
+        out.color[1] = l->mColorDiffuse.g / peak;
+        out.color[2] = l->mColorDiffuse.b / peak;
+        /* Assimp's cone angles are full angles. */
+        out.spot_inner_deg = 0.5f * l->mAngleInnerCone * 180.0f / OB_PI_F;
+        out.spot_outer_deg = 0.5f * l->mAngleOuterCone * 180.0f / OB_PI_F;
+        if (!(out.spot_outer_deg > 0.0f && out.spot_outer_deg < 90.0f)) out.spot_outer_deg = 45.0f;
+        if (!(out.spot_inner_deg >= 0.0f && out.spot_inner_deg <= out.spot_outer_deg)) out.spot_inner_deg = out.spot_outer_deg;
+        s->lights[count++] = out;
+    }
+    if (count > 0) s->light_count = count;
+}
+
 /* ---- entry ----------------------------------------------------------------------------------- */
 
 static ob_scene *import_scene(importer *im, ob_up_axis up)
@@ -513,6 +560,7 @@ static ob_scene *import_scene(importer *im, ob_up_axis up)
 
     ob_scene_finish(im->s);
     add_cameras(im, &up_fix);
+    add_lights(im, &up_fix);
     return im->s;
 }
 

@@ -162,16 +162,19 @@ void ob_scene_finish(ob_scene *s)
         s->camera_count = keep + 1;
     }
 
-    if (!(s->light.intensity > 0.0f)) {
+    if (s->light_count == 0) {
+        s->light_count = 1;
+        s->lights[0].type = OB_LIGHT_DIRECTIONAL;
         /* Above, in front and to the left: the default camera sits front-right, so shadows fall
          * away from it and show the shape instead of hiding behind it. */
         const float d[3] = {-0.4f, 1.0f, 0.5f};
         float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         for (int i = 0; i < 3; ++i) {
-            s->light.direction[i] = d[i] / len;
-            s->light.color[i] = 1.0f;
+            s->lights[0].direction[i] = d[i] / len;
+            s->lights[0].color[i] = 1.0f;
         }
-        s->light.intensity = 0.8f; /* direct + ambient stays below 1 on white: no clipping before HDR exists */
+        /* Direct + ambient stays near 1 on white: a sensible exposure even with --hdr off. */
+        s->lights[0].intensity = 0.8f;
     }
 
     if (!(s->ao_radius > 0.0f) || !isfinite(s->ao_radius)) {
@@ -436,10 +439,12 @@ float ob_query_scene_ao_radius(const ob_scene *scene)
     return scene ? scene->ao_radius : 0.0f;
 }
 
-ob_light ob_query_scene_light(const ob_scene *scene)
+int ob_query_scene_light_count(const ob_scene *scene) { return scene ? scene->light_count : 0; }
+
+ob_light ob_query_scene_light(const ob_scene *scene, int index)
 {
     ob_light l = {0};
-    return scene ? scene->light : l;
+    return scene && index >= 0 && index < scene->light_count ? scene->lights[index] : l;
 }
 
 int ob_query_camera_count(const ob_scene *scene)

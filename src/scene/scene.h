@@ -32,7 +32,8 @@ struct ob_scene {
     int material_count;
     ob_camera cameras[OB_MAX_CAMERAS]; /* [0] = "default", framing the bounds */
     int camera_count;
-    ob_light light;
+    ob_light lights[OB_MAX_LIGHTS]; /* [0] = the key light */
+    int light_count;
     float ao_radius;       /* suggested, world units */
     float bounds_min[3];
     float bounds_max[3];

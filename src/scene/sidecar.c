@@ -23,12 +23,16 @@
  *         "fov": 50              vertical field of view in degrees, in (1, 179); default 60
  *       }
  *     ],
- *     "lights": [                the first one is the scene's key light
+ *     "lights": [                up to 8; the first one is the scene's key light
  *       {
- *         "type": "directional", the only type (default)
- *         "direction": [x, y, z],required, non-zero: FROM the surface TOWARD the light
+ *         "type": "directional", "directional" (default), "point" or "spot"
+ *         "direction": [x, y, z],directional: required, FROM the surface TOWARD the light;
+ *                                spot: required, the cone's axis, away from the light
+ *         "position": [x, y, z], point and spot: required
  *         "color": [r, g, b],    linear RGB, >= 0, default [1, 1, 1]
- *         "intensity": 1.0       >= 0, default 1
+ *         "intensity": 1.0,      >= 0, default 1 (point/spot: falls off as 1/d^2)
+ *         "range": 10,           point and spot: > 0, smooth cut-off distance; default none
+ *         "cone": [20, 30]       spot: inner and outer half-angles in degrees, 0 <= inner <= outer < 90
  *       }
  *     ]
  *   }
@@ -60,8 +64,8 @@ typedef struct sidecar {
     float ao_radius; /* 0 = not given */
     ob_camera cameras[OB_MAX_CAMERAS];
     int camera_count;
-    ob_light light;
-    bool has_light;
+    ob_light lights[OB_MAX_LIGHTS];
+    int light_count;
 } sidecar;
 
 /* Record "path: message" as OB_ERR_SIDECAR. */
@@ -218,8 +222,8 @@ static ob_error parse_light(const char *path, int index, const cJSON *obj, ob_li
     if (!cJSON_IsObject(obj)) {
         return fail(path, "%s: expected an object, got %s", where, json_type_name(obj));
     }
-    ob_light l = {.color = {1.0f, 1.0f, 1.0f}, .intensity = 1.0f};
-    bool has_direction = false;
+    ob_light l = {.color = {1.0f, 1.0f, 1.0f}, .intensity = 1.0f, .spot_inner_deg = 20.0f, .spot_outer_deg = 30.0f};
+    bool has_direction = false, has_position = false;
     for (const cJSON *it = obj->child; it; it = it->next) {
         const char *key = it->string;
         char field[160] = "";
@@ -228,9 +232,24 @@ static ob_error parse_light(const char *path, int index, const cJSON *obj, ob_li
         if (seen_before(obj, it)) return fail(path, "%s: duplicate key", field);
         ob_error err = OB_OK;
         if (strcmp(key, "type") == 0) {
-            if (!cJSON_IsString(it) || strcmp(it->valuestring, "directional") != 0) {
-                return fail(path, "%s: expected \"directional\" (the only light type)", field);
-            }
+            if (cJSON_IsString(it) && strcmp(it->valuestring, "directional") == 0) l.type = OB_LIGHT_DIRECTIONAL;
+            else if (cJSON_IsString(it) && strcmp(it->valuestring, "point") == 0) l.type = OB_LIGHT_POINT;
+            else if (cJSON_IsString(it) && strcmp(it->valuestring, "spot") == 0) l.type = OB_LIGHT_SPOT;
+            else return fail(path, "%s: expected \"directional\", \"point\" or \"spot\"", field);
+        } else if (strcmp(key, "position") == 0) {
+            err = read_vec3(path, field, it, l.position);
+            has_position = true;
+        } else if (strcmp(key, "range") == 0) {
+            err = read_number(path, field, it, &l.range);
+            if (err == OB_OK && !(l.range > 0.0f)) return fail(path, "%s: range must be > 0", field);
+        } else if (strcmp(key, "cone") == 0) {
+            if (!cJSON_IsArray(it) || cJSON_GetArraySize(it) != 2 || !cJSON_IsNumber(cJSON_GetArrayItem(it, 0)) ||
+                !cJSON_IsNumber(cJSON_GetArrayItem(it, 1)))
+                return fail(path, "%s: expected [inner, outer] half-angles in degrees", field);
+            l.spot_inner_deg = (float)cJSON_GetArrayItem(it, 0)->valuedouble;
+            l.spot_outer_deg = (float)cJSON_GetArrayItem(it, 1)->valuedouble;
+            if (!(l.spot_inner_deg >= 0.0f && l.spot_inner_deg <= l.spot_outer_deg && l.spot_outer_deg < 90.0f))
+                return fail(path, "%s: need 0 <= inner <= outer < 90 degrees", field);
         } else if (strcmp(key, "direction") == 0) {
             err = read_vec3(path, field, it, l.direction);
             if (err == OB_OK) {
@@ -250,12 +269,13 @@ static ob_error parse_light(const char *path, int index, const cJSON *obj, ob_li
                 return fail(path, "%s: intensity must be >= 0", field);
             }
         } else {
-            return fail(path, "%s: unknown key (expected type, direction, color, intensity)",
+            return fail(path, "%s: unknown key (expected type, direction, position, color, intensity, range, cone)",
                         field);
         }
         if (err != OB_OK) return err;
     }
-    if (!has_direction) return fail(path, "%s: missing \"direction\"", where);
+    if (!has_direction && l.type != OB_LIGHT_POINT) return fail(path, "%s: missing \"direction\"", where);
+    if (!has_position && l.type != OB_LIGHT_DIRECTIONAL) return fail(path, "%s: missing \"position\"", where);
     *light = l;
     return OB_OK;
 }
@@ -388,14 +408,13 @@ static ob_error parse_file(const char *path, sidecar *sc)
                 break;
             }
             int n = cJSON_GetArraySize(it);
+            if (n > OB_MAX_LIGHTS) {
+                err = fail(path, "lights: %d lights, at most %d", n, OB_MAX_LIGHTS);
+                break;
+            }
             for (int i = 0; i < n && err == OB_OK; ++i) {
-                ob_light l = {0};
-                err = parse_light(path, i, cJSON_GetArrayItem(it, i), &l);
-                /* One key light for now; the others are validated so they can be used later. */
-                if (err == OB_OK && i == 0) {
-                    sc->light = l;
-                    sc->has_light = true;
-                }
+                err = parse_light(path, i, cJSON_GetArrayItem(it, i), &sc->lights[i]);
+                if (err == OB_OK) sc->light_count = i + 1;
             }
         } else {
             err = fail(path, "%s: unknown key (expected model, up, ao_radius, cameras, lights, "
@@ -451,7 +470,10 @@ ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path)
     }
     for (int i = 0; i < sc->camera_count; ++i) ob_scene_add_camera(s, &sc->cameras[i]);
     if (sc->ao_radius > 0.0f) s->ao_radius = sc->ao_radius;
-    if (sc->has_light) s->light = sc->light;
+    if (sc->light_count > 0) {
+        memcpy(s->lights, sc->lights, sizeof sc->lights);
+        s->light_count = sc->light_count;
+    }
     free(sc);
     return OB_OK;
 }

@@ -1,0 +1,69 @@
+#version 450 core
+/* Direct light over the G-buffer (seed 000 §4.5, seed 003 §5.2): for every light, Lambert +
+ * Blinn-Phong, times its shadow-map visibility, into an RGBA16F radiance target. Directional
+ * lights give intensity x colour at normal incidence; point and spot lights fall off as 1/d^2,
+ * with a smooth window to zero at `range` ((1 - (d/range)^4)^2, as in UE4 and Filament), and spot
+ * lights fade between the inner and outer cone. Sky pixels are left at 0 (compose paints them).
+ * Alpha holds the key light's (light 0's) visibility, 0 where it faces away: the shadow view. */
+#include "lighting_params.h"
+#include "common.glsl"
+#include "shadow.glsl"
+
+layout(local_size_x = OB_LIGHTING_GROUP_X, local_size_y = OB_LIGHTING_GROUP_Y) in;
+
+layout(binding = 0) uniform sampler2D linear_depth;
+layout(binding = 1) uniform sampler2D view_normal;
+layout(binding = 2) uniform sampler2D albedo_map;
+layout(binding = 0, rgba16f) uniform writeonly image2D radiance_out;
+
+void main()
+{
+    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pix, ivec2(lit.size.xy)))) return;
+    float d = texelFetch(linear_depth, pix, 0).r;
+    if (d <= 0.0) {
+        imageStore(radiance_out, pix, vec4(0.0));
+        return;
+    }
+    vec3 pv = ob_view_position(vec2(pix) + 0.5, d, lit.size, lit.proj_info);
+    vec3 p = (lit.inv_view * vec4(pv, 1.0)).xyz;
+    vec3 n = normalize(mat3(lit.inv_view) * texelFetch(view_normal, pix, 0).xyz);
+    vec3 v = normalize(lit.inv_view[3].xyz - p);
+    vec3 albedo = texelFetch(albedo_map, pix, 0).rgb;
+    float ks = lit.specular.x, shininess = lit.specular.y;
+
+    vec3 sum = vec3(0.0);
+    float key_visibility = 1.0; /* light 0's shadow, for --view shadow */
+    for (int i = 0; i < lit.counts.x; ++i) {
+        int type = int(lit.light_color[i].w);
+        vec3 l;
+        float falloff = 1.0;
+        if (type == OB_LIGHT_TYPE_DIRECTIONAL) {
+            l = lit.light_direction[i].xyz;
+        } else {
+            vec3 to_light = lit.light_position[i].xyz - p;
+            float dist2 = max(dot(to_light, to_light), 1e-8);
+            l = to_light * inversesqrt(dist2);
+            falloff = 1.0 / dist2;
+            float range = lit.light_position[i].w;
+            if (range > 0.0) {
+                float x = dist2 / (range * range);
+                float w = clamp(1.0 - x * x, 0.0, 1.0);
+                falloff *= w * w;
+            }
+            if (type == OB_LIGHT_TYPE_SPOT)
+                falloff *= smoothstep(lit.light_spot[i].y, lit.light_spot[i].x, dot(-l, lit.light_direction[i].xyz));
+        }
+        float ndl = max(dot(n, l), 0.0);
+        bool contributes = ndl > 0.0 && falloff > 0.0;
+        /* Shadow lookups only where the light contributes (and light 0's for the shadow view). */
+        float vis = contributes || i == 0 ? ob_shadow(i, p, n) : 0.0;
+        if (i == 0) key_visibility = ndl > 0.0 ? vis : 0.0;
+        if (!contributes) continue;
+        vec3 h = normalize(l + v);
+        /* Blinn-Phong lobe normalised so the highlight's energy does not grow with shininess. */
+        float spec = ks * (shininess + 8.0) / 8.0 * pow(max(dot(n, h), 0.0), shininess);
+        sum += (albedo + spec) * ndl * falloff * vis * lit.light_color[i].rgb;
+    }
+    imageStore(radiance_out, pix, vec4(sum, key_visibility));
+}

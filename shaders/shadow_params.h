@@ -1,0 +1,51 @@
+/* Shadow maps (seed 003 §2.1, §5.1, §6.1): the texture units shadow.glsl samples, the limits the
+ * C side clamps to, and the constant blocks of the two passes that make the maps (the depth
+ * raster pass and the VSM moments + blur compute pass). Shared by src/passes/shadow.c and
+ * shaders/shadow*.glsl. The lighting constants' shadow_* members live in lighting_params.h. */
+#ifndef OB_SHADOW_PARAMS_H
+#define OB_SHADOW_PARAMS_H
+#include "ob_shared.h"
+
+/* Texture units of shadow.glsl (the lighting pass keeps 0..7; shadows own 8..15, 11..15 unused).
+ * Texture arrays, so that one unit serves every map of a kind and the map is picked by a layer
+ * coordinate (no dynamically-uniform sampler indexing, and VSM fits beside PCF in 3 units):
+ *   8  sampler2DArrayShadow   directional + spot depth maps, one layer each (hard, PCF)
+ *   9  samplerCubeArrayShadow point-light distance cube maps, one cube each (every method)
+ *   10 sampler2DArray         directional + spot VSM moments (z, z^2), one layer each (VSM) */
+#define OB_SHADOW_UNIT_2D 8
+#define OB_SHADOW_UNIT_CUBE 9
+#define OB_SHADOW_UNIT_MOMENTS 10
+
+/* PCF taps each side: 8 gives a 17x17 kernel of bilinear comparisons, already 289 lookups. */
+#define OB_SHADOW_MAX_PCF_RADIUS 8
+/* VSM blur taps each side (radius = ceil(2 sigma), so sigma up to 8 texels). */
+#define OB_SHADOW_VSM_MAX_RADIUS 16
+/* tan of the angle to the light is clamped here (~84 degrees): beyond it the slope-scaled bias
+ * would push the reference through thin walls, and n.l < 0.1 leaves almost no light to shadow. */
+#define OB_SHADOW_MAX_SLOPE 10.0
+
+#define OB_SHADOW_GROUP_X 8
+#define OB_SHADOW_GROUP_Y 8
+/* VSM blur: texels per invocation along the blur axis (shadow_vsm.glsl). */
+#define OB_SHADOW_VSM_RUN 8
+
+/* The depth pass: world -> light clip space, and for spot/point maps the light position and
+ * 1/far, so the fragment shader stores the linear distance to the light / far. */
+#if !defined(OB_GLSL) || defined(OB_SHADOW_DEPTH_PASS)
+OB_CONSTANTS_BEGIN(ob_shadow_depth_constants, OB_BINDING_PASS)
+    OB_MAT4 view_proj;
+    OB_VEC4 light;     /* xyz: light position (world); w: 1 / far */
+OB_CONSTANTS_END(ob_shadow_depth_constants, shd)
+#endif
+
+/* One direction of the VSM blur (seed 003 §5.1: "first vertically, then horizontally"; the order
+ * does not change a separable Gaussian). The x pass turns depth into moments as it reads. */
+#if !defined(OB_GLSL) || defined(OB_SHADOW_VSM_PASS)
+OB_CONSTANTS_BEGIN(ob_shadow_vsm_constants, OB_BINDING_PASS)
+    OB_IVEC4 axis;     /* (1,0) or (0,1); radius in taps; layer of the depth / moments array */
+    OB_VEC4 size;      /* map width, height, 1/width, 1/height */
+    OB_VEC4 weights[OB_SHADOW_VSM_MAX_RADIUS + 1]; /* normalised Gaussian w[0..radius] in .x */
+OB_CONSTANTS_END(ob_shadow_vsm_constants, vsm)
+#endif
+
+#endif

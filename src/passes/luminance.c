@@ -1,0 +1,62 @@
+/* Log-average luminance (seed 003 eq. 2.1, §5.5 step 5) and the key (eq. 2.2, §6.5), computed and
+ * kept on the GPU: shaders/luminance.glsl sums ln(delta + L) per 64x64 block, then one work group
+ * reduces the blocks and writes (L_avg, key, scale) to a buffer the bloom and tone-map passes
+ * read, so a frame never waits on a read-back. */
+#include <string.h>
+
+#include "core/error.h"
+#include "luminance_params.h"
+#include "passes/passes.h"
+
+ob_error ob_luminance_init(ob_luminance_pass *p, int width, int height)
+{
+    memset(p, 0, sizeof *p);
+    p->width = width;
+    p->height = height;
+    p->groups_x = (width + OB_LUMINANCE_SPAN - 1) / OB_LUMINANCE_SPAN;
+    p->groups_y = (height + OB_LUMINANCE_SPAN - 1) / OB_LUMINANCE_SPAN;
+    if (ob_compute_pass_init(&p->partial, "luminance.glsl", NULL, sizeof(ob_luminance_constants)) != OB_OK ||
+        ob_compute_pass_init(&p->final, "luminance.glsl", "#define OB_LUMINANCE_FINAL 1\n",
+                             sizeof(ob_luminance_constants)) != OB_OK) {
+        ob_error err = ob_get_error(NULL);
+        ob_luminance_destroy(p);
+        return err;
+    }
+    size_t bytes = OB_HDR_RESULT_BYTES + (size_t)p->groups_x * (size_t)p->groups_y * sizeof(float);
+    glCreateBuffers(1, &p->result);
+    /* Zero-filled, so a query before the first frame reads 0s rather than garbage. */
+    glNamedBufferData(p->result, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_COPY);
+    glClearNamedBufferData(p->result, GL_R32F, GL_RED, GL_FLOAT, NULL);
+    return OB_OK;
+}
+
+void ob_luminance_run(ob_luminance_pass *p, GLuint radiance, float exposure, float key)
+{
+    ob_luminance_constants k;
+    memset(&k, 0, sizeof k);
+    k.size[0] = p->width;
+    k.size[1] = p->height;
+    k.size[2] = p->groups_x * p->groups_y;
+    k.params[0] = exposure;
+    k.params[1] = key > 0.0f ? key : 0.0f;
+    k.params[2] = (float)OB_HDR_DELTA;
+    k.params[3] = 1.0f / ((float)p->width * (float)p->height);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OB_BINDING_HDR_RESULT, p->result);
+
+    ob_compute_pass_use(&p->partial, &k, sizeof k);
+    glBindTextureUnit(0, radiance);
+    glDispatchCompute((GLuint)p->groups_x, (GLuint)p->groups_y, 1);
+    /* The final reduction reads the partial sums the first dispatch stored. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+    ob_compute_pass_use(&p->final, &k, sizeof k);
+    glDispatchCompute(1, 1, 1);
+}
+
+void ob_luminance_destroy(ob_luminance_pass *p)
+{
+    ob_compute_pass_destroy(&p->partial);
+    ob_compute_pass_destroy(&p->final);
+    if (p->result) glDeleteBuffers(1, &p->result);
+    memset(p, 0, sizeof *p);
+}

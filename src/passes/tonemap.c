@@ -1,0 +1,39 @@
+/* Tone mapping, seed 003 §5.5 steps 6-8: radiance scaled by exposure alpha / L_avg (eq. 2.2, the
+ * factor the luminance pass left on the GPU) plus the bloom, Reinhard on the luminance (eq. 2.4,
+ * or 2.3 without L_white), sRGB into RGBA8. With HDR off, exposure x radiance clamped to [0,1].
+ * Shader: shaders/tonemap.glsl. */
+#include <string.h>
+
+#include "bloom_params.h"
+#include "core/error.h"
+#include "passes/passes.h"
+#include "tonemap_params.h"
+
+ob_error ob_tonemap_init(ob_tonemap_pass *t)
+{
+    return ob_compute_pass_init(&t->pass, "tonemap.glsl", NULL, sizeof(ob_tonemap_constants));
+}
+
+void ob_tonemap_run(ob_tonemap_pass *t, const ob_tonemap_inputs *in, const ob_hdr_settings *s, GLuint final_out)
+{
+    ob_tonemap_constants k;
+    memset(&k, 0, sizeof k);
+    k.size[0] = (float)in->width;
+    k.size[1] = (float)in->height;
+    if (in->bloom_width > 0 && in->bloom_height > 0) {
+        k.size[2] = 1.0f / (float)(OB_BLOOM_FACTOR * in->bloom_width);
+        k.size[3] = 1.0f / (float)(OB_BLOOM_FACTOR * in->bloom_height);
+    }
+    k.params[0] = s->enabled ? 1.0f : 0.0f;
+    k.params[1] = s->exposure;
+    k.params[2] = s->l_white;
+    k.params[3] = s->enabled && in->bloom && s->bloom_strength > 0.0f ? s->bloom_strength : 0.0f;
+    ob_compute_pass_use(&t->pass, &k, sizeof k);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OB_BINDING_HDR_RESULT, in->result);
+    glBindTextureUnit(0, in->radiance);
+    glBindTextureUnit(1, in->bloom);
+    glBindImageTexture(0, final_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    ob_dispatch_2d(in->width, in->height, OB_TONEMAP_GROUP_X, OB_TONEMAP_GROUP_Y);
+}
+
+void ob_tonemap_destroy(ob_tonemap_pass *t) { ob_compute_pass_destroy(&t->pass); }

@@ -1,0 +1,204 @@
+/* Lights, shadows, ambient modes and HDR through the whole frame (issue 5):
+ *   - a sphere on a plane shadows the floor on the side away from a directional light, for
+ *     hard, pcf and vsm, and pcf and vsm soften the edge more than hard;
+ *   - point and spot lights: 1/d^2 falloff, nothing outside the spot's cone;
+ *   - a constant environment map lights exactly like the same constant ambient;
+ *   - --hdr off clamps, and a brighter scene raises the automatic key. */
+#include <cglm/cglm.h>
+#include <stb/stb_image_write.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "obscura/obscura.h"
+
+enum { W = 160, H = 120 };
+
+static const ob_camera top_cam = {
+    .eye = {0.0f, 9.0f, 0.01f}, .target = {0.0f, 0.0f, 0.0f}, .up = {0.0f, 0.0f, -1.0f},
+    .fov_y_deg = 50.0f, .near_z = 0.1f, .far_z = 50.0f, .name = "top"};
+
+static bool project(const float p[3], int *px, int *py)
+{
+    mat4 view, proj, vp;
+    vec3 eye, target, up;
+    memcpy(eye, top_cam.eye, sizeof eye);
+    memcpy(target, top_cam.target, sizeof target);
+    memcpy(up, top_cam.up, sizeof up);
+    glm_lookat(eye, target, up, view);
+    glm_perspective(glm_rad(top_cam.fov_y_deg), (float)W / (float)H, top_cam.near_z, top_cam.far_z, proj);
+    glm_mat4_mul(proj, view, vp);
+    vec4 wp = {p[0], p[1], p[2], 1.0f}, clip;
+    glm_mat4_mulv(vp, wp, clip);
+    *px = (int)((clip[0] / clip[3] * 0.5f + 0.5f) * W);
+    *py = (int)((clip[1] / clip[3] * 0.5f + 0.5f) * H);
+    return *px >= 0 && *px < W && *py >= 0 && *py < H;
+}
+
+static float at(const float *img, int channels, float x, float y, float z)
+{
+    const float p[3] = {x, y, z};
+    int px = 0, py = 0;
+    if (!project(p, &px, &py)) return NAN;
+    return img[(py * W + px) * channels];
+}
+
+static float *read_image(ob_renderer *r, ob_image_kind kind)
+{
+    float *img = malloc(ob_image_size(r, kind));
+    CHECK(ob_read_image(r, kind, img, ob_image_size(r, kind)) == OB_OK, "read image %d", (int)kind);
+    return img;
+}
+
+static void test_shadows(ob_renderer *r)
+{
+    ob_settings s;
+    ob_settings_init(&s, "none");
+    CHECK(ob_parse_light("directional dir=1,1.2,0 intensity=1", &s.lights[0]) == OB_OK, "light");
+    s.light_count = 1;
+    const ob_shadow_method methods[3] = {OB_SHADOW_HARD, OB_SHADOW_PCF, OB_SHADOW_VSM};
+    const char *names[3] = {"hard", "pcf", "vsm"};
+    int widths[3] = {0, 0, 0};
+    for (int m = 0; m < 3; ++m) {
+        s.shadow.method = methods[m];
+        s.shadow.size = 512;
+        CHECK(ob_render_frame(r, &top_cam, &s) == OB_OK, "%s frame", names[m]);
+        float *vis = read_image(r, OB_IMAGE_SHADOW_F32);
+        /* The sphere (radius 1 at y = 1) under light from +x: its shadow lies on -x. */
+        float away = at(vis, 1, -1.4f, 0.0f, 0.0f), toward = at(vis, 1, 1.6f, 0.0f, 0.0f);
+        float far_side = at(vis, 1, -3.5f, 0.0f, 2.5f);
+        CHECK(away < 0.1f, "%s: floor away from the light is lit (%g)", names[m], (double)away);
+        CHECK(toward > 0.9f && far_side > 0.9f, "%s: floor toward the light / far off is shadowed (%g, %g)", names[m],
+              (double)toward, (double)far_side);
+        /* The penumbra: pixels of the image that are partly lit. */
+        for (int i = 0; i < W * H; ++i) widths[m] += vis[i] > 0.05f && vis[i] < 0.95f;
+        free(vis);
+    }
+    printf("  penumbra pixels: hard %d, pcf %d, vsm %d\n", widths[0], widths[1], widths[2]);
+    CHECK(widths[1] > widths[0] && widths[2] > widths[0], "pcf (%d) and vsm (%d) soften more than hard (%d)", widths[1],
+          widths[2], widths[0]);
+}
+
+static void test_point_and_spot(ob_renderer *r)
+{
+    ob_settings s;
+    ob_settings_init(&s, "none");
+    s.ambient[0] = s.ambient[1] = s.ambient[2] = 0.0f;
+    /* The floor straight below a point light 2 m up, then 4 m up: the same angles (so the same
+     * Lambert and specular factors), a quarter of the light (1/d^2). */
+    float below[2] = {0.0f, 0.0f};
+    const char *heights[2] = {"point pos=3,2,3 intensity=4", "point pos=3,4,3 intensity=4"};
+    for (int k = 0; k < 2; ++k) {
+        CHECK(ob_parse_light(heights[k], &s.lights[0]) == OB_OK, "point");
+        s.light_count = 1;
+        CHECK(ob_render_frame(r, &top_cam, &s) == OB_OK, "point frame");
+        float *rad = read_image(r, OB_IMAGE_RADIANCE_F32);
+        below[k] = at(rad, 3, 3.0f, 0.0f, 3.0f);
+        free(rad);
+    }
+    CHECK(fabsf(below[1] / below[0] - 0.25f) < 0.01f, "point light 2 m vs 4 m up: ratio %g, want 0.25 (1/d^2)",
+          (double)(below[1] / below[0]));
+    float *rad = NULL;
+
+    CHECK(ob_parse_light("spot pos=-3,3,-3 dir=0,-1,0 cone=10,15 intensity=9", &s.lights[0]) == OB_OK, "spot");
+    CHECK(ob_render_frame(r, &top_cam, &s) == OB_OK, "spot frame");
+    rad = read_image(r, OB_IMAGE_RADIANCE_F32);
+    float inside = at(rad, 3, -3.0f, 0.0f, -3.0f), outside = at(rad, 3, -3.0f + 1.5f, 0.0f, -3.0f);
+    CHECK(inside > 0.1f && outside == 0.0f, "spot: %g inside the cone, %g outside (tan 15 x 3 m = 0.8 m)",
+          (double)inside, (double)outside);
+    free(rad);
+}
+
+static void test_ambient(ob_renderer *r)
+{
+    ob_settings s;
+    ob_settings_init(&s, "none");
+    s.lights[0] = (ob_light){.direction = {0.0f, 1.0f, 0.0f}, .color = {1.0f, 1.0f, 1.0f}, .intensity = 0.0f};
+    s.light_count = 1;
+    s.ambient[0] = s.ambient[1] = s.ambient[2] = 0.5f;
+    CHECK(ob_render_frame(r, &top_cam, &s) == OB_OK, "constant frame");
+    float *constant = read_image(r, OB_IMAGE_HDR_F32);
+
+    char path[] = "/tmp/obscura-env-XXXXXX.hdr";
+    int fd = mkstemps(path, 4);
+    CHECK(fd >= 0, "temp file");
+    close(fd);
+    static float env[64 * 32 * 3];
+    for (int i = 0; i < 64 * 32 * 3; ++i) env[i] = 0.5f;
+    CHECK(stbi_write_hdr(path, 64, 32, 3, env) != 0, "write %s", path);
+    CHECK(ob_renderer_set_environment(r, path) == OB_OK, "load the environment");
+    unlink(path);
+    s.ambient_mode = OB_AMBIENT_ENVIRONMENT;
+    CHECK(ob_render_frame(r, &top_cam, &s) == OB_OK, "environment frame");
+    float *environment = read_image(r, OB_IMAGE_HDR_F32);
+    float *depth = read_image(r, OB_IMAGE_DEPTH_F32);
+    double worst = 0.0;
+    for (int i = 0; i < W * H * 3; ++i) {
+        if (depth[i / 3] <= 0.0f) continue; /* the background shows the map itself, not the ambient */
+        worst = fmax(worst, fabs(environment[i] - constant[i]) / fmax(constant[i], 1e-3));
+    }
+    free(depth);
+    /* RGBE stores 0.5 exactly; SH and 16-bit floats leave well under 1%. */
+    CHECK(worst < 0.01, "a constant environment lights like the constant ambient (worst %.4f relative)", worst);
+
+    s.ambient_mode = OB_AMBIENT_HEMISPHERE;
+    CHECK(ob_render_frame(r, &top_cam, &s) == OB_OK, "hemisphere frame");
+    float *hemi = read_image(r, OB_IMAGE_HDR_F32);
+    /* The floor faces the sky: albedo x sky colour. The sphere's top also; its side half sky. */
+    float floor_r = at(hemi, 3, 3.5f, 0.0f, 3.5f);
+    CHECK(fabsf(floor_r - 0.8f * s.sky[0]) < 0.01f, "hemisphere floor %g, want albedo x sky %g", (double)floor_r,
+          (double)(0.8f * s.sky[0]));
+    free(constant);
+    free(environment);
+    free(hemi);
+    CHECK(ob_renderer_set_environment(r, "/nonexistent.hdr") == OB_ERR_IO, "missing environment map");
+}
+
+static void test_hdr(ob_renderer *r)
+{
+    ob_settings s;
+    ob_settings_init(&s, "none");
+    CHECK(ob_parse_light("directional dir=0.3,1,0.2 intensity=6", &s.lights[0]) == OB_OK, "bright light");
+    s.light_count = 1;
+    s.hdr.enabled = false;
+    CHECK(ob_render_frame(r, &top_cam, &s) == OB_OK, "hdr off");
+    unsigned char *clamped = malloc(ob_image_size(r, OB_IMAGE_FINAL_RGBA8));
+    ob_read_image(r, OB_IMAGE_FINAL_RGBA8, clamped, ob_image_size(r, OB_IMAGE_FINAL_RGBA8));
+    int white = 0;
+    for (int i = 0; i < W * H; ++i) white += clamped[4 * i] == 255 && clamped[4 * i + 1] == 255;
+    CHECK(white > W * H / 4, "--hdr off burns a 6x light to white (%d pixels)", white);
+    s.hdr.enabled = true;
+    CHECK(ob_render_frame(r, &top_cam, &s) == OB_OK, "hdr on");
+    unsigned char *mapped = malloc(ob_image_size(r, OB_IMAGE_FINAL_RGBA8));
+    ob_read_image(r, OB_IMAGE_FINAL_RGBA8, mapped, ob_image_size(r, OB_IMAGE_FINAL_RGBA8));
+    int white2 = 0;
+    for (int i = 0; i < W * H; ++i) white2 += mapped[4 * i] == 255 && mapped[4 * i + 1] == 255;
+    CHECK(white2 < white / 4, "tone mapping brings the burnt floor back (%d white pixels, %d clamped)", white2, white);
+    free(clamped);
+    free(mapped);
+}
+
+int main(void)
+{
+    ob_context *ctx = ob_make_context(NULL);
+    if (!ctx) {
+        const char *msg = NULL;
+        ob_get_error(&msg);
+        fprintf(stderr, "no context: %s\n", msg);
+        return 1;
+    }
+    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "sphere-on-plane"});
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
+    CHECK(scene && r && ob_renderer_set_scene(r, scene) == OB_OK, "scene");
+    if (scene && r) {
+        test_shadows(r);
+        test_point_and_spot(r);
+        test_ambient(r);
+        test_hdr(r);
+    }
+    ob_destroy_renderer(r);
+    ob_destroy_scene(scene);
+    ob_destroy_context(ctx);
+    return check_finish("test_lighting");
+}

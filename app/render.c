@@ -28,7 +28,9 @@ static void render_usage(FILE *f)
           "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off)\n"
           "  --view V              what --out shows: final (default), ao, normals, depth, shadow (the key\n"
           "                        light's visibility), radiance (direct light, tone mapped), samples\n"
-          "                        (per pixel, grey, white = the most any pixel took)\n"
+          "                        (per pixel, grey, white = the most any pixel took), bounce (SSDO's\n"
+          "                        one-bounce indirect light, sRGB; black for AO methods); for ssdo*\n"
+          "                        ao shows the RGB modulation factor M\n"
           "  --light SPEC          replaces the scene's lights (repeatable, up to 8), e.g.\n"
           "                        'directional dir=0.3,1,0.2 color=1,0.9,0.8 intensity=2',\n"
           "                        'point pos=0,2,0 intensity=8 range=10',\n"
@@ -173,11 +175,11 @@ static int parse(int argc, char **argv, render_opts *o)
         } else if (!strcmp(a, "--filter")) {
             o->filter = v;
         } else if (!strcmp(a, "--view")) {
-            const char *views[] = {"final", "ao", "normals", "depth", "shadow", "radiance", "samples"};
+            const char *views[] = {"final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce"};
             bool known = false;
             for (size_t k = 0; k < sizeof views / sizeof views[0]; ++k) known = known || !strcmp(v, views[k]);
             if (!known)
-                return cli_fail(EXIT_USAGE, "--view: expected final, ao, normals, depth, shadow, radiance or samples, got '%s'", v);
+                return cli_fail(EXIT_USAGE, "--view: expected final, ao, normals, depth, shadow, radiance, samples or bounce, got '%s'", v);
             o->view = v;
         } else if (!strcmp(a, "--light")) {
             if (o->light_count >= OB_MAX_LIGHTS) return cli_fail(EXIT_USAGE, "--light: at most %d lights", OB_MAX_LIGHTS);
@@ -280,20 +282,25 @@ static float srgb(float c)
     return c <= 0.0031308f ? 12.92f * c : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
 }
 
-/* The debug views as an RGB image (top row first): ao, shadow and samples as grey, normals as
- * n * 0.5 + 0.5, depth as grey from near (white) to far (black), radiance clamped to [0,1] and
- * sRGB-encoded. buf holds 3 floats per pixel. */
+/* The debug views as an RGB image (top row first): ao (RGB: SSDO's M per channel, AO methods
+ * grey), shadow and samples as grey, normals as n * 0.5 + 0.5, depth as grey from near (white)
+ * to far (black), radiance and bounce clamped to [0,1] and sRGB-encoded. buf holds 3 floats per
+ * pixel. */
 static ob_error view_image(ob_renderer *r, const render_opts *o, float *buf, unsigned char *rgb)
 {
     int w = o->width, h = o->height;
     size_t px = (size_t)w * (size_t)h;
     const char *v = o->view;
-    ob_image_kind kind = !strcmp(v, "ao") ? OB_IMAGE_AO_F32 : !strcmp(v, "samples") ? OB_IMAGE_SAMPLES_F32
+    ob_image_kind kind = !strcmp(v, "ao") ? OB_IMAGE_AO_RGB_F32 : !strcmp(v, "samples") ? OB_IMAGE_SAMPLES_F32
+                         : !strcmp(v, "bounce") ? OB_IMAGE_BOUNCE_F32
                          : !strcmp(v, "normals") ? OB_IMAGE_NORMAL_F32 : !strcmp(v, "depth") ? OB_IMAGE_DEPTH_F32
                          : !strcmp(v, "shadow") ? OB_IMAGE_SHADOW_F32 : OB_IMAGE_RADIANCE_F32;
     ob_error err = ob_read_image(r, kind, buf, ob_image_size(r, kind));
     if (err != OB_OK) return err;
-    int channels = kind == OB_IMAGE_NORMAL_F32 || kind == OB_IMAGE_RADIANCE_F32 ? 3 : 1;
+    int channels = kind == OB_IMAGE_NORMAL_F32 || kind == OB_IMAGE_RADIANCE_F32 || kind == OB_IMAGE_AO_RGB_F32 ||
+                           kind == OB_IMAGE_BOUNCE_F32
+                       ? 3
+                       : 1;
     float most = 0.0f;
     for (size_t i = 0; i < px && channels == 1; ++i) most = buf[i] > most ? buf[i] : most;
     for (int y = 0; y < h; ++y)
@@ -302,7 +309,7 @@ static ob_error view_image(ob_renderer *r, const render_opts *o, float *buf, uns
             for (int c = 0; c < 3; ++c) {
                 float value = buf[src * (size_t)channels + (size_t)(channels == 3 ? c : 0)];
                 if (kind == OB_IMAGE_NORMAL_F32) value = value * 0.5f + 0.5f;
-                else if (kind == OB_IMAGE_RADIANCE_F32) value = srgb(value);
+                else if (kind == OB_IMAGE_RADIANCE_F32 || kind == OB_IMAGE_BOUNCE_F32) value = srgb(value);
                 else if (kind == OB_IMAGE_SAMPLES_F32) value = most > 0.0f ? value / most : 0.0f;
                 else if (kind == OB_IMAGE_DEPTH_F32) value = value > 0.0f && most > 0.0f ? 1.0f - value / most : 0.0f;
                 rgb[dst + (size_t)c] = to_byte(value);

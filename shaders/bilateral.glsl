@@ -16,7 +16,7 @@ layout(local_size_x = OB_FILTER_GROUP_X, local_size_y = OB_FILTER_GROUP_Y) in;
 
 layout(binding = 0) uniform sampler2D ao_in;
 layout(binding = 1) uniform sampler2D linear_depth;
-layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+layout(binding = 0, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
 
 void main()
 {
@@ -25,12 +25,12 @@ void main()
     if (any(greaterThanEqual(pix, size))) return;
     float dp = texelFetch(linear_depth, pix, 0).r;
     if (dp <= 0.0) {
-        imageStore(ao_out, pix, vec4(1.0));
+        imageStore(ao_out, pix, OB_FILTER_SKY);
         return;
     }
     int radius = flt.axis.z;
     float inv_dp = 1.0 / dp;
-    float sum = 0.0;
+    OB_FILTER_T sum = OB_FILTER_T(0.0);
     float weight = 0.0;
     for (int y = -radius; y <= radius; ++y) {
         float wy = flt.weights[abs(y)].x;
@@ -41,7 +41,7 @@ void main()
             if (dq <= 0.0) continue;
             float rel = (dq - dp) * inv_dp;
             float w = wy * flt.weights[abs(x)].x * exp(rel * rel * flt.falloff.x);
-            sum += w * texelFetch(ao_in, q, 0).r;
+            sum += w * OB_FILTER_FETCH(ao_in, q);
             weight += w;
         }
     }

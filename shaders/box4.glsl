@@ -9,7 +9,7 @@ layout(local_size_x = OB_FILTER_GROUP_X, local_size_y = OB_FILTER_GROUP_Y) in;
 
 layout(binding = 0) uniform sampler2D ao_in;
 layout(binding = 1) uniform sampler2D linear_depth;
-layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+layout(binding = 0, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
 
 void main()
 {
@@ -17,16 +17,16 @@ void main()
     ivec2 size = ivec2(flt.size.xy);
     if (any(greaterThanEqual(pix, size))) return;
     if (texelFetch(linear_depth, pix, 0).r <= 0.0) {
-        imageStore(ao_out, pix, vec4(1.0));
+        imageStore(ao_out, pix, OB_FILTER_SKY);
         return;
     }
-    float sum = 0.0;
+    OB_FILTER_T sum = OB_FILTER_T(0.0);
     float weight = 0.0;
     for (int y = -2; y < 2; ++y) {
         for (int x = -2; x < 2; ++x) {
             ivec2 q = clamp(pix + ivec2(x, y), ivec2(0), size - 1);
             if (texelFetch(linear_depth, q, 0).r <= 0.0) continue;
-            sum += texelFetch(ao_in, q, 0).r;
+            sum += OB_FILTER_FETCH(ao_in, q);
             weight += 1.0;
         }
     }

@@ -1,6 +1,9 @@
 #version 450 core
 /* Compose (DESIGN.md "The frame"): direct radiance (lighting.glsl) + ambient x albedo x AO into
  * linear HDR radiance for the tone map; AO darkens the ambient term, or all light on request.
+ * SSDO (flags.y): the RGB modulation factor M darkens direct and ambient light alike (seed 003
+ * §4.2: M is the ratio of the direct term with and without visibility, eq. 4.2), and the bounce,
+ * stored as what a white receiver reflects, is added times the albedo (flags.z; seed 003 §3.3).
  * Ambient: a constant, a sky/ground hemisphere by the world normal, or the environment map's
  * diffuse irradiance from 9 spherical harmonics (Ramamoorthi & Hanrahan 2001, eq. 13), so that a
  * constant environment of radiance L gives exactly the constant ambient L. */
@@ -12,9 +15,10 @@ layout(local_size_x = OB_COMPOSE_GROUP_X, local_size_y = OB_COMPOSE_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D linear_depth;
 layout(binding = 1) uniform sampler2D view_normal;
 layout(binding = 2) uniform sampler2D albedo_map;
-layout(binding = 3) uniform sampler2D ao_map;         /* R32F visibility */
+layout(binding = 3) uniform sampler2D ao_map;         /* R32F visibility, or RGBA16F M (SSDO) */
 layout(binding = 4) uniform sampler2D direct_map;     /* RGBA16F direct radiance */
 layout(binding = 5) uniform sampler2D environment;    /* equirectangular radiance, for the background */
+layout(binding = 6) uniform sampler2D bounce_map;     /* RGBA16F one-bounce indirect light (SSDO) */
 layout(binding = 0, rgba16f) uniform writeonly image2D hdr_out;
 
 /* Irradiance / pi for a world normal from the SH coefficients (already convolved on the CPU). */
@@ -55,6 +59,13 @@ void main()
     if (mode == OB_AMBIENT_MODE_HEMISPHERE) ambient = mix(cmp.ground.rgb, cmp.sky.rgb, 0.5 + 0.5 * n.y);
     else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) ambient = max(ob_sh_irradiance(n), vec3(0.0));
 
-    vec3 color = (cmp.flags.x != 0 ? direct * ao : direct) + ambient * albedo * ao;
+    vec3 color;
+    if (cmp.flags.y != 0) {
+        vec3 m = texelFetch(ao_map, pix, 0).rgb;
+        color = (direct + ambient * albedo) * m;
+        if (cmp.flags.z != 0) color += texelFetch(bounce_map, pix, 0).rgb * albedo;
+    } else {
+        color = (cmp.flags.x != 0 ? direct * ao : direct) + ambient * albedo * ao;
+    }
     imageStore(hdr_out, pix, vec4(color, 1.0));
 }

@@ -19,7 +19,8 @@ OB_CONSTANTS_BEGIN(ob_compose_constants, OB_BINDING_PASS)
     OB_VEC4 sky;           /* hemisphere: radiance from +Y */
     OB_VEC4 ground;        /* hemisphere: radiance from -Y */
     OB_VEC4 background;    /* radiance of pixels with no geometry (constant mode) */
-    OB_IVEC4 flags;        /* AO darkens all light (0/1), unused... */
+    OB_IVEC4 flags;        /* AO darkens all light (0/1), directional RGB M (SSDO, 0/1), add the bounce
+                              (0/1), unused */
     OB_VEC4 sh[9];         /* environment: irradiance SH coefficients E_lm / pi (rgb), order l=0..2 */
 OB_CONSTANTS_END(ob_compose_constants, cmp)
 

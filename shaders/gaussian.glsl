@@ -9,7 +9,7 @@
 layout(local_size_x = OB_FILTER_GROUP_X, local_size_y = OB_FILTER_GROUP_Y) in;
 
 layout(binding = 0) uniform sampler2D ao_in;
-layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+layout(binding = 0, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
 
 void main()
 {
@@ -18,12 +18,12 @@ void main()
     if (any(greaterThanEqual(pix, size))) return;
     ivec2 dir = flt.axis.xy;
     int radius = flt.axis.z;
-    float sum = 0.0;
+    OB_FILTER_T sum = OB_FILTER_T(0.0);
     /* One fetch per iteration over -r..r, like the bilateral passes: folding the symmetric taps
      * into one iteration (w_i (a + b)) ran 2.5x slower on llvmpipe (~90 vs ~35 ms, 1280x720). */
     for (int i = -radius; i <= radius; ++i) {
         ivec2 q = clamp(pix + i * dir, ivec2(0), size - 1);
-        sum += flt.weights[abs(i)].x * texelFetch(ao_in, q, 0).r;
+        sum += flt.weights[abs(i)].x * OB_FILTER_FETCH(ao_in, q);
     }
     imageStore(ao_out, pix, vec4(sum));
 }

@@ -16,7 +16,7 @@ layout(local_size_x = OB_FILTER_GROUP_X, local_size_y = OB_FILTER_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D ao_in;
 layout(binding = 1) uniform sampler2D linear_depth;
 layout(binding = 2) uniform sampler2D view_normal;
-layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+layout(binding = 0, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
 
 void main()
 {
@@ -25,7 +25,7 @@ void main()
     if (any(greaterThanEqual(pix, size))) return;
     float dp = texelFetch(linear_depth, pix, 0).r;
     if (dp <= 0.0) {
-        imageStore(ao_out, pix, vec4(1.0));
+        imageStore(ao_out, pix, OB_FILTER_SKY);
         return;
     }
     vec3 np = texelFetch(view_normal, pix, 0).xyz;
@@ -33,7 +33,7 @@ void main()
     int radius = flt.axis.z;
     float inv_dp = 1.0 / dp;
     float weight = flt.weights[0].x;
-    float sum = weight * texelFetch(ao_in, pix, 0).r;
+    OB_FILTER_T sum = weight * OB_FILTER_FETCH(ao_in, pix);
     for (int i = -radius; i <= radius; ++i) {
         if (i == 0) continue;
         ivec2 q = pix + i * dir;
@@ -44,7 +44,7 @@ void main()
         /* RGBA16F normals can give a dot a hair above 1: clamp before acos. */
         float theta = acos(clamp(dot(np, texelFetch(view_normal, q, 0).xyz), -1.0, 1.0));
         float w = flt.weights[abs(i)].x * exp(rel * rel * flt.falloff.x + theta * theta * flt.falloff.y);
-        sum += w * texelFetch(ao_in, q, 0).r;
+        sum += w * OB_FILTER_FETCH(ao_in, q);
         weight += w;
     }
     imageStore(ao_out, pix, vec4(sum / weight));

@@ -10,7 +10,8 @@
 OB_CONSTANTS_BEGIN(ob_resample_constants, OB_BINDING_PASS)
     OB_IVEC4 full_size;  /* full width, height; AO width, height */
     OB_IVEC4 factor;     /* k (full pixels per AO pixel), o (the representative sub-pixel), unused */
-    OB_VEC4 sigma;       /* upsample: depth sigma (relative); edges: depth step, normal turn thresholds */
+    OB_VEC4 sigma;       /* upsample: depth sigma (relative), the sky value of the RGB variant; edges: depth
+                            step, normal turn thresholds */
 OB_CONSTANTS_END(ob_resample_constants, rs)
 
 #endif

@@ -326,6 +326,12 @@ typedef enum ob_image_kind {
     OB_IMAGE_RADIANCE_F32,    /* direct light (all lights, shadowed), linear RGB, 3 floats, bottom row first */
     OB_IMAGE_SHADOW_F32,      /* the key light's visibility (0 where it faces away), bottom row first */
     OB_IMAGE_HDR_F32,         /* the composed linear radiance before tone mapping, 3 floats */
+    /* Directional methods (ssdo, ssdo_merged) write an RGB modulation factor M instead of one
+     * visibility: OB_IMAGE_AO_F32 and OB_IMAGE_AO_RAW_F32 then hold the average of M's three
+     * channels, and these two the full picture (AO methods: AO in all three, and a zero bounce). */
+    OB_IMAGE_AO_RGB_F32,      /* M after filter and upsampling, 3 floats per pixel, bottom row first */
+    OB_IMAGE_BOUNCE_F32,      /* the one-bounce indirect light off a white receiver (compose multiplies
+                                 it by the albedo), after filter and upsampling, 3 floats, bottom row first */
 } ob_image_kind;
 
 /* Bytes needed for an image of the renderer's size. */
@@ -342,7 +348,8 @@ typedef struct ob_pass_timing {
 int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max);
 
 /* Run the current method on an engine's own textures (ob_renderer still owns the scratch
- * targets): linear_depth is R32F positive view depth, normal is RGBA16F/RGBA32F view-space
+ * targets). Not for directional methods (ssdo*: they need the frame's direct light; errors
+ * OB_ERR_INVALID_ARGUMENT). linear_depth is R32F positive view depth, normal is RGBA16F/RGBA32F view-space
  * normal, both of the renderer's size; ao_out is an R8/R16F/R32F texture of that size. proj is the
  * column-major projection matrix used to rasterise them. */
 ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex,

@@ -19,7 +19,9 @@ typedef struct ao_targets {
     GLuint depth, normal;      /* k > 1: downsampled (owned); k = 1: the G-buffer's (not owned) */
     GLuint raw, filtered, scratch;
     GLuint multiplier;         /* adaptive sample counts, one per OB_EDGE_BLOCK^2 pixels */
-    bool ready;
+    /* Directional methods (SSDO): RGBA16F M and bounce chains, made when one first runs. */
+    GLuint raw_rgb, filtered_rgb, scratch_rgb, bounce_raw, bounce_filtered;
+    bool ready, rgb_ready;
 } ao_targets;
 
 enum { SCALES = 3 }; /* k = 1, 2, 4 */
@@ -29,6 +31,8 @@ struct ob_renderer {
     int width, height;
     ob_gbuffer gbuffer;
     ob_compute_pass downsample, upsample, edges;
+    ob_compute_pass upsample_rgb;  /* made with the first directional frame */
+    bool upsample_rgb_ready;
     ob_compose_pass compose;
     ob_lighting_pass lighting;
     ob_shadow_maps shadows;
@@ -39,10 +43,13 @@ struct ob_renderer {
     GLuint ao, final;          /* full resolution */
     GLuint direct;             /* RGBA16F direct radiance; alpha = the key light's visibility */
     GLuint radiance;           /* RGBA16F composed HDR radiance, before tone mapping */
+    GLuint ao_rgb, bounce;     /* RGBA16F full-resolution SSDO M and bounce (made on first use) */
     void **method_states;      /* lazily made, one per registry entry */
     bool *method_ready;
     void **filter_states;      /* the same for filters */
     bool *filter_ready;
+    void **filter_states_rgb;  /* and their RGBA16F variants (init_rgb) */
+    bool *filter_ready_rgb;
     ob_timer_set timers;
     bool has_scene;
     float bounds_min[3], bounds_max[3];
@@ -53,6 +60,7 @@ struct ob_renderer {
     int last_method;           /* what the last frame ran, for the sample-count view */
     float last_params[OB_MAX_PARAMS];
     bool last_adaptive;
+    bool last_rgb;             /* the last frame's method was directional */
 };
 
 void ob_destroy_renderer(ob_renderer *r)
@@ -65,7 +73,10 @@ void ob_destroy_renderer(ob_renderer *r)
     for (int i = 0; i < ob_filter_count(); ++i) {
         const ob_filter_impl *f = ob_filter_impl_at(i);
         if (r->filter_ready && r->filter_ready[i] && f->destroy) f->destroy(r->filter_states[i]);
+        if (r->filter_ready_rgb && r->filter_ready_rgb[i] && f->destroy) f->destroy(r->filter_states_rgb[i]);
     }
+    free(r->filter_states_rgb);
+    free(r->filter_ready_rgb);
     free(r->method_states);
     free(r->method_ready);
     free(r->filter_states);
@@ -74,6 +85,8 @@ void ob_destroy_renderer(ob_renderer *r)
         ao_targets *t = &r->scales[i];
         GLuint tex[4] = {t->raw, t->filtered, t->scratch, t->multiplier};
         glDeleteTextures(4, tex);
+        GLuint rgb[5] = {t->raw_rgb, t->filtered_rgb, t->scratch_rgb, t->bounce_raw, t->bounce_filtered};
+        glDeleteTextures(5, rgb);
         if (t->grid.k > 1) {
             GLuint own[2] = {t->depth, t->normal};
             glDeleteTextures(2, own);
@@ -82,14 +95,15 @@ void ob_destroy_renderer(ob_renderer *r)
     ob_gbuffer_destroy(&r->gbuffer);
     ob_compute_pass_destroy(&r->downsample);
     ob_compute_pass_destroy(&r->upsample);
+    ob_compute_pass_destroy(&r->upsample_rgb);
     ob_compute_pass_destroy(&r->edges);
     ob_compose_destroy(&r->compose);
     ob_lighting_destroy(&r->lighting);
     ob_shadows_destroy(&r->shadows);
     ob_hdr_destroy(&r->hdr);
     ob_environment_destroy(&r->environment);
-    GLuint tex[4] = {r->ao, r->final, r->direct, r->radiance};
-    glDeleteTextures(4, tex);
+    GLuint tex[6] = {r->ao, r->final, r->direct, r->radiance, r->ao_rgb, r->bounce};
+    glDeleteTextures(6, tex);
     ob_timers_destroy(&r->timers);
     free(r);
 }
@@ -122,8 +136,11 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
     r->method_ready = calloc((size_t)ob_method_count(), sizeof *r->method_ready);
     r->filter_states = calloc((size_t)ob_filter_count(), sizeof *r->filter_states);
     r->filter_ready = calloc((size_t)ob_filter_count(), sizeof *r->filter_ready);
+    r->filter_states_rgb = calloc((size_t)ob_filter_count(), sizeof *r->filter_states_rgb);
+    r->filter_ready_rgb = calloc((size_t)ob_filter_count(), sizeof *r->filter_ready_rgb);
     ob_timers_init(&r->timers);
-    if (!r->method_states || !r->method_ready || !r->filter_states || !r->filter_ready) {
+    if (!r->method_states || !r->method_ready || !r->filter_states || !r->filter_ready || !r->filter_states_rgb ||
+        !r->filter_ready_rgb) {
         ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory making the renderer");
         ob_destroy_renderer(r);
         return NULL;
@@ -162,21 +179,47 @@ ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene)
     return OB_OK;
 }
 
-static void *filter_state(ob_renderer *r, int index, ob_error *err)
+static void *filter_state(ob_renderer *r, int index, bool rgb, ob_error *err)
 {
     const ob_filter_impl *f = ob_filter_impl_at(index);
+    void **states = rgb ? r->filter_states_rgb : r->filter_states;
+    bool *ready = rgb ? r->filter_ready_rgb : r->filter_ready;
+    void *(*init)(void) = rgb ? f->init_rgb : f->init;
     *err = OB_OK;
-    if (!r->filter_ready[index]) {
-        if (f->init) {
-            r->filter_states[index] = f->init();
-            if (!r->filter_states[index]) {
+    if (!ready[index]) {
+        if (init) {
+            states[index] = init();
+            if (!states[index]) {
                 *err = ob_get_error(NULL);
                 return NULL;
             }
         }
-        r->filter_ready[index] = true;
+        ready[index] = true;
     }
-    return r->filter_states[index];
+    return states[index];
+}
+
+/* The RGBA16F chains of directional methods, at this AO resolution and at full resolution. */
+static ob_error rgb_targets_for(ob_renderer *r, ao_targets *t)
+{
+    if (!t->rgb_ready) {
+        int w = t->grid.width, h = t->grid.height;
+        t->raw_rgb = ob_make_texture_2d(GL_RGBA16F, w, h);
+        t->filtered_rgb = ob_make_texture_2d(GL_RGBA16F, w, h);
+        t->scratch_rgb = ob_make_texture_2d(GL_RGBA16F, w, h);
+        t->bounce_raw = ob_make_texture_2d(GL_RGBA16F, w, h);
+        t->bounce_filtered = ob_make_texture_2d(GL_RGBA16F, w, h);
+        t->rgb_ready = true;
+    }
+    if (!r->ao_rgb) r->ao_rgb = ob_make_texture_2d(GL_RGBA16F, r->width, r->height);
+    if (!r->bounce) r->bounce = ob_make_texture_2d(GL_RGBA16F, r->width, r->height);
+    if (!r->upsample_rgb_ready) {
+        if (ob_upsample_init_rgb(&r->upsample_rgb) != OB_OK) return ob_get_error(NULL);
+        r->upsample_rgb_ready = true;
+    }
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making the SSDO targets", e);
+    return OB_OK;
 }
 
 static int scale_index(float scale) { return scale == 0.5f ? 1 : scale == 0.25f ? 2 : 0; }
@@ -317,6 +360,7 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     proj_info_from(in.proj, in.proj_info);
     in.frame = r->frame++;
     in.sample_multiplier = s->adaptive ? t->multiplier : 0;
+    const bool rgb = ob_method_impl_at(s->method)->rgb;
 
     const ob_light *lights = s->light_count > 0 ? s->lights : r->scene_lights;
     int light_count = s->light_count > 0 ? s->light_count : r->scene_light_count;
@@ -352,22 +396,58 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
         ob_edges_run(&r->edges, g, t->depth, t->normal, t->multiplier);
         glMemoryBarrier(barrier);
     }
+    if (rgb) {
+        err = rgb_targets_for(r, t);
+        if (err != OB_OK) {
+            ob_timers_frame_end(&r->timers);
+            return err;
+        }
+        /* SSDO reads the direct light just written, the lights and the ambient (ob_ao_inputs). */
+        in.direct = r->direct;
+        in.albedo = r->gbuffer.albedo;
+        in.grid_k = g->k;
+        in.grid_o = g->o;
+        in.lights = &r->lighting.constants;
+        in.ambient_mode = s->ambient_mode;
+        memcpy(in.ambient, s->ambient, sizeof in.ambient);
+        memcpy(in.sky, s->sky, sizeof in.sky);
+        memcpy(in.ground, s->ground, sizeof in.ground);
+        memcpy(in.sh, r->environment.sh, sizeof in.sh);
+        in.bounce_out = t->bounce_raw;
+    }
+    r->last_rgb = rgb;
     ob_timer_begin(&r->timers, "ao");
-    err = run_method(r, &in, s, t->raw);
+    err = run_method(r, &in, s, rgb ? t->raw_rgb : t->raw);
     if (err != OB_OK) {
         ob_timers_frame_end(&r->timers);
         return err;
     }
     glMemoryBarrier(barrier);
     ob_timer_begin(&r->timers, "filter");
-    void *fstate = filter_state(r, s->filter, &err);
+    void *fstate = filter_state(r, s->filter, rgb, &err);
     if (err != OB_OK) {
         ob_timers_frame_end(&r->timers);
         return err;
     }
-    const ob_filter_inputs fin = {t->raw, g->k > 1 ? t->filtered : r->ao, t->scratch, t->depth, t->normal, g->width,
-                                  g->height};
-    err = ob_filter_impl_at(s->filter)->run(fstate, &fin, s->filter_params);
+    const ob_filter_impl *filter = ob_filter_impl_at(s->filter);
+    if (!rgb) {
+        const ob_filter_inputs fin = {.src = t->raw, .dst = g->k > 1 ? t->filtered : r->ao, .scratch = t->scratch,
+                                      .linear_depth = t->depth, .view_normal = t->normal, .width = g->width,
+                                      .height = g->height, .rgb = false, .sky = 1.0f};
+        err = filter->run(fstate, &fin, s->filter_params);
+    } else {
+        /* M and the bounce through the same filter (seed 003 §5.3 smooths them separately); the
+         * sky is 1 in M and 0 in the bounce. The barrier orders the shared scratch target. */
+        const ob_filter_inputs fm = {.src = t->raw_rgb, .dst = g->k > 1 ? t->filtered_rgb : r->ao_rgb,
+                                     .scratch = t->scratch_rgb, .linear_depth = t->depth, .view_normal = t->normal,
+                                     .width = g->width, .height = g->height, .rgb = true, .sky = 1.0f};
+        const ob_filter_inputs fb = {.src = t->bounce_raw, .dst = g->k > 1 ? t->bounce_filtered : r->bounce,
+                                     .scratch = t->scratch_rgb, .linear_depth = t->depth, .view_normal = t->normal,
+                                     .width = g->width, .height = g->height, .rgb = true, .sky = 0.0f};
+        err = filter->run(fstate, &fm, s->filter_params);
+        glMemoryBarrier(barrier);
+        if (err == OB_OK) err = filter->run(fstate, &fb, s->filter_params);
+    }
     if (err != OB_OK) {
         ob_timers_frame_end(&r->timers);
         return err;
@@ -375,11 +455,18 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     glMemoryBarrier(barrier);
     if (g->k > 1) {
         ob_timer_begin(&r->timers, "upsample");
-        ob_upsample_run(&r->upsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal, t->filtered,
-                        r->ao);
+        if (!rgb) {
+            ob_upsample_run(&r->upsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
+                            t->filtered, r->ao);
+        } else {
+            ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
+                                t->filtered_rgb, r->ao_rgb, 1.0f);
+            ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
+                                t->bounce_filtered, r->bounce, 0.0f);
+        }
         glMemoryBarrier(barrier);
     }
-    GLuint ao = r->ao;
+    GLuint ao = rgb ? r->ao_rgb : r->ao;
 
     ob_compose_inputs ci;
     memset(&ci, 0, sizeof ci);
@@ -400,6 +487,8 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     memcpy(ci.background, s->background, sizeof ci.background);
     memcpy(ci.sh, r->environment.sh, sizeof ci.sh);
     ci.ao_all_light = s->ao_all_light;
+    ci.directional = rgb;
+    ci.bounce = rgb ? r->bounce : 0;
     ob_timer_begin(&r->timers, "compose");
     ob_compose_run(&r->compose, &ci, r->radiance);
     glMemoryBarrier(barrier);
@@ -417,6 +506,9 @@ ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t norma
     if (!r || !proj || !linear_depth_tex || !normal_tex || !ao_out_tex)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: NULL argument");
     if (check_settings(s) != OB_OK) return ob_get_error(NULL);
+    if (ob_method_impl_at(s->method)->rgb)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: %s needs the frame's direct light (ob_render_frame)",
+                            ob_method_at(s->method)->name);
     ob_ao_inputs in;
     memset(&in, 0, sizeof in);
     in.linear_depth = linear_depth_tex;
@@ -467,6 +559,27 @@ static ob_error read_sample_counts(ob_renderer *r, float *dst)
     return OB_OK;
 }
 
+/* An RGBA16F target as 3 floats per pixel, or (channels 1) the average of its three channels:
+ * the AO views of a directional method show M's mean. */
+static ob_error read_rgb(GLuint tex, int w, int h, float *dst, int channels)
+{
+    size_t n = (size_t)w * (size_t)h;
+    float *rgba = malloc(n * 4 * sizeof(float));
+    if (!rgba) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading an image");
+    glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
+    for (size_t i = 0; i < n; ++i) {
+        if (channels == 1) {
+            dst[i] = (rgba[4 * i] + rgba[4 * i + 1] + rgba[4 * i + 2]) / 3.0f;
+        } else {
+            for (int c = 0; c < 3; ++c) dst[3 * i + (size_t)c] = rgba[4 * i + (size_t)c];
+        }
+    }
+    free(rgba);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x reading an image", e);
+    return OB_OK;
+}
+
 size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
 {
     if (!r) return 0;
@@ -483,6 +596,8 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
     case OB_IMAGE_DEPTH_F32: return px * sizeof(float);
     case OB_IMAGE_NORMAL_F32:
     case OB_IMAGE_RADIANCE_F32:
+    case OB_IMAGE_AO_RGB_F32:
+    case OB_IMAGE_BOUNCE_F32:
     case OB_IMAGE_HDR_F32: return px * 3 * sizeof(float);
     case OB_IMAGE_SHADOW_F32: return px * sizeof(float);
     }
@@ -512,10 +627,30 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
         free(tmp);
         break;
     }
-    case OB_IMAGE_AO_F32: glGetTextureImage(r->ao, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_AO_F32:
+        if (r->last_rgb) return read_rgb(r->ao_rgb, r->width, r->height, dst, 1);
+        glGetTextureImage(r->ao, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst);
+        break;
     case OB_IMAGE_AO_RAW_F32:
         if (!r->scales[r->last_scale].ready) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "no frame rendered yet");
+        if (r->last_rgb) {
+            const ao_targets *t = &r->scales[r->last_scale];
+            return read_rgb(t->raw_rgb, t->grid.width, t->grid.height, dst, 1);
+        }
         glGetTextureImage(r->scales[r->last_scale].raw, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst);
+        break;
+    case OB_IMAGE_AO_RGB_F32:
+        if (r->last_rgb) return read_rgb(r->ao_rgb, r->width, r->height, dst, 3);
+        /* An AO method: its visibility in all three channels. */
+        glGetTextureImage(r->ao, 0, GL_RED, GL_FLOAT, (GLsizei)(need / 3), dst);
+        for (size_t i = need / sizeof(float) / 3; i-- > 0;) {
+            float v = ((float *)dst)[i];
+            for (int c = 0; c < 3; ++c) ((float *)dst)[3 * i + (size_t)c] = v;
+        }
+        break;
+    case OB_IMAGE_BOUNCE_F32:
+        if (r->last_rgb) return read_rgb(r->bounce, r->width, r->height, dst, 3);
+        memset(dst, 0, need);
         break;
     case OB_IMAGE_SAMPLES_F32: {
         ob_error e = read_sample_counts(r, dst);

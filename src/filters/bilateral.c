@@ -23,19 +23,8 @@ static const ob_param_info bilateral_params[P_COUNT] = {
                        "range standard deviation on |d_q - d_p| / d_p (eq. 4.5)", false},
 };
 
-static void *bilateral_init(void)
-{
-    ob_compute_pass *p = calloc(1, sizeof *p);
-    if (!p) {
-        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (bilateral)");
-        return NULL;
-    }
-    if (ob_compute_pass_init(p, "bilateral.glsl", NULL, sizeof(ob_filter_constants)) != OB_OK) {
-        free(p);
-        return NULL;
-    }
-    return p;
-}
+static void *bilateral_init(void) { return ob_filter_make_pass("bilateral.glsl", false); }
+static void *bilateral_init_rgb(void) { return ob_filter_make_pass("bilateral.glsl", true); }
 
 static ob_error bilateral_run(void *state, const ob_filter_inputs *in, const float *params)
 {
@@ -44,7 +33,7 @@ static ob_error bilateral_run(void *state, const ob_filter_inputs *in, const flo
     ob_compute_pass_use(state, &c, ob_filter_constants_used(&c));
     glBindTextureUnit(0, in->src);
     glBindTextureUnit(1, in->linear_depth);
-    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
     ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
     return OB_OK;
 }
@@ -65,4 +54,5 @@ const ob_filter_impl ob_filter_bilateral = {
     .init = bilateral_init,
     .run = bilateral_run,
     .destroy = bilateral_destroy,
+    .init_rgb = bilateral_init_rgb,
 };

@@ -18,19 +18,8 @@ static const ob_param_info bilateral_sep_params[P_COUNT] = {
                        "range standard deviation on |d_q - d_p| / d_p (eq. 4.6-4.7)", false},
 };
 
-static void *bilateral_sep_init(void)
-{
-    ob_compute_pass *p = calloc(1, sizeof *p);
-    if (!p) {
-        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (bilateral_sep)");
-        return NULL;
-    }
-    if (ob_compute_pass_init(p, "bilateral_sep.glsl", NULL, sizeof(ob_filter_constants)) != OB_OK) {
-        free(p);
-        return NULL;
-    }
-    return p;
-}
+static void *bilateral_sep_init(void) { return ob_filter_make_pass("bilateral_sep.glsl", false); }
+static void *bilateral_sep_init_rgb(void) { return ob_filter_make_pass("bilateral_sep.glsl", true); }
 
 static ob_error bilateral_sep_run(void *state, const ob_filter_inputs *in, const float *params)
 {
@@ -56,4 +45,5 @@ const ob_filter_impl ob_filter_bilateral_sep = {
     .init = bilateral_sep_init,
     .run = bilateral_sep_run,
     .destroy = bilateral_sep_destroy,
+    .init_rgb = bilateral_sep_init_rgb,
 };

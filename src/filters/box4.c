@@ -6,19 +6,8 @@
 #include "filter_params.h"
 #include "filters/filter.h"
 
-static void *box4_init(void)
-{
-    ob_compute_pass *p = calloc(1, sizeof *p);
-    if (!p) {
-        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (box4)");
-        return NULL;
-    }
-    if (ob_compute_pass_init(p, "box4.glsl", NULL, sizeof(ob_filter_constants)) != OB_OK) {
-        free(p);
-        return NULL;
-    }
-    return p;
-}
+static void *box4_init(void) { return ob_filter_make_pass("box4.glsl", false); }
+static void *box4_init_rgb(void) { return ob_filter_make_pass("box4.glsl", true); }
 
 static ob_error box4_run(void *state, const ob_filter_inputs *in, const float *params)
 {
@@ -29,10 +18,11 @@ static ob_error box4_run(void *state, const ob_filter_inputs *in, const float *p
     c.size[1] = (float)in->height;
     c.size[2] = 1.0f / (float)in->width;
     c.size[3] = 1.0f / (float)in->height;
+    c.falloff[2] = in->sky; /* the RGB variant's sky value (filter_params.h) */
     ob_compute_pass_use(state, &c, offsetof(ob_filter_constants, weights));
     glBindTextureUnit(0, in->src);
     glBindTextureUnit(1, in->linear_depth);
-    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
     ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
     return OB_OK;
 }
@@ -50,4 +40,5 @@ const ob_filter_impl ob_filter_box4 = {
     .init = box4_init,
     .run = box4_run,
     .destroy = box4_destroy,
+    .init_rgb = box4_init_rgb,
 };

@@ -16,7 +16,15 @@ typedef struct ob_filter_inputs {
     GLuint linear_depth;  /* R32F, positive view depth, 0 = no geometry */
     GLuint view_normal;   /* RGBA16F view-space unit normal */
     int width, height;
+    /* The RGB variant (SSDO's modulation factor and bounce): src, dst and scratch are RGBA16F,
+     * run with the state from init_rgb; sky pixels get `sky` in every channel (1 for M, 0 for
+     * the bounce). false: R32F, sky pixels 1. */
+    bool rgb;
+    float sky;
 } ob_filter_inputs;
+
+/* The image format of a filter's targets. */
+static inline GLenum ob_filter_format(const ob_filter_inputs *in) { return in->rgb ? GL_RGBA16F : GL_R32F; }
 
 typedef struct ob_filter_impl {
     ob_filter_info info;
@@ -27,6 +35,9 @@ typedef struct ob_filter_impl {
      * filter the filter itself calls glMemoryBarrier. */
     ob_error (*run)(void *state, const ob_filter_inputs *in, const float *params);
     void (*destroy)(void *state);
+    /* The same for RGBA16F targets (the shader compiled with OB_FILTER_RGB); NULL when init is
+     * NULL or the filter is format-blind (none). */
+    void *(*init_rgb)(void);
 } ob_filter_impl;
 
 const ob_filter_impl *ob_filter_impl_at(int index);
@@ -41,6 +52,8 @@ void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in
  * in->scratch, a barrier, then along y into in->dst. Binds AO at texture unit 0, linear depth at
  * 1, view normals at 2 and the output image at 0. */
 void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, const ob_filter_inputs *in);
+/* A filter's compute pass from its shader, R32F or (rgb) RGBA16F; NULL + ob_set_error. */
+void *ob_filter_make_pass(const char *shader, bool rgb);
 /* Bytes of c worth uploading: the block up to the last weight in use. */
 size_t ob_filter_constants_used(const ob_filter_constants *c);
 

@@ -19,19 +19,8 @@ static const ob_param_info gaussian_params[P_COUNT] = {
     [P_SIGMA] = {"sigma", OB_PARAM_FLOAT, 0.1f, 16.0f, 2.0f, "px", "spatial standard deviation (eq. 4.4)", false},
 };
 
-static void *gaussian_init(void)
-{
-    ob_compute_pass *p = calloc(1, sizeof *p);
-    if (!p) {
-        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (gaussian)");
-        return NULL;
-    }
-    if (ob_compute_pass_init(p, "gaussian.glsl", NULL, sizeof(ob_filter_constants)) != OB_OK) {
-        free(p);
-        return NULL;
-    }
-    return p;
-}
+static void *gaussian_init(void) { return ob_filter_make_pass("gaussian.glsl", false); }
+static void *gaussian_init_rgb(void) { return ob_filter_make_pass("gaussian.glsl", true); }
 
 static ob_error gaussian_run(void *state, const ob_filter_inputs *in, const float *params)
 {
@@ -57,4 +46,5 @@ const ob_filter_impl ob_filter_gaussian = {
     .init = gaussian_init,
     .run = gaussian_run,
     .destroy = gaussian_destroy,
+    .init_rgb = gaussian_init_rgb,
 };

@@ -29,19 +29,8 @@ static const ob_param_info geometry_params[P_COUNT] = {
                         "range standard deviation on the angle between normals", false},
 };
 
-static void *geometry_init(void)
-{
-    ob_compute_pass *p = calloc(1, sizeof *p);
-    if (!p) {
-        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (geometry)");
-        return NULL;
-    }
-    if (ob_compute_pass_init(p, "geometry.glsl", NULL, sizeof(ob_filter_constants)) != OB_OK) {
-        free(p);
-        return NULL;
-    }
-    return p;
-}
+static void *geometry_init(void) { return ob_filter_make_pass("geometry.glsl", false); }
+static void *geometry_init_rgb(void) { return ob_filter_make_pass("geometry.glsl", true); }
 
 static ob_error geometry_run(void *state, const ob_filter_inputs *in, const float *params)
 {
@@ -68,4 +57,5 @@ const ob_filter_impl ob_filter_geometry = {
     .init = geometry_init,
     .run = geometry_run,
     .destroy = geometry_destroy,
+    .init_rgb = geometry_init_rgb,
 };

@@ -5,8 +5,10 @@
  * measures the separable approximation and nothing else. */
 #include <math.h>
 #include <stddef.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "core/error.h"
 #include "filters/filter.h"
 
 void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in, int radius, float sigma_px,
@@ -27,6 +29,7 @@ void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in
      * a product of two as one exp() of the sum. 0 turns a term into a constant 1. */
     c->falloff[0] = sigma_depth > 0.0f ? -1.0f / (2.0f * sigma_depth * sigma_depth) : 0.0f;
     c->falloff[1] = sigma_normal > 0.0f ? -1.0f / (2.0f * sigma_normal * sigma_normal) : 0.0f;
+    c->falloff[2] = in->sky; /* read by the RGB variant only (filter_params.h) */
 
     /* Eq. 4.4 at x = 0..radius with mu = 0. The 1/(sigma sqrt(2 pi)) factor is replaced by the sum
      * over the taps actually used, so a kernel truncated at 2 sigma still keeps the AO's mean
@@ -57,7 +60,7 @@ void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, cons
     c->axis[1] = 0;
     ob_compute_pass_use(pass, c, used);
     glBindTextureUnit(0, in->src);
-    glBindImageTexture(0, in->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(0, in->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
     ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
 
     /* The y pass samples what the x pass stored with imageStore. */
@@ -69,6 +72,20 @@ void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, cons
     c->axis[1] = 1;
     ob_compute_pass_use(pass, c, used);
     glBindTextureUnit(0, in->scratch);
-    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
     ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
+}
+
+void *ob_filter_make_pass(const char *shader, bool rgb)
+{
+    ob_compute_pass *p = calloc(1, sizeof *p);
+    if (!p) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (%s)", shader);
+        return NULL;
+    }
+    if (ob_compute_pass_init(p, shader, rgb ? "#define OB_FILTER_RGB 1\n" : NULL, sizeof(ob_filter_constants)) != OB_OK) {
+        free(p);
+        return NULL;
+    }
+    return p;
 }

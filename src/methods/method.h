@@ -4,6 +4,7 @@
 #define OB_METHOD_H
 
 #include "gpu/gpu.h"
+#include "lighting_params.h"
 #include "obscura/obscura.h"
 
 /* What every method gets each frame: textures of the renderer's size and the camera. */
@@ -18,6 +19,16 @@ typedef struct ob_ao_inputs {
      * samples/3 (at least 1) x the multiplier (1, 2 or 3) of its OB_EDGE_BLOCK^2 block of this
      * R32F texture; methods without one ignore it. */
     GLuint sample_multiplier; /* 0 = off */
+    /* ---- what directional methods (ob_method_impl.rgb: SSDO) read besides; AO methods ignore it.
+     * Filled by ob_render_frame only (ob_compute_ao refuses rgb methods). */
+    GLuint direct;        /* full-resolution RGBA16F direct radiance (the lighting pass's output) */
+    GLuint albedo;        /* full-resolution albedo (SSDO leaves the receiver's albedo to compose) */
+    int grid_k, grid_o;   /* AO pixel i lies at full pixel k i + o (k = 1, o = 0 at full size) */
+    const ob_lighting_constants *lights; /* world-space lights (counts.x of them) and inv_view */
+    ob_ambient_mode ambient_mode;
+    float ambient[3], sky[3], ground[3]; /* as ob_settings */
+    float sh[9][3];       /* environment: irradiance / pi SH, as compose */
+    GLuint bounce_out;    /* RGBA16F of the inputs' size: the one-bounce indirect light */
 } ob_ao_inputs;
 
 /* The base count that the multiplier scales under adaptive sampling. */
@@ -28,7 +39,8 @@ typedef struct ob_method_impl {
     /* Make programs and static resources; return NULL with ob_set_error on failure.
      * May be NULL for methods that need nothing. */
     void *(*init)(void);
-    /* Write visibility to ao_out (R32F, inputs' size). params are in table order, validated. */
+    /* Write visibility to ao_out (R32F, inputs' size; RGBA16F M and bounce_out for rgb methods).
+     * params are in table order, validated. */
     ob_error (*run)(void *state, const ob_ao_inputs *in, const float *params, GLuint ao_out);
     void (*destroy)(void *state);
     /* How `samples` per pixel map onto this method's parameters, when that is more than setting
@@ -40,6 +52,10 @@ typedef struct ob_method_impl {
     int (*count_samples)(const float *params);
     /* Honours ob_ao_inputs.sample_multiplier (adaptive sample counts). */
     bool adapts;
+    /* Directional: ao_out is RGBA16F and receives a per-channel modulation factor M (1 = open),
+     * and bounce_out an RGB indirect light; the renderer filters and upsamples both and compose
+     * uses them as direct x M + bounce (SSDO). false: ao_out is R32F visibility. */
+    bool rgb;
 } ob_method_impl;
 
 /* Samples per pixel of a method with these (resolved) params; 0 for none. */

@@ -8,6 +8,8 @@ extern const ob_method_impl ob_method_ssao;
 extern const ob_method_impl ob_method_hbao;
 extern const ob_method_impl ob_method_crytek;
 extern const ob_method_impl ob_method_alchemy;
+extern const ob_method_impl ob_method_ssdo;
+extern const ob_method_impl ob_method_ssdo_merged;
 
 static const ob_method_impl *const methods[] = {
     &ob_method_none,
@@ -15,6 +17,8 @@ static const ob_method_impl *const methods[] = {
     &ob_method_hbao,
     &ob_method_crytek,
     &ob_method_alchemy,
+    &ob_method_ssdo,
+    &ob_method_ssdo_merged,
 };
 
 const char *const ob_sampling_options[] = {"random", "halton"};

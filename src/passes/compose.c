@@ -1,4 +1,4 @@
-/* Compose: direct light + ambient x AO into HDR radiance (DESIGN.md "The frame"). Shader:
+/* Compose: direct light + ambient x AO (or SSDO's direct x M + bounce) into HDR radiance (DESIGN.md "The frame"). Shader:
  * shaders/compose.glsl. */
 #include <string.h>
 
@@ -35,6 +35,8 @@ void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_
     put3(k.background, in->background, 0.0f);
     for (int i = 0; i < 9; ++i) put3(k.sh[i], in->sh[i], 0.0f);
     k.flags[0] = in->ao_all_light ? 1 : 0;
+    k.flags[1] = in->directional ? 1 : 0;
+    k.flags[2] = in->directional && in->bounce ? 1 : 0;
     ob_compute_pass_use(&c->pass, &k, sizeof k);
     glBindTextureUnit(0, in->linear_depth);
     glBindTextureUnit(1, in->normal);
@@ -43,6 +45,7 @@ void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_
     glBindTextureUnit(4, in->direct);
     /* Without an environment map the sampler is never read; bind a valid texture all the same. */
     glBindTextureUnit(5, in->environment ? in->environment : in->direct);
+    glBindTextureUnit(6, in->bounce ? in->bounce : in->direct);
     glBindImageTexture(0, hdr_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(in->width, in->height, OB_COMPOSE_GROUP_X, OB_COMPOSE_GROUP_Y);
 }

@@ -55,6 +55,11 @@ void ob_downsample_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_dept
 ob_error ob_upsample_init(ob_compute_pass *p);
 void ob_upsample_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_depth, GLuint full_normal, GLuint low_depth,
                      GLuint low_normal, GLuint low_ao, GLuint ao_out);
+/* The RGBA16F variant for SSDO's M and bounce (the pass from ob_upsample_init_rgb): sky pixels
+ * get `sky` (1 for M, 0 for the bounce). */
+ob_error ob_upsample_init_rgb(ob_compute_pass *p);
+void ob_upsample_run_rgb(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_depth, GLuint full_normal,
+                         GLuint low_depth, GLuint low_normal, GLuint low_rgb, GLuint rgb_out, float sky);
 
 /* Adaptive sample counts: a multiplier 1/2/3 per OB_EDGE_BLOCK^2 AO pixels (seed 003 §4.1). */
 ob_error ob_edges_init(ob_compute_pass *p);
@@ -90,6 +95,10 @@ typedef struct ob_compose_pass { ob_compute_pass pass; } ob_compose_pass;
 
 typedef struct ob_compose_inputs {
     GLuint linear_depth, normal, albedo, ao, direct, environment;
+    /* SSDO (directional): ao is RGBA16F M, multiplying direct and ambient light; bounce (RGBA16F,
+     * radiance off a white receiver) is added times the albedo. */
+    bool directional;
+    GLuint bounce;        /* 0 = none */
     int width, height;
     float proj_info[4];
     float inv_view[16];

@@ -1,0 +1,195 @@
+#version 450 core
+/* Screen-space directional occlusion with one indirect bounce (Ritschel, Grosch & Seidel 2009,
+ * as described in seed 003 §3.3 and §4.2; seed 000 §4.1-4.2). One program, three stages
+ * (ssdo.counts.w), so `ssdo`'s two passes and `ssdo_merged` take exactly the same samples:
+ *
+ *   - samples P + r_i w_i in the normal hemisphere in 3D (w_i from a Halton 2,5 kernel, r_i from
+ *     base 3, seed 003 §5.3), rotated per pixel, back-projected; a sample behind the depth buffer
+ *     whose occluder rises above P's tangent plane within range is an occluder (V = 0);
+ *   - the modulation factor per channel (seed 003 eq. 4.4)
+ *         M = sum L_in(w_i) V(w_i) cos(theta_i) / sum L_in(w_i) cos(theta_i),
+ *     the ratio of the direct term of eq. 3.3 with and without visibility (eq. 4.2-4.3), so the
+ *     constant rho / pi and the sample's solid angle 2 pi / N cancel. With cosine-weighted
+ *     directions (eq. 5.2, `ssdo_merged`) the cosine is in the pdf and drops out of both sums;
+ *     with uniform directions (eq. 5.3, `ssdo`'s pass 1) it stays;
+ *   - the bounce (eq. 3.4): each occluder pixel is a patch of area A_s = pi r^2 / N sending its
+ *     direct radiance L_s to P:  sum L_s A_s cos(theta_s) cos(theta_r) / d^2, back-facing
+ *     senders (cos theta_s <= 0) dropped. Stored as the radiance a white receiver reflects
+ *     (x 1/pi, without the receiver's albedo, which compose applies at full resolution so the
+ *     filters never blur texture detail into it). `ssdo_merged` darkens it by M (seed 003 §4.2).
+ *
+ * L_in(w): the ambient (constant, sky/ground hemisphere, or the environment's SH irradiance / pi
+ * as a smooth stand-in for its radiance) plus every light spread into a normalised cosine lobe
+ * (k + 1) / (2 pi) max(0, w . l)^k around its direction, so that its integral over the sphere
+ * is the light's irradiance at normal incidence. A delta light would never be hit by a sample
+ * direction; the lobe is our choice (ssdo.params.w = k). Shadow maps are not consulted here:
+ * they already shadow the direct light that M multiplies. */
+#include "ssdo_params.h"
+#include "common.glsl"
+#include "noise.glsl"
+
+layout(local_size_x = OB_SSDO_GROUP_X, local_size_y = OB_SSDO_GROUP_Y) in;
+
+layout(binding = 0) uniform sampler2D linear_depth; /* AO grid, R32F, 0 = no geometry */
+layout(binding = 1) uniform sampler2D view_normal;  /* AO grid, RGBA16F */
+layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
+layout(binding = 3) uniform sampler2D direct_map;   /* full resolution RGBA16F direct radiance */
+layout(binding = 0, rgba16f) uniform writeonly image2D m_out;
+layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
+
+const float PI = 3.14159265;
+
+vec3 sh_irradiance(vec3 n)
+{
+    return ssdo.sh[0].rgb + ssdo.sh[1].rgb * n.y + ssdo.sh[2].rgb * n.z + ssdo.sh[3].rgb * n.x +
+           ssdo.sh[4].rgb * (n.x * n.y) + ssdo.sh[5].rgb * (n.y * n.z) + ssdo.sh[6].rgb * (3.0 * n.z * n.z - 1.0) +
+           ssdo.sh[7].rgb * (n.x * n.z) + ssdo.sh[8].rgb * (n.x * n.x - n.y * n.y);
+}
+
+/* The lights as seen from one point, in view space: direction and irradiance (colour x
+ * intensity x falloff x the lobe's normalisation). They depend on P only, so they are worked out
+ * once per pixel and each sample pays one dot and one pow per light. */
+vec3 light_dir[OB_SSDO_MAX_LIGHTS];
+vec3 light_e[OB_SSDO_MAX_LIGHTS];
+
+void lights_at(vec3 p, mat3 to_view)
+{
+    float k = ssdo.params.w;
+    float lobe_norm = (k + 1.0) / (2.0 * PI);
+    for (int i = 0; i < ssdo.grid.z; ++i) {
+        int type = int(ssdo.light_color[i].w);
+        vec3 l;
+        float falloff = 1.0;
+        /* The same falloff, window and cone as lighting.glsl. */
+        if (type == OB_SSDO_LIGHT_DIRECTIONAL) {
+            l = ssdo.light_direction[i].xyz;
+        } else {
+            vec3 to_light = ssdo.light_position[i].xyz - p;
+            float dist2 = max(dot(to_light, to_light), 1e-8);
+            l = to_light * inversesqrt(dist2);
+            falloff = 1.0 / dist2;
+            float range = ssdo.light_position[i].w;
+            if (range > 0.0) {
+                float x = dist2 / (range * range);
+                float win = clamp(1.0 - x * x, 0.0, 1.0);
+                falloff *= win * win;
+            }
+            if (type == OB_SSDO_LIGHT_SPOT)
+                falloff *= smoothstep(ssdo.light_spot[i].y, ssdo.light_spot[i].x, dot(-l, ssdo.light_direction[i].xyz));
+        }
+        light_dir[i] = to_view * l;
+        light_e[i] = ssdo.light_color[i].rgb * (falloff * lobe_norm);
+    }
+}
+
+/* Incoming radiance from view direction w (see the top comment); up is world +Y in view space. */
+vec3 incoming(vec3 w, vec3 up, mat3 to_world)
+{
+    int mode = ssdo.grid.w;
+    vec3 l_in = ssdo.ambient.rgb;
+    if (mode == OB_SSDO_AMBIENT_HEMISPHERE) l_in = mix(ssdo.ground.rgb, ssdo.sky.rgb, 0.5 + 0.5 * dot(w, up));
+    else if (mode == OB_SSDO_AMBIENT_ENVIRONMENT) l_in = max(sh_irradiance(to_world * w), vec3(0.0));
+    for (int i = 0; i < ssdo.grid.z; ++i) l_in += light_e[i] * pow(max(dot(w, light_dir[i]), 0.0), ssdo.params.w);
+    return l_in;
+}
+
+void main()
+{
+    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(ssdo.size.xy);
+    if (any(greaterThanEqual(pix, size))) return;
+    int stage = ssdo.counts.w;
+    bool want_m = stage != OB_SSDO_STAGE_BOUNCE;
+    bool want_bounce = stage != OB_SSDO_STAGE_DIRECT && ssdo.counts.z != 0;
+
+    float d = texelFetch(linear_depth, pix, 0).r;
+    if (d <= 0.0) {
+        /* The sky: nothing occludes it and it sends no bounce. */
+        if (want_m) imageStore(m_out, pix, vec4(1.0));
+        if (stage != OB_SSDO_STAGE_DIRECT) imageStore(bounce_out, pix, vec4(0.0));
+        return;
+    }
+    vec3 p = ob_view_position(vec2(pix) + 0.5, d, ssdo.size, ssdo.proj_info);
+    vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
+    vec3 p_world = (ssdo.inv_view * vec4(p, 1.0)).xyz;
+    mat3 to_world = mat3(ssdo.inv_view);
+    mat3 to_view = transpose(to_world); /* inv_view's rotation is orthonormal */
+    vec3 up = to_view[1];
+    if (want_m) lights_at(p_world, to_view);
+    vec3 rnd = vec3(ob_rotation(pix, ssdo.counts.y, noise_tile), 0.0);
+    /* Gram-Schmidt as in ssao.glsl. */
+    vec3 t = rnd - n * dot(rnd, n);
+    if (dot(t, t) < 1e-6) t = abs(n.x) < 0.9 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0));
+    t = normalize(t);
+    mat3 tbn = mat3(t, cross(n, t), n);
+
+    float radius = ssdo.params.x;
+    float bias = ssdo.params.y;
+    int count = ssdo.counts.x;
+    bool cosine_pdf = stage == OB_SSDO_STAGE_MERGED;
+    /* Patches closer than their own radius sqrt(A_s / pi) = r / sqrt(N) would make 1/d^2 blow up. */
+    float min_d2 = radius * radius / float(max(count, 1));
+    ivec2 full_size = textureSize(direct_map, 0);
+    vec3 lit = vec3(0.0), total = vec3(0.0), bounce = vec3(0.0);
+    float vis = 0.0, vis_all = 0.0;
+    for (int i = 0; i < count; ++i) {
+        vec3 dir = tbn * ssdo.kernel[i].xyz;
+        /* Eq. 4.4 keeps cos(theta) for uniform directions; cosine-weighted ones carry it. */
+        float w = cosine_pdf ? 1.0 : max(ssdo.kernel[i].z, 0.0);
+        float occ = 0.0;
+        ivec2 q = ivec2(0);
+        vec3 scene_p = vec3(0.0);
+        vec3 s = p + dir * (radius * ssdo.kernel[i].w);
+        vec4 clip = ssdo.proj * vec4(s, 1.0);
+        if (clip.w > 0.0) {
+            vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+            if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
+                q = ivec2(uv * ssdo.size.xy);
+                float scene_d = texelFetch(linear_depth, q, 0).r;
+                if (scene_d > 0.0) {
+                    scene_p = ob_view_position(vec2(q) + 0.5, scene_d, ssdo.size, ssdo.proj_info);
+                    /* As ssao.glsl: an occluder rises above P's tangent plane (no self-occlusion
+                     * of flat surfaces read at pixel centres), and fades out beyond the radius
+                     * (seed 004 §3.3's range check) so foreground silhouettes do not occlude. */
+                    bool above = dot(scene_p - p, n) > bias;
+                    float range = smoothstep(0.0, 1.0, radius / abs(d - scene_d));
+                    occ = above && scene_d <= -s.z - bias ? range : 0.0;
+                }
+            }
+        }
+        if (want_m) {
+            vec3 l_in = incoming(dir, up, to_world);
+            lit += l_in * (w * (1.0 - occ));
+            total += l_in * w;
+            vis += w * (1.0 - occ);
+            vis_all += w;
+        }
+        if (want_bounce && occ > 0.0) {
+            vec3 v = p - scene_p;
+            float len2 = max(dot(v, v), 1e-12);
+            vec3 vd = v * inversesqrt(len2);
+            vec3 ns = texelFetch(view_normal, q, 0).xyz;
+            float cos_s = dot(ns, vd);   /* the sender must face P */
+            float cos_r = dot(n, -vd);   /* and P must face the sender */
+            if (cos_s > 0.0 && cos_r > 0.0) {
+                ivec2 fq = clamp(q * ssdo.grid.x + ssdo.grid.y, ivec2(0), full_size - 1);
+                vec3 l_s = texelFetch(direct_map, fq, 0).rgb;
+                bounce += l_s * (occ * cos_s * cos_r / max(len2, min_d2));
+            }
+        }
+    }
+    vec3 m = vec3(1.0);
+    if (want_m) {
+        /* A channel that no light reaches has no ratio: it takes the plain visibility. */
+        float v0 = vis_all > 0.0 ? vis / vis_all : 1.0;
+        for (int c = 0; c < 3; ++c) m[c] = total[c] > 1e-6 ? lit[c] / total[c] : v0;
+        m = clamp(m, 0.0, 1.0);
+        imageStore(m_out, pix, vec4(m, 1.0));
+    }
+    if (stage != OB_SSDO_STAGE_DIRECT) {
+        /* A_s / pi x strength, from the CPU; the merged variant darkens the bounce by M. */
+        bounce *= ssdo.params.z;
+        if (stage == OB_SSDO_STAGE_MERGED) bounce *= m;
+        imageStore(bounce_out, pix, vec4(want_bounce ? bounce : vec3(0.0), 1.0));
+    }
+}

@@ -1,0 +1,192 @@
+/* `ssdo` and `ssdo_merged`: screen-space directional occlusion with one indirect bounce
+ * (Ritschel, Grosch & Seidel 2009, described in seed 003 §3.3; seed 003 §4.2 and §5.3; seed 000
+ * §4.1-4.2). Both write a per-channel modulation factor M (seed 003 eq. 4.2-4.4: the direct light
+ * with visibility over the same without, 1 = open) and an RGB bounce; compose gives
+ * direct x M + ambient x albedo x M + bounce x albedo.
+ *   - `ssdo`: the original two passes. Pass 1 takes uniform solid-angle directions (eq. 5.3) and
+ *     weighs incoming radiance by cos(theta); pass 2 revisits the same samples and turns every
+ *     occluder pixel into a patch of area pi r^2 / N sending its direct radiance (eq. 3.4).
+ *   - `ssdo_merged`: seed 003's one-pass variant: cosine-weighted directions (eq. 5.2), M and the
+ *     bounce in one loop, the bounce darkened by M.
+ * Shader: shaders/ssdo.glsl (one program, the stage in a constant). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "methods/method.h"
+#include "sampling/sampling.h"
+#include "ssdo_params.h"
+
+enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_COUNT };
+
+static const ob_param_info ssdo_params[P_COUNT] = {
+    [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
+                  "sampling hemisphere radius; default: the scene's suggested radius", true},
+    /* As `ssao`: relative to the radius, 0.02 removes R32F depth acne. */
+    [P_BIAS] = {"bias", OB_PARAM_FLOAT, 0.0f, 0.5f, 0.02f, "x radius",
+                "depth bias against self-occlusion, as a fraction of the radius", false},
+    /* 16: the 4x4 noise x 16 Halton points gives 256 directions per tile; multiples of 10 (the
+     * period of bases 2 x 5, seed 003 §4.1) split the hemisphere evenly too. */
+    [P_SAMPLES] = {"samples", OB_PARAM_INT, 1.0f, (float)OB_SSDO_MAX_SAMPLES, 16.0f, "count",
+                   "hemisphere samples per pixel (Halton 2,5 directions, 3 for the step)", false},
+    [P_BOUNCE] = {"bounce", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
+                  "one indirect bounce from occluder pixels (eq. 3.4); off writes a black bounce", false},
+    /* 1 = the physical patch area A_s = pi r^2 / N of eq. 3.4; seed 003 §5.3 leaves it to the user. */
+    [P_BOUNCE_STRENGTH] = {"bounce_strength", OB_PARAM_FLOAT, 0.0f, 16.0f, 1.0f, "x A_s",
+                           "multiplies the sender patch area pi r^2 / N", false},
+    /* 8: a lobe of ~30 degrees half-width at half maximum, wide enough that 16 samples hit it,
+     * narrow enough that M still says from which side the light comes. */
+    [P_LOBE] = {"lobe", OB_PARAM_FLOAT, 1.0f, 256.0f, 8.0f, "exponent",
+                "lights become cosine lobes max(0, w.l)^k around their direction: k", false},
+};
+
+#define KERNEL_SEED 0x55D0u
+
+typedef struct ssdo_state {
+    ob_compute_pass pass;
+    GLuint noise;
+    int kernel_count; /* the cached kernel was built for these */
+    int kernel_pdf;
+    bool merged;
+    ob_ssdo_constants constants;
+} ssdo_state;
+
+static void ssdo_destroy(void *p)
+{
+    ssdo_state *s = p;
+    if (!s) return;
+    ob_compute_pass_destroy(&s->pass);
+    glDeleteTextures(1, &s->noise);
+    free(s);
+}
+
+static void *ssdo_make(bool merged)
+{
+    ssdo_state *s = calloc(1, sizeof *s);
+    if (!s) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (ssdo)");
+        return NULL;
+    }
+    if (ob_compute_pass_init(&s->pass, "ssdo.glsl", NULL, sizeof(ob_ssdo_constants)) != OB_OK) {
+        free(s);
+        return NULL;
+    }
+    s->noise = ob_make_rotation_noise_texture();
+    s->merged = merged;
+    s->kernel_count = -1;
+    return s;
+}
+
+static void *ssdo_init(void) { return ssdo_make(false); }
+static void *ssdo_merged_init(void) { return ssdo_make(true); }
+
+/* Halton 2,5 directions and base 3 steps (seed 003 §5.3), as unit direction + length. */
+static void build_kernel(ssdo_state *s, int count, ob_direction_pdf pdf)
+{
+    ob_ssdo_constants *c = &s->constants;
+    ob_hemisphere_kernel(&c->kernel[0][0], count, OB_SAMPLING_HALTON, pdf, KERNEL_SEED);
+    for (int i = 0; i < count; ++i) {
+        float *k = c->kernel[i];
+        float len = sqrtf(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]);
+        float inv = len > 0.0f ? 1.0f / len : 0.0f;
+        k[0] *= inv;
+        k[1] *= inv;
+        k[2] *= inv;
+        k[3] = len;
+    }
+    s->kernel_count = count;
+    s->kernel_pdf = (int)pdf;
+}
+
+static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, GLuint ao_out)
+{
+    ssdo_state *s = p;
+    ob_ssdo_constants *c = &s->constants;
+    if (!in->direct || !in->lights || !in->bounce_out)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ssdo needs the renderer's direct light (ob_render_frame)");
+    int count = (int)params[P_SAMPLES];
+    ob_direction_pdf pdf = s->merged ? OB_DIRECTIONS_COSINE : OB_DIRECTIONS_UNIFORM;
+    if (count != s->kernel_count || (int)pdf != s->kernel_pdf) build_kernel(s, count, pdf);
+    bool bounce = params[P_BOUNCE] != 0.0f;
+    float radius = params[P_RADIUS];
+
+    memcpy(c->proj, in->proj, sizeof c->proj);
+    memcpy(c->inv_view, in->lights->inv_view, sizeof c->inv_view);
+    memcpy(c->proj_info, in->proj_info, sizeof c->proj_info);
+    memcpy(c->full_info, in->lights->proj_info, sizeof c->full_info);
+    c->size[0] = (float)in->width;
+    c->size[1] = (float)in->height;
+    c->size[2] = 1.0f / (float)in->width;
+    c->size[3] = 1.0f / (float)in->height;
+    c->params[0] = radius;
+    c->params[1] = params[P_BIAS] * radius;
+    /* Eq. 3.4's A_s = pi r^2 / N, over pi for the radiance a white receiver reflects. */
+    c->params[2] = params[P_BOUNCE_STRENGTH] * radius * radius / (float)count;
+    c->params[3] = params[P_LOBE];
+    c->counts[0] = count;
+    c->counts[1] = 0; /* the 4x4 rotation texture: the filters' windows cancel its tile */
+    c->counts[2] = bounce ? 1 : 0;
+    int lights = in->lights->counts[0] < OB_SSDO_MAX_LIGHTS ? in->lights->counts[0] : OB_SSDO_MAX_LIGHTS;
+    c->grid[0] = in->grid_k > 0 ? in->grid_k : 1;
+    c->grid[1] = in->grid_o;
+    c->grid[2] = lights;
+    c->grid[3] = (int)in->ambient_mode;
+    for (int k = 0; k < 3; ++k) {
+        c->ambient[k] = in->ambient[k];
+        c->sky[k] = in->sky[k];
+        c->ground[k] = in->ground[k];
+        for (int j = 0; j < 9; ++j) c->sh[j][k] = in->sh[j][k];
+    }
+    memcpy(c->light_color, in->lights->light_color, sizeof c->light_color);
+    memcpy(c->light_position, in->lights->light_position, sizeof c->light_position);
+    memcpy(c->light_direction, in->lights->light_direction, sizeof c->light_direction);
+    memcpy(c->light_spot, in->lights->light_spot, sizeof c->light_spot);
+
+    size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];
+    glBindTextureUnit(0, in->linear_depth);
+    glBindTextureUnit(1, in->view_normal);
+    glBindTextureUnit(2, s->noise);
+    glBindTextureUnit(3, in->direct);
+    glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, in->bounce_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    c->counts[3] = s->merged ? OB_SSDO_STAGE_MERGED : OB_SSDO_STAGE_DIRECT;
+    ob_compute_pass_use(&s->pass, c, used);
+    ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
+    if (s->merged) return OB_OK;
+    if (bounce) {
+        /* Pass 2 reads nothing pass 1 wrote (the senders' radiance is the lighting pass's), so
+         * no barrier: the same samples, the bounce of eq. 3.4. */
+        c->counts[3] = OB_SSDO_STAGE_BOUNCE;
+        ob_compute_pass_use(&s->pass, c, used);
+        ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
+    } else {
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glClearTexImage(in->bounce_out, 0, GL_RGBA, GL_FLOAT, zero);
+    }
+    return OB_OK;
+}
+
+const ob_method_impl ob_method_ssdo = {
+    .info = {.name = "ssdo",
+             .description = "screen-space directional occlusion + one bounce, the original two passes",
+             .reference = "seed 003 §3.3 eq. 3.2-3.4, §5.3 eq. 5.3; seed 000 §4.1-4.2",
+             .param_count = P_COUNT,
+             .params = ssdo_params},
+    .init = ssdo_init,
+    .run = ssdo_run,
+    .destroy = ssdo_destroy,
+    .rgb = true,
+};
+
+const ob_method_impl ob_method_ssdo_merged = {
+    .info = {.name = "ssdo_merged",
+             .description = "one-pass SSDO: modulation factor M and bounce (darkened by M) in one loop",
+             .reference = "seed 003 §4.2 eq. 4.1-4.4, §5.3 eq. 5.2",
+             .param_count = P_COUNT,
+             .params = ssdo_params},
+    .init = ssdo_merged_init,
+    .run = ssdo_run,
+    .destroy = ssdo_destroy,
+    .rgb = true,
+};

@@ -361,6 +361,8 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     in.frame = r->frame++;
     in.sample_multiplier = s->adaptive ? t->multiplier : 0;
     const bool rgb = ob_method_impl_at(s->method)->rgb;
+    /* Directional methods with their bounce turned off leave the bounce chain idle. */
+    const bool has_bounce = rgb && !(ob_settings_get(s, "bounce") == 0.0f);
 
     const ob_light *lights = s->light_count > 0 ? s->lights : r->scene_lights;
     int light_count = s->light_count > 0 ? s->light_count : r->scene_light_count;
@@ -446,7 +448,7 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
                                      .width = g->width, .height = g->height, .rgb = true, .sky = 0.0f};
         err = filter->run(fstate, &fm, s->filter_params);
         glMemoryBarrier(barrier);
-        if (err == OB_OK) err = filter->run(fstate, &fb, s->filter_params);
+        if (err == OB_OK && has_bounce) err = filter->run(fstate, &fb, s->filter_params);
     }
     if (err != OB_OK) {
         ob_timers_frame_end(&r->timers);
@@ -461,12 +463,18 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
         } else {
             ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
                                 t->filtered_rgb, r->ao_rgb, 1.0f);
-            ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
-                                t->bounce_filtered, r->bounce, 0.0f);
+            if (has_bounce)
+                ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth,
+                                    t->normal, t->bounce_filtered, r->bounce, 0.0f);
         }
         glMemoryBarrier(barrier);
     }
     GLuint ao = rgb ? r->ao_rgb : r->ao;
+    if (rgb && !has_bounce) {
+        /* Bounce off: nothing to filter or upsample; the bounce view reads zeros. */
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glClearTexImage(r->bounce, 0, GL_RGBA, GL_FLOAT, zero);
+    }
 
     ob_compose_inputs ci;
     memset(&ci, 0, sizeof ci);
@@ -488,7 +496,7 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     memcpy(ci.sh, r->environment.sh, sizeof ci.sh);
     ci.ao_all_light = s->ao_all_light;
     ci.directional = rgb;
-    ci.bounce = rgb ? r->bounce : 0;
+    ci.bounce = has_bounce ? r->bounce : 0;
     ob_timer_begin(&r->timers, "compose");
     ob_compose_run(&r->compose, &ci, r->radiance);
     glMemoryBarrier(barrier);

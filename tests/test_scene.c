@@ -788,6 +788,34 @@ static void test_sidecar_lights(void)
     unlink(path);
 }
 
+/* glTF KHR_lights_punctual through Assimp: a point light with colour and a spot light turned to
+ * point down, both placed by their nodes. */
+static void test_gltf_lights(void)
+{
+    char path[512];
+    tmp_path(path, sizeof path, "lights.gltf");
+    write_text(path, "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_lights_punctual\"],\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\",\"color\":[1,0.5,0.25],\"intensity\":5,\"name\":\"lamp\"},{\"type\":\"spot\",\"intensity\":3,\"spot\":{\"innerConeAngle\":0.2,\"outerConeAngle\":0.4},\"name\":\"spotty\"}]}},\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2]}],\"nodes\":[{\"mesh\":0},{\"name\":\"lamp\",\"translation\":[1,2,3],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},{\"name\":\"spotty\",\"translation\":[0,4,0],\"rotation\":[-0.7071068,0,0,0.7071068],\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],\"buffers\":[{\"uri\":\"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAAAAAAIA/AAABAAIA\",\"byteLength\":42}],\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,0,1]},{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}]}");
+    ob_scene *s = load(path, NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "lights.gltf loads: %s", last_message());
+    if (s) {
+        CHECK(ob_query_scene_light_count(s) == 2, "2 glTF lights, got %d", ob_query_scene_light_count(s));
+        ob_light a = ob_query_scene_light(s, 0), b = ob_query_scene_light(s, 1);
+        CHECK(a.type == OB_LIGHT_POINT && near(a.position[0], 1.0f, 1e-5f) && near(a.position[1], 2.0f, 1e-5f) &&
+                  near(a.position[2], 3.0f, 1e-5f),
+              "point light at its node (%g %g %g)", (double)a.position[0], (double)a.position[1], (double)a.position[2]);
+        CHECK(near(a.intensity, 5.0f, 1e-5f) && near(a.color[1], 0.5f, 1e-5f) && near(a.color[2], 0.25f, 1e-5f),
+              "point colour %g %g %g x %g", (double)a.color[0], (double)a.color[1], (double)a.color[2], (double)a.intensity);
+        CHECK(b.type == OB_LIGHT_SPOT && near(b.position[1], 4.0f, 1e-5f) && near(b.direction[1], -1.0f, 1e-4f),
+              "spot at (0,4,0) pointing down (dir %g %g %g)", (double)b.direction[0], (double)b.direction[1],
+              (double)b.direction[2]);
+        /* glTF's cone angles are half-angles: 0.2 and 0.4 rad. */
+        CHECK(near(b.spot_inner_deg, 11.459f, 1e-2f) && near(b.spot_outer_deg, 22.918f, 1e-2f), "spot cone %g %g",
+              (double)b.spot_inner_deg, (double)b.spot_outer_deg);
+        ob_destroy_scene(s);
+    }
+    unlink(path);
+}
+
 int main(void)
 {
     snprintf(tmpdir, sizeof tmpdir, "%s", "/tmp/obscura_test_scene_XXXXXX");
@@ -799,6 +827,7 @@ int main(void)
     test_cameras();
     test_resolution_and_sidecars();
     test_sidecar_lights();
+    test_gltf_lights();
     test_cornell_obj();
     test_gltf_cameras();
     test_textures();

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include <assimp/cimport.h>
 #include <assimp/material.h>
@@ -500,9 +501,13 @@ static void add_lights(importer *im, const struct aiMatrix4x4 *up_fix)
         out.color[0] = l->mColorDiffuse.r / peak;
         out.color[1] = l->mColorDiffuse.g / peak;
         out.color[2] = l->mColorDiffuse.b / peak;
-        /* Assimp's cone angles are full angles. */
-        out.spot_inner_deg = 0.5f * l->mAngleInnerCone * 180.0f / OB_PI_F;
-        out.spot_outer_deg = 0.5f * l->mAngleOuterCone * 180.0f / OB_PI_F;
+        /* Assimp documents full cone angles, but its glTF2 importer passes on glTF's half-angles
+         * (innerConeAngle, outerConeAngle) unchanged; checked with a glTF in test_scene.c. */
+        const char *ext = strrchr(im->path, '.');
+        bool half_angles = ext && (!strcasecmp(ext, ".gltf") || !strcasecmp(ext, ".glb"));
+        float to_half = half_angles ? 1.0f : 0.5f;
+        out.spot_inner_deg = to_half * l->mAngleInnerCone * 180.0f / OB_PI_F;
+        out.spot_outer_deg = to_half * l->mAngleOuterCone * 180.0f / OB_PI_F;
         if (!(out.spot_outer_deg > 0.0f && out.spot_outer_deg < 90.0f)) out.spot_outer_deg = 45.0f;
         if (!(out.spot_inner_deg >= 0.0f && out.spot_inner_deg <= out.spot_outer_deg)) out.spot_inner_deg = out.spot_outer_deg;
         s->lights[count++] = out;

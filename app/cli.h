@@ -32,5 +32,6 @@ bool cli_output_writable(const char *path);
 int cmd_render(int argc, char **argv);
 int cmd_list(int argc, char **argv);
 int cmd_sheet(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
 
 #endif

@@ -10,11 +10,35 @@ packages=(
     libepoxy-dev libegl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libgl-dev
     # libraries
     libassimp-dev libcglm-dev libstb-dev libcjson-dev
+    libembree-dev         # Embree 3: the ray-traced AO / bounce reference (src/reference)
+    # the comparison report: charts, and the headless browser its test opens it in
+    gnuplot-nox
+    chromium
     # scenes the demo and the tests use
     glmark2-data          # /usr/share/glmark2/models/bunny.obj (Stanford bunny)
     assimp-testmodels     # /usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc
     python3-tinyobjloader # /usr/share/doc/python3-tinyobjloader/examples/cornell_box.obj
+    openarena-081-maps    # oa_dm1 inside pak1-maps.pk3, repacked alone into data/oa_dm1.pk3
 )
+
+# Assimp's Q3BSP importer reads only the first map of a .pk3, and pak1-maps.pk3 holds 50 maps:
+# copy oa_dm1's BSP alone into data/oa_dm1.pk3 (git-ignored) for scenes/oa_dm1.obscura.json.
+# Only the BSP: the package has no textures, and the map's lightmaps are inside the BSP. Run on
+# both exits below, and only when the file is missing; written as the caller, not with sudo.
+oa_pk3_src=/usr/share/games/openarena/baseoa/pak1-maps.pk3
+oa_pk3="$(cd "$(dirname "$0")/.." && pwd)/data/oa_dm1.pk3"
+repack_oa_dm1() {
+    if [ -f "$oa_pk3" ] || [ ! -f "$oa_pk3_src" ]; then return 0; fi
+    echo "install-deps: repacking oa_dm1 into $oa_pk3"
+    mkdir -p "$(dirname "$oa_pk3")"
+    python3 - "$oa_pk3_src" "$oa_pk3" <<'PY'
+import os, sys, zipfile
+src, dst = sys.argv[1], sys.argv[2]
+with zipfile.ZipFile(src) as z, zipfile.ZipFile(dst + ".part", "w", zipfile.ZIP_DEFLATED) as o:
+    o.writestr("maps/oa_dm1.bsp", z.read("maps/oa_dm1.bsp"))
+os.replace(dst + ".part", dst)  # never leave a half-written pk3 that the next run would keep
+PY
+}
 
 missing=()
 for p in "${packages[@]}"; do
@@ -31,6 +55,7 @@ if [ ${#missing[@]} -eq 0 ] && [ ! -f "$cornell" ]; then reinstall_cornell=1; fi
 
 if [ ${#missing[@]} -eq 0 ] && [ $reinstall_cornell -eq 0 ]; then
     echo "install-deps: all ${#packages[@]} packages present, nothing to install"
+    repack_oa_dm1
     exit 0
 fi
 
@@ -58,4 +83,5 @@ if [ ! -f "$cornell" ]; then
     $sudo cp "$tmp"/x/usr/share/doc/python3-tinyobjloader/examples/cornell_box.* "$(dirname "$cornell")"/
     rm -rf "$tmp"
 fi
+repack_oa_dm1
 echo "install-deps: done"

@@ -816,6 +816,72 @@ static void test_gltf_lights(void)
     unlink(path);
 }
 
+/* OpenArena's oa_dm1 through the named scene: a Quake 3 map in a .pk3, which Assimp 5.2.5's
+ * Q3BSP importer hands over with unwritten indices and clockwise triangles (import.c repairs
+ * both). The .pk3 is made by scripts/install-deps.sh, so it may be absent. */
+static void test_oa_dm1(void)
+{
+    char pk3[4096] = "";
+    snprintf(pk3, sizeof pk3, "%s/data/oa_dm1.pk3", ob_data_dir());
+    if (!file_exists(pk3)) {
+        printf("skip: %s not made (scripts/install-deps.sh repacks it)\n", pk3);
+        return;
+    }
+    ob_scene *s = load("oa_dm1", NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "oa_dm1 loads: %s", last_message());
+    if (!s) return;
+    print_stats("oa_dm1", s);
+    ob_scene_stats st = ob_query_scene_stats(s);
+    CHECK(st.triangles > 1000u, "oa_dm1: %u triangles > 1000", st.triangles);
+    CHECK(bounds_sane(&st), "oa_dm1: finite, non-degenerate bounds");
+    /* Indices in range, and the winding: counter-clockwise about the vertex normals for a
+     * majority of triangles. Not all: the normals are smoothed within the crease angle, and a
+     * sliver whose corners lie on a curve may tilt past its own face. Still-clockwise triangles
+     * would put nearly all of them on the wrong side. */
+    uint32_t bad_index = 0, agree = 0, disagree = 0;
+    for (int m = 0; m < s->mesh_count; ++m) {
+        const ob_mesh *mesh = &s->meshes[m];
+        for (uint32_t t = 0; t + 2u < mesh->index_count; t += 3u) {
+            const uint32_t *ix = &mesh->indices[t];
+            if (ix[0] >= mesh->vertex_count || ix[1] >= mesh->vertex_count ||
+                ix[2] >= mesh->vertex_count) {
+                ++bad_index;
+                continue;
+            }
+            const float *a = &mesh->positions[3u * ix[0]];
+            const float *b = &mesh->positions[3u * ix[1]];
+            const float *c = &mesh->positions[3u * ix[2]];
+            float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+            float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+            float f[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                          e1[0] * e2[1] - e1[1] * e2[0]};
+            float area2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
+            if (!(area2 > 1e-12f)) continue; /* zero-area slivers have no orientation */
+            float d = 0.0f;
+            for (int i = 0; i < 3; ++i) {
+                d += f[i] * (mesh->normals[3u * ix[0] + (uint32_t)i] +
+                             mesh->normals[3u * ix[1] + (uint32_t)i] +
+                             mesh->normals[3u * ix[2] + (uint32_t)i]);
+            }
+            if (d > 0.0f) ++agree;
+            else ++disagree;
+        }
+    }
+    CHECK(bad_index == 0, "oa_dm1: %u indices out of range", bad_index);
+    CHECK(agree > 0u && agree > 9u * disagree,
+          "oa_dm1: %u triangles agree with their vertex normals, %u do not", agree, disagree);
+    /* Quake is Z-up: after the sidecar's "up": "z" the map must be wider than tall. */
+    float ex = st.bounds_max[0] - st.bounds_min[0], ey = st.bounds_max[1] - st.bounds_min[1];
+    float ez = st.bounds_max[2] - st.bounds_min[2];
+    CHECK(ey < ex && ey < ez, "oa_dm1: Y is up after import (extent %g %g %g)", (double)ex,
+          (double)ey, (double)ez);
+    CHECK(ob_query_scene_ao_radius(s) == 16.0f, "oa_dm1: the sidecar's ao_radius 16, got %g",
+          (double)ob_query_scene_ao_radius(s));
+    CHECK(ob_query_camera_count(s) >= 4, "oa_dm1: the sidecar's cameras, got %d",
+          ob_query_camera_count(s));
+    ob_destroy_scene(s);
+}
+
 int main(void)
 {
     snprintf(tmpdir, sizeof tmpdir, "%s", "/tmp/obscura_test_scene_XXXXXX");
@@ -833,6 +899,7 @@ int main(void)
     test_textures();
     test_bunny();
     test_fzk_haus();
+    test_oa_dm1();
     rmdir(tmpdir);
     return check_finish("scene");
 }

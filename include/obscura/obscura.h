@@ -360,8 +360,105 @@ ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t norma
 ob_error ob_write_png(const char *path, int width, int height, int channels, const uint8_t *px);
 /* PFM: bottom-row-first floats, channels 1 (Pf) or 3 (PF), little-endian. */
 ob_error ob_write_pfm(const char *path, int width, int height, int channels, const float *px);
+/* A text file (JSON, HTML), written atomically like the images. */
+ob_error ob_write_text(const char *path, const char *text);
 /* Reads a PFM; *px is malloc'd (free it). */
 ob_error ob_read_pfm(const char *path, int *width, int *height, int *channels, float **px);
+
+/* ---- ground truth (Embree ray tracing on the CPU) -------------------------------------------
+ * AO_R(x) = 1/pi * integral over the hemisphere of V_R(x, w) cos(theta) dw (seed 000 eq. 2.6-2.7,
+ * t = 1), with V_R = 0 when a ray from x hits geometry within R, estimated from cosine-weighted
+ * rays (pdf cos(theta)/pi, so the estimate is the plain mean of the visibility) cast from the very
+ * G-buffer points the screen-space methods see. Every point's random numbers come from the seed
+ * and the point's index, so results are bit-identical for a seed whatever the thread count.
+ * Threading: the calls are CPU-only and may run on any thread; they use `threads` worker threads
+ * of their own and keep nothing between calls. */
+typedef struct ob_reference_desc {
+    int spp;         /* rays per point; 0 = 512 (mean standard error under 0.01 on the demo scenes) */
+    float radius;    /* R in world units; ob_reference_ao needs R > 0, ob_reference_bounce takes
+                        <= 0 as unbounded */
+    int threads;     /* worker threads; 0 = all cores */
+    bool progress;   /* a progress bar on stderr */
+    uint64_t seed;
+} ob_reference_desc;
+
+/* AO_R at `count` points: world positions and unit normals, xyz each. A point whose normal is all
+ * zero (sky) is skipped and gets ao 1 and standard error 0. ao_out gets count values; stderr_out
+ * (may be NULL) the standard error of each estimate, sqrt(p (1 - p) / (n - 1)) of the Bernoulli
+ * mean p over n rays. Rays start a little off the surface along the normal (1e-4 of the scene's
+ * bounds diagonal) and end at R.
+ * Errors: OB_ERR_INVALID_ARGUMENT (NULL scene, points or output with count > 0, R <= 0, spp < 0
+ * or 1, threads < 0), OB_ERR_OUT_OF_MEMORY, OB_ERR_MODEL (Embree failed; the message names
+ * rtcGetDeviceError's code). */
+ob_error ob_reference_ao(const ob_scene *scene, const float *positions, const float *normals, size_t count,
+                         const ob_reference_desc *desc, float *ao_out, float *stderr_out);
+
+/* One-bounce diffuse reference for SSDO, in the renderer's convention (shaders/lighting.glsl:
+ * radiance = albedo x sum over lights of colour x intensity x falloff x max(0, n.l) x visibility,
+ * no 1/pi; directional lights point toward the light, point and spot lights fall off as 1/d^2 with
+ * the range window (1 - (d/range)^4)^2 and the spot's smoothstep between the cones). At each
+ * point x with albedo a(x):
+ *   rgb(x) = a(x) * direct(x)                                     shadow rays instead of maps
+ *          + a(x) * mean over cosine rays of  hit within R ? a(h) * direct(h) : ambient
+ * i.e. one diffuse bounce of the direct light plus the ambient radiance times AO_R. With the
+ * cosine pdf the 1/pi of a Lambertian receiver cancels, so the mean is the outgoing radiance in
+ * the same units as the direct term. direct(h) uses the hit triangle's interpolated normal (turned
+ * toward the ray) and its material's diffuse colour (textures are ignored); specular is left out
+ * on both ends. lights == NULL or light_count == 0 takes the scene's lights; ambient NULL = black;
+ * radius <= 0 = unbounded rays. rgb_out gets 3 floats per point; points with a zero normal get 0.
+ * Errors: as ob_reference_ao, and OB_ERR_INVALID_ARGUMENT for light_count outside
+ * [0, OB_MAX_LIGHTS] or albedo_rgb NULL. */
+ob_error ob_reference_bounce(const ob_scene *scene, const ob_light *lights, int light_count, const float ambient[3],
+                             const float *positions, const float *normals, const float *albedo_rgb, size_t count,
+                             const ob_reference_desc *desc, float *rgb_out);
+
+/* The renderer's read-back G-buffer as world points, with the shaders' reconstruction
+ * (shaders/common.glsl ob_view_position at pixel centres): linear_depth (1 float per pixel,
+ * bottom row first, 0 = sky) and view_normals (3 floats per pixel) of width x height pixels,
+ * proj_info = {1/P00, 1/P11, P20, P21} of the column-major projection, inv_view the column-major
+ * camera-to-world matrix. positions_out and normals_out get 3 floats per pixel; sky pixels get
+ * zeros (so ob_reference_ao skips them). Errors: OB_ERR_INVALID_ARGUMENT, OB_ERR_BAD_SIZE. */
+ob_error ob_reference_points(const float *linear_depth, const float *view_normals, int width, int height,
+                             const float proj_info[4], const float inv_view[16], float *positions_out,
+                             float *normals_out);
+
+/* ---- metrics: image comparison against the reference (src/eval/metrics.c) -------------------- */
+typedef struct ob_metrics {
+    double rmse;  /* sqrt(mean((test - reference)^2)) over every channel value compared */
+    double mae;   /* mean(|test - reference|) */
+    double bias;  /* mean(test - reference): > 0 when the test is brighter / less occluded */
+    double psnr;  /* 10 log10(1 / MSE) in dB with peak 1 (visibility's range); INFINITY when identical */
+    double ssim;  /* mean SSIM (Wang et al. 2004) over the masked-in windows, averaged over channels */
+    size_t count; /* pixels compared (not channel values) */
+} ob_metrics;
+
+/* Compare `test` against `reference`: width x height pixels of `channels` interleaved floats each,
+ * both in the same layout (either row order, as long as mask uses it too). mask: one byte per
+ * pixel in the same layout, non-zero = compared; NULL = every pixel.
+ * RMSE, MAE, bias and PSNR are taken over every channel value of the masked-in pixels.
+ * SSIM follows Wang et al. 2004 (eq. 13 with the 11x11 Gaussian window of sigma 1.5 normalised to
+ * unit sum, eqs. 14-16, C1 = (0.01 L)^2, C2 = (0.03 L)^2, L = 1) on each channel of the full image;
+ * the local SSIM is averaged (eq. 17) over the windows whose centre pixel is masked in, then over
+ * the channels. The statistics use every pixel under the window, masked in or not (the mask picks
+ * which windows count, it does not cut holes in them). At the image border the window is cut to
+ * the pixels inside the image and its weights renormalised to unit sum, so every pixel has a
+ * window (Wang's MATLAB code instead drops the 5-pixel border; values there differ slightly).
+ * A NaN in either image makes the metrics NaN. Thread-safe; no GL context needed.
+ * Errors: OB_ERR_INVALID_ARGUMENT (NULL test, reference or out, width/height/channels < 1 or too
+ * large, no pixel in the mask), OB_ERR_OUT_OF_MEMORY (a few rows of doubles); *out is zeroed first. */
+ob_error ob_compare_images(const float *test, const float *reference, const uint8_t *mask, int width,
+                           int height, int channels, ob_metrics *out);
+
+/* Signed error heatmap of two 1-channel images: rgb_out (width x height x 3 bytes, top row first)
+ * shows test - reference through a diverging map (ColorBrewer RdBu with a white centre): white at
+ * 0, towards blue where the test is lower (darker / more occluded), towards red where it is higher,
+ * saturating at +-range. Masked-out pixels (mask in the inputs' layout, NULL = all in) are grey
+ * (128,128,128); a non-finite difference is black. bottom_first: the inputs' rows run bottom to
+ * top (the renderer's *_F32 images), so they are flipped into rgb_out.
+ * Errors: OB_ERR_INVALID_ARGUMENT (NULL test, reference or rgb_out, width/height < 1 or too large,
+ * range not finite and > 0). */
+ob_error ob_error_heatmap(const float *test, const float *reference, const uint8_t *mask, int width, int height,
+                          bool bottom_first, float range, uint8_t *rgb_out);
 
 #ifdef __cplusplus
 }

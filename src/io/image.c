@@ -122,3 +122,14 @@ ob_error ob_read_pfm(const char *path, int *width, int *height, int *channels, f
     *px = data;
     return OB_OK;
 }
+
+ob_error ob_write_text(const char *path, const char *text)
+{
+    if (!text) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_write_text: NULL text");
+    atomic_file a;
+    ob_error err = atomic_open(&a, path);
+    if (err != OB_OK) return err;
+    size_t n = strlen(text);
+    bool ok = fwrite(text, 1, n, a.f) == n;
+    return atomic_close(&a, ok && !ferror(a.f));
+}

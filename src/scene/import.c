@@ -515,6 +515,47 @@ static void add_lights(importer *im, const struct aiMatrix4x4 *up_fix)
     if (count > 0) s->light_count = count;
 }
 
+/* ---- Quake 3 maps ---------------------------------------------------------------------------- */
+
+/* Assimp reads Quake 3 maps (Q3BSP) only from a .pk3 archive, and only the first map in it. */
+static bool is_q3bsp(const char *path)
+{
+    const char *ext = strrchr(path, '.');
+    return ext && strcasecmp(ext, ".pk3") == 0;
+}
+
+/* Assimp 5.2.5's Q3BSP importer writes every triangle's three vertices in order (mNumVertices is
+ * 3 * mNumFaces) but leaves the faces' indices mostly unwritten, which ValidateDataStructure
+ * rejects ("mIndices[0] is out of range") and every other step would read as garbage. Quake
+ * also winds front faces clockwise. Rewrite each face as 3f, 3f+2, 3f+1: sequential and
+ * counter-clockwise. Runs before any post-processing, on the importer's own scene. */
+static bool repair_q3bsp(struct aiScene *ai, const char *path)
+{
+    for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
+        struct aiMesh *mesh = ai->mMeshes[m];
+        if (!mesh || mesh->mNumFaces == 0) continue;
+        if ((uint64_t)mesh->mNumVertices != 3u * (uint64_t)mesh->mNumFaces) {
+            /* Not the layout the fix assumes (a later Assimp may have changed it): refuse
+             * rather than draw triangles between unrelated vertices. */
+            ob_set_error(OB_ERR_MODEL, "%s: Q3BSP mesh %u has %u vertices for %u faces", path, m,
+                         mesh->mNumVertices, mesh->mNumFaces);
+            return false;
+        }
+        for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+            struct aiFace *face = &mesh->mFaces[f];
+            if (face->mNumIndices != 3 || !face->mIndices) {
+                ob_set_error(OB_ERR_MODEL, "%s: Q3BSP mesh %u face %u is not a triangle", path,
+                             m, f);
+                return false;
+            }
+            face->mIndices[0] = 3u * f;
+            face->mIndices[1] = 3u * f + 2u;
+            face->mIndices[2] = 3u * f + 1u;
+        }
+    }
+    return true;
+}
+
 /* ---- entry ----------------------------------------------------------------------------------- */
 
 static ob_scene *import_scene(importer *im, ob_up_axis up)
@@ -590,7 +631,30 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up)
     unsigned flags = aiProcess_Triangulate | aiProcess_GenSmoothNormals |
                      aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
                      aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
-    const struct aiScene *ai = aiImportFileExWithProperties(path, flags, NULL, props);
+    const struct aiScene *ai = NULL;
+    if (is_q3bsp(path)) {
+        /* Read raw, repair the indices and winding, then post-process the repaired scene (the
+         * importer keeps the properties above for aiApplyPostProcessing). Validation stays off:
+         * Assimp 5.2.5 still rejects the repaired map (it crashes releasing the scene when
+         * validation fails after import), and repair_q3bsp has checked the indices itself. The
+         * file's vertex normals are replaced: q3map2 smooths them across wall corners, which
+         * leaves a third of the flat faces with bent normals; regenerated with the crease angle
+         * flat walls come out flat. */
+        ai = aiImportFileExWithProperties(path, 0, NULL, props);
+        if (ai) {
+            if (!repair_q3bsp((struct aiScene *)ai, path)) {
+                aiReleaseImport(ai);
+                aiReleasePropertyStore(props);
+                return NULL;
+            }
+            unsigned q3_flags = (flags & ~(unsigned)aiProcess_ValidateDataStructure) |
+                                aiProcess_ForceGenNormals;
+            /* On failure Assimp has already released the scene. */
+            ai = aiApplyPostProcessing(ai, q3_flags);
+        }
+    } else {
+        ai = aiImportFileExWithProperties(path, flags, NULL, props);
+    }
     aiReleasePropertyStore(props);
     if (!ai) {
         ob_set_error(OB_ERR_MODEL, "%s: %s", path, aiGetErrorString());

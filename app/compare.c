@@ -1,0 +1,695 @@
+/* obscura compare: every method on the same inputs against the ray-traced ground truth, written
+ * as an HTML report (index.html), results.json and PNGs.
+ *
+ *   report/index.html                    per view: images, error maps, sortable table, chart
+ *   report/results.json                  every number
+ *   report/VIEW/reference_ao.png         AO_R from the Embree reference (DESIGN.md)
+ *   report/VIEW/METHOD_final.png, _ao.png, _error.png
+ *   report/VIEW/chart.svg                quality (RMSE) against GPU time, made with gnuplot
+ *
+ * The reference is cached by (scene, camera, size, radius, spp) under $XDG_CACHE_HOME/obscura
+ * (or ~/.cache/obscura): the report is re-run far more often than the geometry changes. */
+#include <cglm/cglm.h>
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+enum { MAX_VIEWS = 16, MAX_METHODS = 32, FRAMES = 5 };
+
+typedef struct compare_opts {
+    const char *views[MAX_VIEWS]; /* "scene" or "scene:camera" */
+    int view_count;
+    const char *methods;          /* comma list or NULL = all */
+    const char *report;
+    int width, height, spp, quality_samples;
+    float radius;                 /* 0 = the scene's suggested radius */
+    ob_gpu_kind gpu;
+    bool no_cache, verbose;
+} compare_opts;
+
+typedef struct method_result {
+    char name[64];
+    ob_metrics m;
+    double ao_ms, frame_ms;
+} method_result;
+
+static void compare_usage(FILE *f)
+{
+    fputs("usage: obscura compare --scene S[:CAMERA] [--scene ...] --report DIR [options]\n"
+          "\n"
+          "Renders every method on the same inputs, ray-traces the ground truth AO_R from the very\n"
+          "G-buffer points (Embree), and writes DIR/index.html, DIR/results.json and the images.\n"
+          "\n"
+          "  --scene S[:CAMERA]    a scene (see `obscura list`) and optionally a camera preset\n"
+          "                        (default 'default'); repeatable, one report section each\n"
+          "  --report DIR          where the report goes (created if missing)\n"
+          "  --methods A,B,...     methods to compare (default all)\n"
+          "  --quality Q           low|medium|high|ultra (12/24/36/64 samples) for every method\n"
+          "  --size WxH            image size (default 320x240)\n"
+          "  --spp N               reference rays per pixel (default 512: mean standard error < 0.01)\n"
+          "  --radius R            AO radius R in world units for every method and the reference\n"
+          "                        (default: each scene's suggested radius)\n"
+          "  --no-cache            recompute the reference even if a cached one exists\n"
+          "  --gpu auto|hw|sw      as for render; -v prints the GL renderer\n",
+          f);
+}
+
+static int parse(int argc, char **argv, compare_opts *o)
+{
+    *o = (compare_opts){.width = 320, .height = 240, .spp = 512};
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            compare_usage(stdout);
+            return -1;
+        }
+        if (!strcmp(a, "-v")) { o->verbose = true; continue; }
+        if (!strcmp(a, "--no-cache")) { o->no_cache = true; continue; }
+        if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura compare --help)", a);
+        const char *v = argv[++i];
+        if (!strcmp(a, "--scene")) {
+            if (o->view_count >= MAX_VIEWS) return cli_fail(EXIT_USAGE, "--scene: at most %d", MAX_VIEWS);
+            o->views[o->view_count++] = v;
+        } else if (!strcmp(a, "--report")) {
+            o->report = v;
+        } else if (!strcmp(a, "--methods")) {
+            o->methods = strcmp(v, "all") ? v : NULL;
+        } else if (!strcmp(a, "--quality")) {
+            o->quality_samples = ob_quality_samples(v);
+            if (o->quality_samples < 0) return cli_fail(EXIT_USAGE, "--quality: expected low, medium, high or ultra, got '%s'", v);
+        } else if (!strcmp(a, "--size")) {
+            if (!cli_parse_size(v, &o->width, &o->height))
+                return cli_fail(EXIT_USAGE, "--size: expected WIDTHxHEIGHT with positive integers, got '%s'", v);
+        } else if (!strcmp(a, "--spp")) {
+            char *end = NULL;
+            long n = strtol(v, &end, 10);
+            if (end == v || *end || n < 2 || n > 1 << 20) return cli_fail(EXIT_USAGE, "--spp: expected 2..1048576, got '%s'", v);
+            o->spp = (int)n;
+        } else if (!strcmp(a, "--radius")) {
+            if (!cli_parse_float(v, &o->radius) || !(o->radius > 0.0f))
+                return cli_fail(EXIT_USAGE, "--radius: expected a positive number, got '%s'", v);
+        } else if (!strcmp(a, "--gpu")) {
+            if (!strcmp(v, "auto")) o->gpu = OB_GPU_AUTO;
+            else if (!strcmp(v, "hw")) o->gpu = OB_GPU_HW;
+            else if (!strcmp(v, "sw")) o->gpu = OB_GPU_SW;
+            else return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
+        } else {
+            return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura compare --help)", a);
+        }
+    }
+    if (!o->report) return cli_fail(EXIT_USAGE, "--report DIR is required (see obscura compare --help)");
+    if (o->view_count == 0) return cli_fail(EXIT_USAGE, "--scene is required (see obscura compare --help)");
+    return 0;
+}
+
+/* ---- small helpers ------------------------------------------------------------------------- */
+
+static void html_escape(FILE *f, const char *s)
+{
+    for (; *s; ++s) {
+        switch (*s) {
+        case '&': fputs("&amp;", f); break;
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '"': fputs("&quot;", f); break;
+        case '\'': fputs("&#39;", f); break;
+        default: fputc(*s, f);
+        }
+    }
+}
+
+/* A file-system-safe name for a view directory: letters, digits, '-' and '_' only. */
+static void safe_name(char *out, size_t n, const char *in)
+{
+    size_t k = 0;
+    for (; *in && k + 1 < n; ++in) {
+        char c = *in;
+        bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
+        out[k++] = ok ? c : '_';
+    }
+    out[k] = '\0';
+}
+
+static bool make_dir(const char *path)
+{
+    return mkdir(path, 0777) == 0 || errno == EEXIST;
+}
+
+static uint64_t fnv1a(const void *data, size_t n, uint64_t h)
+{
+    const unsigned char *p = data;
+    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* Visibility (bottom row first) as an 8-bit grey PNG (top row first). */
+static ob_error write_grey(const char *path, const float *v, int w, int h)
+{
+    uint8_t *g = malloc((size_t)w * (size_t)h);
+    if (!g) return OB_ERR_OUT_OF_MEMORY;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            float a = v[(size_t)(h - 1 - y) * (size_t)w + (size_t)x];
+            a = a < 0.0f ? 0.0f : a > 1.0f ? 1.0f : a;
+            g[(size_t)y * (size_t)w + (size_t)x] = (uint8_t)lrintf(a * 255.0f);
+        }
+    ob_error e = ob_write_png(path, w, h, 1, g);
+    free(g);
+    return e;
+}
+
+static const char *cache_dir(char *buf, size_t n)
+{
+    const char *xdg = getenv("XDG_CACHE_HOME");
+    const char *home = getenv("HOME");
+    if (xdg && *xdg) snprintf(buf, n, "%s/obscura", xdg);
+    else if (home && *home) snprintf(buf, n, "%s/.cache/obscura", home);
+    else return NULL;
+    return buf;
+}
+
+/* ---- one view ------------------------------------------------------------------------------ */
+
+typedef struct view_result {
+    char scene[128], camera[64], dir[192];
+    float radius;
+    double ref_seconds, ref_stderr_mean;
+    bool ref_cached;
+    method_result methods[MAX_METHODS];
+    int method_count;
+} view_result;
+
+static int method_list(const compare_opts *o, int *indices)
+{
+    int n = 0;
+    if (!o->methods) {
+        for (int i = 0; i < ob_method_count() && n < MAX_METHODS; ++i) indices[n++] = i;
+        return n;
+    }
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", o->methods);
+    char *save = NULL;
+    for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        int k = ob_find_method(t);
+        if (k < 0) {
+            ob_settings probe;
+            ob_settings_init(&probe, t); /* sets the library's "unknown method (known: ...)" message */
+            return -1;
+        }
+        if (n < MAX_METHODS) indices[n++] = k;
+    }
+    return n;
+}
+
+/* The reference AO for this view: from the cache, or ray-traced and cached. */
+static int reference_for(const compare_opts *o, const ob_scene *scene, const ob_camera *cam, const char *view_key,
+                         const float *depth, const float *normals, const float proj_info[4], const float inv_view[16],
+                         float radius, float *ref, view_result *vr)
+{
+    int w = o->width, h = o->height;
+    size_t px = (size_t)w * (size_t)h;
+    char dir[512], path[700];
+    uint64_t key = fnv1a(view_key, strlen(view_key), 1469598103934665603ull);
+    key = fnv1a(cam, sizeof *cam, key);
+    key = fnv1a(&radius, sizeof radius, key);
+    key = fnv1a(&o->spp, sizeof o->spp, key);
+    key = fnv1a(&w, sizeof w, key);
+    key = fnv1a(&h, sizeof h, key);
+    const char *cdir = cache_dir(dir, sizeof dir);
+    if (cdir) snprintf(path, sizeof path, "%s/reference-%016llx.pfm", cdir, (unsigned long long)key);
+    if (cdir && !o->no_cache) {
+        int cw = 0, ch = 0, cc = 0;
+        float *cached = NULL;
+        if (access(path, R_OK) == 0 && ob_read_pfm(path, &cw, &ch, &cc, &cached) == OB_OK && cw == w && ch == h &&
+            cc == 3) {
+            /* Channels: AO, standard error, unused. */
+            double se = 0.0;
+            size_t n = 0;
+            for (size_t i = 0; i < px; ++i) {
+                ref[i] = cached[3 * i];
+                if (depth[i] > 0.0f) se += cached[3 * i + 1], ++n;
+            }
+            free(cached);
+            vr->ref_cached = true;
+            vr->ref_stderr_mean = n ? se / (double)n : 0.0;
+            return EXIT_OK;
+        }
+        free(cached);
+    }
+    float *pos = malloc(px * 3 * sizeof(float)), *nrm = malloc(px * 3 * sizeof(float));
+    float *se = malloc(px * sizeof(float));
+    if (!pos || !nrm || !se) {
+        free(pos);
+        free(nrm);
+        free(se);
+        return cli_fail(EXIT_RUNTIME, "out of memory for the reference");
+    }
+    int code = EXIT_OK;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    if (ob_reference_points(depth, normals, w, h, proj_info, inv_view, pos, nrm) != OB_OK ||
+        ob_reference_ao(scene, pos, nrm, px, &(ob_reference_desc){.spp = o->spp, .radius = radius, .progress = true},
+                        ref, se) != OB_OK) {
+        code = cli_fail_from_library();
+    }
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    vr->ref_seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    if (code == EXIT_OK) {
+        double sum = 0.0;
+        size_t n = 0;
+        for (size_t i = 0; i < px; ++i)
+            if (depth[i] > 0.0f) sum += se[i], ++n;
+        vr->ref_stderr_mean = n ? sum / (double)n : 0.0;
+        /* Cache: a failure to cache is not a failure of the report. */
+        if (cdir && (make_dir(dir) || true)) {
+            char parent[520];
+            snprintf(parent, sizeof parent, "%s", dir);
+            char *slash = strrchr(parent, '/');
+            if (slash) {
+                *slash = '\0';
+                make_dir(parent);
+            }
+            make_dir(dir);
+            for (size_t i = 0; i < px; ++i) {
+                pos[3 * i] = ref[i];
+                pos[3 * i + 1] = se[i];
+                pos[3 * i + 2] = 0.0f;
+            }
+            if (ob_write_pfm(path, w, h, 3, pos) != OB_OK && o->verbose)
+                fprintf(stderr, "obscura: note: could not cache the reference in %s\n", path);
+        }
+    }
+    free(pos);
+    free(nrm);
+    free(se);
+    return code;
+}
+
+static int run_view(const compare_opts *o, ob_context *ctx, const char *spec, view_result *vr)
+{
+    char scene_name[256];
+    snprintf(scene_name, sizeof scene_name, "%s", spec);
+    const char *camera = "default";
+    char *colon = strrchr(scene_name, ':');
+    if (colon && !strchr(colon, '/')) {
+        *colon = '\0';
+        camera = colon + 1;
+    }
+    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = scene_name});
+    if (!scene) return cli_fail_from_library();
+    int code = EXIT_OK;
+    ob_camera cam;
+    ob_renderer *r = NULL;
+    float *depth = NULL, *normals = NULL, *ref = NULL, *ao = NULL;
+    uint8_t *rgba = NULL, *mask = NULL, *heat = NULL;
+    if (ob_find_camera(scene, camera, &cam) != OB_OK) {
+        code = cli_fail_from_library();
+        goto done;
+    }
+    snprintf(vr->scene, sizeof vr->scene, "%s", ob_query_scene_name(scene));
+    snprintf(vr->camera, sizeof vr->camera, "%s", cam.name);
+    char safe_scene[128], safe_cam[64];
+    safe_name(safe_scene, sizeof safe_scene, vr->scene);
+    safe_name(safe_cam, sizeof safe_cam, vr->camera);
+    snprintf(vr->dir, sizeof vr->dir, "%s_%s", safe_scene, safe_cam);
+    vr->radius = o->radius > 0.0f ? o->radius : ob_query_scene_ao_radius(scene);
+
+    int w = o->width, h = o->height;
+    size_t px = (size_t)w * (size_t)h;
+    r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = w, .height = h});
+    if (!r || ob_renderer_set_scene(r, scene) != OB_OK) {
+        code = cli_fail_from_library();
+        goto done;
+    }
+    depth = malloc(px * sizeof(float));
+    normals = malloc(px * 3 * sizeof(float));
+    ref = malloc(px * sizeof(float));
+    ao = malloc(px * 3 * sizeof(float));
+    rgba = malloc(px * 4);
+    mask = malloc(px);
+    heat = malloc(px * 3);
+    if (!depth || !normals || !ref || !ao || !rgba || !mask || !heat) {
+        code = cli_fail(EXIT_RUNTIME, "out of memory");
+        goto done;
+    }
+    char dir[700];
+    snprintf(dir, sizeof dir, "%s/%s", o->report, vr->dir);
+    if (!make_dir(dir)) {
+        code = cli_fail(EXIT_OUTPUT, "cannot create %s: %s", dir, strerror(errno));
+        goto done;
+    }
+
+    /* The G-buffer is the same for every method: take it from a `none` frame. */
+    ob_settings s;
+    ob_settings_init(&s, "none");
+    if (ob_render_frame(r, &cam, &s) != OB_OK) {
+        code = cli_fail_from_library();
+        goto done;
+    }
+    ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, px * sizeof(float));
+    ob_read_image(r, OB_IMAGE_NORMAL_F32, normals, px * 3 * sizeof(float));
+    for (size_t i = 0; i < px; ++i) mask[i] = depth[i] > 0.0f;
+
+    /* The same camera matrices as the renderer (renderer.c): for the world points. */
+    ob_camera c = cam;
+    if (c.fov_y_deg <= 0.0f) c.fov_y_deg = 60.0f;
+    if (c.up[0] == 0.0f && c.up[1] == 0.0f && c.up[2] == 0.0f) c.up[1] = 1.0f;
+    mat4 view, inv_view, proj;
+    glm_lookat(c.eye, c.target, c.up, view);
+    glm_mat4_inv(view, inv_view);
+    glm_perspective(glm_rad(c.fov_y_deg), (float)w / (float)h, 1.0f, 2.0f, proj);
+    const float proj_info[4] = {1.0f / proj[0][0], 1.0f / proj[1][1], proj[2][0], proj[2][1]};
+    char key[600];
+    snprintf(key, sizeof key, "%s|%s|v1", scene_name, cam.name);
+    code = reference_for(o, scene, &c, key, depth, normals, proj_info, (const float *)inv_view, vr->radius, ref, vr);
+    if (code != EXIT_OK) goto done;
+    char path[900];
+    snprintf(path, sizeof path, "%s/reference_ao.png", dir);
+    if (write_grey(path, ref, w, h) != OB_OK) {
+        code = cli_fail_library_as(EXIT_OUTPUT);
+        goto done;
+    }
+
+    int indices[MAX_METHODS];
+    int n = method_list(o, indices);
+    if (n < 0) {
+        code = cli_fail_from_library();
+        goto done;
+    }
+    char radius_set[64];
+    snprintf(radius_set, sizeof radius_set, "radius=%.9g", (double)vr->radius);
+    for (int k = 0; k < n; ++k) {
+        const ob_method_info *mi = ob_method_at(indices[k]);
+        method_result *mr = &vr->methods[vr->method_count++];
+        snprintf(mr->name, sizeof mr->name, "%s", mi->name);
+        ob_settings_init(&s, mi->name);
+        if (o->quality_samples > 0) ob_settings_set_samples(&s, o->quality_samples);
+        if (!isnan(ob_settings_get(&s, "radius"))) ob_settings_set(&s, radius_set);
+        double ao_ms[FRAMES], frame_ms[FRAMES];
+        for (int f = 0; f < FRAMES; ++f) {
+            if (ob_render_frame(r, &cam, &s) != OB_OK) {
+                code = cli_fail_from_library();
+                goto done;
+            }
+            ob_pass_timing t[16];
+            int tn = ob_query_timings(r, t, 16);
+            ao_ms[f] = frame_ms[f] = 0.0;
+            for (int p = 0; p < tn; ++p) {
+                if (!strcmp(t[p].name, "ao")) ao_ms[f] = t[p].ms;
+                frame_ms[f] += t[p].ms;
+            }
+        }
+        mr->ao_ms = median(ao_ms, FRAMES);
+        mr->frame_ms = median(frame_ms, FRAMES);
+        ob_read_image(r, OB_IMAGE_AO_F32, ao, px * sizeof(float));
+        if (ob_compare_images(ao, ref, mask, w, h, 1, &mr->m) != OB_OK) {
+            code = cli_fail_from_library();
+            goto done;
+        }
+        ob_read_image(r, OB_IMAGE_FINAL_RGBA8, rgba, px * 4);
+        snprintf(path, sizeof path, "%s/%s_final.png", dir, mi->name);
+        ob_error e = ob_write_png(path, w, h, 4, rgba);
+        snprintf(path, sizeof path, "%s/%s_ao.png", dir, mi->name);
+        if (e == OB_OK) e = write_grey(path, ao, w, h);
+        /* Error map: +-0.5 of visibility saturates. */
+        if (e == OB_OK) e = ob_error_heatmap(ao, ref, mask, w, h, true, 0.5f, heat);
+        snprintf(path, sizeof path, "%s/%s_error.png", dir, mi->name);
+        if (e == OB_OK) e = ob_write_png(path, w, h, 3, heat);
+        if (e != OB_OK) {
+            code = cli_fail_library_as(EXIT_OUTPUT);
+            goto done;
+        }
+        if (o->verbose)
+            fprintf(stderr, "obscura: %s/%s %-12s RMSE %.4f bias %+.4f SSIM %.3f ao %.2f ms\n", vr->scene, vr->camera,
+                    mi->name, mr->m.rmse, mr->m.bias, mr->m.ssim, mr->ao_ms);
+    }
+done:
+    free(depth);
+    free(normals);
+    free(ref);
+    free(ao);
+    free(rgba);
+    free(mask);
+    free(heat);
+    ob_destroy_renderer(r);
+    ob_destroy_scene(scene);
+    return code;
+}
+
+/* ---- outputs ------------------------------------------------------------------------------- */
+
+static int write_json(const compare_opts *o, ob_context *ctx, const view_result *views, int count)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "renderer", ob_query_renderer(ctx));
+    cJSON_AddStringToObject(root, "gl_version", ob_query_gl_version(ctx));
+    cJSON_AddNumberToObject(root, "width", o->width);
+    cJSON_AddNumberToObject(root, "height", o->height);
+    cJSON_AddNumberToObject(root, "reference_spp", o->spp);
+    time_t now = time(NULL);
+    char date[32];
+    strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
+    cJSON_AddStringToObject(root, "date", date);
+    cJSON *jv = cJSON_AddArrayToObject(root, "views");
+    for (int v = 0; v < count; ++v) {
+        const view_result *vr = &views[v];
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddStringToObject(j, "scene", vr->scene);
+        cJSON_AddStringToObject(j, "camera", vr->camera);
+        cJSON_AddStringToObject(j, "dir", vr->dir);
+        cJSON_AddNumberToObject(j, "radius", vr->radius);
+        cJSON *jr = cJSON_AddObjectToObject(j, "reference");
+        cJSON_AddNumberToObject(jr, "seconds", vr->ref_seconds);
+        cJSON_AddBoolToObject(jr, "cached", vr->ref_cached);
+        cJSON_AddNumberToObject(jr, "mean_standard_error", vr->ref_stderr_mean);
+        cJSON *jm = cJSON_AddArrayToObject(j, "methods");
+        for (int k = 0; k < vr->method_count; ++k) {
+            const method_result *m = &vr->methods[k];
+            cJSON *e = cJSON_CreateObject();
+            cJSON_AddStringToObject(e, "method", m->name);
+            cJSON_AddNumberToObject(e, "rmse", m->m.rmse);
+            cJSON_AddNumberToObject(e, "mae", m->m.mae);
+            cJSON_AddNumberToObject(e, "bias", m->m.bias);
+            /* JSON has no infinity: identical images report psnr null. */
+            if (isfinite(m->m.psnr)) cJSON_AddNumberToObject(e, "psnr", m->m.psnr);
+            else cJSON_AddNullToObject(e, "psnr");
+            cJSON_AddNumberToObject(e, "ssim", m->m.ssim);
+            cJSON_AddNumberToObject(e, "pixels", (double)m->m.count);
+            cJSON_AddNumberToObject(e, "ao_ms", m->ao_ms);
+            cJSON_AddNumberToObject(e, "frame_ms", m->frame_ms);
+            cJSON_AddItemToArray(jm, e);
+        }
+        cJSON_AddItemToArray(jv, j);
+    }
+    char *text = cJSON_Print(root);
+    cJSON_Delete(root);
+    if (!text) return cli_fail(EXIT_RUNTIME, "out of memory writing results.json");
+    char path[700];
+    snprintf(path, sizeof path, "%s/results.json", o->report);
+    ob_error e = ob_write_text(path, text);
+    free(text);
+    return e == OB_OK ? EXIT_OK : cli_fail_library_as(EXIT_OUTPUT);
+}
+
+/* Quality against time for one view, as SVG through gnuplot (Debian's gnuplot-nox). */
+static int write_chart(const compare_opts *o, const view_result *vr, char *svg_path, size_t n)
+{
+    char data[700], script[700];
+    snprintf(svg_path, n, "%s/%s/chart.svg", o->report, vr->dir);
+    snprintf(data, sizeof data, "%s/%s/chart.dat", o->report, vr->dir);
+    snprintf(script, sizeof script, "%s/%s/chart.gp", o->report, vr->dir);
+    FILE *f = fopen(data, "w");
+    if (!f) return cli_fail(EXIT_OUTPUT, "cannot write %s: %s", data, strerror(errno));
+    for (int k = 0; k < vr->method_count; ++k)
+        fprintf(f, "%.6f %.6f %s\n", vr->methods[k].ao_ms, vr->methods[k].m.rmse, vr->methods[k].name);
+    fclose(f);
+    f = fopen(script, "w");
+    if (!f) return cli_fail(EXIT_OUTPUT, "cannot write %s: %s", script, strerror(errno));
+    fprintf(f,
+            "set terminal svg size 560,360 font 'sans,11' background rgb 'white' noenhanced\n"
+            "set output '%s.tmp'\n"
+            "set xlabel 'AO pass, ms (GPU timestamps)'\n"
+            "set ylabel 'RMSE against the reference'\n"
+            "set grid\n"
+            "unset key\n"
+            "set offsets graph 0.05, graph 0.15, graph 0.1, graph 0.1\n"
+            "plot '%s' using 1:2 with points pt 7 ps 1.2 lc rgb '#3060a0', "
+            "'' using 1:2:3 with labels offset 0.8,0.6 left font 'sans,10'\n",
+            svg_path, data);
+    fclose(f);
+    char cmd[1600];
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", script);
+    int rc = system(cmd);
+    char tmp[720];
+    snprintf(tmp, sizeof tmp, "%s.tmp", svg_path);
+    if (rc != 0 || rename(tmp, svg_path) != 0) {
+        remove(tmp);
+        return cli_fail(EXIT_RUNTIME, "gnuplot failed to draw %s (is gnuplot-nox installed? scripts/install-deps.sh)",
+                        svg_path);
+    }
+    remove(script);
+    remove(data);
+    return EXIT_OK;
+}
+
+static void embed_file(FILE *out, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return;
+    char buf[4096];
+    /* Skip the XML prolog: inline SVG starts at <svg. */
+    bool started = false;
+    while (fgets(buf, sizeof buf, f)) {
+        if (!started) {
+            char *s = strstr(buf, "<svg");
+            if (!s) continue;
+            started = true;
+            fputs(s, out);
+            continue;
+        }
+        fputs(buf, out);
+    }
+    fclose(f);
+}
+
+static int write_html(const compare_opts *o, ob_context *ctx, const view_result *views, int count)
+{
+    char path[700], tmp[720];
+    snprintf(path, sizeof path, "%s/index.html", o->report);
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f) return cli_fail(EXIT_OUTPUT, "cannot write %s: %s", path, strerror(errno));
+    fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>Obscura: AO against ground truth</title>\n"
+          "<style>body{font:14px sans-serif;margin:24px;color:#222}h2{margin-top:36px}"
+          "table{border-collapse:collapse;margin:12px 0}th,td{padding:4px 10px;border-bottom:1px solid #ddd;text-align:right}"
+          "th{cursor:pointer;background:#f2f2f2}td:first-child,th:first-child{text-align:left}"
+          ".grid{display:flex;flex-wrap:wrap;gap:10px}.cell{font-size:12px}.cell img{display:block;border:1px solid #ccc}"
+          ".note{color:#666}</style></head><body>\n<h1>Screen-space AO against the ray-traced ground truth</h1>\n<p class=\"note\">",
+          f);
+    fprintf(f, "%dx%d, reference %d rays per pixel (cosine-weighted, AO<sub>R</sub> as in DESIGN.md), GPU: ", o->width,
+            o->height, o->spp);
+    html_escape(f, ob_query_renderer(ctx));
+    fputs(". Error maps: red = the method is brighter (misses occlusion), blue = darker; &plusmn;0.5 saturates. "
+          "Click a column to sort.</p>\n",
+          f);
+    for (int v = 0; v < count; ++v) {
+        const view_result *vr = &views[v];
+        fputs("<section class=\"view\"><h2>", f);
+        html_escape(f, vr->scene);
+        fputs(" &mdash; ", f);
+        html_escape(f, vr->camera);
+        fprintf(f, "</h2>\n<p class=\"note\">R = %g; reference: %.1f s%s, mean standard error %.4f</p>\n",
+                (double)vr->radius, vr->ref_seconds, vr->ref_cached ? " (cached)" : "", vr->ref_stderr_mean);
+        fputs("<table class=\"sortable\"><thead><tr><th>method</th><th>RMSE</th><th>bias</th><th>MAE</th><th>SSIM</th>"
+              "<th>PSNR dB</th><th>AO ms</th><th>frame ms</th></tr></thead><tbody>\n",
+              f);
+        for (int k = 0; k < vr->method_count; ++k) {
+            const method_result *m = &vr->methods[k];
+            fputs("<tr><td>", f);
+            html_escape(f, m->name);
+            fprintf(f, "</td><td>%.4f</td><td>%+.4f</td><td>%.4f</td><td>%.3f</td><td>%s%.2f</td><td>%.2f</td><td>%.1f</td></tr>\n",
+                    m->m.rmse, m->m.bias, m->m.mae, m->m.ssim, isfinite(m->m.psnr) ? "" : "&infin;",
+                    isfinite(m->m.psnr) ? m->m.psnr : 0.0, m->ao_ms, m->frame_ms);
+        }
+        fputs("</tbody></table>\n<div class=\"chart\">", f);
+        char svg[700];
+        snprintf(svg, sizeof svg, "%s/%s/chart.svg", o->report, vr->dir);
+        embed_file(f, svg);
+        fputs("</div>\n<div class=\"grid\">", f);
+        fprintf(f, "<div class=\"cell\"><img src=\"%s/reference_ao.png\" width=\"%d\" height=\"%d\" alt=\"reference\">reference AO</div>",
+                vr->dir, o->width, o->height);
+        fputs("</div>\n", f);
+        for (int k = 0; k < vr->method_count; ++k) {
+            const char *mn = vr->methods[k].name;
+            fputs("<div class=\"grid\">", f);
+            const char *kinds[3] = {"final", "ao", "error"};
+            for (int q = 0; q < 3; ++q) {
+                fprintf(f, "<div class=\"cell\"><img src=\"%s/%s_%s.png\" width=\"%d\" height=\"%d\" alt=\"\">", vr->dir, mn,
+                        kinds[q], o->width, o->height);
+                html_escape(f, mn);
+                fprintf(f, " %s</div>", kinds[q]);
+            }
+            fputs("</div>\n", f);
+        }
+        fputs("</section>\n", f);
+    }
+    /* Sort a table by a column: numbers numerically, text alphabetically; click again to reverse. */
+    fputs("<script>\n"
+          "document.querySelectorAll('table.sortable th').forEach(function (th, col) {\n"
+          "  th.addEventListener('click', function () {\n"
+          "    var body = th.closest('table').tBodies[0];\n"
+          "    var rows = Array.prototype.slice.call(body.rows);\n"
+          "    var dir = th.dataset.dir === 'asc' ? -1 : 1;\n"
+          "    th.dataset.dir = dir === 1 ? 'asc' : 'desc';\n"
+          "    rows.sort(function (a, b) {\n"
+          "      var x = a.cells[col].textContent, y = b.cells[col].textContent;\n"
+          "      var nx = parseFloat(x), ny = parseFloat(y);\n"
+          "      var c = isNaN(nx) || isNaN(ny) ? x.localeCompare(y) : nx - ny;\n"
+          "      return dir * c;\n"
+          "    });\n"
+          "    rows.forEach(function (r) { body.appendChild(r); });\n"
+          "  });\n"
+          "});\n"
+          "</script>\n</body></html>\n",
+          f);
+    bool ok = !ferror(f);
+    if (fclose(f) != 0 || !ok || rename(tmp, path) != 0) {
+        remove(tmp);
+        return cli_fail(EXIT_OUTPUT, "cannot write %s", path);
+    }
+    return EXIT_OK;
+}
+
+int cmd_compare(int argc, char **argv)
+{
+    compare_opts o;
+    int code = parse(argc, argv, &o);
+    if (code != 0) return code < 0 ? EXIT_OK : code;
+    int probe[MAX_METHODS];
+    if (method_list(&o, probe) < 0) return cli_fail_from_library();
+    if (!make_dir(o.report)) return cli_fail(EXIT_OUTPUT, "cannot create %s: %s", o.report, strerror(errno));
+    ob_context *ctx = ob_make_context(&(ob_context_desc){.gpu = o.gpu});
+    if (!ctx) return cli_fail_from_library();
+    if (o.verbose) fprintf(stderr, "obscura: GL_RENDERER %s\n", ob_query_renderer(ctx));
+    view_result *views = calloc(MAX_VIEWS, sizeof *views);
+    if (!views) {
+        ob_destroy_context(ctx);
+        return cli_fail(EXIT_RUNTIME, "out of memory");
+    }
+    int done = 0;
+    for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) {
+        code = run_view(&o, ctx, o.views[v], &views[v]);
+        if (code == EXIT_OK) {
+            char svg[700];
+            code = write_chart(&o, &views[v], svg, sizeof svg);
+            ++done;
+        }
+    }
+    if (code == EXIT_OK) code = write_json(&o, ctx, views, done);
+    if (code == EXIT_OK) code = write_html(&o, ctx, views, done);
+    if (code == EXIT_OK) printf("report: %s/index.html\n", o.report);
+    free(views);
+    ob_destroy_context(ctx);
+    return code;
+}

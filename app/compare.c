@@ -39,6 +39,8 @@ typedef struct compare_opts {
 typedef struct method_result {
     char name[64];
     ob_metrics m;
+    bool directional;
+    ob_metrics rgb; /* directional methods: HDR radiance against the one-bounce reference */
     double ao_ms, frame_ms;
 } method_result;
 
@@ -194,8 +196,8 @@ static const char *cache_dir(char *buf, size_t n)
 typedef struct view_result {
     char scene[128], camera[64], dir[192];
     float radius;
-    double ref_seconds, ref_stderr_mean;
-    bool ref_cached;
+    double ref_seconds, ref_stderr_mean, bounce_seconds;
+    bool ref_cached, has_bounce;
     method_result methods[MAX_METHODS];
     int method_count;
 } view_result;
@@ -321,7 +323,7 @@ static int run_view(const compare_opts *o, ob_context *ctx, const char *spec, vi
     int code = EXIT_OK;
     ob_camera cam;
     ob_renderer *r = NULL;
-    float *depth = NULL, *normals = NULL, *ref = NULL, *ao = NULL;
+    float *depth = NULL, *normals = NULL, *ref = NULL, *ao = NULL, *ref_rgb = NULL, *test_rgb = NULL;
     uint8_t *rgba = NULL, *mask = NULL, *heat = NULL;
     if (ob_find_camera(scene, camera, &cam) != OB_OK) {
         code = cli_fail_from_library();
@@ -397,6 +399,38 @@ static int run_view(const compare_opts *o, ob_context *ctx, const char *spec, vi
         code = cli_fail_from_library();
         goto done;
     }
+    /* The one-bounce reference, for directional methods only: their composed radiance (direct x M
+     * + bounce) against shadow rays + one diffuse bounce + ambient x AO_R (ob_reference_bounce).
+     * It casts a shadow ray per light at every bounce hit, so it takes a quarter of the AO rays. */
+    bool any_directional = false;
+    for (int k = 0; k < n; ++k) any_directional = any_directional || ob_method_at(indices[k])->directional;
+    if (any_directional) {
+        ref_rgb = malloc(px * 3 * sizeof(float));
+        test_rgb = malloc(px * 3 * sizeof(float));
+        float *albedo = malloc(px * 3 * sizeof(float)), *pos = malloc(px * 3 * sizeof(float));
+        float *nrm = malloc(px * 3 * sizeof(float));
+        ob_settings defaults;
+        ob_settings_init(&defaults, "none");
+        struct timespec t0, t1;
+        clock_gettime(CLOCK_MONOTONIC, &t0);
+        bool ok = ref_rgb && test_rgb && albedo && pos && nrm &&
+                  ob_read_image(r, OB_IMAGE_ALBEDO_F32, albedo, px * 3 * sizeof(float)) == OB_OK &&
+                  ob_reference_points(depth, normals, w, h, proj_info, (const float *)inv_view, pos, nrm) == OB_OK &&
+                  ob_reference_bounce(scene, NULL, 0, defaults.ambient, pos, nrm, albedo, px,
+                                      &(ob_reference_desc){.spp = o->spp / 4 > 16 ? o->spp / 4 : 16,
+                                                           .radius = vr->radius, .progress = true},
+                                      ref_rgb) == OB_OK;
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        vr->bounce_seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+        free(albedo);
+        free(pos);
+        free(nrm);
+        if (!ok) {
+            code = ref_rgb && test_rgb ? cli_fail_from_library() : cli_fail(EXIT_RUNTIME, "out of memory");
+            goto done;
+        }
+        vr->has_bounce = true;
+    }
     char radius_set[64];
     snprintf(radius_set, sizeof radius_set, "radius=%.9g", (double)vr->radius);
     for (int k = 0; k < n; ++k) {
@@ -427,6 +461,13 @@ static int run_view(const compare_opts *o, ob_context *ctx, const char *spec, vi
             code = cli_fail_from_library();
             goto done;
         }
+        mr->directional = mi->directional;
+        if (mi->directional &&
+            (ob_read_image(r, OB_IMAGE_HDR_F32, test_rgb, px * 3 * sizeof(float)) != OB_OK ||
+             ob_compare_images(test_rgb, ref_rgb, mask, w, h, 3, &mr->rgb) != OB_OK)) {
+            code = cli_fail_from_library();
+            goto done;
+        }
         ob_read_image(r, OB_IMAGE_FINAL_RGBA8, rgba, px * 4);
         snprintf(path, sizeof path, "%s/%s_final.png", dir, mi->name);
         ob_error e = ob_write_png(path, w, h, 4, rgba);
@@ -449,6 +490,8 @@ done:
     free(normals);
     free(ref);
     free(ao);
+    free(ref_rgb);
+    free(test_rgb);
     free(rgba);
     free(mask);
     free(heat);
@@ -483,6 +526,7 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
         cJSON_AddNumberToObject(jr, "seconds", vr->ref_seconds);
         cJSON_AddBoolToObject(jr, "cached", vr->ref_cached);
         cJSON_AddNumberToObject(jr, "mean_standard_error", vr->ref_stderr_mean);
+        if (vr->has_bounce) cJSON_AddNumberToObject(jr, "bounce_seconds", vr->bounce_seconds);
         cJSON *jm = cJSON_AddArrayToObject(j, "methods");
         for (int k = 0; k < vr->method_count; ++k) {
             const method_result *m = &vr->methods[k];
@@ -496,6 +540,12 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
             else cJSON_AddNullToObject(e, "psnr");
             cJSON_AddNumberToObject(e, "ssim", m->m.ssim);
             cJSON_AddNumberToObject(e, "pixels", (double)m->m.count);
+            if (m->directional) {
+                cJSON *rgb = cJSON_AddObjectToObject(e, "radiance");
+                cJSON_AddNumberToObject(rgb, "rmse", m->rgb.rmse);
+                cJSON_AddNumberToObject(rgb, "bias", m->rgb.bias);
+                cJSON_AddNumberToObject(rgb, "ssim", m->rgb.ssim);
+            }
             cJSON_AddNumberToObject(e, "ao_ms", m->ao_ms);
             cJSON_AddNumberToObject(e, "frame_ms", m->frame_ms);
             cJSON_AddItemToArray(jm, e);
@@ -612,7 +662,23 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
                     m->m.rmse, m->m.bias, m->m.mae, m->m.ssim, isfinite(m->m.psnr) ? "" : "&infin;",
                     isfinite(m->m.psnr) ? m->m.psnr : 0.0, m->ao_ms, m->frame_ms);
         }
-        fputs("</tbody></table>\n<div class=\"chart\">", f);
+        fputs("</tbody></table>\n", f);
+        if (vr->has_bounce) {
+            fprintf(f, "<p class=\"note\">Directional methods: composed HDR radiance against the one-bounce reference "
+                       "(shadow rays, one diffuse bounce within R, ambient &times; AO<sub>R</sub>; %.1f s).</p>\n"
+                       "<table class=\"sortable\"><thead><tr><th>method</th><th>radiance RMSE</th><th>bias</th>"
+                       "<th>SSIM</th></tr></thead><tbody>\n",
+                    vr->bounce_seconds);
+            for (int k = 0; k < vr->method_count; ++k) {
+                const method_result *m = &vr->methods[k];
+                if (!m->directional) continue;
+                fputs("<tr><td>", f);
+                html_escape(f, m->name);
+                fprintf(f, "</td><td>%.4f</td><td>%+.4f</td><td>%.3f</td></tr>\n", m->rgb.rmse, m->rgb.bias, m->rgb.ssim);
+            }
+            fputs("</tbody></table>\n", f);
+        }
+        fputs("<div class=\"chart\">", f);
         char svg[700];
         snprintf(svg, sizeof svg, "%s/%s/chart.svg", o->report, vr->dir);
         embed_file(f, svg);

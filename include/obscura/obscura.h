@@ -212,6 +212,7 @@ typedef struct ob_method_info {
     const char *name;
     const char *description;
     const char *reference; /* seed / paper section */
+    bool directional;      /* writes RGB modulation and a bounce (SSDO): compare its radiance too */
     int param_count;
     const ob_param_info *params;
 } ob_method_info;
@@ -326,6 +327,7 @@ typedef enum ob_image_kind {
     OB_IMAGE_RADIANCE_F32,    /* direct light (all lights, shadowed), linear RGB, 3 floats, bottom row first */
     OB_IMAGE_SHADOW_F32,      /* the key light's visibility (0 where it faces away), bottom row first */
     OB_IMAGE_HDR_F32,         /* the composed linear radiance before tone mapping, 3 floats */
+    OB_IMAGE_ALBEDO_F32,      /* the G-buffer's linear albedo, 3 floats per pixel, bottom row first */
     /* Directional methods (ssdo, ssdo_merged) write an RGB modulation factor M instead of one
      * visibility: OB_IMAGE_AO_F32 and OB_IMAGE_AO_RAW_F32 then hold the average of M's three
      * channels, and these two the full picture (AO methods: AO in all three, and a zero bounce). */

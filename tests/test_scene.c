@@ -882,6 +882,63 @@ static void test_oa_dm1(void)
     ob_destroy_scene(s);
 }
 
+/* ob_tessellate_scene: 4^levels triangles, every new vertex on its original triangle's plane
+ * (so the surfaces are the same), unit normals, the scene's cameras, bounds and radius kept. */
+static void test_tessellate(void)
+{
+    ob_scene *s = ob_load_scene(&(ob_scene_desc){.name = "cornell"});
+    CHECK(s != NULL, "cornell loads");
+    if (!s) return;
+    ob_scene_stats base = ob_query_scene_stats(s);
+    for (int levels = 0; levels <= 2; ++levels) {
+        ob_scene *t = ob_tessellate_scene(s, levels);
+        CHECK(t != NULL, "tessellate %d", levels);
+        if (!t) continue;
+        ob_scene_stats st = ob_query_scene_stats(t);
+        CHECK(st.triangles == base.triangles << (2 * levels), "level %d: %u triangles from %u", levels, st.triangles,
+              base.triangles);
+        for (int k = 0; k < 3; ++k) {
+            CHECK_NEAR(st.bounds_min[k], base.bounds_min[k], 0.0, "bounds min");
+            CHECK_NEAR(st.bounds_max[k], base.bounds_max[k], 0.0, "bounds max");
+        }
+        CHECK(ob_query_camera_count(t) == ob_query_camera_count(s), "cameras kept");
+        CHECK(ob_query_scene_ao_radius(t) == ob_query_scene_ao_radius(s), "radius kept");
+        /* Every vertex of every sub-triangle lies on some original triangle's plane within 1e-5,
+         * checked per mesh (a mesh keeps its material and its own triangles). */
+        double worst_plane = 0.0, worst_normal = 0.0;
+        for (int m = 0; m < t->mesh_count; ++m) {
+            const ob_mesh *a = &s->meshes[m], *b = &t->meshes[m];
+            for (uint32_t v = 0; v < b->vertex_count; ++v) {
+                const float *p = b->positions + 3u * v, *n = b->normals + 3u * v;
+                worst_normal = fmax(worst_normal, fabs(sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]) - 1.0));
+                double best = INFINITY;
+                for (uint32_t i = 0; i + 2 < a->index_count; i += 3) {
+                    const float *p0 = a->positions + 3u * a->indices[i], *p1 = a->positions + 3u * a->indices[i + 1],
+                                *p2 = a->positions + 3u * a->indices[i + 2];
+                    double e1[3], e2[3], c[3], d[3];
+                    for (int k = 0; k < 3; ++k) {
+                        e1[k] = (double)p1[k] - p0[k];
+                        e2[k] = (double)p2[k] - p0[k];
+                        d[k] = (double)p[k] - p0[k];
+                    }
+                    c[0] = e1[1] * e2[2] - e1[2] * e2[1];
+                    c[1] = e1[2] * e2[0] - e1[0] * e2[2];
+                    c[2] = e1[0] * e2[1] - e1[1] * e2[0];
+                    double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+                    if (len > 0.0) best = fmin(best, fabs(c[0] * d[0] + c[1] * d[1] + c[2] * d[2]) / len);
+                }
+                worst_plane = fmax(worst_plane, best);
+            }
+        }
+        CHECK(worst_plane < 1e-5, "level %d: a vertex %.3g off the original surface", levels, worst_plane);
+        CHECK(worst_normal < 1e-4, "level %d: normal length off by %.3g", levels, worst_normal);
+        ob_destroy_scene(t);
+    }
+    CHECK(ob_tessellate_scene(s, 5) == NULL && ob_get_error(NULL) == OB_ERR_OUT_OF_RANGE, "levels 5 refused");
+    CHECK(ob_tessellate_scene(NULL, 1) == NULL && ob_get_error(NULL) == OB_ERR_INVALID_ARGUMENT, "NULL refused");
+    ob_destroy_scene(s);
+}
+
 int main(void)
 {
     snprintf(tmpdir, sizeof tmpdir, "%s", "/tmp/obscura_test_scene_XXXXXX");
@@ -900,6 +957,7 @@ int main(void)
     test_bunny();
     test_fzk_haus();
     test_oa_dm1();
+    test_tessellate();
     rmdir(tmpdir);
     return check_finish("scene");
 }

@@ -181,6 +181,14 @@ ob_camera ob_query_camera(const ob_scene *scene, int index);
 /* By name or decimal index. Errors: OB_ERR_UNKNOWN_CAMERA. */
 ob_error ob_find_camera(const ob_scene *scene, const char *name_or_index, ob_camera *out);
 
+/* A deep copy of `scene` with every triangle split `levels` times by midpoint subdivision (each
+ * triangle becomes 4: levels 1 = 4x, 2 = 16x the triangles; 0 = a plain copy). New vertices lie on
+ * the original triangles, so the surfaces, cameras, lights, bounds and suggested radius are
+ * unchanged: for the benchmark's triangle-count scaling (`obscura bench --scaling`). Destroy the
+ * result with ob_destroy_scene. Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_OUT_OF_RANGE
+ * (levels outside [0, 4]), OB_ERR_OUT_OF_MEMORY (also when a mesh would pass 2^32 indices). */
+ob_scene *ob_tessellate_scene(const ob_scene *scene, int levels);
+
 /* Directory holding scenes/ (named scene sidecars): the source tree by default, overridden by the
  * OBSCURA_DATA_DIR environment variable. */
 const char *ob_data_dir(void);

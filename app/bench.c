@@ -1,0 +1,923 @@
+/* obscura bench: GPU time per pass of every method over sample counts N and radii r (seed 000
+ * §5.1 tables), against a no-AO frame, optionally in stereo against the 90 Hz budget (§5.2) or as
+ * a scaling study over resolution and triangle count. DESIGN.md "Performance method": warm-up
+ * frames first, then median/min/max over the measured frames, every ratio from the same run. */
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+enum { MAX_PASSES = 16, MAX_LIST = 16, MAX_METHODS = 32, MAX_CAMS = 32, MAX_SIZES = 16 };
+
+static const double VR_BUDGET_MS = 1000.0 / 90.0;
+
+typedef struct bench_opts {
+    const char *scene, *methods, *json, *csv, *cameras, *filter;
+    int samples[MAX_LIST], sample_count;
+    float radii[MAX_LIST];
+    int radius_count;
+    int width, height, frames, warmup;
+    bool size_given, stereo, scaling, verbose, hdr_off, shadow_given;
+    float ipd;
+    int shadow;
+    int sizes[MAX_SIZES][2], size_count;
+    ob_gpu_kind gpu;
+} bench_opts;
+
+/* One measured configuration: per pass and whole-frame statistics (stereo: both eyes summed). */
+typedef struct bench_row {
+    int camera;           /* index into the scene's presets */
+    int method;           /* registry index */
+    int samples;          /* 0 = the method takes no sample count */
+    float r;              /* the sweep's r (0 = the method takes no radius) */
+    float radius_world;
+    int width, height;    /* per eye */
+    int tess;             /* scaling: subdivision levels; 0 otherwise */
+    uint32_t triangles;
+    int pass_count;
+    char pass[MAX_PASSES][16];
+    double med[MAX_PASSES], min[MAX_PASSES], max[MAX_PASSES];
+    double frame_med, frame_min, frame_max, ao_ms;
+    int baseline;         /* index of this camera's none row, -1 when none */
+    int study;            /* 0 the sweep, 1 scaling over resolution, 2 scaling over triangles */
+} bench_row;
+
+typedef struct bench_state {
+    bench_row *rows;
+    int count, cap;
+    int done, total;      /* progress */
+    double start;
+} bench_state;
+
+static void bench_usage(FILE *f)
+{
+    fputs("usage: obscura bench [options]\n"
+          "\n"
+          "GPU time per pass (GL timestamp queries) of every AO method over sample counts N and\n"
+          "radii r, after warm-up frames, as median/min/max over the measured frames, against a\n"
+          "no-AO ('none') frame of the same camera: the tables of seed 000 §5.1-5.2.\n"
+          "\n"
+          "  --scene S             scene (default cornell)\n"
+          "  --cameras A,B         camera presets by name or index (default: every preset)\n"
+          "  --methods all|A,B     methods (default all); none is always measured as the baseline\n"
+          "  --samples 12,24,36,64 samples per pixel N (methods without a count run once)\n"
+          "  --radius 2,4,8        r as a multiple of a quarter of the scene's suggested radius:\n"
+          "                        radius = r x suggested / 4, so r = 4 is the suggested radius and\n"
+          "                        2/4/8 are half/1x/2x (seed 000's r are metres on one scene)\n"
+          "  --size WxH            image size (default 800x600; --stereo: 1080x1200 per eye)\n"
+          "  --frames N            measured frames per configuration (default 50)\n"
+          "  --warmup N            frames rendered first and not measured (default 5)\n"
+          "  --filter NAME         denoising filter (default geometry)\n"
+          "  --shadow none|hard|pcf|vsm  shadow maps (default pcf); none isolates the AO passes\n"
+          "  --hdr on|off          tone mapping (default on)\n"
+          "  --stereo              two eyes (one renderer each), eye offset +-ipd/2 along the\n"
+          "                        camera's right vector, the same symmetric projection per eye;\n"
+          "                        frame = both eyes, against the 11.1 ms (90 Hz) budget\n"
+          "  --ipd D               interpupillary distance in world units (default 0.064)\n"
+          "  --scaling             instead of the sweep: AO-pass ms of each method against\n"
+          "                        resolution and against triangles (scene tessellated 1x, 4x, 16x)\n"
+          "                        at the first --samples and --radius values, first camera\n"
+          "  --sizes WxH,WxH       --scaling's resolutions (default 640x480,1280x720,1920x1080,\n"
+          "                        2560x1440,3840x2160)\n"
+          "  --json FILE           every number, with GL renderer/version, CPU, commit and date\n"
+          "  --csv FILE            one row per configuration and pass\n"
+          "  --gpu auto|hw|sw      as for render; -v prints the GL renderer\n"
+          "\n"
+          "stdout: one table per method, rows N, columns r, cells 'AO-pass ms / frame ms' (medians);\n"
+          "stderr: a progress bar with the configurations done and the time left.\n",
+          f);
+}
+
+static bool parse_int(const char *v, long lo, long hi, int *out)
+{
+    char *end = NULL;
+    long n = strtol(v, &end, 10);
+    if (end == v || *end || n < lo || n > hi) return false;
+    *out = (int)n;
+    return true;
+}
+
+/* Comma lists of integers or positive numbers. */
+static bool parse_int_list(const char *v, int *out, int *count)
+{
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", v);
+    *count = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        if (*count >= MAX_LIST || !parse_int(t, 1, 4096, &out[*count])) return false;
+        ++*count;
+    }
+    return *count > 0;
+}
+
+static bool parse_float_list(const char *v, float *out, int *count)
+{
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", v);
+    *count = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        if (*count >= MAX_LIST || !cli_parse_float(t, &out[*count]) || !(out[*count] > 0.0f)) return false;
+        ++*count;
+    }
+    return *count > 0;
+}
+
+static bool parse_size_list(const char *v, int sizes[][2], int *count)
+{
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", v);
+    *count = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        if (*count >= MAX_SIZES || !cli_parse_size(t, &sizes[*count][0], &sizes[*count][1])) return false;
+        ++*count;
+    }
+    return *count > 0;
+}
+
+static int parse(int argc, char **argv, bench_opts *o)
+{
+    *o = (bench_opts){.scene = "cornell", .filter = "geometry", .width = 800, .height = 600, .frames = 50,
+                      .warmup = 5, .ipd = 0.064f,
+                      .samples = {12, 24, 36, 64}, .sample_count = 4, .radii = {2.0f, 4.0f, 8.0f}, .radius_count = 3,
+                      .sizes = {{640, 480}, {1280, 720}, {1920, 1080}, {2560, 1440}, {3840, 2160}}, .size_count = 5};
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            bench_usage(stdout);
+            return -1;
+        }
+        if (!strcmp(a, "-v")) { o->verbose = true; continue; }
+        if (!strcmp(a, "--stereo")) { o->stereo = true; continue; }
+        if (!strcmp(a, "--scaling")) { o->scaling = true; continue; }
+        if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura bench --help)", a);
+        const char *v = argv[++i];
+        if (!strcmp(a, "--scene")) o->scene = v;
+        else if (!strcmp(a, "--methods")) o->methods = strcmp(v, "all") ? v : NULL;
+        else if (!strcmp(a, "--cameras")) o->cameras = v;
+        else if (!strcmp(a, "--json")) o->json = v;
+        else if (!strcmp(a, "--csv")) o->csv = v;
+        else if (!strcmp(a, "--filter")) o->filter = v;
+        else if (!strcmp(a, "--samples")) {
+            if (!parse_int_list(v, o->samples, &o->sample_count))
+                return cli_fail(EXIT_USAGE, "--samples: expected a comma list of 1..4096, got '%s'", v);
+        } else if (!strcmp(a, "--radius")) {
+            if (!parse_float_list(v, o->radii, &o->radius_count))
+                return cli_fail(EXIT_USAGE, "--radius: expected a comma list of positive numbers, got '%s'", v);
+        } else if (!strcmp(a, "--size")) {
+            if (!cli_parse_size(v, &o->width, &o->height))
+                return cli_fail(EXIT_USAGE, "--size: expected WIDTHxHEIGHT with positive integers, got '%s'", v);
+            o->size_given = true;
+        } else if (!strcmp(a, "--sizes")) {
+            if (!parse_size_list(v, o->sizes, &o->size_count))
+                return cli_fail(EXIT_USAGE, "--sizes: expected a comma list of WIDTHxHEIGHT, got '%s'", v);
+        } else if (!strcmp(a, "--frames")) {
+            if (!parse_int(v, 1, 100000, &o->frames)) return cli_fail(EXIT_USAGE, "--frames: expected 1..100000, got '%s'", v);
+        } else if (!strcmp(a, "--warmup")) {
+            if (!parse_int(v, 0, 100000, &o->warmup)) return cli_fail(EXIT_USAGE, "--warmup: expected 0..100000, got '%s'", v);
+        } else if (!strcmp(a, "--ipd")) {
+            if (!cli_parse_float(v, &o->ipd) || !(o->ipd >= 0.0f))
+                return cli_fail(EXIT_USAGE, "--ipd: expected a number >= 0, got '%s'", v);
+        } else if (!strcmp(a, "--shadow")) {
+            if (!strcmp(v, "none")) o->shadow = OB_SHADOW_NONE;
+            else if (!strcmp(v, "hard")) o->shadow = OB_SHADOW_HARD;
+            else if (!strcmp(v, "pcf")) o->shadow = OB_SHADOW_PCF;
+            else if (!strcmp(v, "vsm")) o->shadow = OB_SHADOW_VSM;
+            else return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
+            o->shadow_given = true;
+        } else if (!strcmp(a, "--hdr")) {
+            if (!strcmp(v, "on")) o->hdr_off = false;
+            else if (!strcmp(v, "off")) o->hdr_off = true;
+            else return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
+        } else if (!strcmp(a, "--gpu")) {
+            if (!strcmp(v, "auto")) o->gpu = OB_GPU_AUTO;
+            else if (!strcmp(v, "hw")) o->gpu = OB_GPU_HW;
+            else if (!strcmp(v, "sw")) o->gpu = OB_GPU_SW;
+            else return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
+        } else {
+            return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura bench --help)", a);
+        }
+    }
+    if (o->stereo && o->scaling) return cli_fail(EXIT_USAGE, "--stereo and --scaling exclude each other");
+    if (o->stereo && !o->size_given) {
+        o->width = 1080;
+        o->height = 1200;
+    }
+    const char *outs[2] = {o->json, o->csv};
+    for (int i = 0; i < 2; ++i)
+        if (outs[i] && !cli_output_writable(outs[i]))
+            return cli_fail(EXIT_OUTPUT, "cannot write %s: its directory does not exist or is not writable", outs[i]);
+    return 0;
+}
+
+/* ---- helpers --------------------------------------------------------------------------------- */
+
+static double now_s(void)
+{
+    struct timespec ts = {0, 0};
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Sorts v. */
+static void stats(double *v, int n, double *med, double *lo, double *hi)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    *med = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    *lo = v[0];
+    *hi = v[n - 1];
+}
+
+static bool method_has_param(int method, const char *name)
+{
+    const ob_method_info *m = ob_method_at(method);
+    for (int i = 0; m && i < m->param_count; ++i)
+        if (!strcmp(m->params[i].name, name)) return true;
+    return false;
+}
+
+static void progress(bench_state *st, const char *what)
+{
+    ++st->done;
+    double el = now_s() - st->start;
+    double eta = st->done > 0 ? el / st->done * (st->total - st->done) : 0.0;
+    int width = 30, fill = st->total > 0 ? st->done * width / st->total : width;
+    char bar[64];
+    for (int i = 0; i < width; ++i) bar[i] = i < fill ? '#' : '.';
+    bar[width] = '\0';
+    /* A terminal gets one bar redrawn in place; a log gets a line per configuration. */
+    bool tty = isatty(STDERR_FILENO);
+    fprintf(stderr, "%sbench [%s] %d/%d %-28.28s elapsed %dm%02ds ETA %dm%02ds%s", tty ? "\r" : "", bar, st->done,
+            st->total, what, (int)el / 60, (int)el % 60, (int)eta / 60, (int)eta % 60,
+            tty ? (st->done == st->total ? "\n" : "") : "\n");
+    fflush(stderr);
+}
+
+static bench_row *new_row(bench_state *st)
+{
+    if (st->count == st->cap) {
+        int cap = st->cap ? st->cap * 2 : 64;
+        bench_row *p = realloc(st->rows, (size_t)cap * sizeof *p);
+        if (!p) return NULL;
+        st->rows = p;
+        st->cap = cap;
+    }
+    bench_row *r = &st->rows[st->count++];
+    memset(r, 0, sizeof *r);
+    r->baseline = -1;
+    return r;
+}
+
+/* The two eyes of a camera: eye and target moved by -+ipd/2 along the right vector, so the view
+ * directions stay parallel (the per-eye projection is the same symmetric one; a headset's is
+ * off-axis, which changes no pass's cost). */
+static void eye_cameras(const ob_camera *c, float ipd, ob_camera out[2])
+{
+    float f[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1], c->target[2] - c->eye[2]};
+    float up[3] = {c->up[0], c->up[1], c->up[2]};
+    if (up[0] == 0.0f && up[1] == 0.0f && up[2] == 0.0f) up[1] = 1.0f;
+    float rt[3] = {f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]};
+    float len = sqrtf(rt[0] * rt[0] + rt[1] * rt[1] + rt[2] * rt[2]);
+    for (int e = 0; e < 2; ++e) {
+        out[e] = *c;
+        float s = (e == 0 ? -0.5f : 0.5f) * ipd / (len > 0.0f ? len : 1.0f);
+        for (int k = 0; k < 3; ++k) {
+            out[e].eye[k] += s * rt[k];
+            out[e].target[k] += s * rt[k];
+        }
+    }
+}
+
+/* Warm-up, then o->frames measured frames on every eye. scratch holds frames x (MAX_PASSES + 1). */
+static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, const ob_settings *s, const bench_opts *o,
+                   double *scratch, bench_row *row)
+{
+    int frames = o->frames;
+    double *frame_ms = scratch + (size_t)MAX_PASSES * (size_t)frames;
+    for (int f = 0; f < o->warmup + frames; ++f) {
+        bool measured = f >= o->warmup;
+        int m = f - o->warmup;
+        if (measured) {
+            frame_ms[m] = 0.0;
+            for (int p = 0; p < MAX_PASSES; ++p) scratch[(size_t)p * (size_t)frames + (size_t)m] = 0.0;
+        }
+        for (int e = 0; e < eye_count; ++e) {
+            if (ob_render_frame(eyes[e], &cams[e], s) != OB_OK) return cli_fail_from_library();
+            if (!measured) continue;
+            ob_pass_timing t[MAX_PASSES];
+            int n = ob_query_timings(eyes[e], t, MAX_PASSES);
+            row->pass_count = n;
+            for (int p = 0; p < n; ++p) {
+                snprintf(row->pass[p], sizeof row->pass[p], "%s", t[p].name);
+                scratch[(size_t)p * (size_t)frames + (size_t)m] += t[p].ms;
+                frame_ms[m] += t[p].ms;
+            }
+        }
+    }
+    row->ao_ms = 0.0;
+    for (int p = 0; p < row->pass_count; ++p) {
+        stats(scratch + (size_t)p * (size_t)frames, frames, &row->med[p], &row->min[p], &row->max[p]);
+        if (!strcmp(row->pass[p], "ao")) row->ao_ms = row->med[p];
+    }
+    stats(frame_ms, frames, &row->frame_med, &row->frame_min, &row->frame_max);
+    return EXIT_OK;
+}
+
+/* The settings of one configuration; samples 0 / r 0 leave the method's own. */
+static int configure(const bench_opts *o, int method, int samples, float radius_world, ob_settings *s)
+{
+    if (ob_settings_init(s, ob_method_at(method)->name) != OB_OK) return cli_fail_from_library();
+    if (ob_settings_set_filter(s, o->filter) != OB_OK) return cli_fail_from_library();
+    if (o->shadow_given) s->shadow.method = (ob_shadow_method)o->shadow;
+    s->hdr.enabled = !o->hdr_off;
+    if (samples > 0 && ob_settings_set_samples(s, samples) != OB_OK) return cli_fail_from_library();
+    if (radius_world > 0.0f) {
+        char buf[64];
+        snprintf(buf, sizeof buf, "radius=%.9g", (double)radius_world);
+        if (ob_settings_set(s, buf) != OB_OK) return cli_fail_from_library();
+    }
+    return EXIT_OK;
+}
+
+/* Whether the method takes a sample count: ob_settings_set_samples refuses with
+ * OB_ERR_INVALID_ARGUMENT when it does not; any other refusal (N beyond its table) is the user's. */
+static int takes_samples(const bench_opts *o, int method, bool *yes)
+{
+    ob_settings s;
+    if (ob_settings_init(&s, ob_method_at(method)->name) != OB_OK) return cli_fail_from_library();
+    *yes = true;
+    for (int i = 0; i < o->sample_count; ++i) {
+        if (ob_settings_set_samples(&s, o->samples[i]) == OB_OK) continue;
+        if (ob_get_error(NULL) == OB_ERR_INVALID_ARGUMENT) {
+            *yes = false;
+            ob_clear_error();
+            return EXIT_OK;
+        }
+        return cli_fail_from_library();
+    }
+    return EXIT_OK;
+}
+
+static int method_list(const bench_opts *o, int *idx, int *count)
+{
+    *count = 0;
+    if (!o->methods) {
+        for (int i = 0; i < ob_method_count() && *count < MAX_METHODS; ++i)
+            if (strcmp(ob_method_at(i)->name, "none")) idx[(*count)++] = i;
+        return EXIT_OK;
+    }
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", o->methods);
+    char *save = NULL;
+    for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        int k = ob_find_method(t);
+        if (k < 0) {
+            ob_settings probe;
+            ob_settings_init(&probe, t); /* the library's "unknown method (known: ...)" message */
+            return cli_fail_from_library();
+        }
+        if (!strcmp(t, "none")) continue; /* always measured as the baseline */
+        if (*count < MAX_METHODS) idx[(*count)++] = k;
+    }
+    return EXIT_OK;
+}
+
+static int camera_list(const bench_opts *o, const ob_scene *scene, int *idx, int *count)
+{
+    *count = 0;
+    if (!o->cameras) {
+        for (int i = 0; i < ob_query_camera_count(scene) && *count < MAX_CAMS; ++i) idx[(*count)++] = i;
+        return EXIT_OK;
+    }
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", o->cameras);
+    char *save = NULL;
+    for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        ob_camera c;
+        if (ob_find_camera(scene, t, &c) != OB_OK) return cli_fail_from_library();
+        for (int i = 0; i < ob_query_camera_count(scene); ++i)
+            if (!strcmp(ob_query_camera(scene, i).name, c.name) && *count < MAX_CAMS) {
+                idx[(*count)++] = i;
+                break;
+            }
+    }
+    return EXIT_OK;
+}
+
+/* ---- run info -------------------------------------------------------------------------------- */
+
+static void cpu_model(char *out, size_t n)
+{
+    snprintf(out, n, "unknown");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f) return;
+    char line[512];
+    while (fgets(line, sizeof line, f)) {
+        if (strncmp(line, "model name", 10)) continue;
+        const char *c = strchr(line, ':');
+        if (!c) break;
+        for (++c; *c == ' ' || *c == '\t'; ++c) {}
+        snprintf(out, n, "%s", c);
+        out[strcspn(out, "\n")] = '\0';
+        break;
+    }
+    fclose(f);
+}
+
+static void git_commit(char *out, size_t n)
+{
+    snprintf(out, n, "unknown");
+    const char *dir = ob_data_dir();
+    /* The path goes into a shell command in single quotes: refuse one that contains a quote. */
+    if (!dir || strchr(dir, '\'')) return;
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "git -C '%s' rev-parse --short HEAD 2>/dev/null", dir);
+    FILE *p = popen(cmd, "r");
+    if (!p) return;
+    char line[128] = {0};
+    bool got = fgets(line, sizeof line, p) != NULL;
+    int rc = pclose(p);
+    line[strcspn(line, "\n")] = '\0';
+    if (got && rc == 0 && line[0]) snprintf(out, n, "%s", line);
+}
+
+/* ---- output ---------------------------------------------------------------------------------- */
+
+static const char *method_name(int m) { return ob_method_at(m)->name; }
+
+static void print_tables(const bench_opts *o, const ob_scene *scene, const bench_state *st, const int *cams, int cam_count,
+                         const int *methods, int method_count)
+{
+    const char *unit = o->stereo ? "both eyes" : "one view";
+    for (int c = 0; c < cam_count; ++c) {
+        const char *cname = ob_query_camera(scene, cams[c]).name;
+        const bench_row *none = NULL;
+        for (int i = 0; i < st->count; ++i)
+            if (st->rows[i].camera == cams[c] && !strcmp(method_name(st->rows[i].method), "none")) none = &st->rows[i];
+        printf("\n== %s, camera %s, %dx%d%s, median of %d frames (%s) ==\n", ob_query_scene_name(scene), cname,
+               o->width, o->height, o->stereo ? " per eye" : "", o->frames, unit);
+        if (none)
+            printf("none: frame %.3f ms (%.1f FPS)%s\n", none->frame_med, 1000.0 / none->frame_med,
+                   o->stereo ? (none->frame_med <= VR_BUDGET_MS ? ", within 11.1 ms" : ", over 11.1 ms") : "");
+        for (int mi = 0; mi < method_count; ++mi) {
+            int m = methods[mi];
+            printf("\n%s: AO-pass ms / frame ms", method_name(m));
+            if (o->stereo) printf(" (frame budget 11.1 ms at 90 Hz; * = over)");
+            printf("\n%-8s", "");
+            float rs[MAX_LIST];
+            int rn = 0;
+            int ns[MAX_LIST];
+            int nn = 0;
+            for (int i = 0; i < st->count; ++i) {
+                const bench_row *r = &st->rows[i];
+                if (r->camera != cams[c] || r->method != m) continue;
+                bool seen = false;
+                for (int k = 0; k < rn; ++k) seen = seen || rs[k] == r->r;
+                if (!seen && rn < MAX_LIST) rs[rn++] = r->r;
+                seen = false;
+                for (int k = 0; k < nn; ++k) seen = seen || ns[k] == r->samples;
+                if (!seen && nn < MAX_LIST) ns[nn++] = r->samples;
+            }
+            for (int k = 0; k < rn; ++k) {
+                char h[32];
+                if (rs[k] > 0.0f) snprintf(h, sizeof h, "r = %g", (double)rs[k]);
+                else snprintf(h, sizeof h, "r = -");
+                printf(" %20s", h);
+            }
+            printf("\n");
+            double sum_ratio = 0.0;
+            int cells = 0;
+            for (int j = 0; j < nn; ++j) {
+                char h[32];
+                if (ns[j] > 0) snprintf(h, sizeof h, "N = %d", ns[j]);
+                else snprintf(h, sizeof h, "N = -");
+                printf("%-8s", h);
+                for (int k = 0; k < rn; ++k) {
+                    const bench_row *hit = NULL;
+                    for (int i = 0; i < st->count; ++i) {
+                        const bench_row *r = &st->rows[i];
+                        if (r->camera == cams[c] && r->method == m && r->samples == ns[j] && r->r == rs[k]) hit = r;
+                    }
+                    char cell[48];
+                    if (hit) {
+                        snprintf(cell, sizeof cell, "%.3f / %.3f%s", hit->ao_ms, hit->frame_med,
+                                 o->stereo && hit->frame_med > VR_BUDGET_MS ? "*" : "");
+                        if (none && none->frame_med > 0.0) {
+                            sum_ratio += hit->frame_med / none->frame_med;
+                            ++cells;
+                        }
+                    } else {
+                        snprintf(cell, sizeof cell, "-");
+                    }
+                    printf(" %20s", cell);
+                }
+                printf("\n");
+            }
+            if (cells) printf("mean frame / none frame: %.2fx\n", sum_ratio / cells);
+        }
+    }
+}
+
+static cJSON *row_json(const bench_row *r, const bench_row *none, const ob_scene *scene)
+{
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "method", method_name(r->method));
+    cJSON_AddStringToObject(j, "camera", ob_query_camera(scene, r->camera).name);
+    if (r->samples > 0) cJSON_AddNumberToObject(j, "samples", r->samples);
+    else cJSON_AddNullToObject(j, "samples");
+    if (r->r > 0.0f) {
+        cJSON_AddNumberToObject(j, "radius", r->r);
+        cJSON_AddNumberToObject(j, "radius_world", r->radius_world);
+    } else {
+        cJSON_AddNullToObject(j, "radius");
+        cJSON_AddNullToObject(j, "radius_world");
+    }
+    cJSON_AddNumberToObject(j, "width", r->width);
+    cJSON_AddNumberToObject(j, "height", r->height);
+    cJSON_AddNumberToObject(j, "triangles", r->triangles);
+    cJSON_AddNumberToObject(j, "tessellation_levels", r->tess);
+    cJSON *passes = cJSON_AddArrayToObject(j, "passes");
+    for (int p = 0; p < r->pass_count; ++p) {
+        cJSON *q = cJSON_CreateObject();
+        cJSON_AddStringToObject(q, "name", r->pass[p]);
+        cJSON_AddNumberToObject(q, "median", r->med[p]);
+        cJSON_AddNumberToObject(q, "min", r->min[p]);
+        cJSON_AddNumberToObject(q, "max", r->max[p]);
+        cJSON_AddItemToArray(passes, q);
+    }
+    cJSON *fr = cJSON_AddObjectToObject(j, "frame_ms");
+    cJSON_AddNumberToObject(fr, "median", r->frame_med);
+    cJSON_AddNumberToObject(fr, "min", r->frame_min);
+    cJSON_AddNumberToObject(fr, "max", r->frame_max);
+    cJSON_AddNumberToObject(j, "fps", 1000.0 / r->frame_med);
+    cJSON_AddNumberToObject(j, "ao_ms", r->ao_ms);
+    if (none) {
+        cJSON *v = cJSON_AddObjectToObject(j, "vs_none");
+        cJSON_AddNumberToObject(v, "ao_minus_ms", r->ao_ms - none->ao_ms);
+        if (none->ao_ms > 0.0) cJSON_AddNumberToObject(v, "ao_ratio", r->ao_ms / none->ao_ms);
+        else cJSON_AddNullToObject(v, "ao_ratio");
+        cJSON_AddNumberToObject(v, "frame_minus_ms", r->frame_med - none->frame_med);
+        cJSON_AddNumberToObject(v, "frame_ratio", r->frame_med / none->frame_med);
+    } else {
+        cJSON_AddNullToObject(j, "vs_none");
+    }
+    return j;
+}
+
+static const bench_row *baseline_of(const bench_state *st, const bench_row *r)
+{
+    return r->baseline >= 0 ? &st->rows[r->baseline] : NULL;
+}
+
+static int write_csv(const char *path, const bench_state *st, const ob_scene *scene, int eyes)
+{
+    size_t cap = 4096 + (size_t)st->count * MAX_PASSES * 200, len = 0;
+    char *buf = malloc(cap);
+    if (!buf) return cli_fail(EXIT_RUNTIME, "out of memory");
+    len += (size_t)snprintf(buf + len, cap - len,
+                            "scene,camera,method,samples,r,radius_world,width,height,eyes,triangles,pass,median_ms,"
+                            "min_ms,max_ms,fps,minus_none_ms,ratio_none\n");
+    for (int i = 0; i < st->count; ++i) {
+        const bench_row *r = &st->rows[i];
+        const bench_row *none = baseline_of(st, r);
+        for (int p = 0; p <= r->pass_count; ++p) {
+            bool frame = p == r->pass_count; /* the last row of a configuration: the whole frame */
+            double med = frame ? r->frame_med : r->med[p], lo = frame ? r->frame_min : r->min[p],
+                   hi = frame ? r->frame_max : r->max[p];
+            double base = 0.0;
+            bool has_base = false;
+            if (none && frame) {
+                base = none->frame_med;
+                has_base = true;
+            } else if (none && !strcmp(r->pass[p], "ao")) {
+                base = none->ao_ms;
+                has_base = true;
+            }
+            char samples[16] = "", rr[32] = "", rw[32] = "", fps[32] = "", minus[32] = "", ratio[32] = "";
+            if (r->samples > 0) snprintf(samples, sizeof samples, "%d", r->samples);
+            if (r->r > 0.0f) {
+                snprintf(rr, sizeof rr, "%g", (double)r->r);
+                snprintf(rw, sizeof rw, "%g", (double)r->radius_world);
+            }
+            if (frame) snprintf(fps, sizeof fps, "%.3f", 1000.0 / r->frame_med);
+            if (has_base) {
+                snprintf(minus, sizeof minus, "%.4f", med - base);
+                if (base > 0.0) snprintf(ratio, sizeof ratio, "%.4f", med / base);
+            }
+            len += (size_t)snprintf(buf + len, cap - len, "%s,%s,%s,%s,%s,%s,%d,%d,%d,%u,%s,%.4f,%.4f,%.4f,%s,%s,%s\n",
+                                    ob_query_scene_name(scene), ob_query_camera(scene, r->camera).name,
+                                    method_name(r->method), samples, rr, rw, r->width, r->height, eyes, r->triangles,
+                                    frame ? "frame" : r->pass[p], med, lo, hi, fps, minus, ratio);
+        }
+    }
+    ob_error e = ob_write_text(path, buf);
+    free(buf);
+    return e == OB_OK ? EXIT_OK : cli_fail_library_as(EXIT_OUTPUT);
+}
+
+/* ---- scaling --------------------------------------------------------------------------------- */
+
+typedef struct scaling_verdict {
+    bool flat_in_triangles, linear_in_pixels;
+    double tri_ratio, mpx_spread; /* max/min AO ms over tessellation; max |ms/MP / median - 1| */
+} scaling_verdict;
+
+static scaling_verdict verdict(const bench_state *st, int method)
+{
+    scaling_verdict v = {false, false, 0.0, 0.0};
+    double lo = INFINITY, hi = 0.0, per_mp[MAX_SIZES] = {0};
+    int n = 0;
+    for (int i = 0; i < st->count; ++i) {
+        const bench_row *r = &st->rows[i];
+        if (r->method != method) continue;
+        if (r->study == 2) {
+            lo = fmin(lo, r->ao_ms);
+            hi = fmax(hi, r->ao_ms);
+        } else if (r->study == 1 && n < MAX_SIZES) {
+            per_mp[n++] = r->ao_ms / ((double)r->width * r->height * 1e-6);
+        }
+    }
+    if (hi > 0.0 && lo > 0.0) {
+        v.tri_ratio = hi / lo;
+        v.flat_in_triangles = v.tri_ratio < 1.2;
+    }
+    if (n > 0) {
+        double sorted[MAX_SIZES];
+        memcpy(sorted, per_mp, sizeof sorted);
+        double med = 0.0, a = 0.0, b = 0.0;
+        stats(sorted, n, &med, &a, &b);
+        for (int k = 0; k < n && med > 0.0; ++k) v.mpx_spread = fmax(v.mpx_spread, fabs(per_mp[k] / med - 1.0));
+        v.linear_in_pixels = med > 0.0 && v.mpx_spread <= 0.3;
+    }
+    return v;
+}
+
+/* ---- the command ----------------------------------------------------------------------------- */
+
+int cmd_bench(int argc, char **argv)
+{
+    bench_opts o;
+    int code = parse(argc, argv, &o);
+    if (code != 0) return code < 0 ? EXIT_OK : code;
+
+    /* Everything that can be checked without a GPU first. */
+    int methods[MAX_METHODS] = {0}, method_count = 0;
+    if ((code = method_list(&o, methods, &method_count)) != EXIT_OK) return code;
+    bool has_samples[MAX_METHODS] = {false}, has_radius[MAX_METHODS] = {false};
+    for (int i = 0; i < method_count; ++i) {
+        if ((code = takes_samples(&o, methods[i], &has_samples[i])) != EXIT_OK) return code;
+        has_radius[i] = method_has_param(methods[i], "radius");
+    }
+    ob_settings probe;
+    if (ob_settings_init(&probe, "none") != OB_OK || ob_settings_set_filter(&probe, o.filter) != OB_OK)
+        return cli_fail_from_library();
+    int none = ob_find_method("none");
+
+    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = o.scene});
+    if (!scene) return cli_fail_from_library();
+    int cams[MAX_CAMS] = {0}, cam_count = 0;
+    if ((code = camera_list(&o, scene, cams, &cam_count)) != EXIT_OK) {
+        ob_destroy_scene(scene);
+        return code;
+    }
+    const float suggested = ob_query_scene_ao_radius(scene);
+
+    ob_context *ctx = ob_make_context(&(ob_context_desc){.gpu = o.gpu});
+    if (!ctx) {
+        code = cli_fail_from_library();
+        ob_destroy_scene(scene);
+        return code;
+    }
+    if (o.verbose)
+        fprintf(stderr, "obscura: GL_RENDERER %s | GL_VERSION %s | EGL %s\n", ob_query_renderer(ctx),
+                ob_query_gl_version(ctx), ob_query_device(ctx));
+
+    bench_state st = {0};
+    ob_renderer *eyes[2] = {NULL, NULL};
+    ob_scene *tess[3] = {NULL, NULL, NULL};
+    double *scratch = calloc((size_t)o.frames * (MAX_PASSES + 1), sizeof(double));
+    int eye_count = o.stereo ? 2 : 1;
+    const double t0 = now_s();
+    st.start = t0;
+    if (!scratch) {
+        code = cli_fail(EXIT_RUNTIME, "out of memory");
+        goto cleanup;
+    }
+
+    /* Configurations per camera of the sweep: one none frame, then each method's grid. */
+    int per_cam = 1;
+    for (int i = 0; i < method_count; ++i)
+        per_cam += (has_samples[i] ? o.sample_count : 1) * (has_radius[i] ? o.radius_count : 1);
+
+    if (!o.scaling) {
+        st.total = per_cam * cam_count;
+        for (int e = 0; e < eye_count; ++e) {
+            eyes[e] = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.width, .height = o.height});
+            if (!eyes[e] || ob_renderer_set_scene(eyes[e], scene) != OB_OK) {
+                code = cli_fail_from_library();
+                goto cleanup;
+            }
+        }
+        for (int c = 0; c < cam_count && code == EXIT_OK; ++c) {
+            ob_camera cam = ob_query_camera(scene, cams[c]);
+            ob_camera views[2];
+            if (o.stereo) eye_cameras(&cam, o.ipd, views);
+            else views[0] = cam;
+            int base = st.count;
+            for (int mi = -1; mi < method_count && code == EXIT_OK; ++mi) {
+                int m = mi < 0 ? none : methods[mi];
+                int nn = mi >= 0 && has_samples[mi] ? o.sample_count : 1;
+                int rn = mi >= 0 && has_radius[mi] ? o.radius_count : 1;
+                for (int j = 0; j < nn && code == EXIT_OK; ++j)
+                    for (int k = 0; k < rn && code == EXIT_OK; ++k) {
+                        int n = mi >= 0 && has_samples[mi] ? o.samples[j] : 0;
+                        float r = mi >= 0 && has_radius[mi] ? o.radii[k] : 0.0f;
+                        float rw = r * suggested / 4.0f;
+                        ob_settings s;
+                        if ((code = configure(&o, m, n, rw, &s)) != EXIT_OK) break;
+                        bench_row *row = new_row(&st);
+                        if (!row) {
+                            code = cli_fail(EXIT_RUNTIME, "out of memory");
+                            break;
+                        }
+                        *row = (bench_row){.camera = cams[c], .method = m, .samples = n, .r = r, .radius_world = rw,
+                                           .width = o.width, .height = o.height,
+                                           .triangles = ob_query_scene_stats(scene).triangles,
+                                           .baseline = mi < 0 ? -1 : base};
+                        code = measure(eyes, views, eye_count, &s, &o, scratch, row);
+                        char what[192];
+                        snprintf(what, sizeof what, "%s %s N=%d r=%g", cam.name, method_name(m), n, (double)r);
+                        if (code == EXIT_OK) progress(&st, what);
+                    }
+            }
+            /* The none row is its own baseline: its differences are 0 and ratios 1. */
+            if (code == EXIT_OK) st.rows[base].baseline = base;
+        }
+        if (code == EXIT_OK) print_tables(&o, scene, &st, cams, cam_count, methods, method_count);
+    } else {
+        /* Scaling: the first camera, the first N and r of the lists. */
+        ob_camera cam = ob_query_camera(scene, cams[0]);
+        st.total = method_count * (o.size_count + 3);
+        for (int z = 0; z < o.size_count && code == EXIT_OK; ++z) {
+            ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.sizes[z][0], .height = o.sizes[z][1]});
+            if (!r || ob_renderer_set_scene(r, scene) != OB_OK) {
+                code = cli_fail_from_library();
+                ob_destroy_renderer(r);
+                break;
+            }
+            for (int mi = 0; mi < method_count && code == EXIT_OK; ++mi) {
+                float rw = has_radius[mi] ? o.radii[0] * suggested / 4.0f : 0.0f;
+                ob_settings s;
+                if ((code = configure(&o, methods[mi], has_samples[mi] ? o.samples[0] : 0, rw, &s)) != EXIT_OK) break;
+                bench_row *row = new_row(&st);
+                if (!row) {
+                    code = cli_fail(EXIT_RUNTIME, "out of memory");
+                    break;
+                }
+                *row = (bench_row){.camera = cams[0], .method = methods[mi], .samples = has_samples[mi] ? o.samples[0] : 0,
+                                   .r = has_radius[mi] ? o.radii[0] : 0.0f, .radius_world = rw, .width = o.sizes[z][0],
+                                   .height = o.sizes[z][1], .triangles = ob_query_scene_stats(scene).triangles,
+                                   .baseline = -1, .study = 1};
+                code = measure(&r, &cam, 1, &s, &o, scratch, row);
+                char what[192];
+                snprintf(what, sizeof what, "%dx%d %s", o.sizes[z][0], o.sizes[z][1], method_name(methods[mi]));
+                if (code == EXIT_OK) progress(&st, what);
+            }
+            ob_destroy_renderer(r);
+        }
+        if (code == EXIT_OK) {
+            eyes[0] = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.width, .height = o.height});
+            if (!eyes[0]) code = cli_fail_from_library();
+        }
+        for (int l = 0; l < 3 && code == EXIT_OK; ++l) {
+            tess[l] = ob_tessellate_scene(scene, l);
+            if (!tess[l] || ob_renderer_set_scene(eyes[0], tess[l]) != OB_OK) {
+                code = cli_fail_from_library();
+                break;
+            }
+            for (int mi = 0; mi < method_count && code == EXIT_OK; ++mi) {
+                float rw = has_radius[mi] ? o.radii[0] * suggested / 4.0f : 0.0f;
+                ob_settings s;
+                if ((code = configure(&o, methods[mi], has_samples[mi] ? o.samples[0] : 0, rw, &s)) != EXIT_OK) break;
+                bench_row *row = new_row(&st);
+                if (!row) {
+                    code = cli_fail(EXIT_RUNTIME, "out of memory");
+                    break;
+                }
+                *row = (bench_row){.camera = cams[0], .method = methods[mi], .samples = has_samples[mi] ? o.samples[0] : 0,
+                                   .r = has_radius[mi] ? o.radii[0] : 0.0f, .radius_world = rw, .width = o.width,
+                                   .height = o.height, .triangles = ob_query_scene_stats(tess[l]).triangles, .tess = l,
+                                   .baseline = -1, .study = 2};
+                code = measure(eyes, &cam, 1, &s, &o, scratch, row);
+                char what[192];
+                snprintf(what, sizeof what, "%ux tris %s", 1u << (2 * l), method_name(methods[mi]));
+                if (code == EXIT_OK) progress(&st, what);
+            }
+        }
+        if (code == EXIT_OK) {
+            printf("\n== scaling: AO-pass median ms, %s camera %s, %d frames ==\n", ob_query_scene_name(scene), cam.name,
+                   o.frames);
+            for (int mi = 0; mi < method_count; ++mi) {
+                printf("\n%s\n  resolution:", method_name(methods[mi]));
+                for (int i = 0; i < st.count; ++i)
+                    if (st.rows[i].method == methods[mi] && st.rows[i].study == 1)
+                        printf("  %dx%d %.3f ms (%.3f ms/MP)", st.rows[i].width, st.rows[i].height, st.rows[i].ao_ms,
+                               st.rows[i].ao_ms / (st.rows[i].width * (double)st.rows[i].height * 1e-6));
+                printf("\n  triangles: ");
+                for (int i = 0; i < st.count; ++i)
+                    if (st.rows[i].method == methods[mi] && st.rows[i].study == 2)
+                        printf("  %u tris %.3f ms", st.rows[i].triangles, st.rows[i].ao_ms);
+                scaling_verdict v = verdict(&st, methods[mi]);
+                printf("\n  flat in triangles: %s (max/min %.2f, < 1.2); linear in pixels: %s (ms/MP within %.0f%% of "
+                       "the median, limit 30%%)\n",
+                       v.flat_in_triangles ? "yes" : "no", v.tri_ratio, v.linear_in_pixels ? "yes" : "no",
+                       100.0 * v.mpx_spread);
+            }
+        }
+    }
+    const double seconds = now_s() - t0;
+    if (code == EXIT_OK) printf("\n%d configurations in %.0f s on %s\n", st.count, seconds, ob_query_renderer(ctx));
+
+    if (code == EXIT_OK && o.json) {
+        char cpu[256], commit[64], date[64];
+        cpu_model(cpu, sizeof cpu);
+        git_commit(commit, sizeof commit);
+        time_t t = time(NULL);
+        struct tm tm_utc;
+        gmtime_r(&t, &tm_utc);
+        strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", &tm_utc);
+        cJSON *root = cJSON_CreateObject();
+        cJSON_AddStringToObject(root, "tool", "obscura bench " OB_VERSION_STRING);
+        cJSON_AddStringToObject(root, "date", date);
+        cJSON_AddStringToObject(root, "commit", commit);
+        cJSON_AddStringToObject(root, "renderer", ob_query_renderer(ctx));
+        cJSON_AddStringToObject(root, "gl_version", ob_query_gl_version(ctx));
+        cJSON_AddStringToObject(root, "device", ob_query_device(ctx));
+        cJSON_AddBoolToObject(root, "software", ob_query_is_software(ctx));
+        cJSON_AddStringToObject(root, "cpu", cpu);
+        cJSON_AddNumberToObject(root, "cpu_cores", (double)sysconf(_SC_NPROCESSORS_ONLN));
+        cJSON_AddStringToObject(root, "scene", ob_query_scene_name(scene));
+        cJSON_AddNumberToObject(root, "triangles", ob_query_scene_stats(scene).triangles);
+        cJSON_AddNumberToObject(root, "scene_radius", suggested);
+        cJSON_AddStringToObject(root, "radius_rule", "radius_world = r x scene_radius / 4 (r = 4: the suggested radius)");
+        cJSON_AddStringToObject(root, "mode", o.scaling ? "scaling" : o.stereo ? "stereo" : "sweep");
+        cJSON_AddNumberToObject(root, "width", o.width);
+        cJSON_AddNumberToObject(root, "height", o.height);
+        cJSON_AddNumberToObject(root, "eyes", eye_count);
+        if (o.stereo) {
+            cJSON_AddNumberToObject(root, "ipd", o.ipd);
+            cJSON_AddNumberToObject(root, "budget_ms", VR_BUDGET_MS);
+        }
+        cJSON_AddNumberToObject(root, "frames", o.frames);
+        cJSON_AddNumberToObject(root, "warmup", o.warmup);
+        cJSON_AddStringToObject(root, "filter", o.filter);
+        cJSON_AddNumberToObject(root, "seconds", seconds);
+        cJSON *arr = cJSON_AddArrayToObject(root, "configurations");
+        for (int i = 0; i < st.count; ++i) {
+            cJSON *j = row_json(&st.rows[i], baseline_of(&st, &st.rows[i]), scene);
+            if (o.stereo) cJSON_AddBoolToObject(j, "within_budget", st.rows[i].frame_med <= VR_BUDGET_MS);
+            cJSON_AddItemToArray(arr, j);
+        }
+        if (o.scaling) {
+            cJSON *sc = cJSON_AddArrayToObject(root, "scaling");
+            for (int mi = 0; mi < method_count; ++mi) {
+                scaling_verdict v = verdict(&st, methods[mi]);
+                cJSON *j = cJSON_CreateObject();
+                cJSON_AddStringToObject(j, "method", method_name(methods[mi]));
+                cJSON_AddNumberToObject(j, "triangle_max_min_ratio", v.tri_ratio);
+                cJSON_AddBoolToObject(j, "flat_in_triangles", v.flat_in_triangles);
+                cJSON_AddNumberToObject(j, "ms_per_megapixel_spread", v.mpx_spread);
+                cJSON_AddBoolToObject(j, "linear_in_pixels", v.linear_in_pixels);
+                cJSON_AddItemToArray(sc, j);
+            }
+        }
+        char *text = cJSON_Print(root);
+        cJSON_Delete(root);
+        if (!text) code = cli_fail(EXIT_RUNTIME, "out of memory");
+        else if (ob_write_text(o.json, text) != OB_OK) code = cli_fail_library_as(EXIT_OUTPUT);
+        free(text);
+    }
+    if (code == EXIT_OK && o.csv) code = write_csv(o.csv, &st, scene, eye_count);
+
+cleanup:
+    free(scratch);
+    free(st.rows);
+    for (int e = 0; e < 2; ++e) ob_destroy_renderer(eyes[e]);
+    for (int l = 0; l < 3; ++l) ob_destroy_scene(tess[l]);
+    ob_destroy_context(ctx);
+    ob_destroy_scene(scene);
+    return code;
+}

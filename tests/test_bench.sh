@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# obscura bench: a tiny sweep runs and writes a JSON with every number (schema checked, every time
+# positive and finite) and a CSV with a header and rows; bad options give exit 2 and one line.
+# No timing thresholds: the numbers depend on the machine.
+set -u
+OBSCURA=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); }
+bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
+
+# expect CODE PATTERN -- ARGS...: exit code, a one-line stderr matching PATTERN, no output left.
+expect() {
+    local code=$1 pattern=$2
+    shift 3
+    rm -f "$dir"/b.json "$dir"/b.csv
+    "$OBSCURA" "$@" >"$dir/stdout" 2>"$dir/stderr"
+    local got=$?
+    local lines
+    lines=$(wc -l <"$dir/stderr")
+    if [ "$got" -ne "$code" ]; then bad "obscura $* exited $got, want $code: $(cat "$dir/stderr")"; return; fi
+    if [ "$lines" -ne 1 ]; then bad "obscura $* printed $lines lines on stderr: $(cat "$dir/stderr")"; return; fi
+    if ! grep -qiE -e "$pattern" "$dir/stderr"; then bad "obscura $*: '$(cat "$dir/stderr")' lacks /$pattern/"; return; fi
+    if [ -e "$dir/b.json" ] || [ -e "$dir/b.csv" ]; then bad "obscura $* left files"; return; fi
+    ok
+}
+
+B=(bench --scene corner --frames 2 --warmup 1 --size 64x64 --json "$dir/b.json" --csv "$dir/b.csv")
+expect 2 "unknown method 'nosuch'" -- "${B[@]}" --methods ssao,nosuch
+expect 2 "--frames" -- "${B[@]}" --frames 0
+expect 2 "WIDTHxHEIGHT" -- "${B[@]}" --size 64x
+expect 2 "WIDTHxHEIGHT" -- "${B[@]}" --size 0x0
+expect 2 "--samples" -- "${B[@]}" --samples 12,abc
+expect 2 "--radius" -- "${B[@]}" --radius -1
+expect 2 "--sizes" -- "${B[@]}" --scaling --sizes 64
+expect 2 "unknown camera" -- "${B[@]}" --cameras nosuch
+expect 2 "exclude" -- "${B[@]}" --stereo --scaling
+expect 2 "unknown option" -- "${B[@]}" --frobnicate 1
+expect 4 "cannot write" -- bench --scene corner --json /nonexistent-dir/b.json
+
+# check_json FILE MODE: the schema, and every time positive and finite.
+check_json() {
+    python3 - "$1" "$2" <<'PY'
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+mode = sys.argv[2]
+def pos(x, what):
+    assert isinstance(x, (int, float)) and math.isfinite(x) and x > 0, f"{what} = {x!r}"
+for k in ("renderer", "gl_version", "date", "commit", "cpu", "scene"):
+    assert isinstance(d.get(k), str) and d[k], f"missing {k}"
+assert d["mode"] == mode, d["mode"]
+cfgs = d["configurations"]
+assert cfgs, "no configurations"
+methods = set()
+for c in cfgs:
+    for k in ("method", "samples", "radius", "camera", "passes", "frame_ms", "fps", "ao_ms", "vs_none"):
+        assert k in c, f"configuration lacks {k}"
+    methods.add(c["method"])
+    assert c["passes"], "no passes"
+    for p in c["passes"]:
+        assert isinstance(p["name"], str) and p["name"]
+        for k in ("median", "min", "max"):
+            pos(p[k], f'{c["method"]} {p["name"]} {k}')
+        assert p["min"] <= p["median"] <= p["max"]
+    assert "ao" in [p["name"] for p in c["passes"]], "no ao pass"
+    for k in ("median", "min", "max"):
+        pos(c["frame_ms"][k], f"frame {k}")
+    pos(c["fps"], "fps")
+    assert abs(c["fps"] - 1000.0 / c["frame_ms"]["median"]) < 1e-6 * c["fps"]
+    if mode != "scaling":
+        v = c["vs_none"]
+        for k in ("ao_minus_ms", "frame_minus_ms"):
+            assert isinstance(v[k], (int, float)) and math.isfinite(v[k]), k
+        pos(v["frame_ratio"], "frame_ratio")
+        if c["method"] == "ssao":
+            assert c["samples"] == 12 and c["radius"] == 4, (c["samples"], c["radius"])
+            pos(c["radius_world"], "radius_world")
+if mode != "scaling":
+    assert "none" in methods and "ssao" in methods, methods
+else:
+    assert d["scaling"] and "flat_in_triangles" in d["scaling"][0] and "linear_in_pixels" in d["scaling"][0]
+    assert sorted({c["tessellation_levels"] for c in cfgs}) == [0, 1, 2]
+    tris = sorted({c["triangles"] for c in cfgs})
+    assert tris[-1] == 16 * tris[0], tris
+PY
+}
+
+if "$OBSCURA" "${B[@]}" --methods ssao --samples 12 --radius 4 >"$dir/stdout" 2>"$dir/stderr"; then ok; else bad "bench run: $(cat "$dir/stderr")"; fi
+if check_json "$dir/b.json" sweep; then ok; else bad "bench JSON"; fi
+if head -1 "$dir/b.csv" | grep -q '^scene,camera,method,samples,r,radius_world,.*,pass,median_ms,min_ms,max_ms' &&
+    [ "$(wc -l <"$dir/b.csv")" -gt 4 ] && grep -q ',ssao,12,4,.*,ao,' "$dir/b.csv" && grep -q ',frame,' "$dir/b.csv"; then
+    ok
+else
+    bad "bench CSV: $(head -3 "$dir/b.csv")"
+fi
+if grep -q "AO-pass ms / frame ms" "$dir/stdout" && grep -q "N = 12" "$dir/stdout" && grep -q "r = 4" "$dir/stdout"; then ok; else bad "bench table: $(cat "$dir/stdout")"; fi
+
+# Stereo (two renderers) and scaling (sizes and tessellation), tiny.
+if "$OBSCURA" "${B[@]}" --methods ssao --samples 12 --radius 4 --stereo --cameras default >"$dir/stdout" 2>"$dir/stderr" &&
+    check_json "$dir/b.json" stereo && grep -q '"eyes":	2' "$dir/b.json"; then
+    ok
+else
+    bad "bench --stereo: $(cat "$dir/stderr")"
+fi
+if "$OBSCURA" "${B[@]}" --methods ssao --samples 12 --radius 4 --scaling --sizes 32x32,64x48 --size 32x32 >"$dir/stdout" 2>"$dir/stderr" &&
+    check_json "$dir/b.json" scaling && grep -q "flat in triangles" "$dir/stdout"; then
+    ok
+else
+    bad "bench --scaling: $(cat "$dir/stderr") $(cat "$dir/stdout")"
+fi
+
+echo "test_bench: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -9,6 +9,7 @@
  * constant environment of radiance L gives exactly the constant ambient L. */
 #include "compose_params.h"
 #include "common.glsl"
+#include "light_eval.glsl"
 
 layout(local_size_x = OB_COMPOSE_GROUP_X, local_size_y = OB_COMPOSE_GROUP_Y) in;
 
@@ -20,14 +21,6 @@ layout(binding = 4) uniform sampler2D direct_map;     /* RGBA16F direct radiance
 layout(binding = 5) uniform sampler2D environment;    /* equirectangular radiance, for the background */
 layout(binding = 6) uniform sampler2D bounce_map;     /* RGBA16F one-bounce indirect light (SSDO) */
 layout(binding = 0, rgba16f) uniform writeonly image2D hdr_out;
-
-/* Irradiance / pi for a world normal from the SH coefficients (already convolved on the CPU). */
-vec3 ob_sh_irradiance(vec3 n)
-{
-    return cmp.sh[0].rgb + cmp.sh[1].rgb * n.y + cmp.sh[2].rgb * n.z + cmp.sh[3].rgb * n.x +
-           cmp.sh[4].rgb * (n.x * n.y) + cmp.sh[5].rgb * (n.y * n.z) + cmp.sh[6].rgb * (3.0 * n.z * n.z - 1.0) +
-           cmp.sh[7].rgb * (n.x * n.z) + cmp.sh[8].rgb * (n.x * n.x - n.y * n.y);
-}
 
 vec3 ob_environment_radiance(vec3 dir)
 {
@@ -57,7 +50,7 @@ void main()
 
     vec3 ambient = cmp.ambient.rgb;
     if (mode == OB_AMBIENT_MODE_HEMISPHERE) ambient = mix(cmp.ground.rgb, cmp.sky.rgb, 0.5 + 0.5 * n.y);
-    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) ambient = max(ob_sh_irradiance(n), vec3(0.0));
+    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) ambient = max(ob_sh_irradiance(cmp.sh, n), vec3(0.0));
 
     vec3 color;
     if (cmp.flags.y != 0) {

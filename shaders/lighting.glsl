@@ -8,6 +8,7 @@
 #include "lighting_params.h"
 #include "common.glsl"
 #include "shadow.glsl"
+#include "light_eval.glsl"
 
 layout(local_size_x = OB_LIGHTING_GROUP_X, local_size_y = OB_LIGHTING_GROUP_Y) in;
 
@@ -35,25 +36,9 @@ void main()
     vec3 sum = vec3(0.0);
     float key_visibility = 1.0; /* light 0's shadow, for --view shadow */
     for (int i = 0; i < lit.counts.x; ++i) {
-        int type = int(lit.light_color[i].w);
         vec3 l;
-        float falloff = 1.0;
-        if (type == OB_LIGHT_TYPE_DIRECTIONAL) {
-            l = lit.light_direction[i].xyz;
-        } else {
-            vec3 to_light = lit.light_position[i].xyz - p;
-            float dist2 = max(dot(to_light, to_light), 1e-8);
-            l = to_light * inversesqrt(dist2);
-            falloff = 1.0 / dist2;
-            float range = lit.light_position[i].w;
-            if (range > 0.0) {
-                float x = dist2 / (range * range);
-                float w = clamp(1.0 - x * x, 0.0, 1.0);
-                falloff *= w * w;
-            }
-            if (type == OB_LIGHT_TYPE_SPOT)
-                falloff *= smoothstep(lit.light_spot[i].y, lit.light_spot[i].x, dot(-l, lit.light_direction[i].xyz));
-        }
+        float falloff = ob_light_falloff(int(lit.light_color[i].w), lit.light_position[i], lit.light_direction[i].xyz,
+                                         lit.light_spot[i].xy, p, l);
         float ndl = max(dot(n, l), 0.0);
         bool contributes = ndl > 0.0 && falloff > 0.0;
         /* Shadow lookups only where the light contributes (and light 0's for the shadow view). */

@@ -27,6 +27,7 @@
 #include "ssdo_params.h"
 #include "common.glsl"
 #include "noise.glsl"
+#include "light_eval.glsl"
 
 layout(local_size_x = OB_SSDO_GROUP_X, local_size_y = OB_SSDO_GROUP_Y) in;
 
@@ -39,13 +40,6 @@ layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
 
 const float PI = 3.14159265;
 
-vec3 sh_irradiance(vec3 n)
-{
-    return ssdo.sh[0].rgb + ssdo.sh[1].rgb * n.y + ssdo.sh[2].rgb * n.z + ssdo.sh[3].rgb * n.x +
-           ssdo.sh[4].rgb * (n.x * n.y) + ssdo.sh[5].rgb * (n.y * n.z) + ssdo.sh[6].rgb * (3.0 * n.z * n.z - 1.0) +
-           ssdo.sh[7].rgb * (n.x * n.z) + ssdo.sh[8].rgb * (n.x * n.x - n.y * n.y);
-}
-
 /* The lights as seen from one point, in view space: direction and irradiance (colour x
  * intensity x falloff x the lobe's normalisation). They depend on P only, so they are worked out
  * once per pixel and each sample pays one dot and one pow per light. */
@@ -57,26 +51,10 @@ void lights_at(vec3 p, mat3 to_view)
     float k = ssdo.params.w;
     float lobe_norm = (k + 1.0) / (2.0 * PI);
     for (int i = 0; i < ssdo.grid.z; ++i) {
-        int type = int(ssdo.light_color[i].w);
         vec3 l;
-        float falloff = 1.0;
         /* The same falloff, window and cone as lighting.glsl. */
-        if (type == OB_SSDO_LIGHT_DIRECTIONAL) {
-            l = ssdo.light_direction[i].xyz;
-        } else {
-            vec3 to_light = ssdo.light_position[i].xyz - p;
-            float dist2 = max(dot(to_light, to_light), 1e-8);
-            l = to_light * inversesqrt(dist2);
-            falloff = 1.0 / dist2;
-            float range = ssdo.light_position[i].w;
-            if (range > 0.0) {
-                float x = dist2 / (range * range);
-                float win = clamp(1.0 - x * x, 0.0, 1.0);
-                falloff *= win * win;
-            }
-            if (type == OB_SSDO_LIGHT_SPOT)
-                falloff *= smoothstep(ssdo.light_spot[i].y, ssdo.light_spot[i].x, dot(-l, ssdo.light_direction[i].xyz));
-        }
+        float falloff = ob_light_falloff(int(ssdo.light_color[i].w), ssdo.light_position[i], ssdo.light_direction[i].xyz,
+                                         ssdo.light_spot[i].xy, p, l);
         light_dir[i] = to_view * l;
         light_e[i] = ssdo.light_color[i].rgb * (falloff * lobe_norm);
     }
@@ -88,7 +66,7 @@ vec3 incoming(vec3 w, vec3 up, mat3 to_world)
     int mode = ssdo.grid.w;
     vec3 l_in = ssdo.ambient.rgb;
     if (mode == OB_SSDO_AMBIENT_HEMISPHERE) l_in = mix(ssdo.ground.rgb, ssdo.sky.rgb, 0.5 + 0.5 * dot(w, up));
-    else if (mode == OB_SSDO_AMBIENT_ENVIRONMENT) l_in = max(sh_irradiance(to_world * w), vec3(0.0));
+    else if (mode == OB_SSDO_AMBIENT_ENVIRONMENT) l_in = max(ob_sh_irradiance(ssdo.sh, to_world * w), vec3(0.0));
     for (int i = 0; i < ssdo.grid.z; ++i) l_in += light_e[i] * pow(max(dot(w, light_dir[i]), 0.0), ssdo.params.w);
     return l_in;
 }

@@ -10,10 +10,8 @@
 #define OB_SSDO_MAX_SAMPLES 256
 #define OB_SSDO_MAX_LIGHTS 8
 
-/* The lighting pass's light types and compose's ambient modes (lighting_params.h,
- * compose_params.h), repeated because those headers declare their own constant blocks. */
-#define OB_SSDO_LIGHT_DIRECTIONAL 0
-#define OB_SSDO_LIGHT_SPOT 2
+/* Compose's ambient modes (compose_params.h), repeated because that header declares its own
+ * constant block; light types come with light_eval.glsl. */
 #define OB_SSDO_AMBIENT_HEMISPHERE 1
 #define OB_SSDO_AMBIENT_ENVIRONMENT 2
 

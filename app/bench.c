@@ -197,10 +197,7 @@ static int parse(int argc, char **argv, bench_opts *o)
             else if (!strcmp(v, "off")) o->hdr_off = true;
             else return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
         } else if (!strcmp(a, "--gpu")) {
-            if (!strcmp(v, "auto")) o->gpu = OB_GPU_AUTO;
-            else if (!strcmp(v, "hw")) o->gpu = OB_GPU_HW;
-            else if (!strcmp(v, "sw")) o->gpu = OB_GPU_SW;
-            else return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
+            if (!cli_parse_gpu(v, &o->gpu)) return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
         } else {
             return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura bench --help)", a);
         }
@@ -226,17 +223,10 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* Sorts v. */
 static void stats(double *v, int n, double *med, double *lo, double *hi)
 {
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    *med = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    *med = cli_median(v, n);
     *lo = v[0];
     *hi = v[n - 1];
 }

@@ -26,6 +26,11 @@ int cli_fail(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)
 bool cli_parse_size(const char *text, int *w, int *h);
 bool cli_parse_vec3(const char *text, float out[3]);
 bool cli_parse_float(const char *text, float *out);
+/* auto, hw or sw. */
+bool cli_parse_gpu(const char *text, ob_gpu_kind *out);
+/* The median of n values (sorted in place, so v[0] and v[n-1] are then the min and max); NAN
+ * for n = 0. */
+double cli_median(double *v, int n);
 /* Fail early when an output's directory cannot take a new file. */
 bool cli_output_writable(const char *path);
 

@@ -100,10 +100,7 @@ static int parse(int argc, char **argv, compare_opts *o)
             if (!cli_parse_float(v, &o->radius) || !(o->radius > 0.0f))
                 return cli_fail(EXIT_USAGE, "--radius: expected a positive number, got '%s'", v);
         } else if (!strcmp(a, "--gpu")) {
-            if (!strcmp(v, "auto")) o->gpu = OB_GPU_AUTO;
-            else if (!strcmp(v, "hw")) o->gpu = OB_GPU_HW;
-            else if (!strcmp(v, "sw")) o->gpu = OB_GPU_SW;
-            else return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
+            if (!cli_parse_gpu(v, &o->gpu)) return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
         } else {
             return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura compare --help)", a);
         }
@@ -153,17 +150,6 @@ static uint64_t fnv1a(const void *data, size_t n, uint64_t h)
     return h;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /* Visibility (bottom row first) as an 8-bit grey PNG (top row first). */
 static ob_error write_grey(const char *path, const float *v, int w, int h)
@@ -454,8 +440,8 @@ static int run_view(const compare_opts *o, ob_context *ctx, const char *spec, vi
                 frame_ms[f] += t[p].ms;
             }
         }
-        mr->ao_ms = median(ao_ms, FRAMES);
-        mr->frame_ms = median(frame_ms, FRAMES);
+        mr->ao_ms = cli_median(ao_ms, FRAMES);
+        mr->frame_ms = cli_median(frame_ms, FRAMES);
         ob_read_image(r, OB_IMAGE_AO_F32, ao, px * sizeof(float));
         if (ob_compare_images(ao, ref, mask, w, h, 1, &mr->m) != OB_OK) {
             code = cli_fail_from_library();

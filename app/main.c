@@ -75,6 +75,28 @@ bool cli_parse_float(const char *text, float *out)
     return true;
 }
 
+bool cli_parse_gpu(const char *text, ob_gpu_kind *out)
+{
+    if (!strcmp(text, "auto")) *out = OB_GPU_AUTO;
+    else if (!strcmp(text, "hw")) *out = OB_GPU_HW;
+    else if (!strcmp(text, "sw")) *out = OB_GPU_SW;
+    else return false;
+    return true;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double cli_median(double *v, int n)
+{
+    if (n <= 0) return NAN;
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 bool cli_parse_vec3(const char *text, float out[3])
 {
     const char *p = text;

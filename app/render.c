@@ -86,12 +86,6 @@ typedef struct render_opts {
     ob_gpu_kind gpu;
 } render_opts;
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* The numeric lighting/shadow/HDR options: validated ranges, one line each. Returns false with
  * *code set when the option is not one of them or its value is bad. */
 static bool parse_number_option(render_opts *o, const char *a, const char *v, int *code)
@@ -240,10 +234,7 @@ static int parse(int argc, char **argv, render_opts *o)
                 return cli_fail(EXIT_USAGE, "--fov: expected degrees in (0, 179), got '%s'", v);
             o->has_fov = true;
         } else if (!strcmp(a, "--gpu")) {
-            if (!strcmp(v, "auto")) o->gpu = OB_GPU_AUTO;
-            else if (!strcmp(v, "hw")) o->gpu = OB_GPU_HW;
-            else if (!strcmp(v, "sw")) o->gpu = OB_GPU_SW;
-            else return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
+            if (!cli_parse_gpu(v, &o->gpu)) return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
         } else if (!parse_number_option(o, a, v, &code)) {
             return code;
         }
@@ -505,8 +496,7 @@ int cmd_render(int argc, char **argv)
         double total = 0.0;
         for (int p = 0; p < pass_count; ++p) {
             double *s = samples + (size_t)p * (size_t)o.frames;
-            qsort(s, (size_t)o.frames, sizeof(double), cmp_double);
-            double med = o.frames % 2 ? s[o.frames / 2] : 0.5 * (s[o.frames / 2 - 1] + s[o.frames / 2]);
+            double med = cli_median(s, o.frames);
             total += med;
             printf("%-10s %10.3f %10.3f %10.3f\n", names[p], med, s[0], s[o.frames - 1]);
         }

@@ -99,10 +99,7 @@ static int parse(int argc, char **argv, sheet_opts *o)
             if (o->quality_samples < 0)
                 return cli_fail(EXIT_USAGE, "--quality: expected low, medium, high or ultra, got '%s'", v);
         } else if (!strcmp(a, "--gpu")) {
-            if (!strcmp(v, "auto")) o->gpu = OB_GPU_AUTO;
-            else if (!strcmp(v, "hw")) o->gpu = OB_GPU_HW;
-            else if (!strcmp(v, "sw")) o->gpu = OB_GPU_SW;
-            else return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
+            if (!cli_parse_gpu(v, &o->gpu)) return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
         } else {
             return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura sheet --help)", a);
         }
@@ -233,12 +230,6 @@ static void put_ao_tile(sheet_image *img, int x, int y, int tw, int th, const fl
 static int row_y(int row, int th) { return STRIP_H + row * (STRIP_H + th); }
 
 /* ---- rendering -------------------------------------------------------------------------------- */
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* FRAMES frames of one method; its row goes into the sheet, the median AO pass time into *ao_ms
  * (NaN when the renderer timed no "ao" pass). */
 static int render_row(ob_renderer *r, const ob_camera *cam, const ob_settings *s, sheet_image *img, int row,
@@ -256,8 +247,7 @@ static int render_row(ob_renderer *r, const ob_camera *cam, const ob_settings *s
                 break;
             }
     }
-    qsort(ms, (size_t)timed, sizeof(double), cmp_double);
-    *ao_ms = timed ? (timed % 2 ? ms[timed / 2] : 0.5 * (ms[timed / 2 - 1] + ms[timed / 2])) : NAN;
+    *ao_ms = cli_median(ms, timed);
 
     size_t px = (size_t)o->width * (size_t)o->height;
     if (ob_read_image(r, OB_IMAGE_FINAL_RGBA8, rgba, px * 4) != OB_OK ||

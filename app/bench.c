@@ -685,15 +685,12 @@ int cmd_bench(int argc, char **argv)
     }
     const float suggested = ob_query_scene_ao_radius(scene);
 
-    ob_context *ctx = ob_make_context(&(ob_context_desc){.gpu = o.gpu});
+    ob_context *ctx = cli_make_context(o.gpu, o.verbose);
     if (!ctx) {
         code = cli_fail_from_library();
         ob_destroy_scene(scene);
         return code;
     }
-    if (o.verbose)
-        fprintf(stderr, "obscura: GL_RENDERER %s | GL_VERSION %s | EGL %s\n", ob_query_renderer(ctx),
-                ob_query_gl_version(ctx), ob_query_device(ctx));
 
     bench_state st = {0};
     ob_renderer *eyes[2] = {NULL, NULL};

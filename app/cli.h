@@ -26,6 +26,9 @@ int cli_fail(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)
 bool cli_parse_size(const char *text, int *w, int *h);
 bool cli_parse_vec3(const char *text, float out[3]);
 bool cli_parse_float(const char *text, float *out);
+/* The GL context for a command; with verbose, one stderr line naming GL_RENDERER, GL_VERSION and
+ * the EGL device. NULL (the library's error set) when none can be made. */
+ob_context *cli_make_context(ob_gpu_kind gpu, bool verbose);
 /* auto, hw or sw. */
 bool cli_parse_gpu(const char *text, ob_gpu_kind *out);
 /* The median of n values (sorted in place, so v[0] and v[n-1] are then the min and max); NAN

@@ -721,9 +721,8 @@ int cmd_compare(int argc, char **argv)
     int probe[MAX_METHODS];
     if (method_list(&o, probe) < 0) return cli_fail_from_library();
     if (!make_dir(o.report)) return cli_fail(EXIT_OUTPUT, "cannot create %s: %s", o.report, strerror(errno));
-    ob_context *ctx = ob_make_context(&(ob_context_desc){.gpu = o.gpu});
+    ob_context *ctx = cli_make_context(o.gpu, o.verbose);
     if (!ctx) return cli_fail_from_library();
-    if (o.verbose) fprintf(stderr, "obscura: GL_RENDERER %s\n", ob_query_renderer(ctx));
     view_result *views = calloc(MAX_VIEWS, sizeof *views);
     if (!views) {
         ob_destroy_context(ctx);

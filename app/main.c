@@ -75,6 +75,15 @@ bool cli_parse_float(const char *text, float *out)
     return true;
 }
 
+ob_context *cli_make_context(ob_gpu_kind gpu, bool verbose)
+{
+    ob_context *ctx = ob_make_context(&(ob_context_desc){.gpu = gpu});
+    if (ctx && verbose)
+        fprintf(stderr, "obscura: GL_RENDERER %s | GL_VERSION %s | EGL %s\n", ob_query_renderer(ctx),
+                ob_query_gl_version(ctx), ob_query_device(ctx));
+    return ctx;
+}
+
 bool cli_parse_gpu(const char *text, ob_gpu_kind *out)
 {
     if (!strcmp(text, "auto")) *out = OB_GPU_AUTO;

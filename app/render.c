@@ -450,15 +450,12 @@ int cmd_render(int argc, char **argv)
         cam.fov_y_deg = o.fov;
     }
 
-    ob_context *ctx = ob_make_context(&(ob_context_desc){.gpu = o.gpu});
+    ob_context *ctx = cli_make_context(o.gpu, o.verbose);
     if (!ctx) {
         code = cli_fail_from_library();
         ob_destroy_scene(scene);
         return code;
     }
-    if (o.verbose)
-        fprintf(stderr, "obscura: GL_RENDERER %s | GL_VERSION %s | EGL %s\n", ob_query_renderer(ctx),
-                ob_query_gl_version(ctx), ob_query_device(ctx));
     ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.width, .height = o.height});
     if (!r || ob_renderer_set_scene(r, scene) != OB_OK) {
         code = cli_fail_from_library();

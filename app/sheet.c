@@ -284,15 +284,12 @@ int cmd_sheet(int argc, char **argv)
         return code;
     }
 
-    ob_context *ctx = ob_make_context(&(ob_context_desc){.gpu = o.gpu});
+    ob_context *ctx = cli_make_context(o.gpu, o.verbose);
     if (!ctx) {
         code = cli_fail_from_library();
         ob_destroy_scene(scene);
         return code;
     }
-    if (o.verbose)
-        fprintf(stderr, "obscura: GL_RENDERER %s | GL_VERSION %s | EGL %s\n", ob_query_renderer(ctx),
-                ob_query_gl_version(ctx), ob_query_device(ctx));
     sheet_image img = {0};
     uint8_t *rgba = NULL;
     float *ao = NULL;

@@ -6,108 +6,14 @@
  * `#line ID*10000+LINE` directives, so the line number in any driver's error message names both
  * the file and the line (program.c decodes it). Not the source-string number of `#line N S`:
  * Mesa parses it but prints 0 in its logs. Each file is included at most once per shader
- * (include-once), and a missing include fails the build. */
+ * (include-once), and a missing include fails the build. The expansion itself is
+ * src/gpu/shader_expand.c, which the library also runs for ob_set_shader_directory. */
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
+
+#include "gpu/shader_expand.h"
 
 #define MAX_FILES 256
-#define MAX_DEPTH 16
-
-static const char *dir;
-static char *const *files;
-static int file_count;
-
-typedef struct buf { char *data; size_t len, cap; } buf;
-
-static void put(buf *b, const char *s, size_t n)
-{
-    if (b->len + n + 1 > b->cap) {
-        b->cap = (b->len + n + 1) * 2;
-        b->data = realloc(b->data, b->cap);
-        if (!b->data) { fprintf(stderr, "embed_shaders: out of memory\n"); exit(1); }
-    }
-    memcpy(b->data + b->len, s, n);
-    b->len += n;
-    b->data[b->len] = '\0';
-}
-
-#define LINE_STRIDE 10000 /* keep in sync with src/gpu/program.c */
-
-static void put_line_marker(buf *b, int line, int id)
-{
-    char tmp[64];
-    int n = snprintf(tmp, sizeof tmp, "#line %d\n", id * LINE_STRIDE + line);
-    put(b, tmp, (size_t)n);
-}
-
-static int file_id(const char *name)
-{
-    for (int i = 0; i < file_count; ++i)
-        if (strcmp(files[i], name) == 0) return i + 1;
-    return 0;
-}
-
-static char *slurp(const char *name)
-{
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = malloc((size_t)n + 1);
-    if (!s || fread(s, 1, (size_t)n, f) != (size_t)n) { fclose(f); free(s); return NULL; }
-    s[n] = '\0';
-    fclose(f);
-    return s;
-}
-
-static void expand(buf *out, const char *name, int depth, int *seen, const char *from, int from_line)
-{
-    int id = file_id(name);
-    if (!id) {
-        fprintf(stderr, "shaders/%s:%d: error: #include \"%s\" is not a shader file\n", from, from_line, name);
-        exit(1);
-    }
-    if (seen[id]) return;
-    seen[id] = 1;
-    if (depth > MAX_DEPTH) { fprintf(stderr, "shaders/%s: error: includes nest too deep\n", name); exit(1); }
-    char *text = slurp(name);
-    if (!text) { fprintf(stderr, "shaders/%s: error: cannot read\n", name); exit(1); }
-    int line = 1;
-    /* The #version line must stay first: top-level files re-sync with #line right after it. */
-    if (depth > 0) put_line_marker(out, 1, id);
-    for (char *p = text; *p;) {
-        char *eol = strchr(p, '\n');
-        size_t n = eol ? (size_t)(eol - p) : strlen(p);
-        const char *q = p;
-        while (*q == ' ' || *q == '\t') ++q;
-        if (strncmp(q, "#include", 8) == 0) {
-            const char *a = strchr(q, '"');
-            const char *b = a ? strchr(a + 1, '"') : NULL;
-            if (!a || !b || b > p + n) {
-                fprintf(stderr, "shaders/%s:%d: error: malformed #include\n", name, line);
-                exit(1);
-            }
-            char inc[256];
-            snprintf(inc, sizeof inc, "%.*s", (int)(b - a - 1), a + 1);
-            expand(out, inc, depth + 1, seen, name, line);
-            put_line_marker(out, line + 1, id);
-        } else {
-            put(out, p, n);
-            put(out, "\n", 1);
-            if (depth == 0 && line == 1 && strncmp(q, "#version", 8) == 0) put_line_marker(out, 2, id);
-        }
-        if (++line >= LINE_STRIDE) {
-            fprintf(stderr, "shaders/%s: error: more than %d lines\n", name, LINE_STRIDE - 1);
-            exit(1);
-        }
-        p = eol ? eol + 1 : p + n;
-    }
-    free(text);
-}
 
 static void emit_c_string(FILE *f, const char *s)
 {
@@ -127,9 +33,9 @@ static void emit_c_string(FILE *f, const char *s)
 int main(int argc, char **argv)
 {
     if (argc < 4) { fprintf(stderr, "usage: embed_shaders OUT.c SHADER_DIR FILE...\n"); return 2; }
-    dir = argv[2];
-    files = argv + 3;
-    file_count = argc - 3;
+    const char *dir = argv[2];
+    const char *const *files = (const char *const *)(argv + 3);
+    int file_count = argc - 3;
     if (file_count > MAX_FILES) { fprintf(stderr, "embed_shaders: too many files\n"); return 1; }
     char tmp_path[4096];
     snprintf(tmp_path, sizeof tmp_path, "%s.tmp", argv[1]);
@@ -142,14 +48,18 @@ int main(int argc, char **argv)
     fprintf(f, "};\nconst int ob_shader_file_count = %d;\n\n", file_count);
     fputs("const ob_embedded_shader ob_embedded_shaders[] = {\n", f);
     for (int i = 0; i < file_count; ++i) {
-        int seen[MAX_FILES + 1] = {0};
-        buf out = {0};
-        put(&out, "", 0);
-        expand(&out, files[i], 0, seen, files[i], 0);
+        char err[1024] = "";
+        char *text = ob_shader_expand(dir, files, file_count, files[i], err, sizeof err);
+        if (!text) {
+            fprintf(stderr, "%s\n", err);
+            fclose(f);
+            remove(tmp_path);
+            return 1;
+        }
         fprintf(f, "  {\"%s\",\n", files[i]);
-        emit_c_string(f, out.data);
+        emit_c_string(f, text);
         fputs("},\n", f);
-        free(out.data);
+        free(text);
     }
     fputs("};\n", f);
     fprintf(f, "const int ob_embedded_shader_count = %d;\n", file_count);

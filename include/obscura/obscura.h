@@ -69,22 +69,29 @@ void ob_clear_error(void);
 /* ---- GPU context ----------------------------------------------------------------------------
  * A headless OpenGL 4.5 core context from EGL's device platform (EGL_EXT_platform_device), no X
  * server. OB_GPU_AUTO prefers a hardware device and falls back to Mesa's software device
- * (llvmpipe). */
+ * (llvmpipe). Or, with use_current, the context the caller already has current (a window's). */
 typedef enum ob_gpu_kind { OB_GPU_AUTO = 0, OB_GPU_HW, OB_GPU_SW } ob_gpu_kind;
 
 typedef struct ob_context_desc {
     ob_gpu_kind gpu;
     bool debug; /* GL debug output into the error log (slow) */
+    /* Adopt the OpenGL 4.5 core context current on this thread (a GLFW window's, an engine's)
+     * instead of making a headless EGL one; ob_destroy_context then leaves it alone (current and
+     * alive). gpu is ignored. The context must stay current on this thread, and alive, for as long
+     * as anything made from the ob_context is used or destroyed. Whether a context is current is
+     * asked of EGL and GLX first, so calling this with none is an error, not a crash. */
+    bool use_current;
 } ob_context_desc;
 
 typedef struct ob_context ob_context;
 
-/* Errors: OB_ERR_NO_CONTEXT (message names every device and step that was tried). */
+/* Errors: OB_ERR_NO_CONTEXT (message names every device and step that was tried; use_current:
+ * no current context, or one below desktop OpenGL 4.5, named by renderer and version). */
 ob_context *ob_make_context(const ob_context_desc *desc);
 void ob_destroy_context(ob_context *ctx);
 const char *ob_query_renderer(const ob_context *ctx); /* GL_RENDERER */
 const char *ob_query_gl_version(const ob_context *ctx); /* GL_VERSION */
-const char *ob_query_device(const ob_context *ctx);   /* which EGL device was used */
+const char *ob_query_device(const ob_context *ctx);   /* which EGL device was used, or "the caller's context" */
 bool ob_query_is_software(const ob_context *ctx);
 int ob_query_max_texture_size(const ob_context *ctx);
 
@@ -315,6 +322,15 @@ typedef struct ob_renderer ob_renderer;
 /* Errors: OB_ERR_BAD_SIZE (zero, negative or above GL_MAX_TEXTURE_SIZE), OB_ERR_SHADER. */
 ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc);
 void ob_destroy_renderer(ob_renderer *r);
+/* A new size for every size-dependent target (a window was resized); the uploaded scene, the
+ * environment map, the shadow maps and the compiled programs are kept. The same size is a no-op.
+ * The last frame is dropped (ob_present refuses until the next ob_render_frame). Errors:
+ * OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_BAD_SIZE (zero, negative or above GL_MAX_TEXTURE_SIZE;
+ * unlike ob_make_renderer, 0x0 is not "default"), OB_ERR_GL (the GL could not make the targets);
+ * on any error the renderer keeps its old size and still works. */
+ob_error ob_renderer_resize(ob_renderer *r, int width, int height);
+/* The renderer's size (0 x 0 for NULL); either pointer may be NULL. */
+void ob_query_renderer_size(const ob_renderer *r, int *width, int *height);
 /* Upload a scene's meshes and textures. The renderer keeps no pointer to the ob_scene. */
 ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene);
 /* The environment map (equirectangular Radiance .hdr) for OB_AMBIENT_ENVIRONMENT and SSDO.
@@ -356,6 +372,58 @@ typedef struct ob_pass_timing {
 
 /* Timings of the last frame; returns the count written (at most max). */
 int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max);
+
+/* ---- presenting: the last frame or a debug view into a framebuffer, on the GPU --------------
+ * The views are the CLI's --view images (app/render.c), made by one compute pass (shaders/view.glsl)
+ * instead of a read-back:
+ *   final     the tone-mapped sRGB frame (OB_IMAGE_FINAL_RGBA8)
+ *   ao        the AO after filter and upsampling: grey for AO methods, M's RGB for directional ones
+ *   normals   view-space normal n * 0.5 + 0.5
+ *   depth     grey 1 - d / far, far = the last frame's far plane (the CLI divides by the image's
+ *             largest depth instead, so its picture is darker); 0 for sky
+ *   shadow    the key light's visibility, grey
+ *   radiance  the direct light, clamped to [0, 1] and sRGB-encoded
+ *   samples   samples each pixel took / the most any pixel could take that frame (the method's
+ *             count, under adaptive sampling its base x 3; the CLI divides by the image's largest
+ *             count instead), grey; 0 for sky
+ *   bounce    directional methods' one-bounce light, clamped and sRGB-encoded; black otherwise */
+typedef enum ob_view {
+    OB_VIEW_FINAL = 0,
+    OB_VIEW_AO,
+    OB_VIEW_NORMALS,
+    OB_VIEW_DEPTH,
+    OB_VIEW_SHADOW,
+    OB_VIEW_RADIANCE,
+    OB_VIEW_SAMPLES,
+    OB_VIEW_BOUNCE,
+    OB_VIEW_COUNT
+} ob_view;
+
+/* "final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce" (the CLI's --view
+ * names); "" if out of range. */
+const char *ob_view_name(ob_view view);
+
+/* Draw the last frame (OB_VIEW_FINAL) or one of its debug views into `framebuffer` (0 = the
+ * default framebuffer, e.g. a window's), over x, y, width, height (GL convention, y from the
+ * bottom), nearest-neighbour scaled, with glBlitNamedFramebuffer. The bytes are display-ready
+ * sRGB: GL_FRAMEBUFFER_SRGB and the scissor test are switched off for the blit. Needs the
+ * renderer's context current. Leaves GL state as it found it (bindings of programs, textures,
+ * images, uniform buffers and framebuffers, enables); GL errors raised before the call are
+ * cleared. Not timed (it is no part of the frame). Errors: OB_ERR_INVALID_ARGUMENT (NULL, no frame
+ * rendered yet or since a resize, a view out of range, a non-positive width or height),
+ * OB_ERR_SHADER (the view pass, compiled on the first debug view), OB_ERR_GL (e.g. `framebuffer`
+ * is not a complete framebuffer). */
+ob_error ob_present(ob_renderer *r, ob_view view, uint32_t framebuffer, int x, int y, int width, int height);
+
+/* ---- development ---------------------------------------------------------------------------- */
+/* Compile shaders from the .glsl/.h files under `dir` (the source tree's shaders/), with #include
+ * resolved and #line encoded exactly as at build time, instead of the embedded copies, for every
+ * program made from now on (existing programs are untouched: make a new renderer to pick them
+ * up). Only files this build embeds can be used (their list numbers the lines); errors in the
+ * files surface as OB_ERR_SHADER "shaders/FILE:LINE: ..." when a program is made. NULL = back to
+ * the embedded copies. Errors: OB_ERR_IO (dir not a readable directory; the setting is then
+ * unchanged). Process-wide and not thread-safe: call it between frames on the GL thread. */
+ob_error ob_set_shader_directory(const char *dir);
 
 /* Run the current method on an engine's own textures (ob_renderer still owns the scratch
  * targets). Not for directional methods (ssdo*: they need the frame's direct light; errors

@@ -4,7 +4,9 @@
  *   -> [joint bilateral upsample] -> compose (HDR radiance) -> luminance, bloom, tonemap.
  * The CLI, the tests and later the viewer all render through here. */
 #include <cglm/cglm.h>
+#include <limits.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -61,7 +63,44 @@ struct ob_renderer {
     float last_params[OB_MAX_PARAMS];
     bool last_adaptive;
     bool last_rgb;             /* the last frame's method was directional */
+    bool has_frame;            /* the targets hold a whole frame (ob_present) */
+    float last_far;            /* the last frame's far plane (the depth view's scale) */
+    ob_view_pass view;         /* ob_present */
 };
+
+/* Delete every AO-resolution target and mark each scale not ready, so the next frame remakes it. */
+static void release_scales(ob_renderer *r)
+{
+    for (int i = 0; i < SCALES; ++i) {
+        ao_targets *t = &r->scales[i];
+        GLuint tex[4] = {t->raw, t->filtered, t->scratch, t->multiplier};
+        glDeleteTextures(4, tex);
+        GLuint rgb[5] = {t->raw_rgb, t->filtered_rgb, t->scratch_rgb, t->bounce_raw, t->bounce_filtered};
+        glDeleteTextures(5, rgb);
+        if (t->grid.k > 1) {
+            GLuint own[2] = {t->depth, t->normal};
+            glDeleteTextures(2, own);
+        }
+        memset(t, 0, sizeof *t);
+    }
+}
+
+/* The renderer's own full-resolution targets, in the order ao, final, direct, radiance. */
+static void make_full_targets(GLuint tex[4], int width, int height)
+{
+    tex[0] = ob_make_texture_2d(GL_R32F, width, height);
+    tex[1] = ob_make_texture_2d(GL_RGBA8, width, height);
+    tex[2] = ob_make_texture_2d(GL_RGBA16F, width, height);
+    tex[3] = ob_make_texture_2d(GL_RGBA16F, width, height);
+}
+
+static ob_error check_size(const ob_context *ctx, int width, int height)
+{
+    if (width <= 0 || height <= 0 || width > ctx->max_texture_size || height > ctx->max_texture_size)
+        return ob_set_error(OB_ERR_BAD_SIZE, "size %dx%d is outside 1..%d (GL_MAX_TEXTURE_SIZE of %s)", width, height,
+                            ctx->max_texture_size, ctx->renderer);
+    return OB_OK;
+}
 
 void ob_destroy_renderer(ob_renderer *r)
 {
@@ -81,17 +120,8 @@ void ob_destroy_renderer(ob_renderer *r)
     free(r->method_ready);
     free(r->filter_states);
     free(r->filter_ready);
-    for (int i = 0; i < SCALES; ++i) {
-        ao_targets *t = &r->scales[i];
-        GLuint tex[4] = {t->raw, t->filtered, t->scratch, t->multiplier};
-        glDeleteTextures(4, tex);
-        GLuint rgb[5] = {t->raw_rgb, t->filtered_rgb, t->scratch_rgb, t->bounce_raw, t->bounce_filtered};
-        glDeleteTextures(5, rgb);
-        if (t->grid.k > 1) {
-            GLuint own[2] = {t->depth, t->normal};
-            glDeleteTextures(2, own);
-        }
-    }
+    release_scales(r);
+    ob_view_destroy(&r->view);
     ob_gbuffer_destroy(&r->gbuffer);
     ob_compute_pass_destroy(&r->downsample);
     ob_compute_pass_destroy(&r->upsample);
@@ -119,11 +149,7 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
         d.width = 640;
         d.height = 480;
     }
-    if (d.width <= 0 || d.height <= 0 || d.width > ctx->max_texture_size || d.height > ctx->max_texture_size) {
-        ob_set_error(OB_ERR_BAD_SIZE, "size %dx%d is outside 1..%d (GL_MAX_TEXTURE_SIZE of %s)", d.width, d.height,
-                     ctx->max_texture_size, ctx->renderer);
-        return NULL;
-    }
+    if (check_size(ctx, d.width, d.height) != OB_OK) return NULL;
     ob_renderer *r = calloc(1, sizeof *r);
     if (!r) {
         ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory making the renderer");
@@ -152,10 +178,12 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
         ob_destroy_renderer(r);
         return NULL;
     }
-    r->ao = ob_make_texture_2d(GL_R32F, d.width, d.height);
-    r->final = ob_make_texture_2d(GL_RGBA8, d.width, d.height);
-    r->direct = ob_make_texture_2d(GL_RGBA16F, d.width, d.height);
-    r->radiance = ob_make_texture_2d(GL_RGBA16F, d.width, d.height);
+    GLuint full[4] = {0, 0, 0, 0};
+    make_full_targets(full, d.width, d.height);
+    r->ao = full[0];
+    r->final = full[1];
+    r->direct = full[2];
+    r->radiance = full[3];
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) {
         ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making %dx%d targets", e, d.width, d.height);
@@ -163,6 +191,64 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
         return NULL;
     }
     return r;
+}
+
+ob_error ob_renderer_resize(ob_renderer *r, int width, int height)
+{
+    if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_renderer_resize: NULL renderer");
+    if (check_size(r->ctx, width, height) != OB_OK) return OB_ERR_BAD_SIZE;
+    if (width == r->width && height == r->height) return OB_OK;
+    /* Errors raised before this call are not ours to report. */
+    int drained = 0;
+    while (drained++ < 64 && glGetError() != GL_NO_ERROR) continue; /* bounded: a lost context repeats */
+    /* Everything new is made before anything old is given up, so a failure leaves the renderer
+     * whole at its old size. */
+    GLuint full[4] = {0, 0, 0, 0};
+    make_full_targets(full, width, height);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) {
+        glDeleteTextures(4, full);
+        return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making %dx%d targets", e, width, height);
+    }
+    int old_width = r->width, old_height = r->height;
+    ob_error err = ob_gbuffer_resize(&r->gbuffer, width, height);
+    if (err == OB_OK) {
+        err = ob_hdr_resize(&r->hdr, width, height);
+        if (err != OB_OK) {
+            const char *msg = NULL;
+            ob_get_error(&msg);
+            char keep[1024] = "";
+            snprintf(keep, sizeof keep, "%s", msg);
+            ob_gbuffer_resize(&r->gbuffer, old_width, old_height);
+            ob_set_error(err, "%s", keep);
+        }
+    }
+    if (err != OB_OK) {
+        glDeleteTextures(4, full);
+        return err;
+    }
+    GLuint old[6] = {r->ao, r->final, r->direct, r->radiance, r->ao_rgb, r->bounce};
+    glDeleteTextures(6, old);
+    r->ao = full[0];
+    r->final = full[1];
+    r->direct = full[2];
+    r->radiance = full[3];
+    /* Remade at the new size by the next directional frame (rgb_targets_for), like the AO scales
+     * by targets_for; the full-resolution scale's depth and normal were the old G-buffer's. */
+    r->ao_rgb = 0;
+    r->bounce = 0;
+    release_scales(r);
+    r->last_scale = 0;
+    r->width = width;
+    r->height = height;
+    r->has_frame = false;
+    return OB_OK;
+}
+
+void ob_query_renderer_size(const ob_renderer *r, int *width, int *height)
+{
+    if (width) *width = r ? r->width : 0;
+    if (height) *height = r ? r->height : 0;
 }
 
 ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene)
@@ -371,6 +457,8 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     float full_info[4];
     proj_info_from((const float *)proj, full_info);
 
+    /* From here the targets are being overwritten: no whole frame to present until the end. */
+    r->has_frame = false;
     ob_timers_frame_begin(&r->timers);
     ob_error err = ob_shadows_render(&r->shadows, &r->gbuffer, lights, light_count, r->bounds_min, r->bounds_max,
                                      &s->shadow, &r->timers);
@@ -505,6 +593,8 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     ob_timers_frame_end(&r->timers);
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x during the frame", e);
+    r->has_frame = true;
+    r->last_far = cam.far_z;
     return OB_OK;
 }
 
@@ -702,4 +792,48 @@ ob_error ob_renderer_set_environment(ob_renderer *r, const char *hdr_path)
 {
     if (!r || !hdr_path) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_renderer_set_environment: NULL argument");
     return ob_environment_load(&r->environment, hdr_path);
+}
+
+ob_error ob_present(ob_renderer *r, ob_view view, uint32_t framebuffer, int x, int y, int width, int height)
+{
+    if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_present: NULL renderer");
+    if ((int)view < 0 || view >= OB_VIEW_COUNT)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_present: view %d is not one of the %d views", (int)view,
+                            (int)OB_VIEW_COUNT);
+    if (width <= 0 || height <= 0 || x > INT_MAX - width || y > INT_MAX - height)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_present: rectangle %d,%d %dx%d is empty or overflows", x, y,
+                            width, height);
+    if (!r->has_frame)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_present: no frame rendered yet (or since the last resize)");
+    const ao_targets *t = &r->scales[r->last_scale];
+    ob_view_inputs in;
+    memset(&in, 0, sizeof in);
+    in.view = view;
+    in.directional = r->last_rgb;
+    in.width = r->width;
+    in.height = r->height;
+    in.far_z = r->last_far;
+    in.grid_k = t->grid.k;
+    switch (view) {
+    case OB_VIEW_FINAL: in.source = r->final; break;
+    case OB_VIEW_AO: in.source = r->last_rgb ? r->ao_rgb : r->ao; break;
+    case OB_VIEW_NORMALS: in.source = r->gbuffer.normal; break;
+    case OB_VIEW_DEPTH: in.source = r->gbuffer.linear_depth; break;
+    case OB_VIEW_SHADOW:
+    case OB_VIEW_RADIANCE: in.source = r->direct; break;
+    case OB_VIEW_BOUNCE: in.source = r->last_rgb ? r->bounce : r->gbuffer.linear_depth; break; /* black if not */
+    case OB_VIEW_SAMPLES: {
+        /* The counts of read_sample_counts, over the most a pixel could take (multiplier <= 3). */
+        in.source = r->gbuffer.linear_depth;
+        const ob_method_impl *m = ob_method_impl_at(r->last_method);
+        int samples = ob_method_samples(m, r->last_params);
+        bool adaptive = r->last_adaptive && m->adapts;
+        in.samples = adaptive ? ob_adaptive_base(samples) : samples;
+        in.multiplier = adaptive ? t->multiplier : 0;
+        in.max_samples = adaptive ? 3 * in.samples : samples;
+        break;
+    }
+    case OB_VIEW_COUNT: break;
+    }
+    return ob_view_present(&r->view, &in, framebuffer, x, y, width, height);
 }

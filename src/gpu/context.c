@@ -1,8 +1,10 @@
-/* Headless OpenGL 4.5 core context from EGL's device platform (EGL_EXT_platform_device).
+/* Headless OpenGL 4.5 core context from EGL's device platform (EGL_EXT_platform_device), or the
+ * caller's current context adopted as it is (ob_context_desc.use_current).
  *
  * No X server and no window: we enumerate EGL devices, pick a hardware one (NVIDIA through
  * EGL_NV_device_cuda, or a DRM render node) or Mesa's software device (EGL_MESA_device_software,
  * llvmpipe), and make a surfaceless context current. All rendering goes into FBOs/images. */
+#include <dlfcn.h>
 #include <epoxy/egl.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -86,9 +88,67 @@ static bool try_device(ob_context *ctx, EGLDeviceEXT dev, const char *label, cha
     return false;
 }
 
+/* Whether this thread has a GLX context current. Asked through a libGL/libGLX already in the
+ * process (RTLD_NOLOAD): if neither is loaded no GLX context can exist, and going through epoxy's
+ * GLX dispatch instead would dlopen libGL and abort where it is missing. */
+static bool glx_context_current(void)
+{
+    const char *libs[2] = {"libGLX.so.0", "libGL.so.1"};
+    bool current = false;
+    for (int i = 0; i < 2 && !current; ++i) {
+        void *lib = dlopen(libs[i], RTLD_LAZY | RTLD_NOLOAD);
+        if (!lib) continue;
+        void *(*get_current)(void) = NULL;
+        void *sym = dlsym(lib, "glXGetCurrentContext");
+        memcpy(&get_current, &sym, sizeof sym); /* object to function pointer, as POSIX allows */
+        if (get_current) current = get_current() != NULL;
+        dlclose(lib);
+    }
+    return current;
+}
+
+/* Adopt the caller's current context (ob_context_desc.use_current). Any GL call without a
+ * current context may crash (epoxy aborts when it cannot resolve a function), so first ask EGL
+ * and GLX, the two ways a context can be current on Linux, whether there is one at all. */
+static ob_context *adopt_current_context(void)
+{
+    bool egl = eglGetCurrentContext() != EGL_NO_CONTEXT;
+    if (!egl && !glx_context_current()) {
+        ob_set_error(OB_ERR_NO_CONTEXT,
+                     "no current OpenGL context to adopt (use_current): make the window's or engine's "
+                     "context current on this thread first");
+        return NULL;
+    }
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    const char *version = (const char *)glGetString(GL_VERSION);
+    if (!renderer || !version) {
+        ob_set_error(OB_ERR_NO_CONTEXT, "the current context (use_current) answers no GL_RENDERER/GL_VERSION");
+        return NULL;
+    }
+    if (!epoxy_is_desktop_gl() || epoxy_gl_version() < 45) {
+        ob_set_error(OB_ERR_NO_CONTEXT, "the current context (use_current): %s offers %sOpenGL %s, need desktop 4.5",
+                     renderer, epoxy_is_desktop_gl() ? "" : "not desktop ", version);
+        return NULL;
+    }
+    ob_context *ctx = calloc(1, sizeof *ctx);
+    if (!ctx) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory making the context");
+        return NULL;
+    }
+    ctx->adopted = true;
+    snprintf(ctx->renderer, sizeof ctx->renderer, "%s", renderer);
+    snprintf(ctx->version, sizeof ctx->version, "%s", version);
+    snprintf(ctx->device, sizeof ctx->device, "the caller's context");
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &ctx->max_texture_size);
+    /* Mesa's software rasterisers name themselves in GL_RENDERER. */
+    ctx->software = strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") || strstr(renderer, "SWR");
+    return ctx;
+}
+
 ob_context *ob_make_context(const ob_context_desc *desc)
 {
     ob_context_desc d = desc ? *desc : (ob_context_desc){0};
+    if (d.use_current) return adopt_current_context();
     const char *kind = d.gpu == OB_GPU_HW ? "hw" : d.gpu == OB_GPU_SW ? "sw" : "auto";
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!has_ext(client, "EGL_EXT_platform_device") || !has_ext(client, "EGL_EXT_device_enumeration")) {
@@ -152,7 +212,8 @@ ob_context *ob_make_context(const ob_context_desc *desc)
 void ob_destroy_context(ob_context *ctx)
 {
     if (!ctx) return;
-    if (ctx->egl_display) {
+    /* An adopted context is the caller's: no EGL calls, it stays current and alive. */
+    if (!ctx->adopted && ctx->egl_display) {
         eglMakeCurrent(ctx->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (ctx->egl_context) eglDestroyContext(ctx->egl_display, ctx->egl_context);
         eglTerminate(ctx->egl_display);

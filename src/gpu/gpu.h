@@ -9,6 +9,7 @@
 struct ob_context {
     void *egl_display;  /* EGLDisplay */
     void *egl_context;  /* EGLContext */
+    bool adopted;       /* the caller's context (use_current): never made current or destroyed here */
     bool software;
     int max_texture_size;
     char renderer[256];
@@ -17,8 +18,9 @@ struct ob_context {
 };
 
 /* ---- programs (program.c) ------------------------------------------------------------------ */
-/* Build a compute program from an embedded shader (e.g. "ssao.glsl"). `defines` is inserted
- * after #version (may be NULL). Errors: OB_ERR_SHADER with "shaders/FILE:LINE: driver message". */
+/* Build a compute program from an embedded shader (e.g. "ssao.glsl"), or from the file of that
+ * name under ob_set_shader_directory's directory when one is set. `defines` is inserted after
+ * #version (may be NULL). Errors: OB_ERR_SHADER with "shaders/FILE:LINE: driver message". */
 GLuint ob_make_compute_program(const char *name, const char *defines);
 /* Build a raster program from a vertex and a fragment shader. */
 GLuint ob_make_raster_program(const char *vert_name, const char *frag_name, const char *defines);

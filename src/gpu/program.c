@@ -1,12 +1,37 @@
-/* Programs from the embedded shaders, with driver errors mapped back to shaders/FILE:LINE. */
+/* Programs from the embedded shaders (or, in development, from the source tree's shader files:
+ * ob_set_shader_directory), with driver errors mapped back to shaders/FILE:LINE. */
 #include <ctype.h>
+#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
 #include "gpu/gpu.h"
+#include "gpu/shader_expand.h"
 #include "gpu/shaders_embedded.h"
+
+/* The development shader directory; "" = the embedded copies. Process-wide and unsynchronised:
+ * ob_set_shader_directory is documented as a between-frames call on the GL thread. */
+static char shader_dir[4096] = "";
+
+ob_error ob_set_shader_directory(const char *dir)
+{
+    if (!dir) {
+        shader_dir[0] = '\0';
+        return OB_OK;
+    }
+    if (strlen(dir) >= sizeof shader_dir)
+        return ob_set_error(OB_ERR_IO, "shader directory %.64s...: path longer than %zu bytes", dir,
+                            sizeof shader_dir - 1);
+    /* Opening it is the check that it exists, is a directory and can be listed; the files are
+     * read when each program is made, so a broken file surfaces there as OB_ERR_SHADER. */
+    DIR *d = opendir(dir);
+    if (!d) return ob_set_error(OB_ERR_IO, "shader directory %s is not a readable directory", dir);
+    closedir(d);
+    snprintf(shader_dir, sizeof shader_dir, "%s", dir);
+    return OB_OK;
+}
 
 const char *ob_shader_source(const char *name)
 {
@@ -21,8 +46,8 @@ static const char *file_for_id(int id, const char *fallback)
     return fallback;
 }
 
-/* tools/embed_shaders.c numbers lines as FILE_ID * 10000 + LINE. */
-#define LINE_STRIDE 10000
+/* tools/embed_shaders.c (through shader_expand.c) numbers lines as FILE_ID * stride + LINE. */
+#define LINE_STRIDE OB_SHADER_LINE_STRIDE
 
 /* Mesa writes "0:LINE(COL): error: ...", NVIDIA "0(LINE) : error C0000: ...". We keep the first
  * error line (the one a person needs), rewritten as "shaders/FILE:LINE: message". */
@@ -86,12 +111,26 @@ static char *with_defines(const char *src, const char *defines)
 
 static GLuint compile(GLenum stage, const char *name, const char *defines)
 {
-    const char *src = ob_shader_source(name);
-    if (!src) {
-        ob_set_error(OB_ERR_SHADER, "shaders/%s: not embedded in this build", name);
-        return 0;
+    const char *src = NULL;
+    char *from_dir = NULL;
+    if (shader_dir[0]) {
+        /* The embedded file list gives the ids, so driver lines decode to the same names. */
+        char err[1024] = "";
+        from_dir = ob_shader_expand(shader_dir, ob_shader_file_names, ob_shader_file_count, name, err, sizeof err);
+        if (!from_dir) {
+            ob_set_error(OB_ERR_SHADER, "%s", err);
+            return 0;
+        }
+        src = from_dir;
+    } else {
+        src = ob_shader_source(name);
+        if (!src) {
+            ob_set_error(OB_ERR_SHADER, "shaders/%s: not embedded in this build", name);
+            return 0;
+        }
     }
     char *text = with_defines(src, defines);
+    free(from_dir);
     if (!text) {
         ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory compiling shaders/%s", name);
         return 0;

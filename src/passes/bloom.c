@@ -23,6 +23,15 @@ static void fill_weights(ob_bloom_constants *k)
     for (int i = 0; i <= OB_BLOOM_RADIUS; ++i) k->weights[i][0] /= sum;
 }
 
+static void make_targets(int bloom_width, int bloom_height, GLuint *bloom, GLuint *scratch)
+{
+    *bloom = ob_make_texture_2d(GL_RGBA16F, bloom_width, bloom_height);
+    *scratch = ob_make_texture_2d(GL_RGBA16F, bloom_width, bloom_height);
+    /* The tone-map pass upsamples `bloom` with one bilinear fetch (§5.5 step 6). */
+    glTextureParameteri(*bloom, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(*bloom, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+}
+
 ob_error ob_bloom_init(ob_bloom_pass *b, int width, int height)
 {
     memset(b, 0, sizeof *b);
@@ -37,11 +46,28 @@ ob_error ob_bloom_init(ob_bloom_pass *b, int width, int height)
         ob_bloom_destroy(b);
         return err;
     }
-    b->bloom = ob_make_texture_2d(GL_RGBA16F, b->bloom_width, b->bloom_height);
-    b->scratch = ob_make_texture_2d(GL_RGBA16F, b->bloom_width, b->bloom_height);
-    /* The tone-map pass upsamples `bloom` with one bilinear fetch (§5.5 step 6). */
-    glTextureParameteri(b->bloom, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(b->bloom, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    make_targets(b->bloom_width, b->bloom_height, &b->bloom, &b->scratch);
+    return OB_OK;
+}
+
+ob_error ob_bloom_resize(ob_bloom_pass *b, int width, int height)
+{
+    int bw = (width + OB_BLOOM_FACTOR - 1) / OB_BLOOM_FACTOR, bh = (height + OB_BLOOM_FACTOR - 1) / OB_BLOOM_FACTOR;
+    GLuint made[2] = {0, 0};
+    make_targets(bw, bh, &made[0], &made[1]);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) {
+        glDeleteTextures(2, made);
+        return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making the %dx%d bloom targets", e, bw, bh);
+    }
+    GLuint old[2] = {b->bloom, b->scratch};
+    glDeleteTextures(2, old);
+    b->bloom = made[0];
+    b->scratch = made[1];
+    b->width = width;
+    b->height = height;
+    b->bloom_width = bw;
+    b->bloom_height = bh;
     return OB_OK;
 }
 

@@ -8,6 +8,24 @@
 #include "gbuffer_params.h"
 #include "passes/passes.h"
 
+/* The four targets in the order of ob_gbuffer's members: depth, linear depth, normal, albedo. */
+static void make_targets(GLuint tex[4], int width, int height)
+{
+    tex[0] = ob_make_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
+    tex[1] = ob_make_texture_2d(GL_R32F, width, height);
+    tex[2] = ob_make_texture_2d(GL_RGBA16F, width, height);
+    tex[3] = ob_make_texture_2d(GL_RGBA16F, width, height);
+}
+
+static GLenum attach(GLuint fbo, const GLuint tex[4])
+{
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, tex[0], 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex[1], 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, tex[2], 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT2, tex[3], 0);
+    return glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+}
+
 ob_error ob_gbuffer_init(ob_gbuffer *g, int width, int height)
 {
     memset(g, 0, sizeof *g);
@@ -17,20 +35,44 @@ ob_error ob_gbuffer_init(ob_gbuffer *g, int width, int height)
     if (!g->program) return ob_get_error(NULL);
     glCreateBuffers(1, &g->ubo);
     glNamedBufferStorage(g->ubo, sizeof(ob_gbuffer_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
-    g->depth = ob_make_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
-    g->linear_depth = ob_make_texture_2d(GL_R32F, width, height);
-    g->normal = ob_make_texture_2d(GL_RGBA16F, width, height);
-    g->albedo = ob_make_texture_2d(GL_RGBA16F, width, height);
+    GLuint tex[4] = {0, 0, 0, 0};
+    make_targets(tex, width, height);
+    g->depth = tex[0];
+    g->linear_depth = tex[1];
+    g->normal = tex[2];
+    g->albedo = tex[3];
     glCreateFramebuffers(1, &g->fbo);
-    glNamedFramebufferTexture(g->fbo, GL_DEPTH_ATTACHMENT, g->depth, 0);
-    glNamedFramebufferTexture(g->fbo, GL_COLOR_ATTACHMENT0, g->linear_depth, 0);
-    glNamedFramebufferTexture(g->fbo, GL_COLOR_ATTACHMENT1, g->normal, 0);
-    glNamedFramebufferTexture(g->fbo, GL_COLOR_ATTACHMENT2, g->albedo, 0);
     const GLenum draw[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     glNamedFramebufferDrawBuffers(g->fbo, 3, draw);
-    GLenum status = glCheckNamedFramebufferStatus(g->fbo, GL_FRAMEBUFFER);
+    GLenum status = attach(g->fbo, tex);
     if (status != GL_FRAMEBUFFER_COMPLETE)
         return ob_set_error(OB_ERR_GL, "G-buffer framebuffer incomplete (0x%x) at %dx%d", status, width, height);
+    return OB_OK;
+}
+
+ob_error ob_gbuffer_resize(ob_gbuffer *g, int width, int height)
+{
+    GLuint made[4] = {0, 0, 0, 0};
+    make_targets(made, width, height);
+    GLenum e = glGetError();
+    GLenum status = e == GL_NO_ERROR ? attach(g->fbo, made) : GL_FRAMEBUFFER_COMPLETE;
+    if (e != GL_NO_ERROR || status != GL_FRAMEBUFFER_COMPLETE) {
+        /* Back to the old targets, which still work at the old size. */
+        const GLuint old[4] = {g->depth, g->linear_depth, g->normal, g->albedo};
+        attach(g->fbo, old);
+        glDeleteTextures(4, made);
+        if (e != GL_NO_ERROR)
+            return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making %dx%d G-buffer targets", e, width, height);
+        return ob_set_error(OB_ERR_GL, "G-buffer framebuffer incomplete (0x%x) at %dx%d", status, width, height);
+    }
+    GLuint old[4] = {g->depth, g->linear_depth, g->normal, g->albedo};
+    glDeleteTextures(4, old);
+    g->depth = made[0];
+    g->linear_depth = made[1];
+    g->normal = made[2];
+    g->albedo = made[3];
+    g->width = width;
+    g->height = height;
     return OB_OK;
 }
 

@@ -10,6 +10,7 @@
  * the tone map scales by exposure alpha / L_avg. Measuring L_avg after the exposure would cancel
  * it (eq. 2.2 divides it out again), leaving exposure a knob that only matters with HDR off. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -69,6 +70,28 @@ ob_error ob_hdr_init(ob_hdr_pass *h, int width, int height)
         ob_hdr_destroy(h);
         return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making the %dx%d HDR targets", e, width, height);
     }
+    return OB_OK;
+}
+
+ob_error ob_hdr_resize(ob_hdr_pass *h, int width, int height)
+{
+    if (!h) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_hdr_resize: NULL pass");
+    if (width <= 0 || height <= 0) return ob_set_error(OB_ERR_BAD_SIZE, "ob_hdr_resize: size %dx%d", width, height);
+    int old_w = h->width, old_h = h->height;
+    ob_error err = ob_luminance_resize(&h->luminance, width, height);
+    if (err != OB_OK) return err;
+    err = ob_bloom_resize(&h->bloom, width, height);
+    if (err != OB_OK) {
+        /* Keep the pass whole at its old size; the bloom error is the one to report. */
+        const char *msg = NULL;
+        ob_get_error(&msg);
+        char keep[1024] = "";
+        snprintf(keep, sizeof keep, "%s", msg);
+        ob_luminance_resize(&h->luminance, old_w, old_h);
+        return ob_set_error(err, "%s", keep);
+    }
+    h->width = width;
+    h->height = height;
     return OB_OK;
 }
 

@@ -8,6 +8,18 @@
 #include "luminance_params.h"
 #include "passes/passes.h"
 
+/* The result vec4, then one partial sum per gx x gy block. */
+static GLuint make_result(int gx, int gy)
+{
+    size_t bytes = OB_HDR_RESULT_BYTES + (size_t)gx * (size_t)gy * sizeof(float);
+    GLuint buf = 0;
+    glCreateBuffers(1, &buf);
+    /* Zero-filled, so a query before the first frame reads 0s rather than garbage. */
+    glNamedBufferData(buf, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_COPY);
+    glClearNamedBufferData(buf, GL_R32F, GL_RED, GL_FLOAT, NULL);
+    return buf;
+}
+
 ob_error ob_luminance_init(ob_luminance_pass *p, int width, int height)
 {
     memset(p, 0, sizeof *p);
@@ -22,11 +34,26 @@ ob_error ob_luminance_init(ob_luminance_pass *p, int width, int height)
         ob_luminance_destroy(p);
         return err;
     }
-    size_t bytes = OB_HDR_RESULT_BYTES + (size_t)p->groups_x * (size_t)p->groups_y * sizeof(float);
-    glCreateBuffers(1, &p->result);
-    /* Zero-filled, so a query before the first frame reads 0s rather than garbage. */
-    glNamedBufferData(p->result, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_COPY);
-    glClearNamedBufferData(p->result, GL_R32F, GL_RED, GL_FLOAT, NULL);
+    p->result = make_result(p->groups_x, p->groups_y);
+    return OB_OK;
+}
+
+ob_error ob_luminance_resize(ob_luminance_pass *p, int width, int height)
+{
+    int gx = (width + OB_LUMINANCE_SPAN - 1) / OB_LUMINANCE_SPAN;
+    int gy = (height + OB_LUMINANCE_SPAN - 1) / OB_LUMINANCE_SPAN;
+    GLuint made = make_result(gx, gy);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) {
+        glDeleteBuffers(1, &made);
+        return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making the %dx%d luminance buffer", e, width, height);
+    }
+    glDeleteBuffers(1, &p->result);
+    p->result = made;
+    p->width = width;
+    p->height = height;
+    p->groups_x = gx;
+    p->groups_y = gy;
     return OB_OK;
 }
 

@@ -30,6 +30,9 @@ typedef struct ob_gbuffer {
 } ob_gbuffer;
 
 ob_error ob_gbuffer_init(ob_gbuffer *g, int width, int height);
+/* New targets at width x height, swapped into the framebuffer only when all were made (on an
+ * error g is unchanged). The program and the scene stay. Errors: OB_ERR_GL. */
+ob_error ob_gbuffer_resize(ob_gbuffer *g, int width, int height);
 ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene);
 void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj);
 void ob_gbuffer_destroy(ob_gbuffer *g);
@@ -124,6 +127,8 @@ typedef struct ob_luminance_pass {
 } ob_luminance_pass;
 
 ob_error ob_luminance_init(ob_luminance_pass *p, int width, int height);
+/* A new partial-sum buffer for this size; on an error p is unchanged. Errors: OB_ERR_GL. */
+ob_error ob_luminance_resize(ob_luminance_pass *p, int width, int height);
 /* key <= 0: the automatic key of §6.5, chosen on the GPU. */
 void ob_luminance_run(ob_luminance_pass *p, GLuint radiance, float exposure, float key);
 void ob_luminance_destroy(ob_luminance_pass *p);
@@ -135,6 +140,8 @@ typedef struct ob_bloom_pass {
 } ob_bloom_pass;
 
 ob_error ob_bloom_init(ob_bloom_pass *b, int width, int height);
+/* New targets for this size; on an error b is unchanged. Errors: OB_ERR_GL. */
+ob_error ob_bloom_resize(ob_bloom_pass *b, int width, int height);
 /* result: the luminance pass's buffer (its scale); threshold in scaled luminance (eq. 2.2). */
 void ob_bloom_run(ob_bloom_pass *b, GLuint radiance, GLuint result, float threshold);
 void ob_bloom_destroy(ob_bloom_pass *b);
@@ -160,6 +167,9 @@ typedef struct ob_hdr_pass {
 
 /* Errors: OB_ERR_BAD_SIZE, OB_ERR_SHADER. On failure h is left destroyed (safe to destroy again). */
 ob_error ob_hdr_init(ob_hdr_pass *h, int width, int height);
+/* The luminance and bloom targets at a new size, programs kept; on an error h keeps its old size.
+ * Errors: OB_ERR_BAD_SIZE, OB_ERR_GL. */
+ob_error ob_hdr_resize(ob_hdr_pass *h, int width, int height);
 /* radiance: RGBA16F full-resolution linear radiance; final: RGBA8 of the same size. Times its passes
  * with ob_timer_begin(timers, "luminance" / "bloom" / "tonemap") (timers may be NULL). With
  * s->enabled false only "tonemap" runs (exposure x radiance clamped, sRGB); bloom runs only when
@@ -209,5 +219,33 @@ ob_error ob_shadows_render(ob_shadow_maps *s, const ob_gbuffer *g, const ob_ligh
  * declares (0 where a kind has no map). Call after ob_shadows_render, before the lighting dispatch. */
 void ob_shadows_fill(const ob_shadow_maps *s, ob_lighting_constants *c);
 void ob_shadows_destroy(ob_shadow_maps *s);
+
+/* ---- presenting: view.c, shaders/view.glsl (ob_present) -------------------------------------
+ * OB_VIEW_FINAL blits the frame's RGBA8 as it is; the debug views first map their texture into
+ * an RGBA8 display texture with one compute pass, then blit that. */
+typedef struct ob_view_pass {
+    ob_compute_pass pass; /* made on the first debug view */
+    bool ready;
+    GLuint display;       /* RGBA8 display bytes of the views, (re)made at the inputs' size */
+    int width, height;    /* of display */
+    GLuint read_fbo;      /* the blit's source: final or display attached */
+} ob_view_pass;
+
+typedef struct ob_view_inputs {
+    ob_view view;
+    GLuint source;        /* the view's texture (see shaders/view.glsl); final for OB_VIEW_FINAL */
+    GLuint multiplier;    /* samples under adaptive sampling: the edge pass's per-block multiplier */
+    bool directional;     /* the last frame's method wrote RGB M and a bounce */
+    int width, height;    /* of source */
+    float far_z;          /* depth: the last frame's far plane */
+    int samples;          /* samples: the method's count, or the adaptive base with multiplier */
+    int grid_k;           /* samples: full pixels per AO pixel */
+    int max_samples;      /* samples: the most a pixel could take */
+} ob_view_inputs;
+
+/* Draw the view into framebuffer's x, y, w, h (ob_present's contract: state restored). Errors:
+ * OB_ERR_SHADER, OB_ERR_GL. */
+ob_error ob_view_present(ob_view_pass *v, const ob_view_inputs *in, GLuint framebuffer, int x, int y, int w, int h);
+void ob_view_destroy(ob_view_pass *v);
 
 #endif

@@ -11,6 +11,9 @@ packages=(
     # libraries
     libassimp-dev libcglm-dev libstb-dev libcjson-dev
     libembree-dev         # Embree 3: the ray-traced AO / bounce reference (src/reference)
+    # the viewer (obscura view): a GLFW window with a GLX context, Dear ImGui 1.86 (its GLFW and
+    # OpenGL 3 backends dlopen libGL.so.1), and Xvfb so its tests run with no display
+    libglfw3-dev libimgui-dev libgl1 libglx-mesa0 xvfb xauth
     # the comparison report: charts, and the headless browser its test opens it in
     gnuplot-nox
     chromium

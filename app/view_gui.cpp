@@ -1,0 +1,146 @@
+// The C interface of app/view_gui.h over Dear ImGui 1.86 (Debian's libimgui-dev) with its GLFW
+// and OpenGL 3 backends. Kept to forwarding calls: the panel is built in C (app/view.c).
+#include <cstdarg>
+#include <cstdio>
+
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include "view_gui.h"
+
+static bool gui_ready = false;
+
+bool gui_init(GLFWwindow *window)
+{
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO &io = ImGui::GetIO();
+    io.IniFilename = nullptr; // no imgui.ini in whatever directory the viewer was started from
+    ImGui::StyleColorsDark();
+    ImGui::GetStyle().WindowRounding = 2.0f;
+    ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 0.88f; // the image shows through a little
+    // true: ImGui's callbacks are installed in front of the viewer's and call them in turn.
+    if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) return false;
+    if (!ImGui_ImplOpenGL3_Init("#version 450 core")) {
+        ImGui_ImplGlfw_Shutdown();
+        return false;
+    }
+    gui_ready = true;
+    return true;
+}
+
+void gui_shutdown(void)
+{
+    if (!gui_ready) return;
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    gui_ready = false;
+}
+
+void gui_new_frame(void)
+{
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+}
+
+void gui_render(void)
+{
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+bool gui_wants_mouse(void) { return gui_ready && ImGui::GetIO().WantCaptureMouse; }
+bool gui_wants_keyboard(void) { return gui_ready && ImGui::GetIO().WantCaptureKeyboard; }
+
+bool gui_begin(const char *title, float x, float y, float w, float h)
+{
+    ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(w, h), ImGuiCond_FirstUseEver);
+    return ImGui::Begin(title);
+}
+
+bool gui_begin_overlay(const char *id, float x, float y)
+{
+    ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_Always);
+    ImGui::SetNextWindowBgAlpha(0.6f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+    return ImGui::Begin(id, nullptr, flags);
+}
+
+void gui_end(void) { ImGui::End(); }
+
+bool gui_header(const char *label, bool default_open)
+{
+    return ImGui::CollapsingHeader(label, default_open ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+}
+
+void gui_text(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    ImGui::TextV(fmt, ap);
+    va_end(ap);
+}
+
+void gui_text_colored(float r, float g, float b, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    ImGui::TextColoredV(ImVec4(r, g, b, 1.0f), fmt, ap);
+    va_end(ap);
+}
+
+void gui_tooltip(const char *text)
+{
+    if (text && *text && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+bool gui_combo(const char *label, int *index, const char *const *items, int count)
+{
+    return ImGui::Combo(label, index, items, count);
+}
+
+bool gui_slider_float(const char *label, float *v, float min, float max, const char *format, bool log)
+{
+    return ImGui::SliderFloat(label, v, min, max, format, log ? ImGuiSliderFlags_Logarithmic : 0);
+}
+
+bool gui_slider_int(const char *label, int *v, int min, int max, bool log)
+{
+    return ImGui::SliderInt(label, v, min, max, "%d", log ? ImGuiSliderFlags_Logarithmic : 0);
+}
+bool gui_checkbox(const char *label, bool *v) { return ImGui::Checkbox(label, v); }
+bool gui_color3(const char *label, float rgb[3]) { return ImGui::ColorEdit3(label, rgb, ImGuiColorEditFlags_Float); }
+bool gui_drag3(const char *label, float v[3], float speed) { return ImGui::DragFloat3(label, v, speed); }
+bool gui_button(const char *label) { return ImGui::Button(label); }
+void gui_same_line(void) { ImGui::SameLine(); }
+void gui_separator(void) { ImGui::Separator(); }
+void gui_push_id(int id) { ImGui::PushID(id); }
+void gui_pop_id(void) { ImGui::PopID(); }
+
+bool gui_begin_table(const char *id, int columns, const char *const *headers)
+{
+    const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit;
+    if (!ImGui::BeginTable(id, columns, flags)) return false;
+    for (int i = 0; i < columns; ++i) ImGui::TableSetupColumn(headers[i]);
+    ImGui::TableHeadersRow();
+    return true;
+}
+
+void gui_table_row(void) { ImGui::TableNextRow(); }
+
+void gui_table_cell(const char *fmt, ...)
+{
+    ImGui::TableNextColumn();
+    va_list ap;
+    va_start(ap, fmt);
+    ImGui::TextV(fmt, ap);
+    va_end(ap);
+}
+
+void gui_end_table(void) { ImGui::EndTable(); }

@@ -1,0 +1,164 @@
+#!/usr/bin/env bash
+# obscura view under Xvfb (Debian's xvfb; Mesa's llvmpipe through GLX): the viewer starts and
+# renders, its screenshot is not blank and shows the panel, a scripted run moves the camera and
+# switches methods (the frames differ accordingly), test mode writes one CSV row and one
+# screenshot per camera x method, and bad input or a closed window exits cleanly.
+set -u
+OBSCURA=$1
+IMGCHECK=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); }
+bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
+
+if ! command -v xvfb-run >/dev/null; then
+    echo "view: xvfb-run is missing (scripts/install-deps.sh installs xvfb)" >&2
+    exit 1
+fi
+# One X server per call, on a free display number; 24-bit so screenshots keep their colours.
+# timeout: a viewer that never exits fails the test instead of hanging it.
+xrun() { local limit=$1; shift; timeout "$limit" xvfb-run -a -s "-screen 0 800x600x24" "$@"; }
+
+# Numbers from imgcheck, compared in awk (floats).
+gt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a > b) }'; }
+lt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a < b) }'; }
+
+# ---- a scripted run: panel, camera movement, method switch, debug view ------------------------
+# 640x360: the panel (380 px wide, on the right) and the image (left) both have room. The clock
+# advances 1/30 s per frame, so W held for 0.5 s is 15 frames of movement on any machine.
+cat >"$dir/walk.txt" <<EOF
+# time  event
+0.0   screenshot $dir/gui.png
+0.1   key F1 press
+0.2   screenshot $dir/start.png
+0.25  key W down
+0.75  key W up
+0.8   screenshot $dir/moved.png
+0.85  view ao
+0.9   screenshot $dir/ao_ssao.png
+0.95  method none
+1.0   screenshot $dir/ao_none.png
+1.05  key ESCAPE press
+EOF
+if xrun 300 "$OBSCURA" view --scene cornell --size 640x360 --script "$dir/walk.txt" \
+    >"$dir/walk.out" 2>"$dir/walk.err"; then ok; else bad "scripted run failed: $(tail -3 "$dir/walk.err")"; fi
+for f in gui start moved ao_ssao ao_none; do
+    if [ -f "$dir/$f.png" ]; then ok; else bad "no screenshot $f.png"; fi
+done
+
+if [ -f "$dir/start.png" ]; then
+    # Not blank: the whole image varies (the Cornell box's walls, blocks and shadows).
+    read -r lo hi mean sd < <("$IMGCHECK" region 0 0 640 360 "$dir/start.png")
+    if gt "$sd" 20 && gt "$hi" "$lo"; then ok; else bad "start.png looks blank (stddev $sd, $lo..$hi)"; fi
+    # The image's size is the window's.
+    read -r w h _ < <("$IMGCHECK" "$dir/start.png")
+    if [ "$w" = 640 ] && [ "$h" = 360 ]; then ok; else bad "screenshot is ${w}x$h, want 640x360"; fi
+fi
+if [ -f "$dir/gui.png" ] && [ -f "$dir/start.png" ]; then
+    # The panel covers the right side (x 250..630): with it the region is ImGui's dark window
+    # and differs from the same region without it; the image's left edge, outside the panel and
+    # the overlay, stays the same.
+    read -r _ _ panel_mean _ < <("$IMGCHECK" region 300 60 300 250 "$dir/gui.png")
+    read -r _ _ bare_mean _ < <("$IMGCHECK" region 300 60 300 250 "$dir/start.png")
+    if lt "$panel_mean" 90 && gt "$(awk -v a="$bare_mean" -v b="$panel_mean" 'BEGIN { print a - b }')" 30; then ok
+    else bad "no panel: the right side's mean is $panel_mean with the GUI and $bare_mean without"; fi
+    "$IMGCHECK" region 0 300 200 60 "$dir/gui.png" >"$dir/l1"
+    "$IMGCHECK" region 0 300 200 60 "$dir/start.png" >"$dir/l2"
+    if cmp -s "$dir/l1" "$dir/l2"; then ok; else bad "the image under the panel changed: $(cat "$dir/l1") vs $(cat "$dir/l2")"; fi
+fi
+if [ -f "$dir/start.png" ] && [ -f "$dir/moved.png" ]; then
+    d=$("$IMGCHECK" diff "$dir/start.png" "$dir/moved.png")
+    if gt "$d" 2; then ok; else bad "W did not move the camera (mean difference $d)"; fi
+fi
+if [ -f "$dir/ao_ssao.png" ] && [ -f "$dir/ao_none.png" ]; then
+    # The AO view: SSAO darkens the creases; none is white wherever there is geometry.
+    read -r _ _ m_ssao _ < <("$IMGCHECK" region 0 0 640 360 "$dir/ao_ssao.png")
+    read -r lo_none _ m_none _ < <("$IMGCHECK" region 0 0 640 360 "$dir/ao_none.png")
+    if gt "$m_none" "$m_ssao" && gt "$("$IMGCHECK" diff "$dir/ao_ssao.png" "$dir/ao_none.png")" 1; then ok
+    else bad "method switch: AO view mean $m_ssao (ssao) vs $m_none (none)"; fi
+    if [ "$lo_none" -ge 250 ]; then ok; else bad "the AO view of none is not white (min $lo_none)"; fi
+fi
+
+# Camera presets: the number keys and Tab (sphere-on-plane has three distinct ones), and the
+# mouse look (right button held while the cursor moves).
+cat >"$dir/presets.txt" <<EOF
+0.0   screenshot $dir/preset1.png
+0.05  key 3 press
+0.1   screenshot $dir/preset3.png
+0.15  key TAB press
+0.2   screenshot $dir/tab.png
+0.25  move 100 100
+0.3   mouse right down
+0.35  move 300 100
+0.4   mouse right up
+0.45  screenshot $dir/look.png
+0.5   quit
+EOF
+if xrun 300 "$OBSCURA" view --scene sphere-on-plane --gui off --size 320x180 --script "$dir/presets.txt" \
+    >/dev/null 2>"$dir/presets.err"; then ok; else bad "preset run failed: $(tail -3 "$dir/presets.err")"; fi
+for pair in "preset1 preset3" "preset3 tab" "tab look"; do
+    set -- $pair
+    if [ -f "$dir/$1.png" ] && [ -f "$dir/$2.png" ] && gt "$("$IMGCHECK" diff "$dir/$1.png" "$dir/$2.png")" 1; then ok
+    else bad "$1 -> $2: the camera did not change"; fi
+done
+
+# ---- test mode: every camera x the given methods, tiny times ----------------------------------
+mkdir -p "$dir/t"
+if xrun 300 "$OBSCURA" view --scene cornell --size 160x120 --test-mode --seconds 0.05 --cycles 2 --methods none,ssao,hbao,ssdo --log "$dir/t/test.csv" \
+    >"$dir/test.out" 2>"$dir/test.err"; then ok; else bad "test mode failed: $(tail -3 "$dir/test.err")"; fi
+if [ -f "$dir/t/test.csv" ]; then
+    rows=$(($(wc -l <"$dir/t/test.csv") - 1))
+    ncam=$(tail -n +2 "$dir/t/test.csv" | cut -d, -f2 | sort -u | wc -l)
+    if [ "$rows" -eq $((ncam * 4)) ] && [ "$ncam" -ge 1 ]; then ok; else bad "CSV has $rows rows for $ncam cameras x 4 methods"; fi
+    # Every row: positive frames and FPS, and an ao time for every method but none.
+    if awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+                { if ($col["frames"] < 2 || $col["fps"] <= 0 || $col["gbuffer_ms"] <= 0) exit 1
+                  if ($3 != "none" && $col["ao_ms"] <= 0) exit 1 }' "$dir/t/test.csv"; then ok
+    else bad "CSV rows without frames, FPS or pass times: $(cat "$dir/t/test.csv")"; fi
+    shots=$(ls "$dir/t"/*.png 2>/dev/null | wc -l)
+    if [ "$shots" -eq "$rows" ]; then ok; else bad "$shots screenshots for $rows rows"; fi
+    if grep -q "^FPS" "$dir/test.out"; then ok; else bad "no summary table: $(cat "$dir/test.out")"; fi
+else
+    bad "no test-mode CSV"
+fi
+for f in "$dir"/t/*.png; do
+    [ -f "$f" ] || continue
+    read -r _ _ _ sd < <("$IMGCHECK" region 0 0 160 120 "$f")
+    if gt "$sd" 5; then ok; else bad "test-mode screenshot $f is blank"; fi
+    break
+done
+
+# ---- clean exits --------------------------------------------------------------------------------
+# The window's close button (the same flag GLFW sets), after one frame.
+printf '0.1 close\n' >"$dir/close.txt"
+if xrun 120 "$OBSCURA" view --scene corner --size 200x150 --script "$dir/close.txt" \
+    >/dev/null 2>"$dir/close.err"; then ok; else bad "closing the window: exit $? ($(tail -2 "$dir/close.err"))"; fi
+
+# A bad scene: one line, exit 3, before any window opens.
+xrun 60 "$OBSCURA" view --scene "$dir/missing.obj" >/dev/null 2>"$dir/bad.err"
+code=$?
+if [ $code -eq 3 ] && [ "$(wc -l <"$dir/bad.err")" -eq 1 ] && grep -q "missing.obj" "$dir/bad.err"; then ok
+else bad "bad scene: exit $code, stderr: $(cat "$dir/bad.err")"; fi
+
+# Test mode aborted (a method that does not exist): usage error, no log left behind.
+xrun 60 "$OBSCURA" view --scene corner --test-mode --methods ssao,nope --log "$dir/t2.csv" \
+    >/dev/null 2>"$dir/bad2.err"
+code=$?
+if [ $code -eq 2 ] && [ ! -e "$dir/t2.csv" ] && grep -q "nope" "$dir/bad2.err"; then ok
+else bad "unknown test-mode method: exit $code, $(cat "$dir/bad2.err")"; fi
+
+# A malformed script line: exit 3 naming the line.
+printf '0.0 key W sideways\n' >"$dir/bad.txt"
+env -u DISPLAY "$OBSCURA" view --scene corner --script "$dir/bad.txt" >/dev/null 2>"$dir/bad3.err"
+code=$?
+if [ $code -eq 3 ] && grep -q "bad.txt:1" "$dir/bad3.err"; then ok; else bad "bad script: exit $code, $(cat "$dir/bad3.err")"; fi
+
+# No display at all: exit 5 with a hint, not a crash.
+env -u DISPLAY -u WAYLAND_DISPLAY "$OBSCURA" view --scene corner >/dev/null 2>"$dir/nodisp.err"
+code=$?
+if [ $code -eq 5 ] && grep -q "xvfb-run" "$dir/nodisp.err"; then ok; else bad "no display: exit $code, $(cat "$dir/nodisp.err")"; fi
+
+echo "view: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]

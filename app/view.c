@@ -839,6 +839,8 @@ static void panel_lights(viewer *v)
     for (int k = 0; k < 5; ++k)
         if (v->s.shadow.size == 256 << k) zi = k;
     if (gui_combo("map size", &zi, sizes, 5)) v->s.shadow.size = 256 << zi;
+    gui_checkbox("keep maps while lights are unchanged", &v->s.shadow.reuse);
+    gui_tooltip("off: render the shadow maps every frame, as obscura render and bench time them");
     gui_slider_float("bias (texels)", &v->s.shadow.bias, 0.0f, 10.0f, "%.2f", false);
     gui_slider_float("slope bias", &v->s.shadow.slope_bias, 0.0f, 10.0f, "%.2f", false);
     if (v->s.shadow.method == OB_SHADOW_PCF) gui_slider_int("pcf radius", &v->s.shadow.pcf_radius, 1, 8, false);
@@ -1329,6 +1331,9 @@ static int setup_settings(viewer *v)
     v->s.adaptive = o->adaptive;
     if (o->shadow_method >= 0) v->s.shadow.method = (ob_shadow_method)o->shadow_method;
     if (o->shadow_size > 0) v->s.shadow.size = o->shadow_size;
+    /* Scenes are static: the maps only change with the lights or the shadow settings, not with
+     * the camera (on llvmpipe FZK-Haus's sun + 2 cube maps cost 500+ ms a frame otherwise). */
+    v->s.shadow.reuse = true;
     v->s.hdr.enabled = !o->hdr_off;
     if (o->quality_samples > 0) {
         static const int counts[] = {12, 24, 36, 64};

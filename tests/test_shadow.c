@@ -476,6 +476,52 @@ static void timings(fixture *f)
     free(vis);
 }
 
+/* ob_shadow_settings.reuse: the maps are kept (no "shadow" timing, the same visibility) while
+ * the light, the settings and the scene stay; any change of one renders them again. */
+static int timed_render(fixture *f, const ob_light *l, const ob_shadow_settings *st)
+{
+    ob_timer_set t;
+    ob_timers_init(&t);
+    ob_timers_frame_begin(&t);
+    ob_error err = ob_shadows_render(&f->maps, &f->g, l, 1, f->bmin, f->bmax, st, &t);
+    ob_timers_frame_end(&t);
+    int count = err == OB_OK ? t.count : -1;
+    ob_timers_destroy(&t);
+    return count;
+}
+
+static void test_reuse(fixture *f, const ob_scene *scene)
+{
+    enum { N = 64 };
+    float pts[N * 4] = {0}, nrm[N * 4] = {0}, fresh[N] = {0}, kept[N] = {0}, moved[N] = {0};
+    for (int i = 0; i < N; ++i) { /* a line across the box's shadow on the floor */
+        pts[4 * i + 0] = -4.0f + 8.0f * ((float)i + 0.5f) / N;
+        nrm[4 * i + 1] = 1.0f;
+    }
+    ob_light l = directional(1.0f, 1.0f, 0.0f);
+    ob_shadow_settings st = settings_for(OB_SHADOW_PCF);
+    CHECK(timed_render(f, &l, &st) == 1, "reuse off: rendered");
+    probe_run(&f->pr, &f->maps, &l, 1, pts, nrm, fresh, N);
+    st.reuse = true;
+    /* The maps just rendered hold for these inputs (reuse itself is not part of the key). */
+    CHECK(timed_render(f, &l, &st) == 0, "reuse: the next frame keeps the maps, untimed");
+    probe_run(&f->pr, &f->maps, &l, 1, pts, nrm, kept, N);
+    CHECK(memcmp(fresh, kept, sizeof fresh) == 0, "reuse: the kept maps give the same visibility");
+    ob_light l2 = directional(-1.0f, 1.0f, 0.0f);
+    CHECK(timed_render(f, &l2, &st) == 1, "reuse: a new light direction renders again");
+    probe_run(&f->pr, &f->maps, &l2, 1, pts, nrm, moved, N);
+    CHECK(memcmp(fresh, moved, sizeof fresh) != 0, "reuse: and the shadow moved");
+    CHECK(timed_render(f, &l2, &st) == 0, "reuse: then it is kept again");
+    st.pcf_radius = 2;
+    CHECK(timed_render(f, &l2, &st) == 1, "reuse: a new PCF radius renders again");
+    CHECK(ob_gbuffer_set_scene(&f->g, scene) == OB_OK && timed_render(f, &l2, &st) == 1,
+          "reuse: a new scene upload renders again");
+    st.method = OB_SHADOW_NONE;
+    CHECK(timed_render(f, &l2, &st) == 0 && f->maps.method == OB_SHADOW_NONE, "reuse: none draws no maps");
+    st.method = OB_SHADOW_PCF;
+    CHECK(timed_render(f, &l2, &st) == 1, "reuse: after none the maps are rendered again");
+}
+
 int main(void)
 {
     ob_context *ctx = ob_make_context(&(ob_context_desc){.gpu = OB_GPU_AUTO});
@@ -504,6 +550,7 @@ int main(void)
         test_local_lights(&f, OB_LIGHT_POINT);
         test_mixed(&f);
         test_none_and_state(&f);
+        test_reuse(&f, scene);
         timings(&f);
     }
     probe_destroy(&f.pr);

@@ -130,6 +130,28 @@ for f in "$dir"/t/*.png; do
     break
 done
 
+# ---- shader reload (R, development builds): from OBSCURA_DATA_DIR/shaders ------------------------
+# A broken copy: the error names the file and line and the viewer keeps running on the old
+# shaders; a good copy reloads.
+mkdir -p "$dir/data"
+cp -r "$(dirname "$0")/../shaders" "$dir/data/shaders"
+cp "$dir/data/shaders/ssao.glsl" "$dir/ssao.good"
+sed -i '25i this is not GLSL;' "$dir/data/shaders/ssao.glsl"
+printf '0.1 key R press\n0.2 screenshot %s\n0.3 quit\n' "$dir/after_bad_reload.png" >"$dir/reload.txt"
+if OBSCURA_DATA_DIR="$dir/data" xrun 120 "$OBSCURA" view --scene cornell --gui off --size 160x120 --script "$dir/reload.txt" \
+    >/dev/null 2>"$dir/reload_bad.err"; then ok; else bad "bad reload ended the viewer: $(tail -2 "$dir/reload_bad.err")"; fi
+if grep -q "development builds" "$dir/reload_bad.err"; then
+    echo "view: a release build, shader reload not tested"
+else
+    if grep -q "reload failed.*shaders/ssao.glsl:25" "$dir/reload_bad.err" && [ -f "$dir/after_bad_reload.png" ]; then ok
+    else bad "bad reload: $(cat "$dir/reload_bad.err")"; fi
+    cp "$dir/ssao.good" "$dir/data/shaders/ssao.glsl"
+    printf '0.1 key R press\n0.3 quit\n' >"$dir/reload2.txt"
+    if OBSCURA_DATA_DIR="$dir/data" xrun 120 "$OBSCURA" view --scene cornell --gui off --size 160x120 --script "$dir/reload2.txt" \
+        >/dev/null 2>"$dir/reload_good.err" && grep -q "shaders reloaded" "$dir/reload_good.err"; then ok
+    else bad "good reload: $(cat "$dir/reload_good.err")"; fi
+fi
+
 # ---- clean exits --------------------------------------------------------------------------------
 # The window's close button (the same flag GLFW sets), after one frame.
 printf '0.1 close\n' >"$dir/close.txt"

@@ -149,6 +149,11 @@ typedef struct ob_shadow_settings {
     int pcf_radius;       /* PCF: taps each side of the kernel (1 = 3x3 bilinear comparisons) */
     float vsm_blur;       /* VSM: Gaussian sigma of the moment blur, in map texels */
     float vsm_bleed;      /* VSM: light-bleeding reduction threshold in [0, 1) */
+    /* Keep the maps from the last frame while the lights, these settings and the scene are
+     * unchanged: the scene is static, so the maps do not depend on the camera (the viewer sets
+     * this; a frame that reuses them has no "shadow" timing). false: render them every frame, as
+     * the benchmarks time them. */
+    bool reuse;
 } ob_shadow_settings;
 
 typedef struct ob_material_info {

@@ -103,6 +103,7 @@ ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene)
         return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory uploading the scene");
     }
     g->material_count = scene->material_count;
+    ++g->scene_generation;
     for (int i = 0; i < scene->material_count; ++i) {
         const ob_material *m = &scene->materials[i];
         memcpy(g->diffuse[i], m->diffuse, sizeof g->diffuse[i]);

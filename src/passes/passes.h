@@ -27,6 +27,7 @@ typedef struct ob_gbuffer {
     GLuint *textures;     /* per material, 0 = none */
     float (*diffuse)[3];  /* per material */
     int material_count;
+    unsigned scene_generation; /* counts ob_gbuffer_set_scene calls: cached shadow maps go stale */
 } ob_gbuffer;
 
 ob_error ob_gbuffer_init(ob_gbuffer *g, int width, int height);
@@ -201,6 +202,13 @@ typedef struct ob_shadow_maps {
     float matrix[OB_MAX_SHADOW_MAPS][16]; /* -> ob_lighting_constants.shadow_matrix */
     float params[OB_MAX_SHADOW_MAPS][4];  /* -> shadow_params */
     float options[4];                     /* -> shadow_options */
+    /* What the maps were rendered from, for ob_shadow_settings.reuse. */
+    bool key_valid;
+    ob_light key_lights[OB_MAX_SHADOW_MAPS];
+    int key_count;
+    ob_shadow_settings key_settings;
+    float key_bounds[6];
+    unsigned key_scene;
 } ob_shadow_maps;
 
 /* Builds the programs; allocates no maps yet. Errors: OB_ERR_SHADER. */

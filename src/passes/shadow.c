@@ -430,10 +430,31 @@ static void set_sampling(const ob_shadow_maps *s, ob_shadow_method method)
     }
 }
 
+/* The maps of the last render still hold for these inputs (field by field: the settings struct
+ * has padding that memcmp would read). */
+static bool same_inputs(const ob_shadow_maps *s, const ob_gbuffer *g, const ob_light *lights, int count,
+                        const float bmin[3], const float bmax[3], const ob_shadow_settings *st)
+{
+    const ob_shadow_settings *k = &s->key_settings;
+    if (!s->key_valid || s->key_count != count || s->key_scene != g->scene_generation) return false;
+    if (k->method != st->method || k->size != st->size || k->bias != st->bias || k->slope_bias != st->slope_bias ||
+        k->pcf_radius != st->pcf_radius || k->vsm_blur != st->vsm_blur || k->vsm_bleed != st->vsm_bleed)
+        return false;
+    for (int i = 0; i < 3; ++i)
+        if (s->key_bounds[i] != bmin[i] || s->key_bounds[3 + i] != bmax[i]) return false;
+    return memcmp(s->key_lights, lights, (size_t)count * sizeof *lights) == 0; /* ob_light: 4-byte fields only */
+}
+
 ob_error ob_shadows_render(ob_shadow_maps *s, const ob_gbuffer *g, const ob_light *lights, int light_count,
                            const float bounds_min[3], const float bounds_max[3], const ob_shadow_settings *settings,
                            ob_timer_set *timers)
 {
+    if (settings && settings->reuse && settings->method != OB_SHADOW_NONE && light_count > 0 && g && lights &&
+        bounds_min && bounds_max &&
+        same_inputs(s, g, lights, light_count < OB_MAX_SHADOW_MAPS ? light_count : OB_MAX_SHADOW_MAPS, bounds_min,
+                    bounds_max, settings))
+        return OB_OK; /* matrices, params, light_map and options are those of the kept maps */
+    s->key_valid = false;
     s->method = OB_SHADOW_NONE;
     for (int i = 0; i < OB_MAX_LIGHTS; ++i) s->light_map[i] = -1;
     if (!settings || settings->method == OB_SHADOW_NONE || light_count <= 0) return OB_OK;
@@ -523,6 +544,13 @@ ob_error ob_shadows_render(ob_shadow_maps *s, const ob_gbuffer *g, const ob_ligh
     s->options[2] = VSM_MIN_VARIANCE;
     s->options[3] = settings->vsm_bleed;
     if (timers) ob_timer_end(timers);
+    s->key_valid = true;
+    memcpy(s->key_lights, lights, (size_t)count * sizeof *lights);
+    s->key_count = count;
+    s->key_settings = *settings;
+    memcpy(s->key_bounds, bounds_min, 3 * sizeof(float));
+    memcpy(s->key_bounds + 3, bounds_max, 3 * sizeof(float));
+    s->key_scene = g->scene_generation;
     return OB_OK;
 }
 

@@ -70,7 +70,7 @@ static void view_usage(FILE *f)
           "  key NAME down|up|press       NAME: A-Z, 0-9, TAB, ESCAPE, SPACE, LEFT_SHIFT, F1-F12\n"
           "  mouse left|right down|up     move X Y (cursor, pixels)    scroll DY\n"
           "  method NAME   filter NAME   set M.P=V   camera NAME|INDEX   view NAME\n"
-          "  screenshot FILE.png          quit (as Esc)    close (as the window's close button)\n",
+          "  resize W H   screenshot FILE.png   quit (as Esc)   close (as the window's close button)\n",
           f);
 }
 
@@ -111,6 +111,13 @@ static int parse_view_opts(int argc, char **argv, view_opts *o)
             o->test_mode = true;
             continue;
         }
+        static const char *const with_value[] = {"--scene", "--sidecar", "--camera", "--method", "--filter", "--env",
+                                                 "--shots", "--script", "--log", "--methods", "--set", "--up",
+                                                 "--quality", "--ao-scale", "--adaptive", "--vsync", "--gui", "--hdr",
+                                                 "--shadow", "--shadow-size", "--size", "--seconds", "--cycles"};
+        bool known = false;
+        for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; ++k) known = known || !strcmp(a, with_value[k]);
+        if (!known) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura view --help)", a);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura view --help)", a);
         const char *v = argv[++i];
         if (!strcmp(a, "--scene")) o->scene = v;
@@ -186,7 +193,7 @@ static int parse_view_opts(int argc, char **argv, view_opts *o)
 
 /* ---- script: timed input events ------------------------------------------------------------ */
 typedef enum event_kind {
-    EV_KEY, EV_MOUSE, EV_MOVE, EV_SCROLL, EV_METHOD, EV_FILTER, EV_SET, EV_CAMERA, EV_VIEW, EV_SCREENSHOT, EV_QUIT, EV_CLOSE
+    EV_KEY, EV_MOUSE, EV_MOVE, EV_SCROLL, EV_METHOD, EV_FILTER, EV_SET, EV_CAMERA, EV_VIEW, EV_SCREENSHOT, EV_QUIT, EV_CLOSE, EV_RESIZE
 } event_kind;
 
 typedef struct script_event {
@@ -274,6 +281,10 @@ static int load_script(const char *path, script_event **out, int *count)
             e->kind = EV_QUIT;
         } else if (!strcmp(kind, "close")) {
             e->kind = EV_CLOSE;
+        } else if (!strcmp(kind, "resize")) {
+            e->kind = EV_RESIZE;
+            ok = sscanf(rest, "%lf %lf", &e->x, &e->y) == 2 && e->x >= 16.0 && e->y >= 16.0 && e->x <= 16384.0 &&
+                 e->y <= 16384.0;
         } else {
             static const struct { const char *name; event_kind kind; } with_arg[] = {
                 {"method", EV_METHOD}, {"filter", EV_FILTER}, {"set", EV_SET}, {"camera", EV_CAMERA},
@@ -1045,6 +1056,7 @@ static void run_script_events(viewer *v)
         case EV_SCREENSHOT: break; /* taken after the frame is drawn: see frame() */
         case EV_QUIT: v->quit = true; break;
         case EV_CLOSE: glfwSetWindowShouldClose(v->window, GLFW_TRUE); break; /* as the close button */
+        case EV_RESIZE: glfwSetWindowSize(v->window, (int)e->x, (int)e->y); break; /* as dragging its edge */
         }
         if (e->kind == EV_SCREENSHOT) {
             --v->next_event; /* frame() takes it once this frame is on the back buffer */

@@ -94,7 +94,9 @@ cat >"$dir/presets.txt" <<EOF
 0.35  move 300 100
 0.4   mouse right up
 0.45  screenshot $dir/look.png
-0.5   quit
+0.5   resize 240 200
+0.6   screenshot $dir/resized.png
+0.65  quit
 EOF
 if xrun 300 "$OBSCURA" view --scene sphere-on-plane --gui off --size 320x180 --script "$dir/presets.txt" \
     >/dev/null 2>"$dir/presets.err"; then ok; else bad "preset run failed: $(tail -3 "$dir/presets.err")"; fi
@@ -103,6 +105,10 @@ for pair in "preset1 preset3" "preset3 tab" "tab look"; do
     if [ -f "$dir/$1.png" ] && [ -f "$dir/$2.png" ] && gt "$("$IMGCHECK" diff "$dir/$1.png" "$dir/$2.png")" 1; then ok
     else bad "$1 -> $2: the camera did not change"; fi
 done
+# A resized window renders at its new size (the renderer's targets follow the framebuffer).
+read -r w h _ < <("$IMGCHECK" "$dir/resized.png" 2>/dev/null)
+read -r _ _ _ sd < <("$IMGCHECK" region 0 0 240 200 "$dir/resized.png" 2>/dev/null)
+if [ "${w:-0}" = 240 ] && [ "${h:-0}" = 200 ] && gt "${sd:-0}" 5; then ok; else bad "resize: screenshot ${w:-?}x${h:-?}, stddev ${sd:-?}"; fi
 
 # ---- test mode: every camera x the given methods, tiny times ----------------------------------
 mkdir -p "$dir/t"
@@ -176,6 +182,11 @@ printf '0.0 key W sideways\n' >"$dir/bad.txt"
 env -u DISPLAY "$OBSCURA" view --scene corner --script "$dir/bad.txt" >/dev/null 2>"$dir/bad3.err"
 code=$?
 if [ $code -eq 3 ] && grep -q "bad.txt:1" "$dir/bad3.err"; then ok; else bad "bad script: exit $code, $(cat "$dir/bad3.err")"; fi
+
+# An unknown option: usage error, before anything else.
+"$OBSCURA" view --bogus >/dev/null 2>"$dir/bad4.err"
+code=$?
+if [ $code -eq 2 ] && grep -q "unknown option '--bogus'" "$dir/bad4.err"; then ok; else bad "unknown option: exit $code, $(cat "$dir/bad4.err")"; fi
 
 # No display at all: exit 5 with a hint, not a crash.
 env -u DISPLAY -u WAYLAND_DISPLAY "$OBSCURA" view --scene corner >/dev/null 2>"$dir/nodisp.err"

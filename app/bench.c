@@ -24,7 +24,7 @@ typedef struct bench_opts {
     int width, height, frames, warmup;
     bool size_given, stereo, scaling, verbose, hdr_off, shadow_given;
     float ipd;
-    int shadow;
+    ob_shadow_method shadow;
     int sizes[MAX_SIZES][2], size_count;
     ob_gpu_kind gpu;
 } bench_opts;
@@ -186,16 +186,13 @@ static int parse(int argc, char **argv, bench_opts *o)
             if (!cli_parse_float(v, &o->ipd) || !(o->ipd >= 0.0f))
                 return cli_fail(EXIT_USAGE, "--ipd: expected a number >= 0, got '%s'", v);
         } else if (!strcmp(a, "--shadow")) {
-            if (!strcmp(v, "none")) o->shadow = OB_SHADOW_NONE;
-            else if (!strcmp(v, "hard")) o->shadow = OB_SHADOW_HARD;
-            else if (!strcmp(v, "pcf")) o->shadow = OB_SHADOW_PCF;
-            else if (!strcmp(v, "vsm")) o->shadow = OB_SHADOW_VSM;
-            else return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
+            if (!cli_parse_shadow(v, &o->shadow))
+                return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
             o->shadow_given = true;
         } else if (!strcmp(a, "--hdr")) {
-            if (!strcmp(v, "on")) o->hdr_off = false;
-            else if (!strcmp(v, "off")) o->hdr_off = true;
-            else return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
+            bool on = true;
+            if (!cli_parse_on_off(v, &on)) return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
+            o->hdr_off = !on;
         } else if (!strcmp(a, "--gpu")) {
             if (!cli_parse_gpu(v, &o->gpu)) return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
         } else {

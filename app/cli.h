@@ -31,6 +31,11 @@ bool cli_parse_float(const char *text, float *out);
 ob_context *cli_make_context(ob_gpu_kind gpu, bool verbose);
 /* auto, hw or sw. */
 bool cli_parse_gpu(const char *text, ob_gpu_kind *out);
+/* The option values several commands share; false (and *out untouched) for anything else. */
+bool cli_parse_on_off(const char *text, bool *out);            /* on, off */
+bool cli_parse_up(const char *text, ob_up_axis *out);          /* y, z */
+bool cli_parse_ao_scale(const char *text, float *out);         /* 1, 0.5, 0.25 */
+bool cli_parse_shadow(const char *text, ob_shadow_method *out); /* none, hard, pcf, vsm */
 /* The median of n values (sorted in place, so v[0] and v[n-1] are then the min and max); NAN
  * for n = 0. */
 double cli_median(double *v, int n);

@@ -93,6 +93,43 @@ bool cli_parse_gpu(const char *text, ob_gpu_kind *out)
     return true;
 }
 
+bool cli_parse_on_off(const char *text, bool *out)
+{
+    if (strcmp(text, "on") != 0 && strcmp(text, "off") != 0) return false;
+    *out = !strcmp(text, "on");
+    return true;
+}
+
+bool cli_parse_up(const char *text, ob_up_axis *out)
+{
+    if (strcmp(text, "y") != 0 && strcmp(text, "z") != 0) return false;
+    *out = !strcmp(text, "y") ? OB_UP_Y : OB_UP_Z;
+    return true;
+}
+
+bool cli_parse_ao_scale(const char *text, float *out)
+{
+    /* Exactly these spellings: the AO grid is 1, 2 or 4 full pixels wide. */
+    static const struct { const char *name; float scale; } scales[] = {{"1", 1.0f}, {"0.5", 0.5f}, {"0.25", 0.25f}};
+    for (size_t i = 0; i < sizeof scales / sizeof scales[0]; ++i)
+        if (!strcmp(text, scales[i].name)) {
+            *out = scales[i].scale;
+            return true;
+        }
+    return false;
+}
+
+bool cli_parse_shadow(const char *text, ob_shadow_method *out)
+{
+    static const char *const names[] = {"none", "hard", "pcf", "vsm"}; /* ob_shadow_method order */
+    for (int i = 0; i < 4; ++i)
+        if (!strcmp(text, names[i])) {
+            *out = (ob_shadow_method)i;
+            return true;
+        }
+    return false;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;

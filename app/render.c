@@ -163,9 +163,7 @@ static int parse(int argc, char **argv, render_opts *o)
             if (o->set_count >= 64) return cli_fail(EXIT_USAGE, "--set: too many");
             o->sets[o->set_count++] = v;
         } else if (!strcmp(a, "--up")) {
-            if (!strcmp(v, "y")) o->up = OB_UP_Y;
-            else if (!strcmp(v, "z")) o->up = OB_UP_Z;
-            else return cli_fail(EXIT_USAGE, "--up: expected y or z, got '%s'", v);
+            if (!cli_parse_up(v, &o->up)) return cli_fail(EXIT_USAGE, "--up: expected y or z, got '%s'", v);
         } else if (!strcmp(a, "--filter")) {
             o->filter = v;
         } else if (!strcmp(a, "--view")) {
@@ -195,26 +193,19 @@ static int parse(int argc, char **argv, render_opts *o)
             else if (!strcmp(v, "all")) o->ao_all_light = true;
             else return cli_fail(EXIT_USAGE, "--ao-light: expected ambient or all, got '%s'", v);
         } else if (!strcmp(a, "--shadow")) {
-            if (!strcmp(v, "none")) o->shadow_method = OB_SHADOW_NONE;
-            else if (!strcmp(v, "hard")) o->shadow_method = OB_SHADOW_HARD;
-            else if (!strcmp(v, "pcf")) o->shadow_method = OB_SHADOW_PCF;
-            else if (!strcmp(v, "vsm")) o->shadow_method = OB_SHADOW_VSM;
-            else return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
+            ob_shadow_method m = OB_SHADOW_NONE;
+            if (!cli_parse_shadow(v, &m)) return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
+            o->shadow_method = (int)m;
             o->set_mask |= 1u << 0;
         } else if (!strcmp(a, "--hdr")) {
-            if (!strcmp(v, "on")) o->hdr_off = false;
-            else if (!strcmp(v, "off")) o->hdr_off = true;
-            else return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
-
+            bool on = true;
+            if (!cli_parse_on_off(v, &on)) return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
+            o->hdr_off = !on;
         } else if (!strcmp(a, "--ao-scale")) {
-            if (!strcmp(v, "1")) o->ao_scale = 1.0f;
-            else if (!strcmp(v, "0.5")) o->ao_scale = 0.5f;
-            else if (!strcmp(v, "0.25")) o->ao_scale = 0.25f;
-            else return cli_fail(EXIT_USAGE, "--ao-scale: expected 1, 0.5 or 0.25, got '%s'", v);
+            if (!cli_parse_ao_scale(v, &o->ao_scale))
+                return cli_fail(EXIT_USAGE, "--ao-scale: expected 1, 0.5 or 0.25, got '%s'", v);
         } else if (!strcmp(a, "--adaptive")) {
-            if (!strcmp(v, "on")) o->adaptive = true;
-            else if (!strcmp(v, "off")) o->adaptive = false;
-            else return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
+            if (!cli_parse_on_off(v, &o->adaptive)) return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
         } else if (!strcmp(a, "--size")) {
             if (!cli_parse_size(v, &o->width, &o->height))
                 return cli_fail(EXIT_USAGE, "--size: expected WIDTHxHEIGHT with positive integers, got '%s'", v);

@@ -88,14 +88,6 @@ typedef struct view_opts {
     float seconds;
 } view_opts;
 
-static bool parse_on_off(const char *v, bool *out)
-{
-    if (!strcmp(v, "on")) *out = true;
-    else if (!strcmp(v, "off")) *out = false;
-    else return false;
-    return true;
-}
-
 static int parse_view_opts(int argc, char **argv, view_opts *o)
 {
     *o = (view_opts){.scene = "fzk-haus", .method = "ssao", .filter = "geometry", .ao_scale = 1.0f, .vsync = true,
@@ -134,33 +126,27 @@ static int parse_view_opts(int argc, char **argv, view_opts *o)
             if (o->set_count >= 64) return cli_fail(EXIT_USAGE, "--set: too many");
             o->sets[o->set_count++] = v;
         } else if (!strcmp(a, "--up")) {
-            if (!strcmp(v, "y")) o->up = OB_UP_Y;
-            else if (!strcmp(v, "z")) o->up = OB_UP_Z;
-            else return cli_fail(EXIT_USAGE, "--up: expected y or z, got '%s'", v);
+            if (!cli_parse_up(v, &o->up)) return cli_fail(EXIT_USAGE, "--up: expected y or z, got '%s'", v);
         } else if (!strcmp(a, "--quality")) {
             o->quality_samples = ob_quality_samples(v);
             if (o->quality_samples < 0) return cli_fail(EXIT_USAGE, "--quality: expected low, medium, high or ultra, got '%s'", v);
         } else if (!strcmp(a, "--ao-scale")) {
-            if (!strcmp(v, "1")) o->ao_scale = 1.0f;
-            else if (!strcmp(v, "0.5")) o->ao_scale = 0.5f;
-            else if (!strcmp(v, "0.25")) o->ao_scale = 0.25f;
-            else return cli_fail(EXIT_USAGE, "--ao-scale: expected 1, 0.5 or 0.25, got '%s'", v);
+            if (!cli_parse_ao_scale(v, &o->ao_scale))
+                return cli_fail(EXIT_USAGE, "--ao-scale: expected 1, 0.5 or 0.25, got '%s'", v);
         } else if (!strcmp(a, "--adaptive")) {
-            if (!parse_on_off(v, &o->adaptive)) return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
+            if (!cli_parse_on_off(v, &o->adaptive)) return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
         } else if (!strcmp(a, "--vsync")) {
-            if (!parse_on_off(v, &o->vsync)) return cli_fail(EXIT_USAGE, "--vsync: expected on or off, got '%s'", v);
+            if (!cli_parse_on_off(v, &o->vsync)) return cli_fail(EXIT_USAGE, "--vsync: expected on or off, got '%s'", v);
         } else if (!strcmp(a, "--gui")) {
-            if (!parse_on_off(v, &o->gui)) return cli_fail(EXIT_USAGE, "--gui: expected on or off, got '%s'", v);
+            if (!cli_parse_on_off(v, &o->gui)) return cli_fail(EXIT_USAGE, "--gui: expected on or off, got '%s'", v);
         } else if (!strcmp(a, "--hdr")) {
             bool on = true;
-            if (!parse_on_off(v, &on)) return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
+            if (!cli_parse_on_off(v, &on)) return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
             o->hdr_off = !on;
         } else if (!strcmp(a, "--shadow")) {
-            const char *names[] = {"none", "hard", "pcf", "vsm"};
-            o->shadow_method = -1;
-            for (int k = 0; k < 4; ++k)
-                if (!strcmp(v, names[k])) o->shadow_method = k;
-            if (o->shadow_method < 0) return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
+            ob_shadow_method m = OB_SHADOW_NONE;
+            if (!cli_parse_shadow(v, &m)) return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
+            o->shadow_method = (int)m;
         } else if (!strcmp(a, "--shadow-size")) {
             char *end = NULL;
             long n = strtol(v, &end, 10);

@@ -347,8 +347,9 @@ static int takes_samples(const bench_opts *o, int method, bool *yes)
     if (ob_settings_init(&s, ob_method_at(method)->name) != OB_OK) return cli_fail_from_library();
     *yes = true;
     for (int i = 0; i < o->sample_count; ++i) {
-        if (ob_settings_set_samples(&s, o->samples[i]) == OB_OK) continue;
-        if (ob_get_error(NULL) == OB_ERR_INVALID_ARGUMENT) {
+        ob_error err = ob_settings_set_samples(&s, o->samples[i]);
+        if (err == OB_OK) continue;
+        if (err == OB_ERR_INVALID_ARGUMENT) {
             *yes = false;
             ob_clear_error();
             return EXIT_OK;

@@ -418,9 +418,8 @@ int cmd_render(int argc, char **argv)
     /* A method with no sample count (none) ignores --quality/--samples; anything else that the
      * method refuses (out of its range) is an error. */
     int sample_count = o.samples > 0 ? o.samples : o.quality_samples;
-    if (sample_count > 0 && ob_settings_set_samples(&settings, sample_count) != OB_OK &&
-        ob_get_error(NULL) != OB_ERR_INVALID_ARGUMENT)
-        return cli_fail_from_library();
+    ob_error samples_err = sample_count > 0 ? ob_settings_set_samples(&settings, sample_count) : OB_OK;
+    if (samples_err != OB_OK && samples_err != OB_ERR_INVALID_ARGUMENT) return cli_fail_from_library();
     for (int i = 0; i < o.set_count; ++i)
         if (ob_settings_set(&settings, o.sets[i]) != OB_OK) return cli_fail_from_library();
 

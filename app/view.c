@@ -793,7 +793,7 @@ static void panel_method(viewer *v)
         gui_pop_id();
     }
     static const char *const scales[] = {"1 (full)", "0.5", "0.25"};
-    int si = v->s.ao_scale == 0.5f ? 1 : v->s.ao_scale == 0.25f ? 2 : 0;
+    int si = v->s.ao_divisor == 2 ? 1 : v->s.ao_divisor == 4 ? 2 : 0;
     if (gui_combo("ao scale", &si, scales, 3)) {
         ob_settings_set_ao_scale(&v->s, si == 1 ? 0.5f : si == 2 ? 0.25f : 1.0f);
         profiler_reset(&v->prof);
@@ -1337,8 +1337,8 @@ static int setup_settings(viewer *v)
         static const int counts[] = {12, 24, 36, 64};
         for (int q = 0; q < 4; ++q)
             if (counts[q] == o->quality_samples) v->quality = q + 1;
-        if (ob_settings_set_samples(&v->s, o->quality_samples) != OB_OK && ob_get_error(NULL) != OB_ERR_INVALID_ARGUMENT)
-            return cli_fail_from_library();
+        ob_error err = ob_settings_set_samples(&v->s, o->quality_samples);
+        if (err != OB_OK && err != OB_ERR_INVALID_ARGUMENT) return cli_fail_from_library();
     }
     /* --set may name any method (ssao.radius=...): it goes to that method's stored values. */
     for (int i = 0; i < o->set_count; ++i) {

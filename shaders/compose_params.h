@@ -6,10 +6,7 @@
 #define OB_COMPOSE_GROUP_X 8
 #define OB_COMPOSE_GROUP_Y 8
 
-/* ambient.w: the ambient mode, as ob_ambient_mode */
-#define OB_AMBIENT_MODE_CONSTANT 0
-#define OB_AMBIENT_MODE_HEMISPHERE 1
-#define OB_AMBIENT_MODE_ENVIRONMENT 2
+/* ambient.w: OB_AMBIENT_MODE_* (ob_enums.h) */
 
 OB_CONSTANTS_BEGIN(ob_compose_constants, OB_BINDING_PASS)
     OB_VEC4 size;          /* width, height, 1/width, 1/height */

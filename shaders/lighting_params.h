@@ -10,16 +10,7 @@
 #define OB_MAX_LIGHTS 8
 #define OB_MAX_SHADOW_MAPS 4
 
-/* light_color.w: the light type */
-#define OB_LIGHT_TYPE_DIRECTIONAL 0
-#define OB_LIGHT_TYPE_POINT 1
-#define OB_LIGHT_TYPE_SPOT 2
-
-/* shadow_options.x: the shadow method */
-#define OB_SHADOW_METHOD_NONE 0
-#define OB_SHADOW_METHOD_HARD 1
-#define OB_SHADOW_METHOD_PCF 2
-#define OB_SHADOW_METHOD_VSM 3
+/* light_color.w: OB_LIGHT_TYPE_*; shadow_options.x: OB_SHADOW_METHOD_* (ob_enums.h) */
 
 OB_CONSTANTS_BEGIN(ob_lighting_constants, OB_BINDING_PASS)
     OB_VEC4 size;            /* width, height, 1/width, 1/height */

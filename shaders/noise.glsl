@@ -5,8 +5,7 @@
 #ifndef OB_NOISE_GLSL
 #define OB_NOISE_GLSL
 
-#define OB_NOISE_TEXTURE4 0
-#define OB_NOISE_IGN 1
+#include "ob_enums.h" /* OB_NOISE_* */
 
 float ob_interleaved_gradient_noise(vec2 pixel)
 {

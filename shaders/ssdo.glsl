@@ -65,8 +65,8 @@ vec3 incoming(vec3 w, vec3 up, mat3 to_world)
 {
     int mode = ssdo.grid.w;
     vec3 l_in = ssdo.ambient.rgb;
-    if (mode == OB_SSDO_AMBIENT_HEMISPHERE) l_in = mix(ssdo.ground.rgb, ssdo.sky.rgb, 0.5 + 0.5 * dot(w, up));
-    else if (mode == OB_SSDO_AMBIENT_ENVIRONMENT) l_in = max(ob_sh_irradiance(ssdo.sh, to_world * w), vec3(0.0));
+    if (mode == OB_AMBIENT_MODE_HEMISPHERE) l_in = mix(ssdo.ground.rgb, ssdo.sky.rgb, 0.5 + 0.5 * dot(w, up));
+    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) l_in = max(ob_sh_irradiance(ssdo.sh, to_world * w), vec3(0.0));
     for (int i = 0; i < ssdo.grid.z; ++i) l_in += light_e[i] * pow(max(dot(w, light_dir[i]), 0.0), ssdo.params.w);
     return l_in;
 }

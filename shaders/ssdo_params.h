@@ -10,11 +10,6 @@
 #define OB_SSDO_MAX_SAMPLES 256
 #define OB_SSDO_MAX_LIGHTS 8
 
-/* Compose's ambient modes (compose_params.h), repeated because that header declares its own
- * constant block; light types come with light_eval.glsl. */
-#define OB_SSDO_AMBIENT_HEMISPHERE 1
-#define OB_SSDO_AMBIENT_ENVIRONMENT 2
-
 /* counts.w: which output a dispatch writes */
 #define OB_SSDO_STAGE_DIRECT 0 /* `ssdo` pass 1: M from uniform directions (eq. 5.3) */
 #define OB_SSDO_STAGE_MERGED 1 /* `ssdo_merged`: M (cosine directions, eq. 5.2) + bounce x M */

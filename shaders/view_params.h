@@ -7,14 +7,7 @@
 #define OB_VIEW_GROUP_X 8
 #define OB_VIEW_GROUP_Y 8
 
-/* mode.x: the view, as ob_view (src/passes/view.c checks they agree). */
-#define OB_VIEW_MODE_AO 1
-#define OB_VIEW_MODE_NORMALS 2
-#define OB_VIEW_MODE_DEPTH 3
-#define OB_VIEW_MODE_SHADOW 4
-#define OB_VIEW_MODE_RADIANCE 5
-#define OB_VIEW_MODE_SAMPLES 6
-#define OB_VIEW_MODE_BOUNCE 7
+/* mode.x: the view, OB_VIEW_MODE_* of ob_enums.h. */
 
 OB_CONSTANTS_BEGIN(ob_view_constants, OB_BINDING_PASS)
     OB_VEC4 size;     /* width, height; depth: the far plane; samples: 1 / the most a pixel could take */

@@ -323,7 +323,7 @@ static void test_resize(ob_context *ctx, const ob_settings *s)
         CHECK(ob_read_image(r, OB_IMAGE_FINAL_RGBA8, a, n) == OB_OK, "read resized");
         CHECK(ob_read_image(fresh, OB_IMAGE_FINAL_RGBA8, b, n) == OB_OK, "read fresh");
         CHECK(memcmp(a, b, n) == 0, "%s (ao scale %g): resized == fresh 40x30 (max diff %d)",
-              ob_method_at(all[i]->method)->name, (double)all[i]->ao_scale, max_byte_diff(a, b, n));
+              ob_method_at(all[i]->method)->name, 1.0 / (double)(all[i]->ao_divisor ? all[i]->ao_divisor : 1), max_byte_diff(a, b, n));
         int distinct = 0;
         for (size_t k = 4; k < n; k += 4) distinct += memcmp(a + k, a, 3) != 0;
         CHECK(distinct > 100, "the frame is a picture, not one colour (%d pixels differ from the first)", distinct);

@@ -59,8 +59,17 @@ typedef enum ob_error {
         OB_ERROR_COUNT
 } ob_error;
 
-/* The last error on this thread and its one-line message (never NULL; "" when none). */
+/* The last error on this thread, then forgets it, as glfwGetError does: a second call returns
+ * OB_OK. *message (never NULL) is the one-line message of the last error recorded on this thread,
+ * kept after the read so that a log line can still quote it, until the next error or
+ * ob_clear_error ("" before any). */
 ob_error ob_get_error(const char **message);
+/* Called on the failing thread with each error as it is recorded (before the failing call
+ * returns), e.g. to log it; the message is valid during the call only. NULL removes it. The
+ * error is still there for ob_get_error afterwards. Process-wide: set it before other threads use
+ * the library. */
+typedef void (*ob_error_callback)(ob_error err, const char *message, void *user);
+void ob_set_error_callback(ob_error_callback callback, void *user);
 /* The enum's name, e.g. "OB_ERR_UNKNOWN_METHOD". */
 const char *ob_error_name(ob_error err);
 /* Forget the last error. */
@@ -279,7 +288,8 @@ typedef struct ob_settings {
     int filter;                   /* filter registry index (default "geometry") */
     float filter_params[OB_MAX_PARAMS];
     uint32_t filter_params_set;   /* bit i: filter_params[i] was set explicitly */
-    float ao_scale;               /* 1, 0.5 or 0.25: the AO runs at this fraction of the size */
+    int ao_divisor;               /* 1, 2 or 4 (0 = 1): the AO runs at 1/ao_divisor of the size on the
+                                     grid of full pixels k i + o (seed 000 §4.7.1, seed 003 §4.4) */
     bool adaptive;                /* per-pixel sample counts from an edge pre-pass (seed 003 §4.1) */
     ob_hdr_settings hdr;
     ob_light lights[OB_MAX_LIGHTS];
@@ -305,7 +315,11 @@ float ob_settings_get(const ob_settings *settings, const char *param);
 ob_error ob_settings_set_filter(ob_settings *settings, const char *filter);
 /* The value of a parameter of the current filter, or NaN. */
 float ob_settings_get_filter(const ob_settings *settings, const char *param);
-/* 1, 0.5 or 0.25 (seed 000 §4.7.1, seed 003 §4.4). Errors: OB_ERR_OUT_OF_RANGE. */
+/* The AO resolution as a divisor of the size: 1, 2 or 4 (seed 000 §4.7.1, seed 003 §4.4).
+ * Errors: OB_ERR_OUT_OF_RANGE. */
+ob_error ob_settings_set_ao_divisor(ob_settings *settings, int divisor);
+/* The same as a fraction, as the CLI's --ao-scale takes it: exactly 1, 0.5 or 0.25 (divisor 1, 2,
+ * 4). Errors: OB_ERR_OUT_OF_RANGE. */
 ob_error ob_settings_set_ao_scale(ob_settings *settings, float scale);
 
 /* Quality presets (seed 000 §3.2.3, §5.1): "low" 12, "medium" 24, "high" 36, "ultra" 64 samples
@@ -419,6 +433,11 @@ const char *ob_view_name(ob_view view);
  * OB_ERR_SHADER (the view pass, compiled on the first debug view), OB_ERR_GL (e.g. `framebuffer`
  * is not a complete framebuffer). */
 ob_error ob_present(ob_renderer *r, ob_view view, uint32_t framebuffer, int x, int y, int width, int height);
+
+/* The same view as ob_present draws, read back: width x height x 4 sRGB bytes (alpha 255), top
+ * row first, as image files want them (the CLI's --view). dst_size at least ob_image_size(r,
+ * OB_IMAGE_FINAL_RGBA8). Errors: as ob_present, and OB_ERR_INVALID_ARGUMENT for a small dst. */
+ob_error ob_read_view(ob_renderer *r, ob_view view, uint8_t *dst, size_t dst_size);
 
 /* ---- development ---------------------------------------------------------------------------- */
 /* Compile shaders from the .glsl/.h files under `dir` (the source tree's shaders/), with #include

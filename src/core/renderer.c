@@ -216,7 +216,7 @@ ob_error ob_renderer_resize(ob_renderer *r, int width, int height)
         err = ob_hdr_resize(&r->hdr, width, height);
         if (err != OB_OK) {
             const char *msg = NULL;
-            ob_get_error(&msg);
+            ob_peek_error(&msg);
             char keep[1024] = "";
             snprintf(keep, sizeof keep, "%s", msg);
             ob_gbuffer_resize(&r->gbuffer, old_width, old_height);
@@ -276,7 +276,7 @@ static void *filter_state(ob_renderer *r, int index, bool rgb, ob_error *err)
         if (init) {
             states[index] = init();
             if (!states[index]) {
-                *err = ob_get_error(NULL);
+                *err = ob_peek_error(NULL);
                 return NULL;
             }
         }
@@ -300,7 +300,7 @@ static ob_error rgb_targets_for(ob_renderer *r, ao_targets *t)
     if (!r->ao_rgb) r->ao_rgb = ob_make_texture_2d(GL_RGBA16F, r->width, r->height);
     if (!r->bounce) r->bounce = ob_make_texture_2d(GL_RGBA16F, r->width, r->height);
     if (!r->upsample_rgb_ready) {
-        if (ob_upsample_init_rgb(&r->upsample_rgb) != OB_OK) return ob_get_error(NULL);
+        if (ob_upsample_init_rgb(&r->upsample_rgb) != OB_OK) return ob_peek_error(NULL);
         r->upsample_rgb_ready = true;
     }
     GLenum e = glGetError();
@@ -308,7 +308,7 @@ static ob_error rgb_targets_for(ob_renderer *r, ao_targets *t)
     return OB_OK;
 }
 
-static int scale_index(float scale) { return scale == 0.5f ? 1 : scale == 0.25f ? 2 : 0; }
+static int scale_index(int divisor) { return divisor == 2 ? 1 : divisor == 4 ? 2 : 0; }
 
 static ao_targets *targets_for(ob_renderer *r, int index)
 {
@@ -359,7 +359,7 @@ static void *method_state(ob_renderer *r, int index, ob_error *err)
         if (m->init) {
             r->method_states[index] = m->init();
             if (!r->method_states[index]) {
-                *err = ob_get_error(NULL);
+                *err = ob_peek_error(NULL);
                 return NULL;
             }
         }
@@ -407,15 +407,15 @@ static ob_error check_settings(const ob_settings *s)
 {
     if (!s || !ob_method_at(s->method) || !ob_filter_at(s->filter))
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "settings are not initialised");
-    if (s->ao_scale != 1.0f && s->ao_scale != 0.5f && s->ao_scale != 0.25f)
-        return ob_set_error(OB_ERR_OUT_OF_RANGE, "ao scale %g is not 1, 0.5 or 0.25", (double)s->ao_scale);
+    if (s->ao_divisor != 0 && s->ao_divisor != 1 && s->ao_divisor != 2 && s->ao_divisor != 4)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "ao divisor %d is not 1, 2 or 4", s->ao_divisor);
     return OB_OK;
 }
 
 ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *s)
 {
     if (!r || !camera) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_frame: NULL argument");
-    if (check_settings(s) != OB_OK) return ob_get_error(NULL);
+    if (check_settings(s) != OB_OK) return ob_peek_error(NULL);
     if (!r->has_scene) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_frame: no scene (ob_renderer_set_scene)");
     if (s->ambient_mode == OB_AMBIENT_ENVIRONMENT && !r->environment.texture)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "environment ambient without an environment map (--env FILE.hdr)");
@@ -431,7 +431,7 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     glm_lookat(cam.eye, cam.target, cam.up, view);
     glm_perspective(glm_rad(cam.fov_y_deg), (float)r->width / (float)r->height, cam.near_z, cam.far_z, proj);
 
-    int si = scale_index(s->ao_scale);
+    int si = scale_index(s->ao_divisor);
     ao_targets *t = targets_for(r, si);
     r->last_scale = si;
     const ob_ao_grid *g = &t->grid;
@@ -603,7 +603,7 @@ ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t norma
 {
     if (!r || !proj || !linear_depth_tex || !normal_tex || !ao_out_tex)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: NULL argument");
-    if (check_settings(s) != OB_OK) return ob_get_error(NULL);
+    if (check_settings(s) != OB_OK) return ob_peek_error(NULL);
     if (ob_method_impl_at(s->method)->rgb)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: %s needs the frame's direct light (ob_render_frame)",
                             ob_method_at(s->method)->name);
@@ -794,46 +794,85 @@ ob_error ob_renderer_set_environment(ob_renderer *r, const char *hdr_path)
     return ob_environment_load(&r->environment, hdr_path);
 }
 
-ob_error ob_present(ob_renderer *r, ob_view view, uint32_t framebuffer, int x, int y, int width, int height)
+/* The inputs of the view pass for the last frame's `view` (ob_present, ob_read_view). */
+static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_view_inputs *in)
 {
-    if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_present: NULL renderer");
+    if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s: NULL renderer", who);
     if ((int)view < 0 || view >= OB_VIEW_COUNT)
-        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_present: view %d is not one of the %d views", (int)view,
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s: view %d is not one of the %d views", who, (int)view,
                             (int)OB_VIEW_COUNT);
-    if (width <= 0 || height <= 0 || x > INT_MAX - width || y > INT_MAX - height)
-        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_present: rectangle %d,%d %dx%d is empty or overflows", x, y,
-                            width, height);
     if (!r->has_frame)
-        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_present: no frame rendered yet (or since the last resize)");
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s: no frame rendered yet (or since the last resize)", who);
     const ao_targets *t = &r->scales[r->last_scale];
-    ob_view_inputs in;
-    memset(&in, 0, sizeof in);
-    in.view = view;
-    in.directional = r->last_rgb;
-    in.width = r->width;
-    in.height = r->height;
-    in.far_z = r->last_far;
-    in.grid_k = t->grid.k;
+    memset(in, 0, sizeof *in);
+    in->view = view;
+    in->directional = r->last_rgb;
+    in->width = r->width;
+    in->height = r->height;
+    in->far_z = r->last_far;
+    in->grid_k = t->grid.k;
     switch (view) {
-    case OB_VIEW_FINAL: in.source = r->final; break;
-    case OB_VIEW_AO: in.source = r->last_rgb ? r->ao_rgb : r->ao; break;
-    case OB_VIEW_NORMALS: in.source = r->gbuffer.normal; break;
-    case OB_VIEW_DEPTH: in.source = r->gbuffer.linear_depth; break;
+    case OB_VIEW_FINAL: in->source = r->final; break;
+    case OB_VIEW_AO: in->source = r->last_rgb ? r->ao_rgb : r->ao; break;
+    case OB_VIEW_NORMALS: in->source = r->gbuffer.normal; break;
+    case OB_VIEW_DEPTH: in->source = r->gbuffer.linear_depth; break;
     case OB_VIEW_SHADOW:
-    case OB_VIEW_RADIANCE: in.source = r->direct; break;
-    case OB_VIEW_BOUNCE: in.source = r->last_rgb ? r->bounce : r->gbuffer.linear_depth; break; /* black if not */
+    case OB_VIEW_RADIANCE: in->source = r->direct; break;
+    case OB_VIEW_BOUNCE: in->source = r->last_rgb ? r->bounce : r->gbuffer.linear_depth; break; /* black if not */
     case OB_VIEW_SAMPLES: {
         /* The counts of read_sample_counts, over the most a pixel could take (multiplier <= 3). */
-        in.source = r->gbuffer.linear_depth;
+        in->source = r->gbuffer.linear_depth;
         const ob_method_impl *m = ob_method_impl_at(r->last_method);
         int samples = ob_method_samples(m, r->last_params);
         bool adaptive = r->last_adaptive && m->adapts;
-        in.samples = adaptive ? ob_adaptive_base(samples) : samples;
-        in.multiplier = adaptive ? t->multiplier : 0;
-        in.max_samples = adaptive ? 3 * in.samples : samples;
+        in->samples = adaptive ? ob_adaptive_base(samples) : samples;
+        in->multiplier = adaptive ? t->multiplier : 0;
+        in->max_samples = adaptive ? 3 * in->samples : samples;
         break;
     }
     case OB_VIEW_COUNT: break;
     }
+    return OB_OK;
+}
+
+ob_error ob_present(ob_renderer *r, ob_view view, uint32_t framebuffer, int x, int y, int width, int height)
+{
+    if (r && (width <= 0 || height <= 0 || x > INT_MAX - width || y > INT_MAX - height))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_present: rectangle %d,%d %dx%d is empty or overflows", x, y,
+                            width, height);
+    ob_view_inputs in;
+    ob_error err = view_inputs(r, view, "ob_present", &in);
+    if (err != OB_OK) return err;
     return ob_view_present(&r->view, &in, framebuffer, x, y, width, height);
+}
+
+ob_error ob_read_view(ob_renderer *r, ob_view view, uint8_t *dst, size_t dst_size)
+{
+    ob_view_inputs in;
+    ob_error err = view_inputs(r, view, "ob_read_view", &in);
+    if (err != OB_OK) return err;
+    size_t need = ob_image_size(r, OB_IMAGE_FINAL_RGBA8);
+    if (!dst || dst_size < need)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_read_view: buffer of %zu bytes, need %zu", dst ? dst_size : 0,
+                            need);
+    if (view == OB_VIEW_FINAL) return ob_read_image(r, OB_IMAGE_FINAL_RGBA8, dst, dst_size);
+    GLuint tex = 0;
+    err = ob_view_render(&r->view, &in, &tex);
+    if (err != OB_OK) return err;
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(tex, 0, GL_RGBA, GL_UNSIGNED_BYTE, (GLsizei)need, dst);
+    /* GL's rows run bottom to top; image files want top first. */
+    size_t row = (size_t)r->width * 4;
+    for (int y = 0; y < r->height / 2; ++y) {
+        uint8_t *a = dst + (size_t)y * row, *b = dst + (size_t)(r->height - 1 - y) * row;
+        for (size_t i = 0; i < row; ++i) {
+            uint8_t c = a[i];
+            a[i] = b[i];
+            b[i] = c;
+        }
+    }
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x reading the %s view", e, ob_view_name(view));
+    return OB_OK;
 }

@@ -32,7 +32,7 @@ ob_error ob_settings_init(ob_settings *s, const char *method)
     /* Seed 003 §3.5's separable geometry-aware bilateral: the filter that keeps creases and
      * silhouettes while removing the rotation noise. */
     s->filter = -1;
-    s->ao_scale = 1.0f;
+    s->ao_divisor = 1;
     ob_error err = ob_settings_set_filter(s, "geometry");
     if (err != OB_OK) return err;
     /* light_count 0 = the scene's lights (sidecar, glTF or default). */
@@ -223,11 +223,20 @@ float ob_settings_get_filter(const ob_settings *s, const char *param)
     return pi < 0 ? NAN : s->filter_params[pi];
 }
 
+ob_error ob_settings_set_ao_divisor(ob_settings *s, int divisor)
+{
+    if (!s) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_settings_set_ao_divisor: NULL settings");
+    if (divisor != 1 && divisor != 2 && divisor != 4)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "ao divisor %d is not 1, 2 or 4", divisor);
+    s->ao_divisor = divisor;
+    return OB_OK;
+}
+
 ob_error ob_settings_set_ao_scale(ob_settings *s, float scale)
 {
     if (!s) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_settings_set_ao_scale: NULL settings");
     if (scale != 1.0f && scale != 0.5f && scale != 0.25f)
         return ob_set_error(OB_ERR_OUT_OF_RANGE, "ao scale %g is not 1, 0.5 or 0.25", (double)scale);
-    s->ao_scale = scale;
+    s->ao_divisor = scale == 1.0f ? 1 : scale == 0.5f ? 2 : 4;
     return OB_OK;
 }

@@ -10,7 +10,7 @@ ob_error ob_compute_pass_init(ob_compute_pass *p, const char *shader, const char
 {
     memset(p, 0, sizeof *p);
     p->program = ob_make_compute_program(shader, defines);
-    if (!p->program) return ob_get_error(NULL);
+    if (!p->program) return ob_peek_error(NULL);
     p->constants_size = constants_size;
     glCreateBuffers(1, &p->ubo);
     glNamedBufferStorage(p->ubo, (GLsizeiptr)constants_size, NULL, GL_DYNAMIC_STORAGE_BIT);

@@ -42,7 +42,7 @@ ob_error ob_bloom_init(ob_bloom_pass *b, int width, int height)
     if (ob_compute_pass_init(&b->bright, "bloom.glsl", "#define OB_BLOOM_BRIGHT 1\n", sizeof(ob_bloom_constants)) !=
             OB_OK ||
         ob_compute_pass_init(&b->blur, "bloom.glsl", NULL, sizeof(ob_bloom_constants)) != OB_OK) {
-        ob_error err = ob_get_error(NULL);
+        ob_error err = ob_peek_error(NULL);
         ob_bloom_destroy(b);
         return err;
     }

@@ -32,7 +32,7 @@ ob_error ob_gbuffer_init(ob_gbuffer *g, int width, int height)
     g->width = width;
     g->height = height;
     g->program = ob_make_raster_program("gbuffer.vert.glsl", "gbuffer.frag.glsl", NULL);
-    if (!g->program) return ob_get_error(NULL);
+    if (!g->program) return ob_peek_error(NULL);
     glCreateBuffers(1, &g->ubo);
     glNamedBufferStorage(g->ubo, sizeof(ob_gbuffer_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
     GLuint tex[4] = {0, 0, 0, 0};

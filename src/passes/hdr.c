@@ -84,7 +84,7 @@ ob_error ob_hdr_resize(ob_hdr_pass *h, int width, int height)
     if (err != OB_OK) {
         /* Keep the pass whole at its old size; the bloom error is the one to report. */
         const char *msg = NULL;
-        ob_get_error(&msg);
+        ob_peek_error(&msg);
         char keep[1024] = "";
         snprintf(keep, sizeof keep, "%s", msg);
         ob_luminance_resize(&h->luminance, old_w, old_h);

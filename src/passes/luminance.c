@@ -30,7 +30,7 @@ ob_error ob_luminance_init(ob_luminance_pass *p, int width, int height)
     if (ob_compute_pass_init(&p->partial, "luminance.glsl", NULL, sizeof(ob_luminance_constants)) != OB_OK ||
         ob_compute_pass_init(&p->final, "luminance.glsl", "#define OB_LUMINANCE_FINAL 1\n",
                              sizeof(ob_luminance_constants)) != OB_OK) {
-        ob_error err = ob_get_error(NULL);
+        ob_error err = ob_peek_error(NULL);
         ob_luminance_destroy(p);
         return err;
     }

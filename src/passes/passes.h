@@ -254,6 +254,9 @@ typedef struct ob_view_inputs {
 /* Draw the view into framebuffer's x, y, w, h (ob_present's contract: state restored). Errors:
  * OB_ERR_SHADER, OB_ERR_GL. */
 ob_error ob_view_present(ob_view_pass *v, const ob_view_inputs *in, GLuint framebuffer, int x, int y, int w, int h);
+/* Run the view pass only (not OB_VIEW_FINAL): *out is the RGBA8 texture it wrote, owned by v.
+ * GL state is restored as for ob_view_present. Errors: OB_ERR_SHADER. */
+ob_error ob_view_render(ob_view_pass *v, const ob_view_inputs *in, GLuint *out);
 void ob_view_destroy(ob_view_pass *v);
 
 #endif

@@ -46,12 +46,12 @@ ob_error ob_shadows_init(ob_shadow_maps *s)
     s->method = OB_SHADOW_NONE;
     for (int i = 0; i < OB_MAX_LIGHTS; ++i) s->light_map[i] = -1;
     s->depth_program = ob_make_raster_program("shadow_depth.vert.glsl", "shadow_depth.frag.glsl", NULL);
-    if (!s->depth_program) return ob_get_error(NULL);
+    if (!s->depth_program) return ob_peek_error(NULL);
     s->distance_program =
         ob_make_raster_program("shadow_depth.vert.glsl", "shadow_depth.frag.glsl", "#define OB_SHADOW_DISTANCE 1\n");
     if (!s->distance_program) {
         ob_shadows_destroy(s);
-        return ob_get_error(NULL);
+        return ob_peek_error(NULL);
     }
     ob_error err = ob_compute_pass_init(&s->vsm_x, "shadow_vsm.glsl", "#define OB_SHADOW_VSM_MOMENTS 1\n",
                                         sizeof(ob_shadow_vsm_constants));

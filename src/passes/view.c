@@ -7,12 +7,6 @@
 #include "passes/passes.h"
 #include "view_params.h"
 
-_Static_assert(OB_VIEW_MODE_AO == OB_VIEW_AO && OB_VIEW_MODE_NORMALS == OB_VIEW_NORMALS &&
-                   OB_VIEW_MODE_DEPTH == OB_VIEW_DEPTH && OB_VIEW_MODE_SHADOW == OB_VIEW_SHADOW &&
-                   OB_VIEW_MODE_RADIANCE == OB_VIEW_RADIANCE && OB_VIEW_MODE_SAMPLES == OB_VIEW_SAMPLES &&
-                   OB_VIEW_MODE_BOUNCE == OB_VIEW_BOUNCE,
-               "shaders/view_params.h's modes are ob_view's values");
-
 enum { VIEW_UNITS = 2 }; /* texture units view.glsl samples */
 
 /* What the compute pass changes; the blit itself binds nothing (DSA) and only obeys the scissor
@@ -72,7 +66,7 @@ static ob_error run_view(ob_view_pass *v, const ob_view_inputs *in)
 {
     if (!v->ready) {
         if (ob_compute_pass_init(&v->pass, "view.glsl", NULL, sizeof(ob_view_constants)) != OB_OK)
-            return ob_get_error(NULL);
+            return ob_peek_error(NULL);
         v->ready = true;
     }
     if (v->display && (v->width != in->width || v->height != in->height)) {
@@ -111,6 +105,13 @@ static ob_error run_view(ob_view_pass *v, const ob_view_inputs *in)
     ob_dispatch_2d(in->width, in->height, OB_VIEW_GROUP_X, OB_VIEW_GROUP_Y);
     restore_compute_state(&saved);
     return OB_OK;
+}
+
+ob_error ob_view_render(ob_view_pass *v, const ob_view_inputs *in, GLuint *out)
+{
+    ob_error err = run_view(v, in);
+    *out = err == OB_OK ? v->display : 0;
+    return err;
 }
 
 ob_error ob_view_present(ob_view_pass *v, const ob_view_inputs *in, GLuint framebuffer, int x, int y, int w, int h)

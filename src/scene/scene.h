@@ -49,7 +49,7 @@ bool ob_scene_add_camera(ob_scene *s, const ob_camera *cam);
 /* After the meshes are in: bounds, default camera, default light and radius if unset. */
 void ob_scene_finish(ob_scene *s);
 
-/* Builders: return NULL with ob_get_error() set on failure. */
+/* Builders: return NULL with the error set (ob_peek_error) on failure. */
 ob_scene *ob_scene_builtin(const char *name); /* NULL + OB_ERR_UNKNOWN_SCENE if not built in */
 ob_scene *ob_scene_import(const char *path, ob_up_axis up); /* assimp */
 /* Apply a sidecar JSON (cameras, lights, ao_radius, up) to a loaded scene. */

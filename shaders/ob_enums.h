@@ -1,0 +1,45 @@
+/* Every enum that both C and GLSL need, declared once. The values are those of the public enums in
+ * include/obscura/obscura.h; src/core/enums.c asserts that they agree, so GLSL can switch on the
+ * numbers the C side stores. Plain #defines: GLSL 4.50 has no enums. */
+#ifndef OB_ENUMS_H
+#define OB_ENUMS_H
+
+/* ob_light_type */
+#define OB_LIGHT_TYPE_DIRECTIONAL 0
+#define OB_LIGHT_TYPE_POINT 1
+#define OB_LIGHT_TYPE_SPOT 2
+
+/* ob_shadow_method */
+#define OB_SHADOW_METHOD_NONE 0
+#define OB_SHADOW_METHOD_HARD 1
+#define OB_SHADOW_METHOD_PCF 2
+#define OB_SHADOW_METHOD_VSM 3
+
+/* ob_ambient_mode */
+#define OB_AMBIENT_MODE_CONSTANT 0
+#define OB_AMBIENT_MODE_HEMISPHERE 1
+#define OB_AMBIENT_MODE_ENVIRONMENT 2
+
+/* ob_view (the debug views of ob_present; 0 = final, which needs no pass) */
+#define OB_VIEW_MODE_FINAL 0
+#define OB_VIEW_MODE_AO 1
+#define OB_VIEW_MODE_NORMALS 2
+#define OB_VIEW_MODE_DEPTH 3
+#define OB_VIEW_MODE_SHADOW 4
+#define OB_VIEW_MODE_RADIANCE 5
+#define OB_VIEW_MODE_SAMPLES 6
+#define OB_VIEW_MODE_BOUNCE 7
+
+/* Per-pixel noise of the methods' "noise" enum parameter (registry.c's ob_noise_options order):
+ * a tiled 4x4 texture, or Jimenez's interleaved gradient noise. */
+#define OB_NOISE_TEXTURE4 0
+#define OB_NOISE_IGN 1
+
+/* Kernel numbers and directions of the methods' "sampling" and "directions" parameters
+ * (src/sampling/sampling.h, registry.c's option lists). */
+#define OB_SAMPLING_MODE_RANDOM 0
+#define OB_SAMPLING_MODE_HALTON 1
+#define OB_DIRECTIONS_MODE_UNIFORM 0
+#define OB_DIRECTIONS_MODE_COSINE 1
+
+#endif

@@ -25,26 +25,26 @@ layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = ivec2(alchemy.size.xy);
+    ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
     float d = texelFetch(linear_depth, pix, 0).r;
     if (d <= 0.0) {
         imageStore(ao_out, pix, vec4(1.0));
         return;
     }
-    vec3 c = ob_view_position(vec2(pix) + 0.5, d, alchemy.size, alchemy.proj_info);
+    vec3 c = ob_view_position(vec2(pix) + 0.5, d, frame.ao_inv_size, frame.ao_proj_info);
     vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
-    vec2 rot = ob_rotation(pix, alchemy.counts.y, noise_tile);
+    vec2 rot = ob_rotation(pix, alchemy.noise, noise_tile);
     float phi = atan(rot.y, rot.x);
 
-    float r = alchemy.params.x;
-    float sigma = alchemy.params.y;
-    float k = alchemy.params.z;
-    float bias = alchemy.params.w * d / r; /* beta * |z_C|, in units of r */
-    float eps = alchemy.params2.x;
-    float turns = alchemy.params2.y;
-    float r_px = r * alchemy.params2.z / d;
-    int s = alchemy.counts.x;
+    float r = alchemy.radius;
+    float sigma = alchemy.sigma;
+    float k = alchemy.k;
+    float bias = alchemy.beta * d / r; /* beta * |z_C|, in units of r */
+    float eps = alchemy.epsilon;
+    float turns = alchemy.turns;
+    float r_px = r * alchemy.px_per_unit / d;
+    int s = alchemy.samples;
 
     float sum = 0.0;
     for (int i = 0; i < s; ++i) {
@@ -56,7 +56,7 @@ void main()
         if (any(lessThan(qi, ivec2(0))) || any(greaterThanEqual(qi, size))) continue;
         float qd = texelFetch(linear_depth, qi, 0).r;
         if (qd <= 0.0) continue;
-        vec3 v = (ob_view_position(vec2(qi) + 0.5, qd, alchemy.size, alchemy.proj_info) - c) / r;
+        vec3 v = (ob_view_position(vec2(qi) + 0.5, qd, frame.ao_inv_size, frame.ao_proj_info) - c) / r;
         float vv = dot(v, v);
         if (vv > 1.0) continue; /* H(r - |v|) */
         sum += max(0.0, dot(v, n) - bias) / (vv + eps);

@@ -1,17 +1,26 @@
 /* Alchemy AO constants (McGuire et al. 2011; seed 004 §2.5, §3.4). Filled by src/methods/alchemy.c. */
 #ifndef OB_ALCHEMY_PARAMS_H
 #define OB_ALCHEMY_PARAMS_H
-#include "ob_shared.h"
+#include "frame_params.h"
 
 #define OB_ALCHEMY_GROUP_X 8
 #define OB_ALCHEMY_GROUP_Y 8
 
+/* The camera and the AO grid are the frame's (frame_params.h: ao_proj_info, ao_size). */
 OB_CONSTANTS_BEGIN(ob_alchemy_constants, OB_BINDING_PASS)
-    OB_VEC4 proj_info;   /* 1/P00, 1/P11, P20, P21 */
-    OB_VEC4 size;        /* width, height, 1/width, 1/height */
-    OB_VEC4 params;      /* radius (world), sigma, k, beta */
-    OB_VEC4 params2;     /* epsilon, turns, projection scale (pixels per world unit at depth 1), unused */
-    OB_IVEC4 counts;     /* samples, noise mode (noise.glsl), unused, unused */
+    OB_FLOAT radius;        /* world-space disk radius r */
+    OB_FLOAT sigma;         /* intensity scale sigma (McGuire et al. 2011 eq. 10) */
+    OB_FLOAT k;             /* contrast exponent k */
+    OB_FLOAT beta;          /* bias distance beta, x |z_C| */
+    OB_FLOAT epsilon;       /* epsilon against division by zero */
+    OB_FLOAT turns;         /* spiral turns tau */
+    OB_FLOAT px_per_unit;   /* pixels per world unit at depth 1: (height / 2) x P11 of the AO grid */
+    OB_INT samples;         /* spiral samples s */
+    OB_INT noise;           /* OB_NOISE_* rotation */
+    OB_FLOAT pad0;
+    OB_FLOAT pad1;
+    OB_FLOAT pad2;
 OB_CONSTANTS_END(ob_alchemy_constants, alchemy)
+OB_CONSTANTS_SIZE(ob_alchemy_constants, 3 * 16);
 
 #endif

@@ -11,6 +11,13 @@ vec3 ob_view_position(vec2 pixel, float d, vec4 size, vec4 proj_info)
     return vec3((ndc.x + proj_info.z) * d * proj_info.x, (ndc.y + proj_info.w) * d * proj_info.y, -d);
 }
 
+/* The same with the reciprocal size alone (frame_params.h's inv_size / ao_inv_size). */
+vec3 ob_view_position(vec2 pixel, float d, vec2 inv_size, vec4 proj_info)
+{
+    vec2 ndc = pixel * inv_size * 2.0 - 1.0;
+    return vec3((ndc.x + proj_info.z) * d * proj_info.x, (ndc.y + proj_info.w) * d * proj_info.y, -d);
+}
+
 /* Linear RGB -> sRGB transfer (IEC 61966-2-1). */
 vec3 ob_linear_to_srgb(vec3 c)
 {

@@ -1,9 +1,9 @@
 #version 450 core
 /* Compose (DESIGN.md "The frame"): direct radiance (lighting.glsl) + ambient x albedo x AO into
  * linear HDR radiance for the tone map; AO darkens the ambient term, or all light on request.
- * SSDO (flags.y): the RGB modulation factor M darkens direct and ambient light alike (seed 003
+ * SSDO (cmp.directional): the RGB modulation factor M darkens direct and ambient light alike (seed 003
  * §4.2: M is the ratio of the direct term with and without visibility, eq. 4.2), and the bounce,
- * stored as what a white receiver reflects, is added times the albedo (flags.z; seed 003 §3.3).
+ * stored as what a white receiver reflects, is added times the albedo (cmp.add_bounce; seed 003 §3.3).
  * Ambient: a constant, a sky/ground hemisphere by the world normal, or the environment map's
  * diffuse irradiance from 9 spherical harmonics (Ramamoorthi & Hanrahan 2001, eq. 13), so that a
  * constant environment of radiance L gives exactly the constant ambient L. */
@@ -32,33 +32,33 @@ vec3 ob_environment_radiance(vec3 dir)
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pix, ivec2(cmp.size.xy)))) return;
+    if (any(greaterThanEqual(pix, ivec2(frame.size)))) return;
     float d = texelFetch(linear_depth, pix, 0).r;
-    int mode = int(cmp.ambient.w);
+    int mode = frame.ambient_mode;
     if (d <= 0.0) {
-        vec3 view_dir = normalize(mat3(cmp.inv_view) * ob_view_position(vec2(pix) + 0.5, 1.0, cmp.size, cmp.proj_info));
+        vec3 view_dir = normalize(mat3(frame.inv_view) * ob_view_position(vec2(pix) + 0.5, 1.0, frame.inv_size, frame.proj_info));
         vec3 bg = mode == OB_AMBIENT_MODE_ENVIRONMENT ? ob_environment_radiance(view_dir)
-                : mode == OB_AMBIENT_MODE_HEMISPHERE  ? mix(cmp.ground.rgb, cmp.sky.rgb, 0.5 + 0.5 * view_dir.y)
-                                                      : cmp.background.rgb;
+                : mode == OB_AMBIENT_MODE_HEMISPHERE  ? mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * view_dir.y)
+                                                      : frame.background.rgb;
         imageStore(hdr_out, pix, vec4(bg, 1.0));
         return;
     }
-    vec3 n = normalize(mat3(cmp.inv_view) * texelFetch(view_normal, pix, 0).xyz);
+    vec3 n = normalize(mat3(frame.inv_view) * texelFetch(view_normal, pix, 0).xyz);
     vec3 albedo = texelFetch(albedo_map, pix, 0).rgb;
     float ao = texelFetch(ao_map, pix, 0).r;
     vec3 direct = texelFetch(direct_map, pix, 0).rgb;
 
-    vec3 ambient = cmp.ambient.rgb;
-    if (mode == OB_AMBIENT_MODE_HEMISPHERE) ambient = mix(cmp.ground.rgb, cmp.sky.rgb, 0.5 + 0.5 * n.y);
-    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) ambient = max(ob_sh_irradiance(cmp.sh, n), vec3(0.0));
+    vec3 ambient = frame.ambient.rgb;
+    if (mode == OB_AMBIENT_MODE_HEMISPHERE) ambient = mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * n.y);
+    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) ambient = max(ob_sh_irradiance(frame.sh, n), vec3(0.0));
 
     vec3 color;
-    if (cmp.flags.y != 0) {
+    if (cmp.directional != 0) {
         vec3 m = texelFetch(ao_map, pix, 0).rgb;
         color = (direct + ambient * albedo) * m;
-        if (cmp.flags.z != 0) color += texelFetch(bounce_map, pix, 0).rgb * albedo;
+        if (cmp.add_bounce != 0) color += texelFetch(bounce_map, pix, 0).rgb * albedo;
     } else {
-        color = (cmp.flags.x != 0 ? direct * ao : direct) + ambient * albedo * ao;
+        color = (cmp.ao_all_light != 0 ? direct * ao : direct) + ambient * albedo * ao;
     }
     imageStore(hdr_out, pix, vec4(color, 1.0));
 }

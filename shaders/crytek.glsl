@@ -22,36 +22,36 @@ layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pix, ivec2(crytek.size.xy)))) return;
+    if (any(greaterThanEqual(pix, ivec2(frame.ao_size)))) return;
     float d = texelFetch(linear_depth, pix, 0).r;
     if (d <= 0.0) {
         imageStore(ao_out, pix, vec4(1.0));
         return;
     }
-    vec3 p = ob_view_position(vec2(pix) + 0.5, d, crytek.size, crytek.proj_info);
-    vec2 rot = ob_rotation(pix, crytek.counts.y, noise_tile);
+    vec3 p = ob_view_position(vec2(pix) + 0.5, d, frame.ao_inv_size, frame.ao_proj_info);
+    vec2 rot = ob_rotation(pix, crytek.noise, noise_tile);
     /* Rotation about the view axis: a sphere has no preferred frame, and the depth buffer's. */
     mat2 r2 = mat2(rot.x, rot.y, -rot.y, rot.x);
 
-    float radius = crytek.params.x;
-    float bias = crytek.params.y;
+    float radius = crytek.radius;
+    float bias = crytek.bias;
     /* Adaptive (seed 003 §4.1): base x 1, 2 or 3 from the edge pass; the Halton kernel's prefixes
      * are kernels of their own. */
-    int count = crytek.counts.z != 0 ? crytek.counts.w * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r) : crytek.counts.x;
+    int count = crytek.adaptive != 0 ? crytek.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r) : crytek.samples;
     float occlusion = 0.0;
     for (int i = 0; i < count; ++i) {
         vec3 k = crytek.kernel[i].xyz;
         vec3 s = p + vec3(r2 * k.xy, k.z) * radius;
-        vec4 clip = crytek.proj * vec4(s, 1.0);
+        vec4 clip = frame.ao_proj * vec4(s, 1.0);
         if (clip.w <= 0.0) continue;
         vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
-        float scene_d = texelFetch(linear_depth, ivec2(uv * crytek.size.xy), 0).r;
+        float scene_d = texelFetch(linear_depth, ivec2(uv * frame.ao_size), 0).r;
         if (scene_d <= 0.0) continue;
         float range = smoothstep(0.0, 1.0, radius / abs(d - scene_d));
         occlusion += (scene_d <= -s.z - bias ? 1.0 : 0.0) * range;
     }
     float ao = clamp(1.0 - occlusion / float(max(count, 1)), 0.0, 1.0);
-    if (crytek.params.w > 0.5) ao = min(1.0, 2.0 * ao);
-    imageStore(ao_out, pix, vec4(pow(ao, crytek.params.z)));
+    if (crytek.correction != 0) ao = min(1.0, 2.0 * ao);
+    imageStore(ao_out, pix, vec4(pow(ao, crytek.intensity)));
 }

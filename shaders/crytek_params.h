@@ -1,19 +1,24 @@
 /* Crytek SSAO constants (seed 004 §2.2; Mittring 2007). Filled by src/methods/crytek.c. */
 #ifndef OB_CRYTEK_PARAMS_H
 #define OB_CRYTEK_PARAMS_H
-#include "ob_shared.h"
+#include "frame_params.h"
 
 #define OB_CRYTEK_GROUP_X 8
 #define OB_CRYTEK_GROUP_Y 8
 #define OB_CRYTEK_MAX_SAMPLES 256
 
+/* The camera and the AO grid are the frame's (frame_params.h: ao_proj, ao_proj_info, ao_size). */
 OB_CONSTANTS_BEGIN(ob_crytek_constants, OB_BINDING_PASS)
-    OB_MAT4 proj;
-    OB_VEC4 proj_info;   /* 1/P00, 1/P11, P20, P21 */
-    OB_VEC4 size;        /* width, height, 1/width, 1/height */
-    OB_VEC4 params;      /* radius (world), bias (world), intensity (exponent), correction (0/1) */
-    OB_IVEC4 counts;     /* sample count, noise mode (noise.glsl), adaptive (0/1), adaptive base count */
-    OB_VEC4 kernel[OB_CRYTEK_MAX_SAMPLES]; /* offsets inside the unit sphere */
+    OB_FLOAT radius;        /* sphere radius, world units */
+    OB_FLOAT bias;          /* depth bias, world units (the parameter x radius) */
+    OB_FLOAT intensity;     /* AO = visibility^intensity */
+    OB_INT correction;      /* 1: seed 003 §5.4's AO' = min(1, 2 AO) */
+    OB_INT samples;         /* kernel entries in use */
+    OB_INT noise;           /* OB_NOISE_* rotation */
+    OB_INT adaptive;        /* 1: take adaptive_base x the edge pass's multiplier samples (seed 003 §4.1) */
+    OB_INT adaptive_base;   /* the base count the multiplier (1..3) scales */
+    OB_VEC4 kernel[OB_CRYTEK_MAX_SAMPLES]; /* offsets inside the unit sphere, w unused */
 OB_CONSTANTS_END(ob_crytek_constants, crytek)
+OB_CONSTANTS_SIZE(ob_crytek_constants, 2 * 16 + OB_CRYTEK_MAX_SAMPLES * 16);
 
 #endif

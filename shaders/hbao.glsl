@@ -70,7 +70,7 @@ float hbao_sin_tangent(vec3 p, float pn, vec3 n, vec2 d)
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = ivec2(hbao.size.xy);
+    ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
 
     float d = texelFetch(linear_depth, pix, 0).r;
@@ -78,18 +78,18 @@ void main()
         imageStore(ao_out, pix, vec4(1.0));
         return;
     }
-    float radius = hbao.params.x;
-    float inv_radius = hbao.params.y;
+    float radius = hbao.radius;
+    float inv_radius = hbao.inv_radius;
     /* R projected at P's depth: R_px = R * (height/2) * P11 / d, clamped so that close-ups do
      * not march (and miss the cache) across half the screen. */
-    float radius_px = min(radius * hbao.params.z / d, hbao.params.w);
+    float radius_px = min(radius * hbao.px_per_unit / d, hbao.max_radius_px);
     if (radius_px < 1.0) {
         imageStore(ao_out, pix, vec4(1.0)); /* R covers less than a pixel: nothing to march */
         return;
     }
 
     vec2 centre = vec2(pix) + 0.5;
-    vec3 p = ob_view_position(centre, d, hbao.size, hbao.proj_info);
+    vec3 p = ob_view_position(centre, d, frame.ao_inv_size, frame.ao_proj_info);
     vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
     /* Interpolated vertex normals at a silhouette can face away from the camera. The tangent's
      * orientation (hbao_sin_tangent) then flips: marching inward over the visible surface
@@ -99,21 +99,21 @@ void main()
     vec3 to_eye = -normalize(p);
     float nv = dot(n, to_eye);
     if (nv < 0.02) n = normalize(n + (0.02 - nv) * to_eye);
-    int mode = hbao.counts.z;
+    int mode = hbao.noise;
     vec2 rot = ob_rotation(pix, mode, noise_tile);
     float jitter = hbao_jitter(pix, mode);
-    int directions = hbao.counts.x;
-    int steps = hbao.counts.y;
+    int directions = hbao.directions;
+    int steps = hbao.steps;
     /* Step j (0-based) lands at 1 + (j + jitter) * (R_px - 1) / N_s pixels: the N_s steps
      * stratify [1, R_px) and the jitter shifts all of them together. Starting one pixel out
      * means the snapped first sample is never P's own texel (an offset of length >= 1 has a
      * component >= 1/sqrt(2), which floor(0.5 + c) always moves off the centre texel). */
     float step_px = (radius_px - 1.0) / float(steps);
     float start_px = 1.0 + jitter * step_px;
-    float sin_bias = hbao.bias.x, cos_bias = hbao.bias.y;
+    float sin_bias = hbao.sin_bias, cos_bias = hbao.cos_bias;
     /* A screen offset (dx, dy) px is a view-space offset (dx/P00 * 2/w, dy/P11 * 2/h) * d at P's
      * depth: the same direction only for square pixels, so directions are converted. */
-    vec2 to_view = hbao.proj_info.xy * hbao.size.zw;
+    vec2 to_view = frame.ao_proj_info.xy * frame.ao_inv_size;
     float pn = dot(p, n);
 
     float occlusion = 0.0;
@@ -146,7 +146,7 @@ void main()
             float sd = texelFetch(linear_depth, q, 0).r;
             if (sd <= 0.0) continue; /* sky: no occluder there */
             vec2 snapped = vec2(q) + 0.5;
-            vec3 s = ob_view_position(snapped, sd, hbao.size, hbao.proj_info);
+            vec3 s = ob_view_position(snapped, sd, frame.ao_inv_size, frame.ao_proj_info);
             vec3 h = s - p;
             float r2 = dot(h, h);
             if (r2 >= radius * radius || r2 <= 0.0) continue; /* W = 0 beyond R */
@@ -167,6 +167,6 @@ void main()
         occlusion += ao_dir;
     }
     /* The 1/(2π) ∫ dθ of eq. 3.2 is the mean over the N_d directions. */
-    float ao = clamp(1.0 - hbao.bias.z * occlusion / float(directions), 0.0, 1.0);
+    float ao = clamp(1.0 - hbao.intensity * occlusion / float(directions), 0.0, 1.0);
     imageStore(ao_out, pix, vec4(ao));
 }

@@ -2,7 +2,7 @@
  * §3.4). Filled by src/methods/hbao.c. */
 #ifndef OB_HBAO_PARAMS_H
 #define OB_HBAO_PARAMS_H
-#include "ob_shared.h"
+#include "frame_params.h"
 
 #define OB_HBAO_GROUP_X 8
 #define OB_HBAO_GROUP_Y 8
@@ -10,13 +10,21 @@
 #define OB_HBAO_MAX_STEPS 32
 #define OB_HBAO_NOISE_SIZE 4
 
+/* The camera and the AO grid are the frame's (frame_params.h: ao_proj_info, ao_size). */
 OB_CONSTANTS_BEGIN(ob_hbao_constants, OB_BINDING_PASS)
-    OB_VEC4 proj_info;   /* 1/P00, 1/P11, P20, P21 */
-    OB_VEC4 size;        /* width, height, 1/width, 1/height */
-    OB_VEC4 params;      /* radius R (world), 1/R, pixels per world unit at depth 1 (height/2 * P11),
-                            max radius (px) */
-    OB_VEC4 bias;        /* sin(angle bias), cos(angle bias), intensity, unused */
-    OB_IVEC4 counts;     /* directions, steps per direction, noise mode (noise.glsl), unused */
+    OB_FLOAT radius;        /* horizon search radius R, world units */
+    OB_FLOAT inv_radius;    /* 1 / R: W = 1 - r/R */
+    OB_FLOAT px_per_unit;   /* pixels per world unit at depth 1: (height / 2) x P11 of the AO grid */
+    OB_FLOAT max_radius_px; /* upper bound on the projected radius */
+    OB_FLOAT sin_bias;      /* sin and cos of the angle bias added to the tangent angle */
+    OB_FLOAT cos_bias;
+    OB_FLOAT intensity;     /* AO = 1 - intensity x occlusion */
+    OB_INT directions;      /* N_d */
+    OB_INT steps;           /* N_s per direction */
+    OB_INT noise;           /* OB_NOISE_* rotation and step jitter */
+    OB_FLOAT pad0;
+    OB_FLOAT pad1;
 OB_CONSTANTS_END(ob_hbao_constants, hbao)
+OB_CONSTANTS_SIZE(ob_hbao_constants, 3 * 16);
 
 #endif

@@ -4,9 +4,7 @@
 #ifndef OB_LIGHT_EVAL_GLSL
 #define OB_LIGHT_EVAL_GLSL
 
-/* Light types, as ob_light_type. */
-#define OB_LIGHT_EVAL_DIRECTIONAL 0
-#define OB_LIGHT_EVAL_SPOT 2
+#include "ob_enums.h" /* OB_LIGHT_TYPE_* */
 
 /* The unit direction toward a light from p and its falloff: 1 for directional lights; 1/d^2 for
  * point and spot lights, times a smooth window to zero at `range` ((1 - (d/range)^4)^2, as in UE4
@@ -15,7 +13,7 @@
  * spot's axis; spot_cos = (cos inner, cos outer). */
 float ob_light_falloff(int type, vec4 position_range, vec3 direction, vec2 spot_cos, vec3 p, out vec3 l)
 {
-    if (type == OB_LIGHT_EVAL_DIRECTIONAL) {
+    if (type == OB_LIGHT_TYPE_DIRECTIONAL) {
         l = direction;
         return 1.0;
     }
@@ -29,7 +27,7 @@ float ob_light_falloff(int type, vec4 position_range, vec3 direction, vec2 spot_
         float w = clamp(1.0 - x * x, 0.0, 1.0);
         falloff *= w * w;
     }
-    if (type == OB_LIGHT_EVAL_SPOT) falloff *= smoothstep(spot_cos.y, spot_cos.x, dot(-l, direction));
+    if (type == OB_LIGHT_TYPE_SPOT) falloff *= smoothstep(spot_cos.y, spot_cos.x, dot(-l, direction));
     return falloff;
 }
 

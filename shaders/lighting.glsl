@@ -20,25 +20,25 @@ layout(binding = 0, rgba16f) uniform writeonly image2D radiance_out;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pix, ivec2(lit.size.xy)))) return;
+    if (any(greaterThanEqual(pix, ivec2(frame.size)))) return;
     float d = texelFetch(linear_depth, pix, 0).r;
     if (d <= 0.0) {
         imageStore(radiance_out, pix, vec4(0.0));
         return;
     }
-    vec3 pv = ob_view_position(vec2(pix) + 0.5, d, lit.size, lit.proj_info);
-    vec3 p = (lit.inv_view * vec4(pv, 1.0)).xyz;
-    vec3 n = normalize(mat3(lit.inv_view) * texelFetch(view_normal, pix, 0).xyz);
-    vec3 v = normalize(lit.inv_view[3].xyz - p);
+    vec3 pv = ob_view_position(vec2(pix) + 0.5, d, frame.inv_size, frame.proj_info);
+    vec3 p = (frame.inv_view * vec4(pv, 1.0)).xyz;
+    vec3 n = normalize(mat3(frame.inv_view) * texelFetch(view_normal, pix, 0).xyz);
+    vec3 v = normalize(frame.inv_view[3].xyz - p);
     vec3 albedo = texelFetch(albedo_map, pix, 0).rgb;
-    float ks = lit.specular.x, shininess = lit.specular.y;
+    float ks = lit.specular_ks, shininess = lit.specular_shininess;
 
     vec3 sum = vec3(0.0);
     float key_visibility = 1.0; /* light 0's shadow, for --view shadow */
-    for (int i = 0; i < lit.counts.x; ++i) {
+    for (int i = 0; i < frame.light_count; ++i) {
         vec3 l;
-        float falloff = ob_light_falloff(int(lit.light_color[i].w), lit.light_position[i], lit.light_direction[i].xyz,
-                                         lit.light_spot[i].xy, p, l);
+        float falloff = ob_light_falloff(int(frame.light_color[i].w), frame.light_position[i], frame.light_direction[i].xyz,
+                                         frame.light_spot[i].xy, p, l);
         float ndl = max(dot(n, l), 0.0);
         bool contributes = ndl > 0.0 && falloff > 0.0;
         /* Shadow lookups only where the light contributes (and light 0's for the shadow view). */
@@ -48,7 +48,7 @@ void main()
         vec3 h = normalize(l + v);
         /* Blinn-Phong lobe normalised so the highlight's energy does not grow with shininess. */
         float spec = ks * (shininess + 8.0) / 8.0 * pow(max(dot(n, h), 0.0), shininess);
-        sum += (albedo + spec) * ndl * falloff * vis * lit.light_color[i].rgb;
+        sum += (albedo + spec) * ndl * falloff * vis * frame.light_color[i].rgb;
     }
     imageStore(radiance_out, pix, vec4(sum, key_visibility));
 }

@@ -36,7 +36,7 @@ typedef int ob_gl_ivec4[4];
 typedef float ob_gl_mat4[16];
 #define OB_FLOAT float
 #define OB_INT int
-#define OB_UINT uint
+#define OB_UINT unsigned int
 #define OB_VEC2 ob_gl_vec2
 #define OB_IVEC2 ob_gl_ivec2
 #define OB_VEC3 ob_gl_vec3

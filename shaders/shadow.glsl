@@ -1,5 +1,5 @@
 /* Shadow-map lookups (seed 003 §2.1, §5.1, §6.1) for the direct-lighting pass: #include it after
- * lighting_params.h, then
+ * lighting_params.h (which brings frame_params.h: the lights), then
  *     float ob_shadow(int light, vec3 world_pos, vec3 world_normal)
  * is the visibility in [0,1] of light `light` from a world point (1 = lit). The maps come from
  * src/passes/shadow.c (ob_shadows_render), the constants and texture bindings from
@@ -12,16 +12,16 @@
  * depth units (per unit of stored depth for spot/point maps, whose texels grow with distance);
  * far > 0 marks a map that stores distance / far (spot, point) rather than orthographic depth.
  *
- * Methods (lit.shadow_options.x):
+ * Methods (lit.shadow_method):
  *   HARD: one comparison against the nearest texel (the texture's filter is GL_NEAREST).
- *   PCF:  (2r+1)^2 bilinear hardware comparisons one texel apart, r = shadow_options.y
+ *   PCF:  (2r+1)^2 bilinear hardware comparisons one texel apart, r = lit.pcf_radius
  *         (seed 003 §5.1: "a small kernel ... I also enabled bilinear filtering"): each tap is
  *         itself a 2x2 percentage-closer filter, so 3x3 taps weigh a 4x4 texel footprint.
  *   VSM:  Chebyshev's one-tailed bound p_max = s^2 / (s^2 + (t - mu)^2) for t > mu (seed 003 §2.1,
- *         footnote 2) on the blurred moments, with variance at least shadow_options.z and light
- *         bleeding reduced by linstep(shadow_options.w, 1, p_max) (seed 003 §6.1 names the bleeding
+ *         footnote 2) on the blurred moments, with variance at least lit.vsm_min_variance and light
+ *         bleeding reduced by linstep(lit.vsm_bleed, 1, p_max) (seed 003 §6.1 names the bleeding
  *         and leaves the fix to [1]: the tail of p_max below `amount` is cut to black).
- *         Point lights fall back to PCF with radius shadow_options.y: blurring moments across
+ *         Point lights fall back to PCF with radius lit.pcf_radius: blurring moments across
  *         six cube faces needs seam-aware filtering, and the cube's distance comparison already
  *         gives a soft edge with bilinear PCF.
  * Bias (seed 003 §2.1, "Bias"): a texel is a patch of size p facing the light, half of it above
@@ -51,10 +51,10 @@ float ob_shadow_bias(vec4 params, float cos_alpha, float footprint, float scale)
 float ob_shadow_chebyshev(vec2 moments, float t)
 {
     if (t <= moments.x) return 1.0;
-    float variance = max(moments.y - moments.x * moments.x, lit.shadow_options.z);
+    float variance = max(moments.y - moments.x * moments.x, lit.vsm_min_variance);
     float d = t - moments.x;
     float p_max = variance / (variance + d * d);
-    float amount = lit.shadow_options.w;
+    float amount = lit.vsm_bleed;
     return clamp((p_max - amount) / max(1.0 - amount, 1e-4), 0.0, 1.0);
 }
 
@@ -71,7 +71,7 @@ float ob_shadow_2d(int map, int method, vec3 world_pos, float cos_alpha, vec3 li
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || !(ref <= 1.0)) return 1.0;
     float layer = params.z;
     float scale = distance_map ? ref : 1.0;
-    int radius = clamp(int(lit.shadow_options.y + 0.5), 1, OB_SHADOW_MAX_PCF_RADIUS);
+    int radius = clamp(lit.pcf_radius, 1, OB_SHADOW_MAX_PCF_RADIUS);
     if (method == OB_SHADOW_METHOD_VSM) {
         float t = ref - ob_shadow_bias(params, cos_alpha, 1.0, scale);
         return ob_shadow_chebyshev(texture(ob_shadow_moments, vec3(uv, layer)).rg, t);
@@ -105,7 +105,7 @@ float ob_shadow_cube(int map, int method, vec3 world_pos, float cos_alpha, vec3 
     /* PCF (and VSM's fallback): offsets one texel apart in the plane across the direction. A
      * face texel spans 2/size at unit distance along the face's axis; |v| x 2/size is that at the
      * face centre and at most sqrt(3) too wide at a cube corner. */
-    int radius = clamp(int(lit.shadow_options.y + 0.5), 1, OB_SHADOW_MAX_PCF_RADIUS);
+    int radius = clamp(lit.pcf_radius, 1, OB_SHADOW_MAX_PCF_RADIUS);
     float t = ref - ob_shadow_bias(params, cos_alpha, float(2 * radius + 2), ref);
     vec3 dir = v / dist;
     vec3 a = abs(dir.x) < 0.57 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
@@ -124,12 +124,12 @@ float ob_shadow_cube(int map, int method, vec3 world_pos, float cos_alpha, vec3 
 
 float ob_shadow(int light, vec3 world_pos, vec3 world_normal)
 {
-    int map = int(floor(lit.light_direction[light].w + 0.5));
-    int method = int(lit.shadow_options.x + 0.5);
+    int map = int(floor(frame.light_direction[light].w + 0.5));
+    int method = lit.shadow_method;
     if (map < 0 || map >= OB_MAX_SHADOW_MAPS || method == OB_SHADOW_METHOD_NONE) return 1.0;
-    int type = int(lit.light_color[light].w + 0.5);
-    vec3 light_pos = lit.light_position[light].xyz;
-    vec3 l = type == OB_LIGHT_TYPE_DIRECTIONAL ? lit.light_direction[light].xyz : light_pos - world_pos;
+    int type = int(frame.light_color[light].w + 0.5);
+    vec3 light_pos = frame.light_position[light].xyz;
+    vec3 l = type == OB_LIGHT_TYPE_DIRECTIONAL ? frame.light_direction[light].xyz : light_pos - world_pos;
     float len_n = length(world_normal), len_l = length(l);
     float cos_alpha = len_n > 0.0 && len_l > 0.0 ? dot(world_normal, l) / (len_n * len_l) : 1.0;
     if (type == OB_LIGHT_TYPE_POINT) return ob_shadow_cube(map, method, world_pos, cos_alpha, light_pos);

@@ -25,7 +25,7 @@ layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = ivec2(ssao.size.xy);
+    ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
 
     float d = texelFetch(linear_depth, pix, 0).r;
@@ -33,9 +33,9 @@ void main()
         imageStore(ao_out, pix, vec4(1.0));
         return;
     }
-    vec3 p = ob_view_position(vec2(pix) + 0.5, d, ssao.size, ssao.proj_info);
+    vec3 p = ob_view_position(vec2(pix) + 0.5, d, frame.ao_inv_size, frame.ao_proj_info);
     vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
-    vec3 rnd = vec3(ob_rotation(pix, ssao.counts.y, noise_tile), 0.0);
+    vec3 rnd = vec3(ob_rotation(pix, ssao.noise, noise_tile), 0.0);
 
     /* Gram-Schmidt: a tangent from the random vector, orthogonal to n. When the random vector is
      * (nearly) parallel to n, fall back to any perpendicular axis. */
@@ -44,19 +44,19 @@ void main()
     t = normalize(t);
     mat3 tbn = mat3(t, cross(n, t), n);
 
-    float radius = ssao.params.x;
-    float bias = ssao.params.y;
+    float radius = ssao.radius;
+    float bias = ssao.bias;
     /* Adaptive (seed 003 §4.1): base x 1, 2 or 3 from the edge pass; the Halton kernel's prefixes
      * are kernels of their own. */
-    int count = ssao.counts.z != 0 ? ssao.counts.w * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r) : ssao.counts.x;
+    int count = ssao.adaptive != 0 ? ssao.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r) : ssao.samples;
     float occlusion = 0.0;
     for (int i = 0; i < count; ++i) {
         vec3 s = p + tbn * ssao.kernel[i].xyz * radius;
-        vec4 clip = ssao.proj * vec4(s, 1.0);
+        vec4 clip = frame.ao_proj * vec4(s, 1.0);
         if (clip.w <= 0.0) continue;
         vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
-        float scene_d = texelFetch(linear_depth, ivec2(uv * ssao.size.xy), 0).r;
+        float scene_d = texelFetch(linear_depth, ivec2(uv * frame.ao_size), 0).r;
         if (scene_d <= 0.0) continue; /* sky: nothing there */
         float sample_d = -s.z;
         float range = smoothstep(0.0, 1.0, radius / abs(d - scene_d));
@@ -65,10 +65,10 @@ void main()
          * front of samples that hug it, and flat floors go grey. An occluder must also rise above
          * P's tangent plane (by `bias`); a flat surface then never occludes itself, while a wall
          * or a crease still does. */
-        vec3 scene_p = ob_view_position(floor(uv * ssao.size.xy) + 0.5, scene_d, ssao.size, ssao.proj_info);
+        vec3 scene_p = ob_view_position(floor(uv * frame.ao_size) + 0.5, scene_d, frame.ao_inv_size, frame.ao_proj_info);
         bool above = dot(scene_p - p, n) > bias;
         occlusion += (above && scene_d <= sample_d - bias ? 1.0 : 0.0) * range;
     }
-    float ao = pow(clamp(1.0 - occlusion / float(max(count, 1)), 0.0, 1.0), ssao.params.z);
+    float ao = pow(clamp(1.0 - occlusion / float(max(count, 1)), 0.0, 1.0), ssao.intensity);
     imageStore(ao_out, pix, vec4(ao));
 }

@@ -1,7 +1,7 @@
 #version 450 core
 /* Screen-space directional occlusion with one indirect bounce (Ritschel, Grosch & Seidel 2009,
  * as described in seed 003 §3.3 and §4.2; seed 000 §4.1-4.2). One program, three stages
- * (ssdo.counts.w), so `ssdo`'s two passes and `ssdo_merged` take exactly the same samples:
+ * (ssdo.stage), so `ssdo`'s two passes and `ssdo_merged` take exactly the same samples:
  *
  *   - samples P + r_i w_i in the normal hemisphere in 3D (w_i from a Halton 2,5 kernel, r_i from
  *     base 3, seed 003 §5.3), rotated per pixel, back-projected; a sample behind the depth buffer
@@ -22,7 +22,7 @@
  * as a smooth stand-in for its radiance) plus every light spread into a normalised cosine lobe
  * (k + 1) / (2 pi) max(0, w . l)^k around its direction, so that its integral over the sphere
  * is the light's irradiance at normal incidence. A delta light would never be hit by a sample
- * direction; the lobe is our choice (ssdo.params.w = k). Shadow maps are not consulted here:
+ * direction; the lobe is our choice (ssdo.lobe = k). Shadow maps are not consulted here:
  * they already shadow the direct light that M multiplies. */
 #include "ssdo_params.h"
 #include "common.glsl"
@@ -43,42 +43,42 @@ const float PI = 3.14159265;
 /* The lights as seen from one point, in view space: direction and irradiance (colour x
  * intensity x falloff x the lobe's normalisation). They depend on P only, so they are worked out
  * once per pixel and each sample pays one dot and one pow per light. */
-vec3 light_dir[OB_SSDO_MAX_LIGHTS];
-vec3 light_e[OB_SSDO_MAX_LIGHTS];
+vec3 light_dir[OB_MAX_LIGHTS];
+vec3 light_e[OB_MAX_LIGHTS];
 
 void lights_at(vec3 p, mat3 to_view)
 {
-    float k = ssdo.params.w;
+    float k = ssdo.lobe;
     float lobe_norm = (k + 1.0) / (2.0 * PI);
-    for (int i = 0; i < ssdo.grid.z; ++i) {
+    for (int i = 0; i < frame.light_count; ++i) {
         vec3 l;
         /* The same falloff, window and cone as lighting.glsl. */
-        float falloff = ob_light_falloff(int(ssdo.light_color[i].w), ssdo.light_position[i], ssdo.light_direction[i].xyz,
-                                         ssdo.light_spot[i].xy, p, l);
+        float falloff = ob_light_falloff(int(frame.light_color[i].w), frame.light_position[i], frame.light_direction[i].xyz,
+                                         frame.light_spot[i].xy, p, l);
         light_dir[i] = to_view * l;
-        light_e[i] = ssdo.light_color[i].rgb * (falloff * lobe_norm);
+        light_e[i] = frame.light_color[i].rgb * (falloff * lobe_norm);
     }
 }
 
 /* Incoming radiance from view direction w (see the top comment); up is world +Y in view space. */
 vec3 incoming(vec3 w, vec3 up, mat3 to_world)
 {
-    int mode = ssdo.grid.w;
-    vec3 l_in = ssdo.ambient.rgb;
-    if (mode == OB_AMBIENT_MODE_HEMISPHERE) l_in = mix(ssdo.ground.rgb, ssdo.sky.rgb, 0.5 + 0.5 * dot(w, up));
-    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) l_in = max(ob_sh_irradiance(ssdo.sh, to_world * w), vec3(0.0));
-    for (int i = 0; i < ssdo.grid.z; ++i) l_in += light_e[i] * pow(max(dot(w, light_dir[i]), 0.0), ssdo.params.w);
+    int mode = frame.ambient_mode;
+    vec3 l_in = frame.ambient.rgb;
+    if (mode == OB_AMBIENT_MODE_HEMISPHERE) l_in = mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * dot(w, up));
+    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) l_in = max(ob_sh_irradiance(frame.sh, to_world * w), vec3(0.0));
+    for (int i = 0; i < frame.light_count; ++i) l_in += light_e[i] * pow(max(dot(w, light_dir[i]), 0.0), ssdo.lobe);
     return l_in;
 }
 
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = ivec2(ssdo.size.xy);
+    ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
-    int stage = ssdo.counts.w;
+    int stage = ssdo.stage;
     bool want_m = stage != OB_SSDO_STAGE_BOUNCE;
-    bool want_bounce = stage != OB_SSDO_STAGE_DIRECT && ssdo.counts.z != 0;
+    bool want_bounce = stage != OB_SSDO_STAGE_DIRECT && ssdo.bounce != 0;
 
     float d = texelFetch(linear_depth, pix, 0).r;
     if (d <= 0.0) {
@@ -87,23 +87,23 @@ void main()
         if (stage != OB_SSDO_STAGE_DIRECT) imageStore(bounce_out, pix, vec4(0.0));
         return;
     }
-    vec3 p = ob_view_position(vec2(pix) + 0.5, d, ssdo.size, ssdo.proj_info);
+    vec3 p = ob_view_position(vec2(pix) + 0.5, d, frame.ao_inv_size, frame.ao_proj_info);
     vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
-    vec3 p_world = (ssdo.inv_view * vec4(p, 1.0)).xyz;
-    mat3 to_world = mat3(ssdo.inv_view);
+    vec3 p_world = (frame.inv_view * vec4(p, 1.0)).xyz;
+    mat3 to_world = mat3(frame.inv_view);
     mat3 to_view = transpose(to_world); /* inv_view's rotation is orthonormal */
     vec3 up = to_view[1];
     if (want_m) lights_at(p_world, to_view);
-    vec3 rnd = vec3(ob_rotation(pix, ssdo.counts.y, noise_tile), 0.0);
+    vec3 rnd = vec3(ob_rotation(pix, ssdo.noise, noise_tile), 0.0);
     /* Gram-Schmidt as in ssao.glsl. */
     vec3 t = rnd - n * dot(rnd, n);
     if (dot(t, t) < 1e-6) t = abs(n.x) < 0.9 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0));
     t = normalize(t);
     mat3 tbn = mat3(t, cross(n, t), n);
 
-    float radius = ssdo.params.x;
-    float bias = ssdo.params.y;
-    int count = ssdo.counts.x;
+    float radius = ssdo.radius;
+    float bias = ssdo.bias;
+    int count = ssdo.samples;
     bool cosine_pdf = stage == OB_SSDO_STAGE_MERGED;
     /* Patches closer than their own radius sqrt(A_s / pi) = r / sqrt(N) would make 1/d^2 blow up. */
     float min_d2 = radius * radius / float(max(count, 1));
@@ -118,14 +118,14 @@ void main()
         ivec2 q = ivec2(0);
         vec3 scene_p = vec3(0.0);
         vec3 s = p + dir * (radius * ssdo.kernel[i].w);
-        vec4 clip = ssdo.proj * vec4(s, 1.0);
+        vec4 clip = frame.ao_proj * vec4(s, 1.0);
         if (clip.w > 0.0) {
             vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
             if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
-                q = ivec2(uv * ssdo.size.xy);
+                q = ivec2(uv * frame.ao_size);
                 float scene_d = texelFetch(linear_depth, q, 0).r;
                 if (scene_d > 0.0) {
-                    scene_p = ob_view_position(vec2(q) + 0.5, scene_d, ssdo.size, ssdo.proj_info);
+                    scene_p = ob_view_position(vec2(q) + 0.5, scene_d, frame.ao_inv_size, frame.ao_proj_info);
                     /* As ssao.glsl: an occluder rises above P's tangent plane (no self-occlusion
                      * of flat surfaces read at pixel centres), and fades out beyond the radius
                      * (seed 004 §3.3's range check) so foreground silhouettes do not occlude. */
@@ -150,7 +150,7 @@ void main()
             float cos_s = dot(ns, vd);   /* the sender must face P */
             float cos_r = dot(n, -vd);   /* and P must face the sender */
             if (cos_s > 0.0 && cos_r > 0.0) {
-                ivec2 fq = clamp(q * ssdo.grid.x + ssdo.grid.y, ivec2(0), full_size - 1);
+                ivec2 fq = clamp(q * frame.ao_k + frame.ao_o, ivec2(0), full_size - 1);
                 vec3 l_s = texelFetch(direct_map, fq, 0).rgb;
                 bounce += l_s * (occ * cos_s * cos_r / max(len2, min_d2));
             }
@@ -166,7 +166,7 @@ void main()
     }
     if (stage != OB_SSDO_STAGE_DIRECT) {
         /* A_s / pi x strength, from the CPU; the merged variant darkens the bounce by M. */
-        bounce *= ssdo.params.z;
+        bounce *= ssdo.bounce_scale;
         if (stage == OB_SSDO_STAGE_MERGED) bounce *= m;
         imageStore(bounce_out, pix, vec4(want_bounce ? bounce : vec3(0.0), 1.0));
     }

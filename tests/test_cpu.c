@@ -1,12 +1,14 @@
 /* CPU unit tests (run again under ASan + UBSan): settings validation against the registry,
  * sampling kernels, PNG/PFM files, shader-log mapping and the embedded shaders. */
 #include <stb/stb_image.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "check.h"
+#include "core/renderer.h"
 #include "gpu/gpu.h"
 #include "gpu/shaders_embedded.h"
 #include "passes/passes.h"
@@ -320,8 +322,63 @@ static void test_lights(void)
     }
 }
 
+/* The per-frame block (src/core/frame.c): at every AO divisor, AO pixel i reconstructs, through
+ * ao_proj_info and ao_inv_size, the view position the full-resolution frame gives its full pixel
+ * k i + o (the grid projection is exact); and the lights arrive as lighting.glsl reads them. */
+static void test_frame_constants(void)
+{
+    const int w = 101, h = 67;
+    float view[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.5f, -1, -3, 1};
+    float proj[16] = {0};
+    const float f = 1.0f / tanf(0.5f), aspect = (float)w / (float)h, n = 0.1f, far = 50.0f;
+    proj[0] = f / aspect;
+    proj[5] = f;
+    proj[8] = 0.03f; /* an off-centre frustum too */
+    proj[9] = -0.02f;
+    proj[10] = (far + n) / (n - far);
+    proj[11] = -1.0f;
+    proj[14] = 2.0f * far * n / (n - far);
+    ob_light light = {.direction = {0, 2, 0}, .color = {1, 0.5f, 0.25f}, .intensity = 4, .type = OB_LIGHT_SPOT,
+                      .position = {1, 2, 3}, .range = 9, .spot_inner_deg = 20, .spot_outer_deg = 30};
+    ob_settings s;
+    CHECK(ob_settings_init(&s, "ssao") == OB_OK, "settings");
+    for (int k = 1; k <= 4; k *= 2) {
+        ob_ao_grid g = ob_ao_grid_make(w, h, k);
+        ob_frame_constants c;
+        ob_frame_constants_fill(&c, &(ob_frame_desc){.view = view, .proj = proj, .grid = &g, .near_z = n, .far_z = far,
+                                                     .frame_index = 7, .lights = &light, .light_count = 1,
+                                                     .settings = &s});
+        CHECK(c.ao_k == k && c.ao_o == g.o && c.ao_size[0] == (float)g.width && c.ao_size[1] == (float)g.height &&
+                  c.size[0] == (float)w && c.frame_index == 7,
+              "k %d: grid and sizes", k);
+        double worst = 0.0;
+        for (int j = 0; j < g.height; ++j)
+            for (int i = 0; i < g.width; ++i) {
+                /* common.glsl ob_view_position at depth 1, on the grid and at full resolution. */
+                float fx = (float)(k * i + g.o), fy = (float)(k * j + g.o);
+                if (fx >= (float)w || fy >= (float)h) continue;
+                float gx = ((float)i + 0.5f) * c.ao_inv_size[0] * 2.0f - 1.0f;
+                float gy = ((float)j + 0.5f) * c.ao_inv_size[1] * 2.0f - 1.0f;
+                float ux = (fx + 0.5f) * c.inv_size[0] * 2.0f - 1.0f;
+                float uy = (fy + 0.5f) * c.inv_size[1] * 2.0f - 1.0f;
+                double dx = (gx + c.ao_proj_info[2]) * c.ao_proj_info[0] - (ux + c.proj_info[2]) * c.proj_info[0];
+                double dy = (gy + c.ao_proj_info[3]) * c.ao_proj_info[1] - (uy + c.proj_info[3]) * c.proj_info[1];
+                worst = fmax(worst, fmax(fabs(dx), fabs(dy)));
+            }
+        CHECK(worst < 1e-5, "k %d: AO pixels reconstruct their full pixel's position (off by %.2g)", k, worst);
+        CHECK(c.light_count == 1 && c.light_color[0][0] == 4.0f && c.light_color[0][1] == 2.0f &&
+                  c.light_color[0][3] == (float)OB_LIGHT_SPOT && c.light_direction[0][1] == 1.0f &&
+                  c.light_direction[0][3] == -1.0f && c.light_position[0][3] == 9.0f &&
+                  fabsf(c.light_spot[0][0] - cosf(20.0f * 0.01745329252f)) < 1e-6f,
+              "k %d: the light as lighting.glsl reads it", k);
+        CHECK(c.inv_view[12] == -0.5f && c.inv_view[13] == 1.0f && c.inv_view[14] == 3.0f, "k %d: inverse view", k);
+        CHECK(c.ambient_mode == OB_AMBIENT_CONSTANT && c.ambient[0] == s.ambient[0], "k %d: ambient", k);
+    }
+}
+
 int main(void)
 {
+    test_frame_constants();
     test_registry_and_settings();
     test_kernel();
     test_halton();

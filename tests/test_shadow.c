@@ -71,7 +71,7 @@ static ob_scene *box_on_plane(void)
 /* ---- the probe ------------------------------------------------------------------------------ */
 
 typedef struct probe {
-    GLuint program, ubo, buffers[3];
+    GLuint program, ubo, frame_ubo, buffers[3];
     size_t capacity;
 } probe;
 
@@ -87,6 +87,9 @@ static bool probe_init(probe *p)
     }
     glCreateBuffers(1, &p->ubo);
     glNamedBufferStorage(p->ubo, sizeof(ob_lighting_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
+    /* The lights are the per-frame block's (frame_params.h), as in the lighting pass. */
+    glCreateBuffers(1, &p->frame_ubo);
+    glNamedBufferStorage(p->frame_ubo, sizeof(ob_frame_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
     return true;
 }
 
@@ -94,15 +97,16 @@ static void probe_destroy(probe *p)
 {
     if (p->program) glDeleteProgram(p->program);
     if (p->ubo) glDeleteBuffers(1, &p->ubo);
+    if (p->frame_ubo) glDeleteBuffers(1, &p->frame_ubo);
     if (p->capacity) glDeleteBuffers(3, p->buffers);
     memset(p, 0, sizeof *p);
 }
 
-/* The light part of the constants, as the lighting pass fills it (src/passes/lighting.c). */
-static void fill_lights(ob_lighting_constants *c, const ob_light *lights, int n)
+/* The lights of the per-frame block, as the renderer fills them (src/core/frame.c). */
+static void fill_lights(ob_frame_constants *c, const ob_light *lights, int n)
 {
     memset(c, 0, sizeof *c);
-    c->counts[0] = n;
+    c->light_count = n;
     for (int i = 0; i < n; ++i) {
         vec3 d = {lights[i].direction[0], lights[i].direction[1], lights[i].direction[2]};
         glm_vec3_normalize(d);
@@ -134,11 +138,15 @@ static double probe_run(probe *p, const ob_shadow_maps *maps, const ob_light *li
     glNamedBufferSubData(p->buffers[0], 0, (GLsizeiptr)(n * 4 * sizeof(float)), points);
     glNamedBufferSubData(p->buffers[1], 0, (GLsizeiptr)(n * 4 * sizeof(float)), normals);
     ob_lighting_constants c;
-    fill_lights(&c, lights, light_count);
-    ob_shadows_fill(maps, &c);
+    memset(&c, 0, sizeof c);
+    ob_frame_constants frame;
+    fill_lights(&frame, lights, light_count);
+    ob_shadows_fill(maps, &c, &frame);
     glNamedBufferSubData(p->ubo, 0, sizeof c, &c);
+    glNamedBufferSubData(p->frame_ubo, 0, sizeof frame, &frame);
     glUseProgram(p->program);
     glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_PASS, p->ubo);
+    glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_FRAME, p->frame_ubo);
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, p->buffers[0], 0, (GLsizeiptr)(n * 4 * sizeof(float)));
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, p->buffers[1], 0, (GLsizeiptr)(n * 4 * sizeof(float)));
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, p->buffers[2], 0, (GLsizeiptr)(n * sizeof(float)));
@@ -386,11 +394,13 @@ static void test_none_and_state(fixture *f)
     st.method = OB_SHADOW_NONE;
     CHECK(ob_shadows_render(&f->maps, &f->g, &l, 1, f->bmin, f->bmax, &st, NULL) == OB_OK, "render none");
     ob_lighting_constants c;
-    fill_lights(&c, &l, 1);
-    c.light_direction[0][3] = 7.0f;
-    ob_shadows_fill(&f->maps, &c);
-    CHECK(c.light_direction[0][3] == -1.0f && c.shadow_options[0] == 0.0f, "none: unshadowed (%g, %g)",
-          (double)c.light_direction[0][3], (double)c.shadow_options[0]);
+    memset(&c, 0, sizeof c);
+    ob_frame_constants frame;
+    fill_lights(&frame, &l, 1);
+    frame.light_direction[0][3] = 7.0f;
+    ob_shadows_fill(&f->maps, &c, &frame);
+    CHECK(frame.light_direction[0][3] == -1.0f && c.shadow_method == 0, "none: unshadowed (%g, %d)",
+          (double)frame.light_direction[0][3], c.shadow_method);
     const sample s = floor_at(-1.0f, 0.0f, 0);
     float v = 0.0f;
     visibility_of(&f->pr, &f->maps, &l, 1, &s, 1, &v);

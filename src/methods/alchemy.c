@@ -32,59 +32,25 @@ static const ob_param_info alchemy_params[P_COUNT] = {
 
 
 typedef struct alchemy_state {
-    ob_compute_pass pass;
-    GLuint noise;
+    ob_method_kit kit;
 } alchemy_state;
 
-static void alchemy_destroy(void *p)
-{
-    alchemy_state *s = p;
-    if (!s) return;
-    ob_compute_pass_destroy(&s->pass);
-    glDeleteTextures(1, &s->noise);
-    free(s);
-}
-
-static void *alchemy_init(void)
-{
-    alchemy_state *s = calloc(1, sizeof *s);
-    if (!s) {
-        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (alchemy)");
-        return NULL;
-    }
-    if (ob_compute_pass_init(&s->pass, "alchemy.glsl", NULL, sizeof(ob_alchemy_constants)) != OB_OK) {
-        free(s);
-        return NULL;
-    }
-    s->noise = ob_make_rotation_noise_texture();
-    return s;
-}
-
-static ob_error alchemy_run(void *p, const ob_ao_inputs *in, const float *params, GLuint ao_out)
+static ob_error alchemy_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
 {
     alchemy_state *s = p;
     ob_alchemy_constants c;
     memset(&c, 0, sizeof c);
-    memcpy(c.proj_info, in->proj_info, sizeof c.proj_info);
-    c.size[0] = (float)in->width;
-    c.size[1] = (float)in->height;
-    c.size[2] = 1.0f / (float)in->width;
-    c.size[3] = 1.0f / (float)in->height;
-    c.params[0] = params[P_RADIUS];
-    c.params[1] = params[P_SIGMA];
-    c.params[2] = params[P_K];
-    c.params[3] = params[P_BETA];
-    c.params2[0] = params[P_EPSILON];
-    c.params2[1] = params[P_TURNS];
+    c.radius = params[P_RADIUS];
+    c.sigma = params[P_SIGMA];
+    c.k = params[P_K];
+    c.beta = params[P_BETA];
+    c.epsilon = params[P_EPSILON];
+    c.turns = params[P_TURNS];
     /* Pixels per world unit at depth 1: (height / 2) * P11. */
-    c.params2[2] = 0.5f * (float)in->height / in->proj_info[1];
-    c.counts[0] = (int)params[P_SAMPLES];
-    c.counts[1] = (int)params[P_NOISE];
-    ob_compute_pass_use(&s->pass, &c, sizeof c);
-    glBindTextureUnit(0, in->linear_depth);
-    glBindTextureUnit(1, in->view_normal);
-    glBindTextureUnit(2, s->noise);
-    glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    c.px_per_unit = 0.5f * (float)in->height / in->frame->ao_proj_info[1];
+    c.samples = (int)params[P_SAMPLES];
+    c.noise = (int)params[P_NOISE];
+    ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
     ob_dispatch_2d(in->width, in->height, OB_ALCHEMY_GROUP_X, OB_ALCHEMY_GROUP_Y);
     return OB_OK;
 }
@@ -95,7 +61,10 @@ const ob_method_impl ob_method_alchemy = {
              .reference = "seed 004 §2.5, §3.4; McGuire et al. 2011",
              .param_count = P_COUNT,
              .params = alchemy_params},
-    .init = alchemy_init,
+    .shader = "alchemy.glsl",
+    .constants_size = sizeof(ob_alchemy_constants),
+    .state_size = sizeof(alchemy_state),
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS,
+    .writes = OB_WRITES_VISIBILITY,
     .run = alchemy_run,
-    .destroy = alchemy_destroy,
 };

@@ -31,38 +31,19 @@ static const ob_param_info crytek_params[P_COUNT] = {
 #define KERNEL_SEED 0xC4E7u
 
 typedef struct crytek_state {
-    ob_compute_pass pass;
-    GLuint noise;
+    ob_method_kit kit;
     int kernel_count, kernel_sampling; /* what the cached kernel was built for */
     ob_crytek_constants constants;
 } crytek_state;
 
-static void crytek_destroy(void *p)
+static ob_error crytek_init(void *p)
 {
     crytek_state *s = p;
-    if (!s) return;
-    ob_compute_pass_destroy(&s->pass);
-    glDeleteTextures(1, &s->noise);
-    free(s);
-}
-
-static void *crytek_init(void)
-{
-    crytek_state *s = calloc(1, sizeof *s);
-    if (!s) {
-        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (crytek)");
-        return NULL;
-    }
-    if (ob_compute_pass_init(&s->pass, "crytek.glsl", NULL, sizeof(ob_crytek_constants)) != OB_OK) {
-        free(s);
-        return NULL;
-    }
-    s->noise = ob_make_rotation_noise_texture();
     s->kernel_count = -1;
-    return s;
+    return OB_OK;
 }
 
-static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params, GLuint ao_out)
+static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
 {
     crytek_state *s = p;
     ob_crytek_constants *c = &s->constants;
@@ -79,25 +60,17 @@ static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params,
         s->kernel_count = count;
         s->kernel_sampling = sampling;
     }
-    memcpy(c->proj, in->proj, sizeof c->proj);
-    memcpy(c->proj_info, in->proj_info, sizeof c->proj_info);
-    c->size[0] = (float)in->width;
-    c->size[1] = (float)in->height;
-    c->size[2] = 1.0f / (float)in->width;
-    c->size[3] = 1.0f / (float)in->height;
-    c->params[0] = params[P_RADIUS];
-    c->params[1] = params[P_BIAS] * params[P_RADIUS];
-    c->params[2] = params[P_INTENSITY];
-    c->params[3] = params[P_CORRECTION];
-    c->counts[0] = count;
-    c->counts[1] = (int)params[P_NOISE];
-    c->counts[2] = in->sample_multiplier ? 1 : 0;
-    c->counts[3] = base;
-    ob_compute_pass_use(&s->pass, c, offsetof(ob_crytek_constants, kernel) + (size_t)count * sizeof c->kernel[0]);
-    glBindTextureUnit(0, in->linear_depth);
-    glBindTextureUnit(2, s->noise);
-    glBindTextureUnit(3, in->sample_multiplier ? in->sample_multiplier : s->noise);
-    glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    c->radius = params[P_RADIUS];
+    c->bias = params[P_BIAS] * params[P_RADIUS];
+    c->intensity = params[P_INTENSITY];
+    c->correction = params[P_CORRECTION] != 0.0f ? 1 : 0;
+    c->samples = count;
+    c->noise = (int)params[P_NOISE];
+    c->adaptive = in->sample_multiplier ? 1 : 0;
+    c->adaptive_base = base;
+    size_t used = offsetof(ob_crytek_constants, kernel) + (size_t)count * sizeof c->kernel[0];
+    ob_method_kit_use(&s->kit, c, used, in, out, GL_R32F);
+    glBindTextureUnit(3, in->sample_multiplier ? in->sample_multiplier : s->kit.noise);
     ob_dispatch_2d(in->width, in->height, OB_CRYTEK_GROUP_X, OB_CRYTEK_GROUP_Y);
     return OB_OK;
 }
@@ -108,8 +81,12 @@ const ob_method_impl ob_method_crytek = {
              .reference = "seed 004 §2.2; seed 003 §5.4 (correction); Mittring 2007",
              .param_count = P_COUNT,
              .params = crytek_params},
+    .shader = "crytek.glsl",
+    .constants_size = sizeof(ob_crytek_constants),
+    .state_size = sizeof(crytek_state),
+    .reads = OB_READS_DEPTH,
+    .writes = OB_WRITES_VISIBILITY,
     .init = crytek_init,
     .run = crytek_run,
-    .destroy = crytek_destroy,
     .adapts = true,
 };

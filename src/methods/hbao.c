@@ -44,63 +44,27 @@ static const ob_param_info hbao_params[P_COUNT] = {
 
 
 typedef struct hbao_state {
-    ob_compute_pass pass;
-    GLuint noise;
+    ob_method_kit kit;
     ob_hbao_constants constants;
 } hbao_state;
 
-static void hbao_destroy(void *p)
-{
-    hbao_state *s = p;
-    if (!s) return;
-    ob_compute_pass_destroy(&s->pass);
-    glDeleteTextures(1, &s->noise);
-    free(s);
-}
-
-static void *hbao_init(void)
-{
-    hbao_state *s = calloc(1, sizeof *s);
-    if (!s) {
-        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (hbao)");
-        return NULL;
-    }
-    if (ob_compute_pass_init(&s->pass, "hbao.glsl", NULL, sizeof(ob_hbao_constants)) != OB_OK) {
-        free(s);
-        return NULL;
-    }
-    s->noise = ob_make_rotation_noise_texture();
-    return s;
-}
-
-static ob_error hbao_run(void *p, const ob_ao_inputs *in, const float *params, GLuint ao_out)
+static ob_error hbao_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
 {
     hbao_state *s = p;
     ob_hbao_constants *c = &s->constants;
     float bias = params[P_ANGLE_BIAS] * (3.14159265358979f / 180.0f);
-    for (int i = 0; i < 4; ++i) c->proj_info[i] = in->proj_info[i];
-    c->size[0] = (float)in->width;
-    c->size[1] = (float)in->height;
-    c->size[2] = 1.0f / (float)in->width;
-    c->size[3] = 1.0f / (float)in->height;
-    c->params[0] = params[P_RADIUS];
-    c->params[1] = 1.0f / params[P_RADIUS];
+    c->radius = params[P_RADIUS];
+    c->inv_radius = 1.0f / params[P_RADIUS];
     /* R_px = R * (height/2) * P11 / d; P11 = 1 / proj_info.y. */
-    c->params[2] = 0.5f * (float)in->height / in->proj_info[1];
-    c->params[3] = params[P_MAX_RADIUS_PX];
-    c->bias[0] = sinf(bias);
-    c->bias[1] = cosf(bias);
-    c->bias[2] = params[P_INTENSITY];
-    c->bias[3] = 0.0f;
-    c->counts[0] = (int)params[P_DIRECTIONS];
-    c->counts[1] = (int)params[P_STEPS];
-    c->counts[2] = (int)params[P_NOISE];
-    c->counts[3] = 0;
-    ob_compute_pass_use(&s->pass, c, sizeof *c);
-    glBindTextureUnit(0, in->linear_depth);
-    glBindTextureUnit(1, in->view_normal);
-    glBindTextureUnit(2, s->noise);
-    glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    c->px_per_unit = 0.5f * (float)in->height / in->frame->ao_proj_info[1];
+    c->max_radius_px = params[P_MAX_RADIUS_PX];
+    c->sin_bias = sinf(bias);
+    c->cos_bias = cosf(bias);
+    c->intensity = params[P_INTENSITY];
+    c->directions = (int)params[P_DIRECTIONS];
+    c->steps = (int)params[P_STEPS];
+    c->noise = (int)params[P_NOISE];
+    ob_method_kit_use(&s->kit, c, sizeof *c, in, out, GL_R32F);
     ob_dispatch_2d(in->width, in->height, OB_HBAO_GROUP_X, OB_HBAO_GROUP_Y);
     return OB_OK;
 }
@@ -143,9 +107,12 @@ const ob_method_impl ob_method_hbao = {
              .reference = "seed 000 §3.3 eq. 3.1-3.2; seed 004 §2.4, §3.4",
              .param_count = P_COUNT,
              .params = hbao_params},
-    .init = hbao_init,
+    .shader = "hbao.glsl",
+    .constants_size = sizeof(ob_hbao_constants),
+    .state_size = sizeof(hbao_state),
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS,
+    .writes = OB_WRITES_VISIBILITY,
     .run = hbao_run,
-    .destroy = hbao_destroy,
     .set_samples = hbao_set_samples,
     .count_samples = hbao_count_samples,
 };

@@ -1,48 +1,84 @@
-/* The internal side of the method registry: what one AO/GI method provides. Adding a method is
- * one .c (defining an ob_method_impl), one shader and one line in registry.c. */
+/* The internal side of the method registry: what one AO/GI method provides, and the kit that
+ * makes and frees what every method shares. Adding a method is one .c (defining an
+ * ob_method_impl), one shader, one params header (its constant block) and one line in
+ * registry.c's OB_METHODS list; the renderer knows no method by name, only what each entry
+ * declares it reads and writes. */
 #ifndef OB_METHOD_H
 #define OB_METHOD_H
 
+#include "frame_params.h"
 #include "gpu/gpu.h"
-#include "lighting_params.h"
 #include "obscura/obscura.h"
 
-/* What every method gets each frame: textures of the renderer's size and the camera. */
+/* What a method reads (ob_method_impl.reads): the renderer provides these in ob_ao_inputs. */
+enum {
+    OB_READS_DEPTH = 1u << 0,        /* linear depth at the AO resolution (always available) */
+    OB_READS_NORMALS = 1u << 1,      /* view normals at the AO resolution (always available) */
+    OB_READS_ALBEDO = 1u << 2,       /* the full-resolution albedo */
+    OB_READS_RADIANCE = 1u << 3,     /* the full-resolution direct radiance (the lighting pass's output):
+                                        only inside ob_render_frame, so ob_compute_ao refuses such methods */
+    OB_READS_DEPTH_MIPS = 1u << 4,   /* reserved: a prefiltered depth MIP chain */
+    OB_READS_SECOND_LAYER = 1u << 5, /* reserved: a second depth layer (depth peeling) */
+    OB_READS_HISTORY = 1u << 6,      /* reserved: the previous frame's output, reprojected */
+};
+
+/* What a method writes (ob_method_impl.writes); the renderer makes, filters and upsamples each. */
+enum {
+    OB_WRITES_VISIBILITY = 1u << 0,     /* R32F visibility in [0, 1] */
+    OB_WRITES_VISIBILITY_RGB = 1u << 1, /* RGBA16F per-channel modulation factor M (a directional method,
+                                           ob_method_info.directional) instead of R32F visibility */
+    OB_WRITES_BOUNCE = 1u << 2,         /* RGBA16F one-bounce indirect light off a white receiver */
+    OB_WRITES_BENT_NORMAL = 1u << 3,    /* reserved: the unoccluded mean direction */
+};
+
+/* What a method gets each frame. The camera, the AO grid, the lights and the ambient light are in
+ * the per-frame block (frame_params.h), bound at OB_BINDING_FRAME for every dispatch; `frame` is
+ * the same data on the CPU, for constants derived from it (e.g. pixels per world unit). */
 typedef struct ob_ao_inputs {
-    GLuint linear_depth;  /* R32F, positive view depth, 0 = no geometry */
-    GLuint view_normal;   /* RGBA16F, view-space unit normal */
-    int width, height;
-    float proj[16];       /* column-major projection */
-    float proj_info[4];   /* 1/P00, 1/P11, P20, P21 */
-    uint32_t frame;       /* frame counter, for methods that vary noise over time */
+    const ob_frame_constants *frame;
+    GLuint linear_depth;      /* R32F, positive view depth at the AO resolution, 0 = no geometry */
+    GLuint view_normal;       /* RGBA16F, view-space unit normal at the AO resolution */
+    int width, height;        /* the AO resolution (frame->ao_size) */
     /* Adaptive sample counts (seed 003 §4.1): when set, a method with a sample count takes
      * samples/3 (at least 1) x the multiplier (1, 2 or 3) of its OB_EDGE_BLOCK^2 block of this
      * R32F texture; methods without one ignore it. */
     GLuint sample_multiplier; /* 0 = off */
-    /* ---- what directional methods (ob_method_impl.rgb: SSDO) read besides; AO methods ignore it.
-     * Filled by ob_render_frame only (ob_compute_ao refuses rgb methods). */
-    GLuint direct;        /* full-resolution RGBA16F direct radiance (the lighting pass's output) */
-    GLuint albedo;        /* full-resolution albedo (SSDO leaves the receiver's albedo to compose) */
-    int grid_k, grid_o;   /* AO pixel i lies at full pixel k i + o (k = 1, o = 0 at full size) */
-    const ob_lighting_constants *lights; /* world-space lights (counts.x of them) and inv_view */
-    ob_ambient_mode ambient_mode;
-    float ambient[3], sky[3], ground[3]; /* as ob_settings */
-    float sh[9][3];       /* environment: irradiance / pi SH, as compose */
-    GLuint bounce_out;    /* RGBA16F of the inputs' size: the one-bounce indirect light */
+    GLuint radiance;          /* OB_READS_RADIANCE: full-resolution RGBA16F direct radiance */
+    GLuint albedo;            /* OB_READS_ALBEDO: full-resolution albedo */
 } ob_ao_inputs;
+
+/* Where a method writes: textures of the inputs' size. */
+typedef struct ob_ao_outputs {
+    GLuint visibility;        /* R32F, or RGBA16F for OB_WRITES_VISIBILITY_RGB */
+    GLuint bounce;            /* RGBA16F, when the method writes OB_WRITES_BOUNCE (else 0) */
+} ob_ao_outputs;
 
 /* The base count that the multiplier scales under adaptive sampling. */
 static inline int ob_adaptive_base(int samples) { return samples / 3 > 1 ? (samples + 1) / 3 : 1; }
 
+/* What the kit makes for every method from its entry (shader, constants_size): every method
+ * state begins with one, so a method's state struct is `{ ob_method_kit kit; ...its own... }`. */
+typedef struct ob_method_kit {
+    ob_compute_pass pass;     /* the entry's shader, with a constants_size-byte block at OB_BINDING_PASS */
+    GLuint noise;             /* the 4x4 RG32F rotation tile of noise.glsl (unit 2 by convention) */
+} ob_method_kit;
+
 typedef struct ob_method_impl {
-    ob_method_info info;
-    /* Make programs and static resources; return NULL with ob_set_error on failure.
-     * May be NULL for methods that need nothing. */
-    void *(*init)(void);
-    /* Write visibility to ao_out (R32F, inputs' size; RGBA16F M and bounce_out for rgb methods).
-     * params are in table order, validated. */
-    ob_error (*run)(void *state, const ob_ao_inputs *in, const float *params, GLuint ao_out);
+    ob_method_info info;      /* info.directional is derived from writes (registry.c) */
+    const char *shader;       /* compute shader; NULL for a method that dispatches nothing (none) */
+    size_t constants_size;    /* bytes of its constant block (sizeof the *_params.h struct) */
+    size_t state_size;        /* bytes of its state, beginning with an ob_method_kit; zero-filled */
+    uint32_t reads;           /* OB_READS_* */
+    uint32_t writes;          /* OB_WRITES_* it can produce */
+    /* Set-up beyond the kit (kernel caches, a flag); NULL for none. Fails with ob_set_error. */
+    ob_error (*init)(void *state);
+    /* Write the outputs; params are in table order, validated, radii resolved. */
+    ob_error (*run)(void *state, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out);
+    /* Frees what init made beyond the kit; NULL for nothing. */
     void (*destroy)(void *state);
+    /* The outputs these params produce, when a parameter turns one off (SSDO's bounce); NULL =
+     * every output in writes. */
+    uint32_t (*active_writes)(const float *params);
     /* How `samples` per pixel map onto this method's parameters, when that is more than setting
      * a parameter named "samples" (HBAO: directions x steps). Sets the bits of what it changed in
      * *params_set. NULL for the default. */
@@ -52,19 +88,28 @@ typedef struct ob_method_impl {
     int (*count_samples)(const float *params);
     /* Honours ob_ao_inputs.sample_multiplier (adaptive sample counts). */
     bool adapts;
-    /* Directional: ao_out is RGBA16F and receives a per-channel modulation factor M (1 = open),
-     * and bounce_out an RGB indirect light; the renderer filters and upsamples both and compose
-     * uses them as direct x M + bounce (SSDO). false: ao_out is R32F visibility. */
-    bool rgb;
 } ob_method_impl;
 
 /* Samples per pixel of a method with these (resolved) params; 0 for none. */
 int ob_method_samples(const ob_method_impl *m, const float *params);
+/* The outputs a method produces with these params (writes, less what a parameter turned off). */
+uint32_t ob_method_active_writes(const ob_method_impl *m, const float *params);
 
 const ob_method_impl *ob_method_impl_at(int index);
 
-/* Option lists shared by methods' enum parameters (registry.c), in the order of the enums in
- * sampling/sampling.h and the OB_NOISE_* modes of shaders/noise.glsl. */
+/* The kit: a zero-filled state of m->state_size bytes with its ob_method_kit made (the pass from
+ * m->shader, the noise tile), then m->init. NULL with the error set on failure. */
+void *ob_method_make_state(const ob_method_impl *m);
+/* m->destroy, then the kit's pass and noise, then the state itself. NULL is a no-op. */
+void ob_method_destroy_state(const ob_method_impl *m, void *state);
+/* Upload `size` bytes of constants (a prefix: methods with kernels send only the entries in use),
+ * bind the program, the depth (unit 0), normals (unit 1) and noise tile (unit 2), and the
+ * visibility output as image 0 in `format`. */
+void ob_method_kit_use(ob_method_kit *kit, const void *constants, size_t size, const ob_ao_inputs *in,
+                       const ob_ao_outputs *out, GLenum format);
+
+/* Option lists shared by methods' enum parameters (registry.c), in the order of the
+ * OB_SAMPLING_MODE_*, OB_DIRECTIONS_MODE_* and OB_NOISE_* values of shaders/ob_enums.h. */
 extern const char *const ob_sampling_options[];  /* random, halton */
 extern const char *const ob_direction_options[]; /* uniform, cosine */
 extern const char *const ob_noise_options[];     /* texture4, ign */

@@ -1,47 +1,64 @@
-/* The table of AO/GI methods. One line per method. */
+/* The table of AO/GI methods: one line per method in OB_METHODS, in the order `obscura list`
+ * shows them (none first: the reference frame and the cost baseline). */
+#include <pthread.h>
 #include <string.h>
 
 #include "methods/method.h"
 
-extern const ob_method_impl ob_method_none;
-extern const ob_method_impl ob_method_ssao;
-extern const ob_method_impl ob_method_hbao;
-extern const ob_method_impl ob_method_crytek;
-extern const ob_method_impl ob_method_alchemy;
-extern const ob_method_impl ob_method_ssdo;
-extern const ob_method_impl ob_method_ssdo_merged;
+#define OB_METHODS(X) \
+    X(none)           \
+    X(ssao)           \
+    X(hbao)           \
+    X(crytek)         \
+    X(alchemy)        \
+    X(ssdo)           \
+    X(ssdo_merged)
 
-static const ob_method_impl *const methods[] = {
-    &ob_method_none,
-    &ob_method_ssao,
-    &ob_method_hbao,
-    &ob_method_crytek,
-    &ob_method_alchemy,
-    &ob_method_ssdo,
-    &ob_method_ssdo_merged,
-};
+#define OB_X_EXTERN(name) extern const ob_method_impl ob_method_##name;
+OB_METHODS(OB_X_EXTERN)
+#undef OB_X_EXTERN
+
+#define OB_X_ENTRY(name) &ob_method_##name,
+static const ob_method_impl *const methods[] = {OB_METHODS(OB_X_ENTRY)};
+#undef OB_X_ENTRY
+
+enum { METHOD_COUNT = sizeof methods / sizeof methods[0] };
 
 const char *const ob_sampling_options[] = {"random", "halton"};
 const char *const ob_direction_options[] = {"uniform", "cosine"};
 const char *const ob_noise_options[] = {"texture4", "ign"};
 
-int ob_method_count(void) { return (int)(sizeof methods / sizeof methods[0]); }
+/* The public descriptions: each entry's info with `directional` derived from what it writes, so
+ * a method declares its outputs once. Filled on first use. */
+static ob_method_info infos[METHOD_COUNT];
+static pthread_once_t infos_once = PTHREAD_ONCE_INIT;
+
+static void fill_infos(void)
+{
+    for (int i = 0; i < METHOD_COUNT; ++i) {
+        infos[i] = methods[i]->info;
+        infos[i].directional = (methods[i]->writes & OB_WRITES_VISIBILITY_RGB) != 0;
+    }
+}
+
+int ob_method_count(void) { return METHOD_COUNT; }
 
 const ob_method_impl *ob_method_impl_at(int index)
 {
-    return index >= 0 && index < ob_method_count() ? methods[index] : NULL;
+    return index >= 0 && index < METHOD_COUNT ? methods[index] : NULL;
 }
 
 const ob_method_info *ob_method_at(int index)
 {
-    const ob_method_impl *m = ob_method_impl_at(index);
-    return m ? &m->info : NULL;
+    if (index < 0 || index >= METHOD_COUNT) return NULL;
+    pthread_once(&infos_once, fill_infos);
+    return &infos[index];
 }
 
 int ob_find_method(const char *name)
 {
     if (!name) return -1;
-    for (int i = 0; i < ob_method_count(); ++i)
+    for (int i = 0; i < METHOD_COUNT; ++i)
         if (strcmp(methods[i]->info.name, name) == 0) return i;
     return -1;
 }
@@ -52,4 +69,9 @@ int ob_method_samples(const ob_method_impl *m, const float *params)
     for (int i = 0; i < m->info.param_count; ++i)
         if (!strcmp(m->info.params[i].name, "samples")) return (int)params[i];
     return 0;
+}
+
+uint32_t ob_method_active_writes(const ob_method_impl *m, const float *params)
+{
+    return m->active_writes ? m->active_writes(params) & m->writes : m->writes;
 }

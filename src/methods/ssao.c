@@ -36,38 +36,13 @@ static const ob_param_info ssao_params[P_COUNT] = {
 #define KERNEL_SEED 0x55A0u
 
 typedef struct ssao_state {
-    ob_compute_pass pass;
-    GLuint noise;
+    ob_method_kit kit;
     int kernel_count; /* the cached kernel was built for these */
     int kernel_sampling, kernel_directions;
     ob_ssao_constants constants;
 } ssao_state;
 
-static void ssao_destroy(void *p)
-{
-    ssao_state *s = p;
-    if (!s) return;
-    ob_compute_pass_destroy(&s->pass);
-    glDeleteTextures(1, &s->noise);
-    free(s);
-}
-
-static void *ssao_init(void)
-{
-    ssao_state *s = calloc(1, sizeof *s);
-    if (!s) {
-        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (ssao)");
-        return NULL;
-    }
-    if (ob_compute_pass_init(&s->pass, "ssao.glsl", NULL, sizeof(ob_ssao_constants)) != OB_OK) {
-        free(s);
-        return NULL;
-    }
-    s->noise = ob_make_rotation_noise_texture();
-    return s;
-}
-
-static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, GLuint ao_out)
+static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
 {
     ssao_state *s = p;
     ob_ssao_constants *c = &s->constants;
@@ -87,28 +62,17 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, G
         s->kernel_sampling = sampling;
         s->kernel_directions = directions;
     }
-    memcpy(c->proj, in->proj, sizeof c->proj);
-    memcpy(c->proj_info, in->proj_info, sizeof c->proj_info);
-    c->size[0] = (float)in->width;
-    c->size[1] = (float)in->height;
-    c->size[2] = 1.0f / (float)in->width;
-    c->size[3] = 1.0f / (float)in->height;
-    c->params[0] = params[P_RADIUS];
-    c->params[1] = params[P_BIAS] * params[P_RADIUS];
-    c->params[2] = params[P_INTENSITY];
-    c->params[3] = 0.0f;
-    c->counts[0] = count;
-    c->counts[1] = (int)params[P_NOISE];
-    c->counts[2] = in->sample_multiplier ? 1 : 0;
-    c->counts[3] = base;
+    c->radius = params[P_RADIUS];
+    c->bias = params[P_BIAS] * params[P_RADIUS];
+    c->intensity = params[P_INTENSITY];
+    c->samples = count;
+    c->noise = (int)params[P_NOISE];
+    c->adaptive = in->sample_multiplier ? 1 : 0;
+    c->adaptive_base = base;
     /* Upload only the kernel entries in use. */
     size_t used = offsetof(ob_ssao_constants, kernel) + (size_t)count * sizeof c->kernel[0];
-    ob_compute_pass_use(&s->pass, c, used);
-    glBindTextureUnit(0, in->linear_depth);
-    glBindTextureUnit(1, in->view_normal);
-    glBindTextureUnit(2, s->noise);
-    glBindTextureUnit(3, in->sample_multiplier ? in->sample_multiplier : s->noise);
-    glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    ob_method_kit_use(&s->kit, c, used, in, out, GL_R32F);
+    glBindTextureUnit(3, in->sample_multiplier ? in->sample_multiplier : s->kit.noise);
     ob_dispatch_2d(in->width, in->height, OB_SSAO_GROUP_X, OB_SSAO_GROUP_Y);
     return OB_OK;
 }
@@ -119,8 +83,11 @@ const ob_method_impl ob_method_ssao = {
              .reference = "seed 004 §2.3, §3.3; seed 000 §3.2",
              .param_count = P_COUNT,
              .params = ssao_params},
-    .init = ssao_init,
+    .shader = "ssao.glsl",
+    .constants_size = sizeof(ob_ssao_constants),
+    .state_size = sizeof(ssao_state),
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS,
+    .writes = OB_WRITES_VISIBILITY,
     .run = ssao_run,
-    .destroy = ssao_destroy,
     .adapts = true,
 };

@@ -44,42 +44,28 @@ static const ob_param_info ssdo_params[P_COUNT] = {
 #define KERNEL_SEED 0x55D0u
 
 typedef struct ssdo_state {
-    ob_compute_pass pass;
-    GLuint noise;
+    ob_method_kit kit;
     int kernel_count; /* the cached kernel was built for these */
     int kernel_pdf;
     bool merged;
     ob_ssdo_constants constants;
 } ssdo_state;
 
-static void ssdo_destroy(void *p)
+static ob_error ssdo_init(void *p)
 {
     ssdo_state *s = p;
-    if (!s) return;
-    ob_compute_pass_destroy(&s->pass);
-    glDeleteTextures(1, &s->noise);
-    free(s);
-}
-
-static void *ssdo_make(bool merged)
-{
-    ssdo_state *s = calloc(1, sizeof *s);
-    if (!s) {
-        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (ssdo)");
-        return NULL;
-    }
-    if (ob_compute_pass_init(&s->pass, "ssdo.glsl", NULL, sizeof(ob_ssdo_constants)) != OB_OK) {
-        free(s);
-        return NULL;
-    }
-    s->noise = ob_make_rotation_noise_texture();
-    s->merged = merged;
+    s->merged = false;
     s->kernel_count = -1;
-    return s;
+    return OB_OK;
 }
 
-static void *ssdo_init(void) { return ssdo_make(false); }
-static void *ssdo_merged_init(void) { return ssdo_make(true); }
+static ob_error ssdo_merged_init(void *p)
+{
+    ssdo_state *s = p;
+    s->merged = true;
+    s->kernel_count = -1;
+    return OB_OK;
+}
 
 /* Halton 2,5 directions and base 3 steps (seed 003 §5.3), as unit direction + length. */
 static void build_kernel(ssdo_state *s, int count, ob_direction_pdf pdf)
@@ -99,11 +85,17 @@ static void build_kernel(ssdo_state *s, int count, ob_direction_pdf pdf)
     s->kernel_pdf = (int)pdf;
 }
 
-static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, GLuint ao_out)
+/* `bounce` off: no bounce to write, filter or upsample. */
+static uint32_t ssdo_active_writes(const float *params)
+{
+    return OB_WRITES_VISIBILITY_RGB | (params[P_BOUNCE] != 0.0f ? OB_WRITES_BOUNCE : 0u);
+}
+
+static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
 {
     ssdo_state *s = p;
     ob_ssdo_constants *c = &s->constants;
-    if (!in->direct || !in->lights || !in->bounce_out)
+    if (!in->radiance || !out->bounce)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ssdo needs the renderer's direct light (ob_render_frame)");
     int count = (int)params[P_SAMPLES];
     ob_direction_pdf pdf = s->merged ? OB_DIRECTIONS_COSINE : OB_DIRECTIONS_UNIFORM;
@@ -111,59 +103,29 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, G
     bool bounce = params[P_BOUNCE] != 0.0f;
     float radius = params[P_RADIUS];
 
-    memcpy(c->proj, in->proj, sizeof c->proj);
-    memcpy(c->inv_view, in->lights->inv_view, sizeof c->inv_view);
-    memcpy(c->proj_info, in->proj_info, sizeof c->proj_info);
-    memcpy(c->full_info, in->lights->proj_info, sizeof c->full_info);
-    c->size[0] = (float)in->width;
-    c->size[1] = (float)in->height;
-    c->size[2] = 1.0f / (float)in->width;
-    c->size[3] = 1.0f / (float)in->height;
-    c->params[0] = radius;
-    c->params[1] = params[P_BIAS] * radius;
+    c->radius = radius;
+    c->bias = params[P_BIAS] * radius;
     /* Eq. 3.4's A_s = pi r^2 / N, over pi for the radiance a white receiver reflects. */
-    c->params[2] = params[P_BOUNCE_STRENGTH] * radius * radius / (float)count;
-    c->params[3] = params[P_LOBE];
-    c->counts[0] = count;
-    c->counts[1] = 0; /* the 4x4 rotation texture: the filters' windows cancel its tile */
-    c->counts[2] = bounce ? 1 : 0;
-    int lights = in->lights->counts[0] < OB_SSDO_MAX_LIGHTS ? in->lights->counts[0] : OB_SSDO_MAX_LIGHTS;
-    c->grid[0] = in->grid_k > 0 ? in->grid_k : 1;
-    c->grid[1] = in->grid_o;
-    c->grid[2] = lights;
-    c->grid[3] = (int)in->ambient_mode;
-    for (int k = 0; k < 3; ++k) {
-        c->ambient[k] = in->ambient[k];
-        c->sky[k] = in->sky[k];
-        c->ground[k] = in->ground[k];
-        for (int j = 0; j < 9; ++j) c->sh[j][k] = in->sh[j][k];
-    }
-    memcpy(c->light_color, in->lights->light_color, sizeof c->light_color);
-    memcpy(c->light_position, in->lights->light_position, sizeof c->light_position);
-    memcpy(c->light_direction, in->lights->light_direction, sizeof c->light_direction);
-    memcpy(c->light_spot, in->lights->light_spot, sizeof c->light_spot);
+    c->bounce_scale = params[P_BOUNCE_STRENGTH] * radius * radius / (float)count;
+    c->lobe = params[P_LOBE];
+    c->samples = count;
+    c->noise = OB_NOISE_TEXTURE4; /* the 4x4 rotation texture: the filters' windows cancel its tile */
+    c->bounce = bounce ? 1 : 0;
 
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];
-    glBindTextureUnit(0, in->linear_depth);
-    glBindTextureUnit(1, in->view_normal);
-    glBindTextureUnit(2, s->noise);
-    glBindTextureUnit(3, in->direct);
-    glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, in->bounce_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    c->counts[3] = s->merged ? OB_SSDO_STAGE_MERGED : OB_SSDO_STAGE_DIRECT;
-    ob_compute_pass_use(&s->pass, c, used);
+    c->stage = s->merged ? OB_SSDO_STAGE_MERGED : OB_SSDO_STAGE_DIRECT;
+    ob_method_kit_use(&s->kit, c, used, in, out, GL_RGBA16F);
+    glBindTextureUnit(3, in->radiance);
+    /* The renderer gives every declared output a target, so image 1 is valid with the bounce off
+     * too (the merged stage then writes zeros there; nothing reads them). */
+    glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
-    if (s->merged) return OB_OK;
-    if (bounce) {
-        /* Pass 2 reads nothing pass 1 wrote (the senders' radiance is the lighting pass's), so
-         * no barrier: the same samples, the bounce of eq. 3.4. */
-        c->counts[3] = OB_SSDO_STAGE_BOUNCE;
-        ob_compute_pass_use(&s->pass, c, used);
-        ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
-    } else {
-        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        glClearTexImage(in->bounce_out, 0, GL_RGBA, GL_FLOAT, zero);
-    }
+    if (s->merged || !bounce) return OB_OK;
+    /* Pass 2 reads nothing pass 1 wrote (the senders' radiance is the lighting pass's), so no
+     * barrier: the same samples, the bounce of eq. 3.4. */
+    c->stage = OB_SSDO_STAGE_BOUNCE;
+    ob_compute_pass_use(&s->kit.pass, c, used);
+    ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
     return OB_OK;
 }
 
@@ -171,24 +133,30 @@ const ob_method_impl ob_method_ssdo = {
     .info = {.name = "ssdo",
              .description = "screen-space directional occlusion + one bounce, the original two passes",
              .reference = "seed 003 §3.3 eq. 3.2-3.4, §5.3 eq. 5.3; seed 000 §4.1-4.2",
-             .directional = true,
              .param_count = P_COUNT,
              .params = ssdo_params},
+    .shader = "ssdo.glsl",
+    .constants_size = sizeof(ob_ssdo_constants),
+    .state_size = sizeof(ssdo_state),
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE,
+    .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
     .init = ssdo_init,
     .run = ssdo_run,
-    .destroy = ssdo_destroy,
-    .rgb = true,
+    .active_writes = ssdo_active_writes,
 };
 
 const ob_method_impl ob_method_ssdo_merged = {
     .info = {.name = "ssdo_merged",
              .description = "one-pass SSDO: modulation factor M and bounce (darkened by M) in one loop",
              .reference = "seed 003 §4.2 eq. 4.1-4.4, §5.3 eq. 5.2",
-             .directional = true,
              .param_count = P_COUNT,
              .params = ssdo_params},
+    .shader = "ssdo.glsl",
+    .constants_size = sizeof(ob_ssdo_constants),
+    .state_size = sizeof(ssdo_state),
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE,
+    .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
     .init = ssdo_merged_init,
     .run = ssdo_run,
-    .destroy = ssdo_destroy,
-    .rgb = true,
+    .active_writes = ssdo_active_writes,
 };

@@ -72,12 +72,13 @@ void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLui
 /* ---- direct light: lighting.c, shaders/lighting.glsl ---------------------------------------- */
 typedef struct ob_lighting_pass { ob_compute_pass pass; ob_lighting_constants constants; } ob_lighting_pass;
 
+/* The lights, the camera and the size come from the frame block (frame_params.h, bound at
+ * OB_BINDING_FRAME); the pass's own constants are the specular lobe and the shadow maps. */
 ob_error ob_lighting_init(ob_lighting_pass *l);
-/* Fill the light part of the constants (world space) for this camera; the shadow part is
- * ob_shadows_fill's. */
-void ob_lighting_setup(ob_lighting_pass *l, const ob_light *lights, int count, const float inv_view[16],
-                       const float proj_info[4], int width, int height);
-void ob_lighting_run(ob_lighting_pass *l, GLuint linear_depth, GLuint normal, GLuint albedo, GLuint radiance_out);
+/* The specular lobe; the shadow members are ob_shadows_fill's. */
+void ob_lighting_setup(ob_lighting_pass *l);
+void ob_lighting_run(ob_lighting_pass *l, int width, int height, GLuint linear_depth, GLuint normal, GLuint albedo,
+                     GLuint radiance_out);
 void ob_lighting_destroy(ob_lighting_pass *l);
 
 /* ---- the environment map: environment.c (CPU: load, spherical harmonics) ------------------- */
@@ -97,18 +98,14 @@ void ob_environment_destroy(ob_environment *e);
 /* ---- compose: compose.c, shaders/compose.glsl ----------------------------------------------- */
 typedef struct ob_compose_pass { ob_compute_pass pass; } ob_compose_pass;
 
+/* The camera, the size and the ambient light are the frame block's (frame_params.h). */
 typedef struct ob_compose_inputs {
     GLuint linear_depth, normal, albedo, ao, direct, environment;
-    /* SSDO (directional): ao is RGBA16F M, multiplying direct and ambient light; bounce (RGBA16F,
+    /* Directional (SSDO): ao is RGBA16F M, multiplying direct and ambient light; bounce (RGBA16F,
      * radiance off a white receiver) is added times the albedo. */
     bool directional;
     GLuint bounce;        /* 0 = none */
     int width, height;
-    float proj_info[4];
-    float inv_view[16];
-    ob_ambient_mode ambient_mode;
-    float ambient[3], sky[3], ground[3], background[3];
-    float sh[9][3];
     bool ao_all_light;      /* AO multiplies the direct light too */
 } ob_compose_inputs;
 
@@ -201,7 +198,7 @@ typedef struct ob_shadow_maps {
     int light_map[OB_MAX_LIGHTS]; /* map index of each light, -1 = unshadowed */
     float matrix[OB_MAX_SHADOW_MAPS][16]; /* -> ob_lighting_constants.shadow_matrix */
     float params[OB_MAX_SHADOW_MAPS][4];  /* -> shadow_params */
-    float options[4];                     /* -> shadow_options */
+    float options[4];                     /* -> shadow_method, pcf_radius, vsm_min_variance, vsm_bleed */
     /* What the maps were rendered from, for ob_shadow_settings.reuse. */
     bool key_valid;
     ob_light key_lights[OB_MAX_SHADOW_MAPS];
@@ -222,10 +219,11 @@ ob_error ob_shadows_init(ob_shadow_maps *s);
 ob_error ob_shadows_render(ob_shadow_maps *s, const ob_gbuffer *g, const ob_light *lights, int light_count,
                            const float bounds_min[3], const float bounds_max[3], const ob_shadow_settings *settings,
                            ob_timer_set *timers);
-/* Fill the shadow_* members and each light's light_direction[i].w (map index or -1; call after the
- * lights are filled, e.g. after ob_lighting_setup), and bind the textures to the units shadow.glsl
- * declares (0 where a kind has no map). Call after ob_shadows_render, before the lighting dispatch. */
-void ob_shadows_fill(const ob_shadow_maps *s, ob_lighting_constants *c);
+/* Fill the lighting constants' shadow members and each light's frame->light_direction[i].w (map
+ * index or -1; call after the frame's lights are filled), and bind the textures to the units
+ * shadow.glsl declares (0 where a kind has no map). Call after ob_shadows_render, before the frame
+ * block is uploaded and the lighting pass runs. */
+void ob_shadows_fill(const ob_shadow_maps *s, ob_lighting_constants *c, ob_frame_constants *frame);
 void ob_shadows_destroy(ob_shadow_maps *s);
 
 /* ---- presenting: view.c, shaders/view.glsl (ob_present) -------------------------------------

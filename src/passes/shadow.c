@@ -554,13 +554,16 @@ ob_error ob_shadows_render(ob_shadow_maps *s, const ob_gbuffer *g, const ob_ligh
     return OB_OK;
 }
 
-void ob_shadows_fill(const ob_shadow_maps *s, ob_lighting_constants *c)
+void ob_shadows_fill(const ob_shadow_maps *s, ob_lighting_constants *c, ob_frame_constants *frame)
 {
     bool on = s->method != OB_SHADOW_NONE;
     memcpy(c->shadow_matrix, s->matrix, sizeof c->shadow_matrix);
     memcpy(c->shadow_params, s->params, sizeof c->shadow_params);
-    for (int k = 0; k < 4; ++k) c->shadow_options[k] = on ? s->options[k] : 0.0f;
-    for (int i = 0; i < OB_MAX_LIGHTS; ++i) c->light_direction[i][3] = on ? (float)s->light_map[i] : -1.0f;
+    c->shadow_method = on ? (int)s->options[0] : OB_SHADOW_METHOD_NONE;
+    c->pcf_radius = on ? (int)s->options[1] : 0;
+    c->vsm_min_variance = on ? s->options[2] : 0.0f;
+    c->vsm_bleed = on ? s->options[3] : 0.0f;
+    for (int i = 0; i < OB_MAX_LIGHTS; ++i) frame->light_direction[i][3] = on ? (float)s->light_map[i] : -1.0f;
     /* A shadow sampler only sees a comparing texture: VSM's 2D depth (comparison off) stays
      * unbound, its lookups read the moments. */
     glBindTextureUnit(OB_SHADOW_UNIT_2D, on && s->method != OB_SHADOW_VSM ? s->maps_2d : 0);

@@ -1,0 +1,359 @@
+/* The frame (DESIGN.md "The frame"), each pass timed:
+ *   [shadow maps] -> gbuffer -> lighting (direct light, shadowed) -> [downsample to the AO
+ *   resolution] -> [edges, for adaptive sample counts] -> method -> filter (at the AO
+ *   resolution) -> [joint bilateral upsample] -> compose (HDR radiance) -> luminance, bloom,
+ *   tonemap.
+ * The method is resolved once per frame into a plan (its state, its resolved parameters and the
+ * outputs they produce); the renderer knows no method by name, only what the registry entry
+ * declares it reads and writes. The camera, the AO grid, the lights and the ambient light go into
+ * the per-frame block (frame_params.h) that every pass reads. The CLI, the viewer and the tests
+ * all render through here. */
+#include <cglm/cglm.h>
+#include <math.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/renderer.h"
+
+void ob_proj_info(const float *proj, float out[4])
+{
+    /* Column-major: P00 = proj[0], P11 = proj[5], P20 = proj[8], P21 = proj[9]. */
+    out[0] = 1.0f / proj[0];
+    out[1] = 1.0f / proj[5];
+    out[2] = proj[8];
+    out[3] = proj[9];
+}
+
+/* The projection as seen from the AO grid. AO pixel i sits at full pixel k i + o, so along x
+ * ndc_grid = a ndc_full + b with a = W / (k w) and b = a - 1 + (1 - (2o + 1)/k) / w (from
+ * ndc_full = 2 (k i + o + 1/2) / W - 1 and ndc_grid = 2 (i + 1/2) / w - 1). Folding that into
+ * P00, P20 (and P11, P21) keeps every method's reconstruction and projection exact. */
+static void grid_projection(const ob_ao_grid *g, const float *proj, float *out)
+{
+    memcpy(out, proj, 16 * sizeof(float));
+    if (g->k == 1) return;
+    float ax = (float)g->full_width / (float)(g->k * g->width);
+    float ay = (float)g->full_height / (float)(g->k * g->height);
+    float bx = ax - 1.0f + (1.0f - (2.0f * (float)g->o + 1.0f) / (float)g->k) / (float)g->width;
+    float by = ay - 1.0f + (1.0f - (2.0f * (float)g->o + 1.0f) / (float)g->k) / (float)g->height;
+    /* ndc = (P00 X + P20 Z) / -Z  ->  a ndc + b = (a P00 X + (a P20 - b) Z) / -Z */
+    out[0] = ax * proj[0];
+    out[8] = ax * proj[8] - bx;
+    out[5] = ay * proj[5];
+    out[9] = ay * proj[9] - by;
+}
+
+static void put3(float *dst, const float *src)
+{
+    dst[0] = src[0];
+    dst[1] = src[1];
+    dst[2] = src[2];
+    dst[3] = 0.0f;
+}
+
+void ob_frame_constants_fill(ob_frame_constants *f, const ob_frame_desc *d)
+{
+    memset(f, 0, sizeof *f);
+    const ob_ao_grid *g = d->grid;
+    memcpy(f->view, d->view, sizeof f->view);
+    /* Through aligned cglm matrices: its SIMD paths assume them. */
+    mat4 view, inv_view;
+    memcpy(view, d->view, sizeof view);
+    glm_mat4_inv(view, inv_view);
+    memcpy(f->inv_view, inv_view, sizeof f->inv_view);
+    memcpy(f->proj, d->proj, sizeof f->proj);
+    grid_projection(g, d->proj, f->ao_proj);
+    ob_proj_info(f->proj, f->proj_info);
+    ob_proj_info(f->ao_proj, f->ao_proj_info);
+    f->size[0] = (float)g->full_width;
+    f->size[1] = (float)g->full_height;
+    f->inv_size[0] = 1.0f / (float)g->full_width;
+    f->inv_size[1] = 1.0f / (float)g->full_height;
+    f->ao_size[0] = (float)g->width;
+    f->ao_size[1] = (float)g->height;
+    f->ao_inv_size[0] = 1.0f / (float)g->width;
+    f->ao_inv_size[1] = 1.0f / (float)g->height;
+    f->ao_k = g->k;
+    f->ao_o = g->o;
+    f->frame_index = d->frame_index;
+    f->near_z = d->near_z;
+    f->far_z = d->far_z;
+    const ob_settings *s = d->settings;
+    if (s) {
+        f->ambient_mode = (int)s->ambient_mode;
+        put3(f->ambient, s->ambient);
+        put3(f->sky, s->sky);
+        put3(f->ground, s->ground);
+        put3(f->background, s->background);
+    }
+    for (int i = 0; i < 9 && d->sh; ++i) put3(f->sh[i], d->sh[i]);
+    int count = d->light_count < OB_MAX_LIGHTS ? d->light_count : OB_MAX_LIGHTS;
+    f->light_count = count > 0 ? count : 0;
+    for (int i = 0; i < f->light_count; ++i) {
+        const ob_light *l = &d->lights[i];
+        float len = sqrtf(l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
+                          l->direction[2] * l->direction[2]);
+        for (int k = 0; k < 3; ++k) {
+            f->light_color[i][k] = l->color[k] * l->intensity;
+            f->light_position[i][k] = l->position[k];
+            /* A zero direction points up, as the shadow maps assume (shadow.c). */
+            f->light_direction[i][k] = len > 0.0f ? l->direction[k] / len : (k == 1 ? 1.0f : 0.0f);
+        }
+        f->light_color[i][3] = (float)l->type;
+        f->light_position[i][3] = l->range;
+        f->light_direction[i][3] = -1.0f; /* unshadowed until ob_shadows_fill says otherwise */
+        f->light_spot[i][0] = cosf(l->spot_inner_deg * 0.01745329252f);
+        f->light_spot[i][1] = cosf(l->spot_outer_deg * 0.01745329252f);
+    }
+}
+
+static void upload_frame(ob_renderer *r)
+{
+    glNamedBufferSubData(r->frame_ubo, 0, sizeof r->frame_constants, &r->frame_constants);
+    glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_FRAME, r->frame_ubo);
+}
+
+static ob_error check_settings(const ob_settings *s)
+{
+    if (!s || !ob_method_at(s->method) || !ob_filter_at(s->filter))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "settings are not initialised");
+    if (s->ao_divisor != 0 && s->ao_divisor != 1 && s->ao_divisor != 2 && s->ao_divisor != 4)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "ao divisor %d is not 1, 2 or 4", s->ao_divisor);
+    return OB_OK;
+}
+
+/* The method of a frame, resolved once: its entry, state, parameters as it sees them (explicit
+ * values, else defaults, with radii that were not set following the scene) and what it writes. */
+typedef struct method_plan {
+    int index;
+    const ob_method_impl *impl;
+    void *state;
+    float params[OB_MAX_PARAMS];
+    uint32_t writes;  /* ob_method_active_writes */
+    bool rgb;         /* OB_WRITES_VISIBILITY_RGB: M instead of visibility */
+    bool bounce;      /* OB_WRITES_BOUNCE among the active outputs */
+} method_plan;
+
+static ob_error plan_method(ob_renderer *r, const ob_settings *s, method_plan *p)
+{
+    memset(p, 0, sizeof *p);
+    p->index = s->method;
+    p->impl = ob_method_impl_at(s->method);
+    const ob_method_info *m = &p->impl->info;
+    for (int i = 0; i < m->param_count; ++i) {
+        p->params[i] = s->params[i];
+        if (m->params[i].follows_scene_radius && !(s->params_set & (1u << i)) && r->scene_radius > 0.0f)
+            p->params[i] = r->scene_radius;
+    }
+    p->writes = ob_method_active_writes(p->impl, p->params);
+    p->rgb = (p->impl->writes & OB_WRITES_VISIBILITY_RGB) != 0;
+    p->bounce = (p->writes & OB_WRITES_BOUNCE) != 0;
+    ob_error err = OB_OK;
+    p->state = ob_renderer_method_state(r, s->method, &err);
+    return err;
+}
+
+static ob_error run_method(ob_renderer *r, const method_plan *p, const ob_ao_inputs *in, const ob_ao_outputs *out)
+{
+    r->last_method = p->index;
+    memcpy(r->last_params, p->params, sizeof r->last_params);
+    r->last_adaptive = in->sample_multiplier != 0;
+    return p->impl->run(p->state, in, p->params, out);
+}
+
+/* Filter one chain (src -> dst through the scratch target) at the AO resolution. */
+static ob_error run_filter(const ob_filter_impl *filter, void *fstate, const ao_targets *t, GLuint src, GLuint dst,
+                           GLuint scratch, bool rgb, float sky, const ob_settings *s)
+{
+    const ob_filter_inputs fin = {.src = src, .dst = dst, .scratch = scratch, .linear_depth = t->depth,
+                                  .view_normal = t->normal, .width = t->grid.width, .height = t->grid.height,
+                                  .rgb = rgb, .sky = sky};
+    return filter->run(fstate, &fin, s->filter_params);
+}
+
+/* Every pass of the frame, stopping at the first failure; the caller closes the timers. */
+static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_plan *plan, ao_targets *t,
+                           const ob_light *lights, int light_count)
+{
+    const ob_ao_grid *g = &t->grid;
+    /* Each compute pass reads what the previous one wrote with image stores or as attachments. */
+    const GLbitfield barrier = GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
+    const ob_frame_constants *f = &r->frame_constants;
+    ob_error err = ob_shadows_render(&r->shadows, &r->gbuffer, lights, light_count, r->bounds_min, r->bounds_max,
+                                     &s->shadow, &r->timers);
+    if (err != OB_OK) return err;
+    ob_timer_begin(&r->timers, "gbuffer");
+    ob_gbuffer_run(&r->gbuffer, f->view, f->proj);
+    glMemoryBarrier(barrier | GL_FRAMEBUFFER_BARRIER_BIT);
+    ob_timer_begin(&r->timers, "lighting");
+    ob_lighting_setup(&r->lighting);
+    ob_shadows_fill(&r->shadows, &r->lighting.constants, &r->frame_constants);
+    upload_frame(r); /* after ob_shadows_fill: each light's shadow map index */
+    ob_lighting_run(&r->lighting, r->width, r->height, r->gbuffer.linear_depth, r->gbuffer.normal, r->gbuffer.albedo,
+                    r->direct);
+    glMemoryBarrier(barrier);
+    if (g->k > 1) {
+        ob_timer_begin(&r->timers, "downsample");
+        ob_downsample_run(&r->downsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal);
+        glMemoryBarrier(barrier);
+    }
+    if (s->adaptive) {
+        ob_timer_begin(&r->timers, "edges");
+        ob_edges_run(&r->edges, g, t->depth, t->normal, t->multiplier);
+        glMemoryBarrier(barrier);
+    }
+    if (plan->rgb || (plan->impl->writes & OB_WRITES_BOUNCE)) {
+        err = ob_renderer_rgb_targets(r, t);
+        if (err != OB_OK) return err;
+    }
+    const uint32_t reads = plan->impl->reads;
+    const ob_ao_inputs in = {.frame = f,
+                             .linear_depth = t->depth,
+                             .view_normal = t->normal,
+                             .width = g->width,
+                             .height = g->height,
+                             .sample_multiplier = s->adaptive ? t->multiplier : 0,
+                             .radiance = reads & OB_READS_RADIANCE ? r->direct : 0,
+                             .albedo = reads & OB_READS_ALBEDO ? r->gbuffer.albedo : 0};
+    /* Every declared output gets a target, also one that these params leave unwritten. */
+    const ob_ao_outputs out = {.visibility = plan->rgb ? t->raw_rgb : t->raw,
+                               .bounce = plan->impl->writes & OB_WRITES_BOUNCE ? t->bounce_raw : 0};
+    r->last_rgb = plan->rgb;
+    ob_timer_begin(&r->timers, "ao");
+    err = run_method(r, plan, &in, &out);
+    if (err != OB_OK) return err;
+    glMemoryBarrier(barrier);
+
+    ob_timer_begin(&r->timers, "filter");
+    void *fstate = ob_renderer_filter_state(r, s->filter, plan->rgb, &err);
+    if (err != OB_OK) return err;
+    const ob_filter_impl *filter = ob_filter_impl_at(s->filter);
+    if (!plan->rgb) {
+        err = run_filter(filter, fstate, t, t->raw, g->k > 1 ? t->filtered : r->ao, t->scratch, false, 1.0f, s);
+    } else {
+        /* M and the bounce through the same filter (seed 003 §5.3 smooths them separately); the
+         * sky is 1 in M and 0 in the bounce. The barrier orders the shared scratch target. */
+        err = run_filter(filter, fstate, t, t->raw_rgb, g->k > 1 ? t->filtered_rgb : r->ao_rgb, t->scratch_rgb, true,
+                         1.0f, s);
+        glMemoryBarrier(barrier);
+        if (err == OB_OK && plan->bounce)
+            err = run_filter(filter, fstate, t, t->bounce_raw, g->k > 1 ? t->bounce_filtered : r->bounce,
+                             t->scratch_rgb, true, 0.0f, s);
+    }
+    if (err != OB_OK) return err;
+    glMemoryBarrier(barrier);
+    if (g->k > 1) {
+        ob_timer_begin(&r->timers, "upsample");
+        if (!plan->rgb) {
+            ob_upsample_run(&r->upsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
+                            t->filtered, r->ao);
+        } else {
+            ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
+                                t->filtered_rgb, r->ao_rgb, 1.0f);
+            if (plan->bounce)
+                ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth,
+                                    t->normal, t->bounce_filtered, r->bounce, 0.0f);
+        }
+        glMemoryBarrier(barrier);
+    }
+    if (plan->rgb && !plan->bounce) {
+        /* Bounce off: nothing to filter or upsample; the bounce view reads zeros. */
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glClearTexImage(r->bounce, 0, GL_RGBA, GL_FLOAT, zero);
+    }
+
+    const ob_compose_inputs ci = {.linear_depth = r->gbuffer.linear_depth,
+                                  .normal = r->gbuffer.normal,
+                                  .albedo = r->gbuffer.albedo,
+                                  .ao = plan->rgb ? r->ao_rgb : r->ao,
+                                  .direct = r->direct,
+                                  .environment = r->environment.texture,
+                                  .directional = plan->rgb,
+                                  .bounce = plan->bounce ? r->bounce : 0,
+                                  .width = r->width,
+                                  .height = r->height,
+                                  .ao_all_light = s->ao_all_light};
+    ob_timer_begin(&r->timers, "compose");
+    ob_compose_run(&r->compose, &ci, r->radiance);
+    glMemoryBarrier(barrier);
+    ob_hdr_run(&r->hdr, r->radiance, &s->hdr, r->final, &r->timers);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | barrier);
+    return OB_OK;
+}
+
+static int scale_index(int divisor) { return divisor == 2 ? 1 : divisor == 4 ? 2 : 0; }
+
+ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *s)
+{
+    if (!r || !camera) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_frame: NULL argument");
+    if (check_settings(s) != OB_OK) return ob_peek_error(NULL);
+    if (!r->has_scene) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_frame: no scene (ob_renderer_set_scene)");
+    if (s->ambient_mode == OB_AMBIENT_ENVIRONMENT && !r->environment.texture)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "environment ambient without an environment map (--env FILE.hdr)");
+
+    ob_camera cam = *camera;
+    if (cam.fov_y_deg <= 0.0f) cam.fov_y_deg = 60.0f;
+    if (cam.up[0] == 0.0f && cam.up[1] == 0.0f && cam.up[2] == 0.0f) cam.up[1] = 1.0f;
+    if (cam.near_z <= 0.0f || cam.far_z <= cam.near_z) ob_camera_fit_planes(&cam, r->bounds_min, r->bounds_max);
+    if (!(cam.fov_y_deg < 179.0f) || !isfinite(cam.eye[0] + cam.eye[1] + cam.eye[2] + cam.target[0] + cam.target[1] + cam.target[2]))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "camera is not finite or its fov is not in (0, 179)");
+
+    method_plan plan;
+    ob_error err = plan_method(r, s, &plan);
+    if (err != OB_OK) return err;
+
+    mat4 view, proj;
+    glm_lookat(cam.eye, cam.target, cam.up, view);
+    glm_perspective(glm_rad(cam.fov_y_deg), (float)r->width / (float)r->height, cam.near_z, cam.far_z, proj);
+    int si = scale_index(s->ao_divisor);
+    ao_targets *t = ob_renderer_targets(r, si);
+    r->last_scale = si;
+    const ob_light *lights = s->light_count > 0 ? s->lights : r->scene_lights;
+    int light_count = s->light_count > 0 ? s->light_count : r->scene_light_count;
+    ob_frame_constants_fill(&r->frame_constants,
+                            &(ob_frame_desc){.view = (const float *)view, .proj = (const float *)proj, .grid = &t->grid,
+                                             .near_z = cam.near_z, .far_z = cam.far_z, .frame_index = r->frame++,
+                                             .lights = lights, .light_count = light_count, .settings = s,
+                                             .sh = (const float(*)[3])r->environment.sh});
+
+    /* From here the targets are being overwritten: no whole frame to present until the end. */
+    r->has_frame = false;
+    ob_timers_frame_begin(&r->timers);
+    err = run_passes(r, s, &plan, t, lights, light_count);
+    ob_timers_frame_end(&r->timers);
+    if (err != OB_OK) return err;
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x during the frame", e);
+    r->has_frame = true;
+    r->last_far = cam.far_z;
+    return OB_OK;
+}
+
+ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex, const float proj[16],
+                       const ob_settings *s, uint32_t ao_out_tex)
+{
+    if (!r || !proj || !linear_depth_tex || !normal_tex || !ao_out_tex)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: NULL argument");
+    if (check_settings(s) != OB_OK) return ob_peek_error(NULL);
+    const ob_method_impl *m = ob_method_impl_at(s->method);
+    if ((m->reads & (OB_READS_RADIANCE | OB_READS_ALBEDO)) || (m->writes & ~OB_WRITES_VISIBILITY))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: %s needs the frame's direct light (ob_render_frame)",
+                            m->info.name);
+    method_plan plan;
+    ob_error err = plan_method(r, s, &plan);
+    if (err != OB_OK) return err;
+    /* The caller's camera: only the projection is known, so view space is world space. */
+    const ob_ao_grid grid = ob_ao_grid_make(r->width, r->height, 1);
+    mat4 identity = GLM_MAT4_IDENTITY_INIT;
+    ob_frame_constants_fill(&r->frame_constants,
+                            &(ob_frame_desc){.view = (const float *)identity, .proj = proj, .grid = &grid,
+                                             .frame_index = r->frame++});
+    upload_frame(r);
+    const ob_ao_inputs in = {.frame = &r->frame_constants, .linear_depth = linear_depth_tex, .view_normal = normal_tex,
+                             .width = r->width, .height = r->height};
+    const ob_ao_outputs out = {.visibility = ao_out_tex};
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    err = run_method(r, &plan, &in, &out);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    return err;
+}

@@ -1,0 +1,174 @@
+/* The last frame back to the CPU: every image kind of ob_read_image (the G-buffer, the direct
+ * light, the AO before and after filtering, a directional method's M and bounce, the sample
+ * counts) and the per-pass timings. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/renderer.h"
+
+/* Per-pixel sample counts of the last frame at full resolution: the method's count, or under
+ * adaptive sampling its base x the edge pass's multiplier. */
+static ob_error read_sample_counts(ob_renderer *r, float *dst)
+{
+    const ao_targets *t = &r->scales[r->last_scale];
+    if (!t->ready) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "no frame rendered yet");
+    const ob_method_impl *m = ob_method_impl_at(r->last_method);
+    int samples = ob_method_samples(m, r->last_params);
+    int bw = (t->grid.width + OB_EDGE_BLOCK - 1) / OB_EDGE_BLOCK, bh = (t->grid.height + OB_EDGE_BLOCK - 1) / OB_EDGE_BLOCK;
+    float *mult = NULL;
+    float *depth = malloc((size_t)r->width * (size_t)r->height * sizeof(float));
+    if (!depth) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading sample counts");
+    glGetTextureImage(r->gbuffer.linear_depth, 0, GL_RED, GL_FLOAT,
+                      (GLsizei)((size_t)r->width * (size_t)r->height * sizeof(float)), depth);
+    if (r->last_adaptive && m->adapts) {
+        mult = malloc((size_t)bw * (size_t)bh * sizeof(float));
+        if (!mult) {
+            free(depth);
+            return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading sample counts");
+        }
+        glGetTextureImage(t->multiplier, 0, GL_RED, GL_FLOAT, (GLsizei)((size_t)bw * (size_t)bh * sizeof(float)), mult);
+    }
+    for (int y = 0; y < r->height; ++y)
+        for (int x = 0; x < r->width; ++x) {
+            int bx = (x / t->grid.k) / OB_EDGE_BLOCK, by = (y / t->grid.k) / OB_EDGE_BLOCK;
+            size_t i = (size_t)y * (size_t)r->width + (size_t)x;
+            float count = (float)samples;
+            if (mult) count = (float)ob_adaptive_base(samples) * mult[(size_t)by * (size_t)bw + (size_t)bx];
+            dst[i] = depth[i] > 0.0f ? count : 0.0f; /* the sky takes no samples */
+        }
+    free(mult);
+    free(depth);
+    return OB_OK;
+}
+
+/* An RGBA16F target as 3 floats per pixel, or (channels 1) the average of its three channels:
+ * the AO views of a directional method show M's mean. */
+static ob_error read_rgb(GLuint tex, int w, int h, float *dst, int channels)
+{
+    size_t n = (size_t)w * (size_t)h;
+    float *rgba = malloc(n * 4 * sizeof(float));
+    if (!rgba) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading an image");
+    glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
+    for (size_t i = 0; i < n; ++i) {
+        if (channels == 1) {
+            dst[i] = (rgba[4 * i] + rgba[4 * i + 1] + rgba[4 * i + 2]) / 3.0f;
+        } else {
+            for (int c = 0; c < 3; ++c) dst[3 * i + (size_t)c] = rgba[4 * i + (size_t)c];
+        }
+    }
+    free(rgba);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x reading an image", e);
+    return OB_OK;
+}
+
+size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
+{
+    if (!r) return 0;
+    size_t px = (size_t)r->width * (size_t)r->height;
+    switch (kind) {
+    case OB_IMAGE_FINAL_RGBA8: return px * 4;
+    case OB_IMAGE_AO_RAW_F32: {
+        const ob_ao_grid *g = &r->scales[r->last_scale].grid;
+        return (size_t)(g->width > 0 ? g->width : r->width) * (size_t)(g->height > 0 ? g->height : r->height) *
+               sizeof(float);
+    }
+    case OB_IMAGE_SAMPLES_F32:
+    case OB_IMAGE_AO_F32:
+    case OB_IMAGE_DEPTH_F32: return px * sizeof(float);
+    case OB_IMAGE_NORMAL_F32:
+    case OB_IMAGE_RADIANCE_F32:
+    case OB_IMAGE_AO_RGB_F32:
+    case OB_IMAGE_BOUNCE_F32:
+    case OB_IMAGE_HDR_F32:
+    case OB_IMAGE_ALBEDO_F32: return px * 3 * sizeof(float);
+    case OB_IMAGE_SHADOW_F32: return px * sizeof(float);
+    }
+    return 0;
+}
+
+ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst_size)
+{
+    size_t need = ob_image_size(r, kind);
+    if (!r || !dst || need == 0) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_read_image: bad argument");
+    if (dst_size < need) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_read_image: buffer of %zu bytes, need %zu", dst_size, need);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    switch (kind) {
+    case OB_IMAGE_FINAL_RGBA8: {
+        glGetTextureImage(r->final, 0, GL_RGBA, GL_UNSIGNED_BYTE, (GLsizei)need, dst);
+        /* GL's rows run bottom to top; image files want top first. */
+        size_t row = (size_t)r->width * 4;
+        unsigned char *p = dst;
+        unsigned char *tmp = malloc(row);
+        if (!tmp) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading the image");
+        for (int y = 0; y < r->height / 2; ++y) {
+            unsigned char *a = p + (size_t)y * row, *b = p + (size_t)(r->height - 1 - y) * row;
+            memcpy(tmp, a, row);
+            memcpy(a, b, row);
+            memcpy(b, tmp, row);
+        }
+        free(tmp);
+        break;
+    }
+    case OB_IMAGE_AO_F32:
+        if (r->last_rgb) return read_rgb(r->ao_rgb, r->width, r->height, dst, 1);
+        glGetTextureImage(r->ao, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst);
+        break;
+    case OB_IMAGE_AO_RAW_F32:
+        if (!r->scales[r->last_scale].ready) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "no frame rendered yet");
+        if (r->last_rgb) {
+            const ao_targets *t = &r->scales[r->last_scale];
+            return read_rgb(t->raw_rgb, t->grid.width, t->grid.height, dst, 1);
+        }
+        glGetTextureImage(r->scales[r->last_scale].raw, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst);
+        break;
+    case OB_IMAGE_AO_RGB_F32:
+        if (r->last_rgb) return read_rgb(r->ao_rgb, r->width, r->height, dst, 3);
+        /* An AO method: its visibility in all three channels. */
+        glGetTextureImage(r->ao, 0, GL_RED, GL_FLOAT, (GLsizei)(need / 3), dst);
+        for (size_t i = need / sizeof(float) / 3; i-- > 0;) {
+            float v = ((float *)dst)[i];
+            for (int c = 0; c < 3; ++c) ((float *)dst)[3 * i + (size_t)c] = v;
+        }
+        break;
+    case OB_IMAGE_BOUNCE_F32:
+        if (r->last_rgb) return read_rgb(r->bounce, r->width, r->height, dst, 3);
+        memset(dst, 0, need);
+        break;
+    case OB_IMAGE_SAMPLES_F32: {
+        ob_error e = read_sample_counts(r, dst);
+        if (e != OB_OK) return e;
+        break;
+    }
+    case OB_IMAGE_DEPTH_F32: glGetTextureImage(r->gbuffer.linear_depth, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_NORMAL_F32: glGetTextureImage(r->gbuffer.normal, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_RADIANCE_F32: glGetTextureImage(r->direct, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_HDR_F32: glGetTextureImage(r->radiance, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_ALBEDO_F32: glGetTextureImage(r->gbuffer.albedo, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_SHADOW_F32: {
+        /* The key light's visibility is the direct-light target's alpha. */
+        size_t n = (size_t)r->width * (size_t)r->height;
+        float *rgba = malloc(n * 4 * sizeof(float));
+        if (!rgba) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading the shadow view");
+        glGetTextureImage(r->direct, 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
+        for (size_t i = 0; i < n; ++i) ((float *)dst)[i] = rgba[4 * i + 3];
+        free(rgba);
+        break;
+    }
+    }
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x reading an image", e);
+    return OB_OK;
+}
+
+int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max)
+{
+    if (!r || !out) return 0;
+    int n = r->timers.count < max ? r->timers.count : max;
+    for (int i = 0; i < n; ++i) {
+        out[i].name = r->timers.names[i];
+        out[i].ms = r->timers.ms[i];
+    }
+    return n;
+}

@@ -1,0 +1,93 @@
+/* The renderer's insides, shared by its four files:
+ *   renderer.c  lifecycle: make, resize, destroy, scene, environment, lazily made method and
+ *               filter states and AO-resolution targets;
+ *   frame.c     the frame (ob_render_frame, ob_compute_ao) and the per-frame block;
+ *   readback.c  images back to the CPU (ob_read_image) and the timings;
+ *   present.c   the debug views on the GPU (ob_present, ob_read_view). */
+#ifndef OB_CORE_RENDERER_H
+#define OB_CORE_RENDERER_H
+
+#include "filters/filter.h"
+#include "frame_params.h"
+#include "methods/method.h"
+#include "passes/passes.h"
+
+/* Targets at one AO resolution (k = 1, 2 or 4), made when a frame first asks for it. */
+typedef struct ao_targets {
+    ob_ao_grid grid;
+    GLuint depth, normal;      /* k > 1: downsampled (owned); k = 1: the G-buffer's (not owned) */
+    GLuint raw, filtered, scratch;
+    GLuint multiplier;         /* adaptive sample counts, one per OB_EDGE_BLOCK^2 pixels */
+    /* Directional methods (OB_WRITES_VISIBILITY_RGB, OB_WRITES_BOUNCE): RGBA16F M and bounce
+     * chains, made when one first runs. */
+    GLuint raw_rgb, filtered_rgb, scratch_rgb, bounce_raw, bounce_filtered;
+    bool ready, rgb_ready;
+} ao_targets;
+
+enum { OB_AO_SCALES = 3 }; /* k = 1, 2, 4 */
+
+struct ob_renderer {
+    ob_context *ctx;
+    int width, height;
+    ob_gbuffer gbuffer;
+    ob_compute_pass downsample, upsample, edges;
+    ob_compute_pass upsample_rgb;  /* made with the first directional frame */
+    bool upsample_rgb_ready;
+    ob_compose_pass compose;
+    ob_lighting_pass lighting;
+    ob_shadow_maps shadows;
+    ob_hdr_pass hdr;
+    ob_environment environment;
+    ao_targets scales[OB_AO_SCALES];
+    int last_scale;            /* index into scales of the last frame */
+    GLuint ao, final;          /* full resolution */
+    GLuint direct;             /* RGBA16F direct radiance; alpha = the key light's visibility */
+    GLuint radiance;           /* RGBA16F composed HDR radiance, before tone mapping */
+    GLuint ao_rgb, bounce;     /* RGBA16F full-resolution M and bounce (made on first use) */
+    GLuint frame_ubo;          /* the per-frame block at OB_BINDING_FRAME */
+    ob_frame_constants frame_constants;
+    void **method_states;      /* lazily made by the method kit, one per registry entry */
+    void **filter_states;      /* the same for filters */
+    bool *filter_ready;
+    void **filter_states_rgb;  /* and their RGBA16F variants (init_rgb) */
+    bool *filter_ready_rgb;
+    ob_timer_set timers;
+    bool has_scene;
+    float bounds_min[3], bounds_max[3];
+    float scene_radius;
+    ob_light scene_lights[OB_MAX_LIGHTS];
+    int scene_light_count;
+    uint32_t frame;
+    int last_method;           /* what the last frame ran, for the sample-count view */
+    float last_params[OB_MAX_PARAMS];
+    bool last_adaptive;
+    bool last_rgb;             /* the last frame's method wrote RGB M (and maybe a bounce) */
+    bool has_frame;            /* the targets hold a whole frame (ob_present) */
+    float last_far;            /* the last frame's far plane (the depth view's scale) */
+    ob_view_pass view;         /* ob_present */
+};
+
+/* renderer.c: the lazily made states and targets. NULL / an error when making them failed. */
+void *ob_renderer_method_state(ob_renderer *r, int index, ob_error *err);
+void *ob_renderer_filter_state(ob_renderer *r, int index, bool rgb, ob_error *err);
+ao_targets *ob_renderer_targets(ob_renderer *r, int scale_index);
+ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t);
+
+/* frame.c: the per-frame block from the camera, the AO grid, the lights and the settings, as a
+ * pure function (no GL): lights as lighting.glsl reads them (colour x intensity, unit directions,
+ * cosines of the spot cones, no shadow map yet: ob_shadows_fill adds those). */
+typedef struct ob_frame_desc {
+    const float *view, *proj;  /* column-major 4x4 */
+    const ob_ao_grid *grid;
+    float near_z, far_z;
+    uint32_t frame_index;
+    const ob_light *lights;
+    int light_count;
+    const ob_settings *settings; /* ambient and background; NULL = none */
+    const float (*sh)[3];        /* 9 environment SH coefficients; NULL = zeros */
+} ob_frame_desc;
+void ob_frame_constants_fill(ob_frame_constants *f, const ob_frame_desc *d);
+/* 1/P00, 1/P11, P20, P21 of a column-major projection. */
+void ob_proj_info(const float *proj, float out[4]);
+
+#endif

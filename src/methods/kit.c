@@ -1,0 +1,51 @@
+/* The method kit: what every method needs made, bound and freed, done once here from the
+ * registry entry's declaration (shader, constant size, state size), so a method file holds only
+ * its parameter table, its settings -> constants function and its dispatch. */
+#include <stdlib.h>
+
+#include "core/error.h"
+#include "methods/method.h"
+
+void *ob_method_make_state(const ob_method_impl *m)
+{
+    size_t size = m->state_size > sizeof(ob_method_kit) ? m->state_size : sizeof(ob_method_kit);
+    ob_method_kit *kit = calloc(1, size);
+    if (!kit) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (%s)", m->info.name);
+        return NULL;
+    }
+    if (m->shader) {
+        if (ob_compute_pass_init(&kit->pass, m->shader, NULL, m->constants_size) != OB_OK) {
+            free(kit);
+            return NULL;
+        }
+        kit->noise = ob_make_rotation_noise_texture();
+    }
+    if (m->init && m->init(kit) != OB_OK) {
+        ob_compute_pass_destroy(&kit->pass);
+        glDeleteTextures(1, &kit->noise);
+        free(kit);
+        return NULL;
+    }
+    return kit;
+}
+
+void ob_method_destroy_state(const ob_method_impl *m, void *state)
+{
+    if (!state) return;
+    if (m->destroy) m->destroy(state);
+    ob_method_kit *kit = state;
+    ob_compute_pass_destroy(&kit->pass);
+    if (kit->noise) glDeleteTextures(1, &kit->noise);
+    free(state);
+}
+
+void ob_method_kit_use(ob_method_kit *kit, const void *constants, size_t size, const ob_ao_inputs *in,
+                       const ob_ao_outputs *out, GLenum format)
+{
+    ob_compute_pass_use(&kit->pass, constants, size);
+    glBindTextureUnit(0, in->linear_depth);
+    glBindTextureUnit(1, in->view_normal);
+    glBindTextureUnit(2, kit->noise);
+    glBindImageTexture(0, out->visibility, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+}

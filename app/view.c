@@ -47,7 +47,10 @@ void say(viewer *v, bool error, const char *fmt, ...)
 
 void update_title(viewer *v)
 {
-    char title[256];
+    /* --set switches methods while the settings are built, before the window exists (GLFW
+     * asserts on a NULL window); cmd_view sets the title once the window is open. */
+    if (!v->window) return;
+    char title[256] = "";
     snprintf(title, sizeof title, "Obscura - %s - %s%s", ob_query_scene_name(v->scene), ob_method_at(v->s.method)->name,
              v->view == OB_VIEW_FINAL ? "" : " (debug view)");
     if (strcmp(title, v->title) != 0) {

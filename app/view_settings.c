@@ -79,9 +79,10 @@ int setup_settings(viewer *v)
         }
         int current = v->s.method;
         if (m != current) select_method(v, m);
-        ob_error err = ob_settings_set(&v->s, o->sets[i]);
+        /* Report before switching back: select_method clears the library's error (with a
+         * quality preset), and a failure ends the viewer anyway. */
+        if (ob_settings_set(&v->s, o->sets[i]) != OB_OK) return cli_fail_from_library();
         if (m != current) select_method(v, current);
-        if (err != OB_OK) return cli_fail_from_library();
     }
     /* The scene's lights as explicit ones, so the panel can edit them. */
     v->s.light_count = ob_query_scene_light_count(v->scene);

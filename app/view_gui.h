@@ -1,6 +1,6 @@
 /* The viewer's GUI: a thin C interface over the few Dear ImGui calls the viewer uses
  * (app/view_gui.cpp is the only C++ in the project). The panel itself is built in C, in
- * app/view.c, from the method and filter registries. */
+ * app/view_panel.c, from the method and filter registries. */
 #ifndef OB_VIEW_GUI_H
 #define OB_VIEW_GUI_H
 

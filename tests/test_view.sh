@@ -188,6 +188,17 @@ if [ $code -eq 3 ] && grep -q "bad.txt:1" "$dir/bad3.err"; then ok; else bad "ba
 code=$?
 if [ $code -eq 2 ] && grep -q "unknown option '--bogus'" "$dir/bad4.err"; then ok; else bad "unknown option: exit $code, $(cat "$dir/bad4.err")"; fi
 
+# --set for a method other than the starting one switches methods while the settings are built,
+# before the window exists: the viewer starts (no GLFW call on a NULL window) ...
+printf '0.1 quit\n' >"$dir/quit.txt"
+if xrun 120 "$OBSCURA" view --scene corner --gui off --size 160x120 --set hbao.radius=1 --script "$dir/quit.txt" \
+    >/dev/null 2>"$dir/set_other.err"; then ok; else bad "--set for another method: exit $? ($(tail -2 "$dir/set_other.err"))"; fi
+# ... and a bad one is reported as such even with a quality preset (whose method switch back
+# must not clear the library's error first).
+env -u DISPLAY "$OBSCURA" view --scene corner --quality high --set hbao.nope=1 >/dev/null 2>"$dir/bad5.err"
+code=$?
+if [ $code -eq 2 ] && grep -q "nope" "$dir/bad5.err"; then ok; else bad "bad --set with --quality: exit $code, $(cat "$dir/bad5.err")"; fi
+
 # No display at all: exit 5 with a hint, not a crash.
 env -u DISPLAY -u WAYLAND_DISPLAY "$OBSCURA" view --scene corner >/dev/null 2>"$dir/nodisp.err"
 code=$?

@@ -1,0 +1,160 @@
+/* obscura view's internal interface: the viewer struct every app/view_*.c file works on, and the
+ * functions one of them calls in another. The files split the viewer by concern (see view.c's
+ * header for the whole); what only one file uses stays static there. */
+#ifndef OB_VIEW_H
+#define OB_VIEW_H
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "cli.h"
+
+/* Fixed capacities: registry sizes, timed passes, scene presets and --cycles' upper bound. */
+enum { MAX_METHODS = 32, MAX_PASSES = 16, MAX_CAMERAS = 64, MAX_CYCLES = 100 };
+
+/* ---- options (view_options.c) ---------------------------------------------------------------- */
+typedef struct view_opts {
+    const char *scene, *sidecar, *camera, *method, *filter, *env, *shots, *script, *log, *methods;
+    const char *sets[64];
+    int set_count;
+    ob_up_axis up;
+    int quality_samples;
+    float ao_scale;
+    bool adaptive, vsync, gui, hdr_off, test_mode;
+    int shadow_method, shadow_size; /* -1 = the default */
+    int width, height, cycles;
+    float seconds;
+} view_opts;
+
+/* 0 to go on, -1 after --help (printed), else the exit code (the message printed). */
+int parse_view_opts(int argc, char **argv, view_opts *o);
+
+/* ---- profiler (view_profiler.c) -------------------------------------------------------------- */
+typedef struct pass_stats {
+    const char *name;
+    double current, sum, min, max;
+    long calls;
+} pass_stats;
+
+typedef struct profiler {
+    pass_stats pass[MAX_PASSES];
+    int count;
+    double frame_sum, frame_min, frame_max; /* wall-clock frame time, ms */
+    long frames;
+} profiler;
+
+/* ---- the viewer ------------------------------------------------------------------------------ */
+typedef struct script_event script_event; /* view_script.c */
+typedef struct test_run test_run;         /* view_testmode.c */
+
+typedef struct viewer {
+    view_opts o;
+    GLFWwindow *window;
+    ob_context *ctx;
+    ob_renderer *r;
+    ob_scene *scene;
+    ob_settings s;
+    float method_params[MAX_METHODS][OB_MAX_PARAMS]; /* each method keeps its own values */
+    uint32_t method_set[MAX_METHODS];
+    int quality;            /* 0 = the methods' defaults, 1..4 = low..ultra */
+    ob_view view;
+    /* camera: eye, unit forward and world up; presets from the scene */
+    int camera_index;
+    float eye[3], fwd[3], up[3];
+    float fov, speed, scene_size;
+    bool camera_locked, gui_visible, vsync;
+    bool keys[GLFW_KEY_LAST + 1];
+    bool look;              /* right button held */
+    double mouse_x, mouse_y;
+    bool mouse_known;
+    int fb_width, fb_height;
+    /* clock: wall time, or simulated in a script run */
+    double clock, last_frame_ms, fps, fps_window_start;
+    int fps_window_frames;
+    profiler prof;
+    char message[512];
+    double message_until;
+    bool message_error;
+    bool quit;
+    int exit_code;
+    const char *shot_dir;
+    script_event *events;
+    int event_count, next_event;
+    test_run *test;
+    char title[256];
+} viewer;
+
+/* ---- view.c: the window and the frame loop --------------------------------------------------- */
+/* A message in the overlay for four seconds, and on stderr. */
+void say(viewer *v, bool error, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* The window's title names the scene, the method and whether a debug view shows. */
+void update_title(viewer *v);
+/* The window's back buffer (image and panel) as PNG; path NULL: a new name in the shot directory. */
+void save_screenshot(viewer *v, const char *path);
+/* Development builds: a new renderer from the shaders on disk, the old one kept if it fails. */
+void reload_shaders(viewer *v);
+
+/* ---- view_settings.c: the settings being rendered -------------------------------------------- */
+/* ob_settings from the options (method, filter, --set, shadows, HDR) and the scene's lights. */
+int setup_settings(viewer *v);
+/* Switch method (index wraps), keeping each method's own parameter values. */
+void select_method(viewer *v, int index);
+/* select_method by name; an unknown one is said and changes nothing. */
+bool select_method_by_name(viewer *v, const char *name);
+/* Switch the debug view (index wraps). */
+void set_view(viewer *v, int index);
+
+/* ---- view_camera.c: the fly camera and the input that drives it ------------------------------ */
+/* Normalise a 3-vector in place (zero stays zero). */
+void vnorm(float a[3]);
+/* The starting preset (--camera) and the movement speed from the scene's size. */
+int camera_setup(viewer *v);
+/* Make preset index (wrapping) the current camera. */
+void use_camera(viewer *v, int index);
+/* The camera to render now. */
+ob_camera current_camera(const viewer *v);
+/* Move by the held keys over dt seconds. */
+void move_camera(viewer *v, double dt);
+/* The GLFW callbacks that feed the handle_* functions below. */
+void input_attach(viewer *v);
+/* One input event, from GLFW or a script. */
+void handle_key(viewer *v, int key, int action, int mods);
+void handle_mouse_button(viewer *v, int button, int action);
+void handle_cursor(viewer *v, double x, double y);
+void handle_scroll(viewer *v, double dy);
+
+/* ---- view_script.c: timed input events ------------------------------------------------------- */
+/* Read and check a whole script before any window opens; 0 or the exit code. */
+int load_script(const char *path, script_event **out, int *count);
+/* Apply the events due on the clock, stopping at a screenshot (see script_screenshot). */
+void run_script_events(viewer *v);
+/* Take the screenshot due now, once the frame is on the back buffer. */
+void script_screenshot(viewer *v);
+
+/* ---- view_profiler.c ------------------------------------------------------------------------- */
+/* Forget every statistic (after a change that makes the old ones meaningless). */
+void profiler_reset(profiler *p);
+/* Count one frame's pass timings and its wall-clock time. */
+void profiler_add(profiler *p, const ob_pass_timing *t, int n, double frame_ms);
+/* The profiler's table in the panel. */
+void panel_profiler(viewer *v);
+
+/* ---- view_panel.c ---------------------------------------------------------------------------- */
+/* The overlay and the panel for this frame, drawn into the current framebuffer. */
+void build_gui(viewer *v);
+
+/* ---- view_testmode.c: every camera x method, timed ------------------------------------------- */
+/* Check --methods and the screenshot directory and start the first slot; 0 or the exit code. */
+int test_init(viewer *v);
+/* Count a drawn frame into the current slot and move on when its time is up. */
+void test_step(viewer *v, const ob_pass_timing *timings, int n);
+/* The summary table and the CSV log, or a failure when the run stopped early. */
+int test_finish(viewer *v);
+/* The test mode's progress line in the overlay. */
+void test_overlay(const viewer *v);
+/* Free a test run (NULL is fine). */
+void test_free(test_run *t);
+
+#endif

@@ -1,0 +1,239 @@
+/* obscura view's panel and overlay, drawn with Dear ImGui through view_gui.h. The method and
+ * filter sections are generated from the registries' parameter tables (as `obscura list` and
+ * `--set` are), so a new method or parameter appears here without code; lights, shadows, HDR and
+ * the display are the ob_settings fields edited in place. */
+#include <stdio.h>
+#include <string.h>
+
+#include "view.h"
+#include "view_gui.h"
+
+/* A slider, checkbox or list for one parameter of a registry table. Returns true when the value
+ * changed (the caller marks it as set explicitly). */
+static bool param_widget(const ob_param_info *p, float *value, float shown_default)
+{
+    char label[160];
+    if (p->unit && *p->unit) snprintf(label, sizeof label, "%s (%s)", p->name, p->unit);
+    else snprintf(label, sizeof label, "%s", p->name);
+    bool changed = false;
+    switch (p->type) {
+    case OB_PARAM_BOOL: {
+        bool b = *value != 0.0f;
+        if ((changed = gui_checkbox(label, &b))) *value = b ? 1.0f : 0.0f;
+        break;
+    }
+    case OB_PARAM_ENUM: {
+        int i = (int)*value;
+        if ((changed = gui_combo(label, &i, p->options, (int)p->max + 1))) *value = (float)i;
+        break;
+    }
+    case OB_PARAM_INT: {
+        int i = (int)*value;
+        bool log = p->min > 0.0f && p->max / p->min >= 100.0f;
+        if ((changed = gui_slider_int(label, &i, (int)p->min, (int)p->max, log))) *value = (float)i;
+        break;
+    }
+    case OB_PARAM_FLOAT: {
+        float f = shown_default;
+        /* Ranges over several decades (radii in any unit) slide logarithmically. */
+        bool log = p->min > 0.0f && p->max / p->min >= 100.0f;
+        if ((changed = gui_slider_float(label, &f, p->min, p->max, "%.4g", log))) {
+            f = f < p->min ? p->min : f > p->max ? p->max : f;
+            *value = f;
+        }
+        break;
+    }
+    }
+    gui_tooltip(p->help);
+    return changed;
+}
+
+static void panel_method(viewer *v)
+{
+    const char *names[MAX_METHODS];
+    int n = ob_method_count() < MAX_METHODS ? ob_method_count() : MAX_METHODS;
+    for (int i = 0; i < n; ++i) names[i] = ob_method_at(i)->name;
+    int m = v->s.method;
+    if (gui_combo("method", &m, names, n)) select_method(v, m);
+    const ob_method_info *info = ob_method_at(v->s.method);
+    gui_tooltip(info->description);
+    static const char *const qualities[] = {"method default", "low (12)", "medium (24)", "high (36)", "ultra (64)"};
+    if (gui_combo("quality", &v->quality, qualities, 5)) select_method(v, v->s.method);
+    for (int i = 0; i < info->param_count; ++i) {
+        const ob_param_info *p = &info->params[i];
+        bool follows = p->follows_scene_radius && !(v->s.params_set & (1u << i));
+        float shown = follows ? ob_query_scene_ao_radius(v->scene) : v->s.params[i];
+        gui_push_id(i);
+        if (param_widget(p, &v->s.params[i], shown)) v->s.params_set |= 1u << i;
+        gui_pop_id();
+    }
+    if (info->param_count > 0 && gui_button("defaults")) {
+        ob_settings fresh;
+        if (ob_settings_init(&fresh, info->name) == OB_OK) {
+            memcpy(v->s.params, fresh.params, sizeof v->s.params);
+            v->s.params_set = 0;
+        }
+    }
+    gui_separator();
+    const char *filters[MAX_METHODS];
+    int fn = ob_filter_count() < MAX_METHODS ? ob_filter_count() : MAX_METHODS;
+    for (int i = 0; i < fn; ++i) filters[i] = ob_filter_at(i)->name;
+    int f = v->s.filter;
+    if (gui_combo("filter", &f, filters, fn)) {
+        ob_settings_set_filter(&v->s, filters[f]);
+        profiler_reset(&v->prof);
+    }
+    const ob_filter_info *finfo = ob_filter_at(v->s.filter);
+    gui_tooltip(finfo->description);
+    for (int i = 0; i < finfo->param_count; ++i) {
+        gui_push_id(100 + i);
+        if (param_widget(&finfo->params[i], &v->s.filter_params[i], v->s.filter_params[i]))
+            v->s.filter_params_set |= 1u << i;
+        gui_pop_id();
+    }
+    static const char *const scales[] = {"1 (full)", "0.5", "0.25"};
+    int si = v->s.ao_divisor == 2 ? 1 : v->s.ao_divisor == 4 ? 2 : 0;
+    if (gui_combo("ao scale", &si, scales, 3)) {
+        ob_settings_set_ao_scale(&v->s, si == 1 ? 0.5f : si == 2 ? 0.25f : 1.0f);
+        profiler_reset(&v->prof);
+    }
+    gui_tooltip("run the method and the filter at this fraction of the size, then joint bilateral upsampling");
+    gui_checkbox("adaptive samples", &v->s.adaptive);
+    gui_tooltip("an edge pre-pass gives edge pixels 2x or 3x the base count (ssao, crytek)");
+}
+
+static void panel_lights(viewer *v)
+{
+    static const char *const kinds[] = {"directional", "point", "spot"};
+    float reach = v->scene_size * 0.005f;
+    for (int i = 0; i < v->s.light_count; ++i) {
+        ob_light *l = &v->s.lights[i];
+        char label[64];
+        snprintf(label, sizeof label, "light %d: %s", i, kinds[l->type]);
+        gui_push_id(200 + i);
+        if (gui_header(label, i == 0)) {
+            if (l->type == OB_LIGHT_DIRECTIONAL) {
+                if (gui_drag3("toward light", l->direction, 0.01f)) vnorm(l->direction);
+            } else {
+                gui_drag3("position", l->position, reach);
+                if (l->type == OB_LIGHT_SPOT) {
+                    if (gui_drag3("axis", l->direction, 0.01f)) vnorm(l->direction);
+                    gui_slider_float("inner cone (deg)", &l->spot_inner_deg, 0.0f, 89.0f, "%.1f", false);
+                    gui_slider_float("outer cone (deg)", &l->spot_outer_deg, l->spot_inner_deg, 90.0f, "%.1f", false);
+                }
+            }
+            gui_color3("colour", l->color);
+            gui_slider_float("intensity", &l->intensity, 0.001f, 10000.0f, "%.4g", true);
+        }
+        gui_pop_id();
+    }
+    static const char *const shadows[] = {"none", "hard", "pcf", "vsm"};
+    int sm = (int)v->s.shadow.method;
+    if (gui_combo("shadows", &sm, shadows, 4)) v->s.shadow.method = (ob_shadow_method)sm;
+    static const char *const sizes[] = {"256", "512", "1024", "2048", "4096"};
+    int zi = 0;
+    for (int k = 0; k < 5; ++k)
+        if (v->s.shadow.size == 256 << k) zi = k;
+    if (gui_combo("map size", &zi, sizes, 5)) v->s.shadow.size = 256 << zi;
+    gui_checkbox("keep maps while lights are unchanged", &v->s.shadow.reuse);
+    gui_tooltip("off: render the shadow maps every frame, as obscura render and bench time them");
+    gui_slider_float("bias (texels)", &v->s.shadow.bias, 0.0f, 10.0f, "%.2f", false);
+    gui_slider_float("slope bias", &v->s.shadow.slope_bias, 0.0f, 10.0f, "%.2f", false);
+    if (v->s.shadow.method == OB_SHADOW_PCF) gui_slider_int("pcf radius", &v->s.shadow.pcf_radius, 1, 8, false);
+    if (v->s.shadow.method == OB_SHADOW_VSM) {
+        gui_slider_float("vsm blur (texels)", &v->s.shadow.vsm_blur, 0.0f, 16.0f, "%.2f", false);
+        gui_slider_float("vsm bleed", &v->s.shadow.vsm_bleed, 0.0f, 0.99f, "%.2f", false);
+    }
+    static const char *const ambients[] = {"constant", "hemisphere", "environment"};
+    int am = (int)v->s.ambient_mode;
+    if (gui_combo("ambient", &am, ambients, v->o.env ? 3 : 2)) v->s.ambient_mode = (ob_ambient_mode)am;
+    if (v->s.ambient_mode == OB_AMBIENT_CONSTANT) gui_color3("ambient colour", v->s.ambient);
+    if (v->s.ambient_mode == OB_AMBIENT_HEMISPHERE) {
+        gui_color3("sky", v->s.sky);
+        gui_color3("ground", v->s.ground);
+    }
+    gui_checkbox("AO darkens all light", &v->s.ao_all_light);
+}
+
+static void panel_hdr(viewer *v)
+{
+    ob_hdr_settings *h = &v->s.hdr;
+    gui_checkbox("tone mapping", &h->enabled);
+    gui_tooltip("off: the radiance is clamped to [0,1] before sRGB");
+    gui_slider_float("exposure", &h->exposure, 0.01f, 100.0f, "%.3g", true);
+    if (h->enabled) {
+        bool automatic = h->key == 0.0f;
+        if (gui_checkbox("automatic key", &automatic)) h->key = automatic ? 0.0f : 0.18f;
+        if (!automatic) gui_slider_float("key", &h->key, 0.045f, 0.9f, "%.3f", false);
+        gui_slider_float("L_white", &h->l_white, 0.0f, 20.0f, "%.2f", false);
+        gui_slider_float("bloom", &h->bloom_strength, 0.0f, 2.0f, "%.2f", false);
+        gui_slider_float("bloom threshold", &h->bloom_threshold, 0.0f, 10.0f, "%.2f", false);
+    }
+}
+
+static void panel_display(viewer *v)
+{
+    const char *views[OB_VIEW_COUNT];
+    for (int i = 0; i < OB_VIEW_COUNT; ++i) views[i] = ob_view_name((ob_view)i);
+    int vi = (int)v->view;
+    if (gui_combo("view", &vi, views, OB_VIEW_COUNT)) set_view(v, vi);
+    gui_color3("background", v->s.background);
+    if (gui_checkbox("vsync", &v->vsync)) glfwSwapInterval(v->vsync ? 1 : 0);
+    int count = ob_query_camera_count(v->scene);
+    const char *cams[MAX_CAMERAS];
+    ob_camera presets[MAX_CAMERAS];
+    int cn = count < MAX_CAMERAS ? count : MAX_CAMERAS;
+    for (int i = 0; i < cn; ++i) {
+        presets[i] = ob_query_camera(v->scene, i);
+        cams[i] = presets[i].name;
+    }
+    int ci = v->camera_index;
+    if (gui_combo("camera", &ci, cams, cn)) use_camera(v, ci);
+    gui_slider_float("fov (deg)", &v->fov, 5.0f, 120.0f, "%.1f", false);
+    gui_slider_float("speed", &v->speed, v->scene_size * 0.001f, v->scene_size * 2.0f, "%.3g", true);
+    gui_tooltip("world units per second (Shift: 4x)");
+    gui_checkbox("lock camera (L)", &v->camera_locked);
+    if (gui_button("screenshot (P)")) {
+        save_screenshot(v, NULL);
+    }
+#ifdef OB_VIEW_SHADER_RELOAD
+    gui_same_line();
+    if (gui_button("reload shaders (R)")) reload_shaders(v);
+#endif
+}
+
+void build_gui(viewer *v)
+{
+    gui_new_frame();
+    if (v->gui_visible) {
+        /* The overlay: what a screenshot should say about itself (seed 004 §2.7). */
+        if (gui_begin_overlay("##overlay", 10.0f, 10.0f)) {
+            gui_text("%.1f FPS  %.1f ms   %dx%d   %s", v->fps, v->last_frame_ms, v->fb_width, v->fb_height,
+                     ob_query_renderer(v->ctx));
+            gui_text("%s  %s  %s%s", ob_query_scene_name(v->scene), ob_method_at(v->s.method)->name,
+                     ob_view_name(v->view), v->camera_locked ? "  [camera locked]" : "");
+            gui_text("camera %.2f %.2f %.2f  fov %.1f", (double)v->eye[0], (double)v->eye[1], (double)v->eye[2],
+                     (double)v->fov);
+            if (v->test) test_overlay(v);
+            if (v->message[0] && v->clock < v->message_until) {
+                if (v->message_error) gui_text_colored(1.0f, 0.4f, 0.4f, "%s", v->message);
+                else gui_text_colored(0.6f, 1.0f, 0.6f, "%s", v->message);
+            }
+        }
+        gui_end();
+        float panel_w = 380.0f, x = (float)v->fb_width - panel_w - 10.0f;
+        if (gui_begin("Obscura", x > 0.0f ? x : 0.0f, 10.0f, panel_w, (float)v->fb_height - 20.0f)) {
+            if (gui_header("Method and filter", true)) panel_method(v);
+            if (gui_header("Profiler", true)) panel_profiler(v);
+            if (gui_header("Camera and display", false)) panel_display(v);
+            if (gui_header("Lights and shadows", false)) panel_lights(v);
+            if (gui_header("HDR", false)) panel_hdr(v);
+            if (gui_header("Keys", false))
+                gui_text("WASD move, Q/E down/up, Shift faster\nright mouse: look, scroll: zoom\n1-9, Tab: "
+                         "camera presets, L: lock camera\nM: method, V: view, F1/H: panel\nF3: vsync, P/F12: "
+                         "screenshot\nR: reload shaders, Esc: quit");
+        }
+        gui_end();
+    }
+    gui_render();
+}

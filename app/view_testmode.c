@@ -1,0 +1,221 @@
+/* obscura view --test-mode (seed 004 §3.5): every camera preset x every method, each slot timed
+ * for --seconds and repeated --cycles times, then a summary table on stdout, a CSV log (one row
+ * per camera x method, ms per pass in frame order) and one screenshot per slot. */
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "view.h"
+#include "view_gui.h"
+
+/* The passes the renderer can time, in frame order: the CSV's columns. */
+static const char *const pass_order[] = {"shadow", "gbuffer", "lighting", "downsample", "edges", "ao",
+                                         "filter", "upsample", "compose", "luminance", "bloom", "tonemap"};
+enum { PASS_ORDER_COUNT = sizeof pass_order / sizeof pass_order[0] };
+
+typedef struct test_cell {
+    double fps[MAX_CYCLES];
+    long frames;
+    double seconds;
+    double pass_ms[PASS_ORDER_COUNT]; /* sums over every measured frame */
+    long pass_calls[PASS_ORDER_COUNT];
+} test_cell;
+
+typedef struct test_run {
+    int methods[MAX_METHODS];
+    int method_count, camera_count;
+    int cycle, camera, method;      /* the slot being measured */
+    bool warmed;                    /* the slot's first frame (shader compiles, first use) is done */
+    double slot_start;
+    long slot_frames;
+    test_cell *cells;               /* camera_count x method_count */
+    char dir[4096];                 /* screenshots go here */
+    bool done;
+} test_run;
+
+static int pass_column(const char *name)
+{
+    for (int i = 0; i < PASS_ORDER_COUNT; ++i)
+        if (!strcmp(pass_order[i], name)) return i;
+    return -1;
+}
+
+static void safe_name(const char *in, char *out, size_t len)
+{
+    size_t n = 0;
+    for (; *in && n + 1 < len; ++in)
+        out[n++] = (isalnum((unsigned char)*in) || *in == '-' || *in == '_') ? *in : '_';
+    out[n] = '\0';
+}
+
+static void test_apply_slot(viewer *v)
+{
+    test_run *t = v->test;
+    use_camera(v, t->camera);
+    if (v->s.method != t->methods[t->method]) select_method(v, t->methods[t->method]);
+    t->warmed = false;
+    t->slot_frames = 0;
+}
+
+/* The summary and the CSV, written when every slot is done (atomically: an aborted run leaves
+ * no log). */
+int test_finish(viewer *v)
+{
+    test_run *t = v->test;
+    if (!t->done) return cli_fail(EXIT_RUNTIME, "test mode stopped before the end: no log written");
+    size_t cap = 4096 + (size_t)t->camera_count * (size_t)t->method_count * 512;
+    char *csv = malloc(cap);
+    if (!csv) return cli_fail(EXIT_RUNTIME, "out of memory writing the log");
+    size_t n = 0;
+    n += (size_t)snprintf(csv + n, cap - n, "scene,camera,method,width,height,cycles,frames,seconds,fps,fps_min,fps_max,frame_ms");
+    for (int p = 0; p < PASS_ORDER_COUNT; ++p) n += (size_t)snprintf(csv + n, cap - n, ",%s_ms", pass_order[p]);
+    n += (size_t)snprintf(csv + n, cap - n, "\n");
+    printf("obscura view --test-mode: %s, %dx%d, %d cycle(s) of %.2f s per camera x method, %s\n",
+           ob_query_scene_name(v->scene), v->fb_width, v->fb_height, v->o.cycles, (double)v->o.seconds,
+           ob_query_renderer(v->ctx));
+    printf("%-16s", "FPS");
+    for (int m = 0; m < t->method_count; ++m) printf(" %12s", ob_method_at(t->methods[m])->name);
+    printf("\n");
+    for (int c = 0; c < t->camera_count; ++c) {
+        ob_camera cam = ob_query_camera(v->scene, c);
+        printf("%-16.16s", cam.name);
+        for (int m = 0; m < t->method_count; ++m) {
+            const test_cell *cell = &t->cells[(size_t)c * (size_t)t->method_count + (size_t)m];
+            double lo = INFINITY, hi = 0.0;
+            for (int k = 0; k < v->o.cycles; ++k) {
+                lo = cell->fps[k] < lo ? cell->fps[k] : lo;
+                hi = cell->fps[k] > hi ? cell->fps[k] : hi;
+            }
+            double fps = cell->seconds > 0.0 ? (double)cell->frames / cell->seconds : 0.0;
+            printf(" %12.2f", fps);
+            n += (size_t)snprintf(csv + n, cap - n, "%s,%s,%s,%d,%d,%d,%ld,%.4f,%.3f,%.3f,%.3f,%.3f",
+                                  ob_query_scene_name(v->scene), cam.name, ob_method_at(t->methods[m])->name,
+                                  v->fb_width, v->fb_height, v->o.cycles, cell->frames, cell->seconds, fps, lo, hi,
+                                  cell->frames > 0 ? 1000.0 * cell->seconds / (double)cell->frames : 0.0);
+            for (int p = 0; p < PASS_ORDER_COUNT; ++p) {
+                if (cell->pass_calls[p] > 0)
+                    n += (size_t)snprintf(csv + n, cap - n, ",%.4f", cell->pass_ms[p] / (double)cell->pass_calls[p]);
+                else
+                    n += (size_t)snprintf(csv + n, cap - n, ",");
+            }
+            n += (size_t)snprintf(csv + n, cap - n, "\n");
+        }
+        printf("\n");
+    }
+    int code = EXIT_OK;
+    if (ob_write_text(v->o.log, csv) != OB_OK) code = cli_fail_library_as(EXIT_OUTPUT);
+    else printf("log: %s; screenshots: %s/\n", v->o.log, t->dir);
+    free(csv);
+    return code;
+}
+
+/* After each frame: count it into the slot, and move on when the slot's time is up. */
+void test_step(viewer *v, const ob_pass_timing *timings, int n)
+{
+    test_run *t = v->test;
+    double now = glfwGetTime();
+    if (!t->warmed) {
+        /* The slot's first frame pays for shader compiles and first-use allocations. */
+        t->warmed = true;
+        t->slot_start = now;
+        return;
+    }
+    test_cell *cell = &t->cells[(size_t)t->camera * (size_t)t->method_count + (size_t)t->method];
+    ++t->slot_frames;
+    for (int i = 0; i < n; ++i) {
+        int col = pass_column(timings[i].name);
+        if (col < 0) continue;
+        cell->pass_ms[col] += timings[i].ms;
+        ++cell->pass_calls[col];
+    }
+    double elapsed = now - t->slot_start;
+    if (elapsed < (double)v->o.seconds) return;
+    cell->fps[t->cycle] = (double)t->slot_frames / elapsed;
+    cell->frames += t->slot_frames;
+    cell->seconds += elapsed;
+    if (t->cycle == v->o.cycles - 1) {
+        /* One screenshot per camera x method, of the image alone (the panel would hide it). */
+        size_t bytes = ob_image_size(v->r, OB_IMAGE_FINAL_RGBA8);
+        unsigned char *px = malloc(bytes);
+        char cam[80], path[4400];
+        safe_name(ob_query_camera(v->scene, t->camera).name, cam, sizeof cam);
+        snprintf(path, sizeof path, "%s/%s_%s_%s.png", t->dir, ob_query_scene_name(v->scene), cam,
+                 ob_method_at(t->methods[t->method])->name);
+        if (!px || ob_read_image(v->r, OB_IMAGE_FINAL_RGBA8, px, bytes) != OB_OK ||
+            ob_write_png(path, v->fb_width, v->fb_height, 4, px) != OB_OK) {
+            const char *msg = "";
+            ob_get_error(&msg);
+            fprintf(stderr, "obscura view: screenshot %s failed: %s\n", path, msg);
+            v->exit_code = EXIT_OUTPUT;
+            v->quit = true;
+        }
+        free(px);
+    }
+    if (++t->method == t->method_count) {
+        t->method = 0;
+        if (++t->camera == t->camera_count) {
+            t->camera = 0;
+            if (++t->cycle == v->o.cycles) {
+                t->done = true;
+                v->quit = true;
+                return;
+            }
+        }
+    }
+    test_apply_slot(v);
+}
+
+int test_init(viewer *v)
+{
+    test_run *t = calloc(1, sizeof *t);
+    if (!t) return cli_fail(EXIT_RUNTIME, "out of memory");
+    v->test = t;
+    if (v->o.methods) {
+        char list[1024];
+        snprintf(list, sizeof list, "%s", v->o.methods);
+        for (char *save = NULL, *tok = strtok_r(list, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+            int m = ob_find_method(tok);
+            if (m < 0) return cli_fail(EXIT_USAGE, "--methods: unknown method '%s' (see obscura list)", tok);
+            if (t->method_count >= MAX_METHODS) return cli_fail(EXIT_USAGE, "--methods: too many");
+            t->methods[t->method_count++] = m;
+        }
+    } else {
+        for (int m = 0; m < ob_method_count() && m < MAX_METHODS; ++m) t->methods[t->method_count++] = m;
+    }
+    if (t->method_count == 0) return cli_fail(EXIT_USAGE, "--methods: no method given");
+    t->camera_count = ob_query_camera_count(v->scene);
+    if (t->camera_count > MAX_CAMERAS) t->camera_count = MAX_CAMERAS;
+    t->cells = calloc((size_t)t->camera_count * (size_t)t->method_count, sizeof *t->cells);
+    if (!t->cells) return cli_fail(EXIT_RUNTIME, "out of memory");
+    /* Screenshots beside the log, unless --shots says where. */
+    if (v->o.shots) {
+        snprintf(t->dir, sizeof t->dir, "%s", v->o.shots);
+    } else {
+        snprintf(t->dir, sizeof t->dir, "%s", v->o.log);
+        char *slash = strrchr(t->dir, '/');
+        if (slash) *slash = '\0';
+        else snprintf(t->dir, sizeof t->dir, ".");
+    }
+    struct stat st;
+    if (stat(t->dir, &st) != 0 || !S_ISDIR(st.st_mode))
+        return cli_fail(EXIT_OUTPUT, "cannot write screenshots to %s: not a directory", t->dir);
+    v->vsync = false; /* frame rates, not the display's refresh */
+    test_apply_slot(v);
+    return 0;
+}
+
+void test_overlay(const viewer *v)
+{
+    const test_run *t = v->test;
+    gui_text_colored(1.0f, 0.85f, 0.3f, "test mode: cycle %d/%d, camera %d/%d, method %d/%d", t->cycle + 1,
+                     v->o.cycles, t->camera + 1, t->camera_count, t->method + 1, t->method_count);
+}
+
+void test_free(test_run *t)
+{
+    if (t) free(t->cells);
+    free(t);
+}

@@ -17,6 +17,6 @@ in vec3 v_world;
 void main()
 {
 #ifdef OB_SHADOW_DISTANCE
-    gl_FragDepth = length(v_world - shd.light.xyz) * shd.light.w;
+    gl_FragDepth = length(v_world - shd.light_position) * shd.inv_far;
 #endif
 }

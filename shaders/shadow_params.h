@@ -33,19 +33,26 @@
  * 1/far, so the fragment shader stores the linear distance to the light / far. */
 #if !defined(OB_GLSL) || defined(OB_SHADOW_DEPTH_PASS)
 OB_CONSTANTS_BEGIN(ob_shadow_depth_constants, OB_BINDING_PASS)
-    OB_MAT4 view_proj;
-    OB_VEC4 light;     /* xyz: light position (world); w: 1 / far */
+    OB_MAT4 view_proj;       /* world -> light clip space */
+    OB_VEC3 light_position;  /* spot, point: the light (world) the stored distance is measured from */
+    OB_FLOAT inv_far;        /* spot, point: 1 / far, so the map stores distance / far in [0, 1] */
 OB_CONSTANTS_END(ob_shadow_depth_constants, shd)
+OB_CONSTANTS_SIZE(ob_shadow_depth_constants, 64 + 16);
 #endif
 
 /* One direction of the VSM blur (seed 003 §5.1: "first vertically, then horizontally"; the order
  * does not change a separable Gaussian). The x pass turns depth into moments as it reads. */
 #if !defined(OB_GLSL) || defined(OB_SHADOW_VSM_PASS)
 OB_CONSTANTS_BEGIN(ob_shadow_vsm_constants, OB_BINDING_PASS)
-    OB_IVEC4 axis;     /* (1,0) or (0,1); radius in taps; layer of the depth / moments array */
-    OB_VEC4 size;      /* map width, height, 1/width, 1/height */
-    OB_VEC4 weights[OB_SHADOW_VSM_MAX_RADIUS + 1]; /* normalised Gaussian w[0..radius] in .x */
+    OB_IVEC2 axis;     /* the blur's direction: (1,0) or (0,1) */
+    OB_INT radius;     /* taps each side */
+    OB_INT layer;      /* layer of the depth / moments array */
+    OB_IVEC2 size;     /* map width and height, texels */
+    OB_FLOAT pad0;
+    OB_FLOAT pad1;
+    OB_VEC4 weights[OB_SHADOW_VSM_MAX_RADIUS + 1]; /* normalised Gaussian w[0..radius] in .x, yzw unused */
 OB_CONSTANTS_END(ob_shadow_vsm_constants, vsm)
+OB_CONSTANTS_SIZE(ob_shadow_vsm_constants, 2 * 16 + (OB_SHADOW_VSM_MAX_RADIUS + 1) * 16);
 #endif
 
 #endif

@@ -29,7 +29,7 @@ layout(binding = 0, rg32f) uniform writeonly image2D moments_out;
 vec2 ob_vsm_fetch(ivec2 q)
 {
 #ifdef OB_SHADOW_VSM_MOMENTS
-    float z = texelFetch(depth_in, ivec3(q, vsm.axis.w), 0).r;
+    float z = texelFetch(depth_in, ivec3(q, vsm.layer), 0).r;
     return vec2(z, z * z);
 #else
     return texelFetch(moments_in, q, 0).rg;
@@ -38,10 +38,10 @@ vec2 ob_vsm_fetch(ivec2 q)
 
 void main()
 {
-    ivec2 size = ivec2(vsm.size.xy);
-    ivec2 dir = vsm.axis.xy;
+    ivec2 size = vsm.size;
+    ivec2 dir = vsm.axis;
     ivec2 across = ivec2(1) - dir;
-    int radius = vsm.axis.z;
+    int radius = vsm.radius;
     int n = size.x * dir.x + size.y * dir.y; /* texels along the axis */
     int line = int(gl_GlobalInvocationID.y);
     int start = int(gl_GlobalInvocationID.x) * OB_SHADOW_VSM_RUN;

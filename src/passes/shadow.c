@@ -350,7 +350,8 @@ static void draw_layer(ob_shadow_maps *s, const ob_gbuffer *g, GLuint tex, int l
     ob_shadow_depth_constants c;
     memset(&c, 0, sizeof c);
     memcpy(c.view_proj, view_proj, sizeof c.view_proj);
-    memcpy(c.light, light, sizeof c.light);
+    memcpy(c.light_position, light, sizeof c.light_position);
+    c.inv_far = light[3];
     glNamedBufferSubData(s->ubo, 0, sizeof c, &c);
     glNamedFramebufferTextureLayer(s->fbo, GL_DEPTH_ATTACHMENT, tex, 0, layer);
     const float one = 1.0f;
@@ -382,13 +383,12 @@ static void blur_moments(ob_shadow_maps *s, float sigma)
     ob_shadow_vsm_constants c;
     memset(&c, 0, sizeof c);
     int radius = vsm_weights(sigma, c.weights);
-    c.size[0] = c.size[1] = (float)s->size;
-    c.size[2] = c.size[3] = 1.0f / (float)s->size;
-    c.axis[2] = radius;
+    c.size[0] = c.size[1] = s->size;
+    c.radius = radius;
     /* Invocations: x = a run of OB_SHADOW_VSM_RUN texels along the axis, y = the line across it. */
     int runs = (s->size + OB_SHADOW_VSM_RUN - 1) / OB_SHADOW_VSM_RUN;
     for (int layer = 0; layer < s->moment_layers; ++layer) {
-        c.axis[3] = layer;
+        c.layer = layer;
         /* x: depth -> moments, blurred along x, into the scratch texture. */
         c.axis[0] = 1;
         c.axis[1] = 0;

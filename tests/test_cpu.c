@@ -3,6 +3,7 @@
 #include <stb/stb_image.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -376,8 +377,42 @@ static void test_frame_constants(void)
     }
 }
 
+/* Reading the error clears it, as glfwGetError does; the callback sees each error as it happens. */
+typedef struct seen_errors { int count; ob_error last; char message[256]; } seen_errors;
+
+static void on_error(ob_error err, const char *message, void *user)
+{
+    seen_errors *seen = user;
+    seen->count++;
+    seen->last = err;
+    snprintf(seen->message, sizeof seen->message, "%s", message);
+}
+
+static void test_errors(void)
+{
+    ob_clear_error();
+    seen_errors seen = {0, OB_OK, ""};
+    ob_set_error_callback(on_error, &seen);
+    ob_settings s;
+    CHECK(ob_settings_init(&s, "no-such-method") == OB_ERR_UNKNOWN_METHOD, "unknown method refused");
+    CHECK(seen.count == 1 && seen.last == OB_ERR_UNKNOWN_METHOD && strstr(seen.message, "no-such-method"),
+          "the callback saw it (%d calls, %s: %s)", seen.count, ob_error_name(seen.last), seen.message);
+    const char *msg = NULL;
+    CHECK(ob_get_error(&msg) == OB_ERR_UNKNOWN_METHOD && strstr(msg, "no-such-method"), "first read: %s", msg);
+    CHECK(ob_get_error(NULL) == OB_OK, "a second read finds no error");
+    CHECK(ob_get_error(&msg) == OB_OK && strstr(msg, "no-such-method"), "the message stays for a log line: %s", msg);
+    ob_set_error_callback(NULL, NULL);
+    CHECK(ob_settings_init(&s, "ssao") == OB_OK && ob_settings_set(&s, "ssao.nope=1") == OB_ERR_UNKNOWN_PARAM,
+          "unknown parameter refused");
+    CHECK(seen.count == 1, "no callback once removed (%d calls)", seen.count);
+    CHECK(ob_get_error(NULL) == OB_ERR_UNKNOWN_PARAM, "the error is there without a callback");
+    ob_clear_error();
+    CHECK(ob_get_error(&msg) == OB_OK && msg && *msg == '\0', "ob_clear_error forgets the message too");
+}
+
 int main(void)
 {
+    test_errors();
     test_frame_constants();
     test_registry_and_settings();
     test_kernel();

@@ -21,14 +21,14 @@ layout(binding = 0, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = ivec2(flt.size.xy);
+    ivec2 size = flt.size;
     if (any(greaterThanEqual(pix, size))) return;
     float dp = texelFetch(linear_depth, pix, 0).r;
     if (dp <= 0.0) {
         imageStore(ao_out, pix, OB_FILTER_SKY);
         return;
     }
-    int radius = flt.axis.z;
+    int radius = flt.radius;
     float inv_dp = 1.0 / dp;
     OB_FILTER_T sum = OB_FILTER_T(0.0);
     float weight = 0.0;
@@ -40,7 +40,7 @@ void main()
             float dq = texelFetch(linear_depth, q, 0).r;
             if (dq <= 0.0) continue;
             float rel = (dq - dp) * inv_dp;
-            float w = wy * flt.weights[abs(x)].x * exp(rel * rel * flt.falloff.x);
+            float w = wy * flt.weights[abs(x)].x * exp(rel * rel * flt.depth_falloff);
             sum += w * OB_FILTER_FETCH(ao_in, q);
             weight += w;
         }

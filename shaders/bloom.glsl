@@ -17,17 +17,17 @@ layout(binding = 0, rgba16f) uniform writeonly image2D dst;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = blm.size.zw;
+    ivec2 size = blm.bloom_size;
     if (any(greaterThanEqual(pix, size))) return;
 #ifdef OB_BLOOM_BRIGHT
     float scale = hdr.result.z; /* exposure key / L_avg from the luminance pass */
-    float threshold = blm.params.x;
+    float threshold = blm.threshold;
     vec3 sum = vec3(0.0);
     int n = 0;
     for (int y = 0; y < OB_BLOOM_FACTOR; ++y)
         for (int x = 0; x < OB_BLOOM_FACTOR; ++x) {
             ivec2 p = pix * OB_BLOOM_FACTOR + ivec2(x, y);
-            if (any(greaterThanEqual(p, blm.size.xy))) continue;
+            if (any(greaterThanEqual(p, blm.full_size))) continue;
             vec3 c = scale * ob_hdr_sanitize(texelFetch(src, p, 0).rgb);
             float l = ob_luminance(c);
             /* Step 2, "store the difference from the threshold": the colour keeps its hue and
@@ -38,8 +38,8 @@ void main()
     /* Kept inside the half-float range: an infinity would turn the blur and the tone map NaN. */
     imageStore(dst, pix, vec4(min(sum / float(max(n, 1)), vec3(65504.0)), 1.0));
 #else
-    ivec2 dir = blm.axis.xy;
-    int radius = blm.axis.z;
+    ivec2 dir = ivec2(blm.axis_x, blm.axis_y);
+    int radius = blm.radius;
     vec3 sum = vec3(0.0);
     for (int i = -radius; i <= radius; ++i) {
         ivec2 q = clamp(pix + i * dir, ivec2(0), size - 1);

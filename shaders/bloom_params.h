@@ -16,10 +16,16 @@
 #define OB_BLOOM_RADIUS 4
 
 OB_CONSTANTS_BEGIN(ob_bloom_constants, OB_BINDING_PASS)
-    OB_IVEC4 size;     /* full width, height; bloom width, height */
-    OB_IVEC4 axis;     /* blur direction (1,0) or (0,1); radius in taps; unused */
-    OB_VEC4 params;    /* bright-pass threshold (scaled luminance), unused x3 */
-    OB_VEC4 weights[OB_BLOOM_RADIUS + 1]; /* normalised 1D Gaussian weights w[0..radius] in .x */
+    OB_IVEC2 full_size;  /* the radiance, px: the bright pass skips full pixels past it */
+    OB_IVEC2 bloom_size; /* the bloom targets, px: full_size / OB_BLOOM_FACTOR rounded up */
+    OB_INT axis_x;       /* the blur's direction, (1,0) then (0,1) (separable, seed 000 eq. 4.4) */
+    OB_INT axis_y;
+    OB_INT radius;       /* blur taps each side, always OB_BLOOM_RADIUS */
+    OB_FLOAT threshold;  /* bright pass: scaled luminance (eq. 2.2 units, as L_white) where bloom starts */
+    /* The blur's normalised 1D Gaussian: w_i for tap offset i = 0..radius in .x; .yzw unused
+     * (std140 strides array elements by 16 bytes anyway). */
+    OB_VEC4 weights[OB_BLOOM_RADIUS + 1];
 OB_CONSTANTS_END(ob_bloom_constants, blm)
+OB_CONSTANTS_SIZE(ob_bloom_constants, 2 * 16 + (OB_BLOOM_RADIUS + 1) * 16);
 
 #endif

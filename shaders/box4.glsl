@@ -14,7 +14,7 @@ layout(binding = 0, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = ivec2(flt.size.xy);
+    ivec2 size = flt.size;
     if (any(greaterThanEqual(pix, size))) return;
     if (texelFetch(linear_depth, pix, 0).r <= 0.0) {
         imageStore(ao_out, pix, OB_FILTER_SKY);

@@ -17,8 +17,8 @@ layout(binding = 1, rgba16f) uniform writeonly image2D low_normal;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pix, rs.full_size.zw))) return;
-    ivec2 src = min(pix * rs.factor.x + rs.factor.y, rs.full_size.xy - 1);
+    if (any(greaterThanEqual(pix, rs.ao_size))) return;
+    ivec2 src = min(pix * rs.ao_k + rs.ao_o, rs.full_size - 1);
     imageStore(low_depth, pix, texelFetch(full_depth, src, 0));
     imageStore(low_normal, pix, texelFetch(full_normal, src, 0));
 }

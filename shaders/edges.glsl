@@ -15,7 +15,7 @@ layout(binding = 0, r32f) uniform writeonly image2D multiplier;
 void main()
 {
     ivec2 blk = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = rs.full_size.zw; /* the AO resolution */
+    ivec2 size = rs.ao_size;
     ivec2 blocks = (size + OB_EDGE_BLOCK - 1) / OB_EDGE_BLOCK;
     if (any(greaterThanEqual(blk, blocks))) return;
     float depth_step = 0.0, normal_turn = 0.0;
@@ -40,7 +40,7 @@ void main()
         }
     }
     /* A silhouette against the sky is an edge too: occluders hide right behind it. */
-    float w = max(depth_step / rs.sigma.x, normal_turn / rs.sigma.y);
+    float w = max(depth_step / rs.edge_depth_step, normal_turn / rs.edge_normal_turn);
     if (sky > 0 && geometry > 0) w = max(w, 1.0);
     float m = w >= 1.0 ? 3.0 : w >= 0.33 ? 2.0 : 1.0;
     imageStore(multiplier, blk, vec4(m));

@@ -10,13 +10,13 @@
 
 /* Each filter shader is compiled twice: as is for R32F AO, and with OB_FILTER_RGB defined for
  * SSDO's RGBA16F modulation factor and bounce (the same weights on every channel). The sky's
- * value is then falloff.z from the CPU (ob_filter_inputs.sky: 1 for M, 0 for the bounce). */
+ * value is then sky_value from the CPU (ob_filter_inputs.sky: 1 for M, 0 for the bounce). */
 #ifdef OB_GLSL
 #ifdef OB_FILTER_RGB
 #define OB_FILTER_FORMAT rgba16f
 #define OB_FILTER_T vec4
 #define OB_FILTER_FETCH(tex, q) texelFetch(tex, q, 0)
-#define OB_FILTER_SKY vec4(flt.falloff.z)
+#define OB_FILTER_SKY vec4(flt.sky_value)
 #else
 #define OB_FILTER_FORMAT r32f
 #define OB_FILTER_T float
@@ -26,15 +26,18 @@
 #endif
 
 OB_CONSTANTS_BEGIN(ob_filter_constants, OB_BINDING_PASS)
-    OB_VEC4 size;       /* width, height, 1/width, 1/height */
-    OB_IVEC4 axis;      /* separable pass direction (1,0) or (0,1); radius in taps; unused */
-    OB_VEC4 sigma;      /* spatial sigma (px), depth sigma (relative), normal sigma (radians), unused */
+    OB_IVEC2 size;            /* the AO resolution, px: the filters run at it (ob_filter_inputs) */
+    OB_IVEC2 axis;            /* a separable pass's direction, (1,0) then (0,1) (seed 000 eq. 4.6-4.7) */
+    OB_INT radius;            /* taps each side of the centre, 0..OB_FILTER_MAX_RADIUS */
     /* The range Gaussians' exponents, derived on the CPU (ob_filter_constants_init) so a tap costs
-     * one exp(): w = exp(x^2 * falloff) with falloff = -1/(2 sigma^2).
-     * x: relative depth difference, y: angle between normals (radians); z: the sky's value in the
-     * RGB variant; w unused. */
-    OB_VEC4 falloff;
-    OB_VEC4 weights[OB_FILTER_MAX_RADIUS + 1]; /* spatial Gaussian weights w[0..radius] in .x */
+     * one exp(): w = exp(x^2 * falloff) with falloff = -1/(2 sigma^2); 0 switches a term off. */
+    OB_FLOAT depth_falloff;   /* x = relative depth difference |d_q - d_p| / d_p (unitless) */
+    OB_FLOAT normal_falloff;  /* x = angle between the normals, radians (geometry only) */
+    OB_FLOAT sky_value;       /* what the RGB variant writes at sky pixels: 1 for M, 0 for the bounce */
+    /* The spatial Gaussian (seed 000 eq. 4.4), normalised: w_i for tap offset i = 0..radius in .x;
+     * .yzw unused (std140 strides array elements by 16 bytes anyway). */
+    OB_VEC4 weights[OB_FILTER_MAX_RADIUS + 1];
 OB_CONSTANTS_END(ob_filter_constants, flt)
+OB_CONSTANTS_SIZE(ob_filter_constants, 2 * 16 + (OB_FILTER_MAX_RADIUS + 1) * 16);
 
 #endif

@@ -14,10 +14,10 @@ layout(binding = 0, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = ivec2(flt.size.xy);
+    ivec2 size = flt.size;
     if (any(greaterThanEqual(pix, size))) return;
-    ivec2 dir = flt.axis.xy;
-    int radius = flt.axis.z;
+    ivec2 dir = flt.axis;
+    int radius = flt.radius;
     OB_FILTER_T sum = OB_FILTER_T(0.0);
     /* One fetch per iteration over -r..r, like the bilateral passes: folding the symmetric taps
      * into one iteration (w_i (a + b)) ran 2.5x slower on llvmpipe (~90 vs ~35 ms, 1280x720). */

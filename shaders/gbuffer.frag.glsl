@@ -19,7 +19,7 @@ void main()
     if (!gl_FrontFacing) n = -n;
     out_linear_depth = -v_view_pos.z;
     out_normal = vec4(n, 1.0);
-    vec3 albedo = gb.diffuse.rgb;
-    if (gb.diffuse.a > 0.5) albedo *= texture(diffuse_map, v_uv).rgb;
+    vec3 albedo = gb.diffuse;
+    if (gb.textured != 0) albedo *= texture(diffuse_map, v_uv).rgb;
     out_albedo = vec4(albedo, 1.0);
 }

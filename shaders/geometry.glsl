@@ -21,7 +21,7 @@ layout(binding = 0, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = ivec2(flt.size.xy);
+    ivec2 size = flt.size;
     if (any(greaterThanEqual(pix, size))) return;
     float dp = texelFetch(linear_depth, pix, 0).r;
     if (dp <= 0.0) {
@@ -29,8 +29,8 @@ void main()
         return;
     }
     vec3 np = texelFetch(view_normal, pix, 0).xyz;
-    ivec2 dir = flt.axis.xy;
-    int radius = flt.axis.z;
+    ivec2 dir = flt.axis;
+    int radius = flt.radius;
     float inv_dp = 1.0 / dp;
     float weight = flt.weights[0].x;
     OB_FILTER_T sum = weight * OB_FILTER_FETCH(ao_in, pix);
@@ -43,7 +43,7 @@ void main()
         float rel = (dq - dp) * inv_dp;
         /* RGBA16F normals can give a dot a hair above 1: clamp before acos. */
         float theta = acos(clamp(dot(np, texelFetch(view_normal, q, 0).xyz), -1.0, 1.0));
-        float w = flt.weights[abs(i)].x * exp(rel * rel * flt.falloff.x + theta * theta * flt.falloff.y);
+        float w = flt.weights[abs(i)].x * exp(rel * rel * flt.depth_falloff + theta * theta * flt.normal_falloff);
         sum += w * OB_FILTER_FETCH(ao_in, q);
         weight += w;
     }

@@ -31,12 +31,12 @@ void main()
     uint i = gl_LocalInvocationIndex;
     ivec2 local = ivec2(i % OB_LUMINANCE_GROUP, i / OB_LUMINANCE_GROUP);
     ivec2 base = ivec2(gl_WorkGroupID.xy) * OB_LUMINANCE_SPAN + local;
-    float delta = lum.params.z;
+    float delta = lum.delta;
     float s = 0.0;
     for (int ty = 0; ty < OB_LUMINANCE_TILE; ++ty)
         for (int tx = 0; tx < OB_LUMINANCE_TILE; ++tx) {
             ivec2 p = base + ivec2(tx, ty) * OB_LUMINANCE_GROUP;
-            if (any(greaterThanEqual(p, lum.size.xy))) continue;
+            if (any(greaterThanEqual(p, ivec2(lum.width, lum.height)))) continue;
             /* World luminance of the radiance as given: exposure is applied later, as a
              * compensation on top of the key (eq. 2.2), so it is not measured away here. */
             s += log(delta + ob_luminance(ob_hdr_sanitize(texelFetch(radiance, p, 0).rgb)));
@@ -50,20 +50,20 @@ void main()
 {
     uint i = gl_LocalInvocationIndex;
     float s = 0.0;
-    for (int k = int(i); k < lum.size.z; k += OB_LUMINANCE_THREADS) s += hdr.partial[k];
+    for (int k = int(i); k < lum.partial_count; k += OB_LUMINANCE_THREADS) s += hdr.partial[k];
     sums[i] = s;
     reduce(i);
     if (i == 0) {
-        float delta = lum.params.z;
+        float delta = lum.delta;
         /* Eq. 2.1, less delta afterwards: exp(mean ln(delta + L)) of a constant image c is
          * c + delta, 1% high for c = 0.01; subtracting it makes a uniform image average to
          * itself and leaves scenes (L >> delta) unchanged. It never goes below 0 since every
          * ln(delta + L) >= ln(delta). Same formula as ob_hdr_log_average(). */
-        float avg = max(exp(sums[0] * lum.params.w) - delta, 0.0);
-        float key = lum.params.y > 0.0 ? lum.params.y : ob_hdr_auto_key(avg);
+        float avg = max(exp(sums[0] * lum.inv_pixel_count) - delta, 0.0);
+        float key = lum.key > 0.0 ? lum.key : ob_hdr_auto_key(avg);
         /* Eq. 2.2's alpha / L_avg with the exposure compensation folded in; delta keeps a black
          * frame finite (its pixels are all 0, so any finite scale gives black). */
-        hdr.result = vec4(avg, key, lum.params.x * key / max(avg, delta), 0.0);
+        hdr.result = vec4(avg, key, lum.exposure * key / max(avg, delta), 0.0);
     }
 }
 #endif

@@ -13,8 +13,15 @@
 #define OB_LUMINANCE_SPAN (OB_LUMINANCE_GROUP * OB_LUMINANCE_TILE)
 
 OB_CONSTANTS_BEGIN(ob_luminance_constants, OB_BINDING_PASS)
-    OB_IVEC4 size;    /* width, height, partial sums (work groups of the first dispatch), unused */
-    OB_VEC4 params;   /* exposure, key (0 = automatic), delta, 1 / pixel count */
+    OB_FLOAT exposure;         /* linear compensation on top of the key, folded into the result's scale */
+    OB_FLOAT key;              /* eq. 2.2's alpha; 0 = the automatic key of §6.5 (ob_hdr_auto_key) */
+    OB_FLOAT delta;            /* eq. 2.1's delta, OB_HDR_DELTA (luminance, radiance units) */
+    OB_FLOAT inv_pixel_count;  /* eq. 2.1's 1/N: the final dispatch's mean of the partial sums */
+    OB_INT width;              /* the radiance, px: the partial dispatch skips pixels past it */
+    OB_INT height;
+    OB_INT partial_count;      /* work groups of the partial dispatch = partial sums to reduce */
+    OB_FLOAT pad0;
 OB_CONSTANTS_END(ob_luminance_constants, lum)
+OB_CONSTANTS_SIZE(ob_luminance_constants, 2 * 16);
 
 #endif

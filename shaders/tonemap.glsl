@@ -23,21 +23,21 @@ float reinhard(float l, float l_white)
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pix, ivec2(tmo.size.xy)))) return;
+    if (any(greaterThanEqual(pix, tmo.size))) return;
     vec3 c = ob_hdr_sanitize(texelFetch(radiance, pix, 0).rgb);
-    if (tmo.params.x == 0.0) {
-        imageStore(final_out, pix, vec4(ob_linear_to_srgb(tmo.params.y * c), 1.0));
+    if (tmo.hdr_enabled == 0) {
+        imageStore(final_out, pix, vec4(ob_linear_to_srgb(tmo.exposure * c), 1.0));
         return;
     }
     c *= hdr.result.z; /* eq. 2.2: exposure alpha / L_avg, from the luminance pass */
-    if (tmo.params.w > 0.0) {
+    if (tmo.bloom_strength > 0.0) {
         /* Step 6: bilinear upsampling; full pixel centre p + 0.5 lies at (p + 0.5) / FACTOR in
          * bloom pixels, exact for odd sizes too. */
-        vec2 uv = (vec2(pix) + 0.5) * tmo.size.zw;
-        c += tmo.params.w * textureLod(bloom, uv, 0.0).rgb;
+        vec2 uv = (vec2(pix) + 0.5) * tmo.bloom_uv_scale;
+        c += tmo.bloom_strength * textureLod(bloom, uv, 0.0).rgb;
     }
     float l = ob_luminance(c);
     /* Step 8. The ratio can push a saturated channel past 1; ob_linear_to_srgb clamps it. */
-    vec3 mapped = l > 0.0 ? c * (reinhard(l, tmo.params.z) / l) : vec3(0.0);
+    vec3 mapped = l > 0.0 ? c * (reinhard(l, tmo.l_white) / l) : vec3(0.0);
     imageStore(final_out, pix, vec4(ob_linear_to_srgb(mapped), 1.0));
 }

@@ -9,12 +9,13 @@
 #include "resample_params.h"
 
 /* Compiled a second time with OB_FILTER_RGB for SSDO's RGBA16F modulation factor and bounce:
- * the same weights on every channel, the sky's value from rs.sigma.y (1 for M, 0 for the bounce). */
+ * the same weights on every channel, the sky's value from rs.upsample_sky_value (1 for M, 0 for
+ * the bounce). */
 #ifdef OB_FILTER_RGB
 #define OB_UP_FORMAT rgba16f
 #define OB_UP_T vec4
 #define OB_UP_FETCH(tex, q) texelFetch(tex, q, 0)
-#define OB_UP_SKY OB_UP_T(rs.sigma.y)
+#define OB_UP_SKY OB_UP_T(rs.upsample_sky_value)
 #else
 #define OB_UP_FORMAT r32f
 #define OB_UP_T float
@@ -34,16 +35,16 @@ layout(binding = 0, OB_UP_FORMAT) uniform writeonly image2D ao_out;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pix, rs.full_size.xy))) return;
+    if (any(greaterThanEqual(pix, rs.full_size))) return;
     float d = texelFetch(full_depth, pix, 0).r;
     if (d <= 0.0) {
         imageStore(ao_out, pix, vec4(OB_UP_SKY));
         return;
     }
     vec3 n = texelFetch(full_normal, pix, 0).xyz;
-    ivec2 low_size = rs.full_size.zw;
+    ivec2 low_size = rs.ao_size;
     /* p's position on the AO grid: sample q lies at full pixel k q + o. */
-    vec2 u = (vec2(pix) - float(rs.factor.y)) / float(rs.factor.x);
+    vec2 u = (vec2(pix) - float(rs.ao_o)) / float(rs.ao_k);
     ivec2 centre = clamp(ivec2(round(u)), ivec2(0), low_size - 1);
     OB_UP_T sum = OB_UP_T(0.0), best_ao = OB_UP_SKY;
     float weight = 0.0;
@@ -61,7 +62,7 @@ void main()
             float cn = max(0.0, dot(n, texelFetch(low_normal, q, 0).xyz));
             cn *= cn;
             cn *= cn;
-            float g = exp(-(rel / rs.sigma.x) * (rel / rs.sigma.x)) * cn * cn;
+            float g = exp(-(rel / rs.upsample_depth_sigma) * (rel / rs.upsample_depth_sigma)) * cn * cn;
             sum += qa * c * g;
             weight += c * g;
             /* Fallback when no neighbour is similar enough (a thin feature the AO grid missed):

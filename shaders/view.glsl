@@ -15,22 +15,22 @@ layout(binding = 0, rgba8) uniform writeonly image2D display;
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pix, ivec2(vw.size.xy)))) return;
+    if (any(greaterThanEqual(pix, vw.size))) return;
     vec4 s = texelFetch(source, pix, 0);
-    bool directional = vw.mode.y != 0;
+    bool directional = vw.directional != 0;
     vec3 c = vec3(0.0);
-    switch (vw.mode.x) {
+    switch (vw.view_mode) {
     case OB_VIEW_MODE_AO: c = directional ? s.rgb : vec3(s.r); break;
     case OB_VIEW_MODE_NORMALS: c = s.rgb * 0.5 + 0.5; break;
-    case OB_VIEW_MODE_DEPTH: c = vec3(s.r > 0.0 ? 1.0 - s.r / vw.size.z : 0.0); break;
+    case OB_VIEW_MODE_DEPTH: c = vec3(s.r > 0.0 ? 1.0 - s.r / vw.far_z : 0.0); break;
     case OB_VIEW_MODE_SHADOW: c = vec3(s.a); break; /* the key light's visibility */
     case OB_VIEW_MODE_RADIANCE: c = ob_linear_to_srgb(s.rgb); break;
     case OB_VIEW_MODE_BOUNCE: c = directional ? ob_linear_to_srgb(s.rgb) : vec3(0.0); break;
     case OB_VIEW_MODE_SAMPLES: {
         /* As the renderer's read_sample_counts: the block of AO pixel pix / k. */
-        float count = float(vw.mode.z);
-        if (vw.mode.w != 0) count *= texelFetch(multiplier, (pix / vw.grid.x) / OB_EDGE_BLOCK, 0).r;
-        c = vec3(s.r > 0.0 ? count * vw.size.w : 0.0); /* the sky takes no samples */
+        float count = float(vw.sample_count);
+        if (vw.use_multiplier != 0) count *= texelFetch(multiplier, (pix / vw.ao_k) / OB_EDGE_BLOCK, 0).r;
+        c = vec3(s.r > 0.0 ? count * vw.inv_max_samples : 0.0); /* the sky takes no samples */
         break;
     }
     default: break;

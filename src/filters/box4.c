@@ -14,11 +14,9 @@ static ob_error box4_run(void *state, const ob_filter_inputs *in, const float *p
     (void)params;
     ob_filter_constants c;
     memset(&c, 0, sizeof c);
-    c.size[0] = (float)in->width;
-    c.size[1] = (float)in->height;
-    c.size[2] = 1.0f / (float)in->width;
-    c.size[3] = 1.0f / (float)in->height;
-    c.falloff[2] = in->sky; /* the RGB variant's sky value (filter_params.h) */
+    c.size[0] = in->width;
+    c.size[1] = in->height;
+    c.sky_value = in->sky; /* read by the RGB variant only (filter_params.h) */
     ob_compute_pass_use(state, &c, offsetof(ob_filter_constants, weights));
     glBindTextureUnit(0, in->src);
     glBindTextureUnit(1, in->linear_depth);

@@ -43,9 +43,10 @@ typedef struct ob_filter_impl {
 const ob_filter_impl *ob_filter_impl_at(int index);
 
 /* ---- shared by the Gaussian-family filters (kernel.c) ------------------------------------- */
-/* Fill size, radius (clamped to 0..OB_FILTER_MAX_RADIUS), sigma, falloff and the spatial weights:
- * seed 000 eq. 4.4 sampled at the integer taps 0..radius and normalised so that the 1D kernel
- * (w0 + 2 sum w_i) sums to 1. sigma_depth / sigma_normal (radians) <= 0 leave that range term off. */
+/* Fill size, radius (clamped to 0..OB_FILTER_MAX_RADIUS), the range falloffs, sky_value and the
+ * spatial weights: seed 000 eq. 4.4 sampled at the integer taps 0..radius and normalised so that
+ * the 1D kernel (w0 + 2 sum w_i) sums to 1. sigma_depth / sigma_normal (radians) <= 0 leave that
+ * range term off. axis is left (0,0): ob_filter_run_separable sets it per pass. Pure: no GL. */
 void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in, int radius, float sigma_px,
                               float sigma_depth, float sigma_normal);
 /* The two dispatches of a separable filter (seed 000 eq. 4.6-4.7): along x from in->src into

@@ -15,21 +15,16 @@ void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in
                               float sigma_depth, float sigma_normal)
 {
     memset(c, 0, sizeof *c);
-    c->size[0] = (float)in->width;
-    c->size[1] = (float)in->height;
-    c->size[2] = 1.0f / (float)in->width;
-    c->size[3] = 1.0f / (float)in->height;
+    c->size[0] = in->width;
+    c->size[1] = in->height;
     if (radius < 0) radius = 0;
     if (radius > OB_FILTER_MAX_RADIUS) radius = OB_FILTER_MAX_RADIUS;
-    c->axis[2] = radius;
-    c->sigma[0] = sigma_px;
-    c->sigma[1] = sigma_depth;
-    c->sigma[2] = sigma_normal;
+    c->radius = radius;
     /* falloff = -1/(2 sigma^2): the shaders evaluate a range Gaussian as exp(x^2 * falloff), and
      * a product of two as one exp() of the sum. 0 turns a term into a constant 1. */
-    c->falloff[0] = sigma_depth > 0.0f ? -1.0f / (2.0f * sigma_depth * sigma_depth) : 0.0f;
-    c->falloff[1] = sigma_normal > 0.0f ? -1.0f / (2.0f * sigma_normal * sigma_normal) : 0.0f;
-    c->falloff[2] = in->sky; /* read by the RGB variant only (filter_params.h) */
+    c->depth_falloff = sigma_depth > 0.0f ? -1.0f / (2.0f * sigma_depth * sigma_depth) : 0.0f;
+    c->normal_falloff = sigma_normal > 0.0f ? -1.0f / (2.0f * sigma_normal * sigma_normal) : 0.0f;
+    c->sky_value = in->sky; /* read by the RGB variant only (filter_params.h) */
 
     /* Eq. 4.4 at x = 0..radius with mu = 0. The 1/(sigma sqrt(2 pi)) factor is replaced by the sum
      * over the taps actually used, so a kernel truncated at 2 sigma still keeps the AO's mean
@@ -46,7 +41,7 @@ void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in
 
 size_t ob_filter_constants_used(const ob_filter_constants *c)
 {
-    return offsetof(ob_filter_constants, weights) + (size_t)(c->axis[2] + 1) * sizeof c->weights[0];
+    return offsetof(ob_filter_constants, weights) + (size_t)(c->radius + 1) * sizeof c->weights[0];
 }
 
 void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, const ob_filter_inputs *in)

@@ -75,12 +75,12 @@ void ob_bloom_run(ob_bloom_pass *b, GLuint radiance, GLuint result, float thresh
 {
     ob_bloom_constants k;
     memset(&k, 0, sizeof k);
-    k.size[0] = b->width;
-    k.size[1] = b->height;
-    k.size[2] = b->bloom_width;
-    k.size[3] = b->bloom_height;
-    k.axis[2] = OB_BLOOM_RADIUS;
-    k.params[0] = threshold > 0.0f ? threshold : 0.0f;
+    k.full_size[0] = b->width;
+    k.full_size[1] = b->height;
+    k.bloom_size[0] = b->bloom_width;
+    k.bloom_size[1] = b->bloom_height;
+    k.radius = OB_BLOOM_RADIUS;
+    k.threshold = threshold > 0.0f ? threshold : 0.0f;
     fill_weights(&k);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OB_BINDING_HDR_RESULT, result);
 
@@ -92,8 +92,8 @@ void ob_bloom_run(ob_bloom_pass *b, GLuint radiance, GLuint result, float thresh
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
     /* Step 4 along x: bloom -> scratch. */
-    k.axis[0] = 1;
-    k.axis[1] = 0;
+    k.axis_x = 1;
+    k.axis_y = 0;
     ob_compute_pass_use(&b->blur, &k, sizeof k);
     glBindTextureUnit(0, b->bloom);
     glBindImageTexture(0, b->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -102,8 +102,8 @@ void ob_bloom_run(ob_bloom_pass *b, GLuint radiance, GLuint result, float thresh
 
     /* Along y: scratch -> bloom. Re-uploading the block between dispatches is ordered by GL, so
      * the x pass still sees (1,0). */
-    k.axis[0] = 0;
-    k.axis[1] = 1;
+    k.axis_x = 0;
+    k.axis_y = 1;
     ob_compute_pass_use(&b->blur, &k, sizeof k);
     glBindTextureUnit(0, b->scratch);
     glBindImageTexture(0, b->bloom, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);

@@ -18,10 +18,10 @@ void ob_resample_fill(ob_resample_constants *c, const ob_ao_grid *g)
     memset(c, 0, sizeof *c);
     c->full_size[0] = g->full_width;
     c->full_size[1] = g->full_height;
-    c->full_size[2] = g->width;
-    c->full_size[3] = g->height;
-    c->factor[0] = g->k;
-    c->factor[1] = g->o;
+    c->ao_size[0] = g->width;
+    c->ao_size[1] = g->height;
+    c->ao_k = g->k;
+    c->ao_o = g->o;
 }
 
 ob_error ob_downsample_init(ob_compute_pass *p)

@@ -17,8 +17,8 @@ void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLui
 {
     ob_resample_constants c;
     ob_resample_fill(&c, g);
-    c.sigma[0] = EDGE_DEPTH_STEP;
-    c.sigma[1] = EDGE_NORMAL_TURN;
+    c.edge_depth_step = EDGE_DEPTH_STEP;
+    c.edge_normal_turn = EDGE_NORMAL_TURN;
     ob_compute_pass_use(p, &c, sizeof c);
     glBindTextureUnit(0, ao_depth);
     glBindTextureUnit(1, ao_normal);

@@ -189,7 +189,7 @@ void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj)
             c.diffuse[0] = mi >= 0 ? g->diffuse[mi][0] : 0.8f;
             c.diffuse[1] = mi >= 0 ? g->diffuse[mi][1] : 0.8f;
             c.diffuse[2] = mi >= 0 ? g->diffuse[mi][2] : 0.8f;
-            c.diffuse[3] = mi >= 0 && g->textures[mi] ? 1.0f : 0.0f;
+            c.textured = mi >= 0 && g->textures[mi] ? 1 : 0;
             glNamedBufferSubData(g->ubo, 0, sizeof c, &c);
             glBindTextureUnit(0, mi >= 0 ? g->textures[mi] : 0);
             last_material = m->material;

@@ -61,13 +61,13 @@ void ob_luminance_run(ob_luminance_pass *p, GLuint radiance, float exposure, flo
 {
     ob_luminance_constants k;
     memset(&k, 0, sizeof k);
-    k.size[0] = p->width;
-    k.size[1] = p->height;
-    k.size[2] = p->groups_x * p->groups_y;
-    k.params[0] = exposure;
-    k.params[1] = key > 0.0f ? key : 0.0f;
-    k.params[2] = (float)OB_HDR_DELTA;
-    k.params[3] = 1.0f / ((float)p->width * (float)p->height);
+    k.exposure = exposure;
+    k.key = key > 0.0f ? key : 0.0f;
+    k.delta = (float)OB_HDR_DELTA;
+    k.inv_pixel_count = 1.0f / ((float)p->width * (float)p->height);
+    k.width = p->width;
+    k.height = p->height;
+    k.partial_count = p->groups_x * p->groups_y;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OB_BINDING_HDR_RESULT, p->result);
 
     ob_compute_pass_use(&p->partial, &k, sizeof k);

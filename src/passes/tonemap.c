@@ -18,16 +18,16 @@ void ob_tonemap_run(ob_tonemap_pass *t, const ob_tonemap_inputs *in, const ob_hd
 {
     ob_tonemap_constants k;
     memset(&k, 0, sizeof k);
-    k.size[0] = (float)in->width;
-    k.size[1] = (float)in->height;
+    k.size[0] = in->width;
+    k.size[1] = in->height;
     if (in->bloom_width > 0 && in->bloom_height > 0) {
-        k.size[2] = 1.0f / (float)(OB_BLOOM_FACTOR * in->bloom_width);
-        k.size[3] = 1.0f / (float)(OB_BLOOM_FACTOR * in->bloom_height);
+        k.bloom_uv_scale[0] = 1.0f / (float)(OB_BLOOM_FACTOR * in->bloom_width);
+        k.bloom_uv_scale[1] = 1.0f / (float)(OB_BLOOM_FACTOR * in->bloom_height);
     }
-    k.params[0] = s->enabled ? 1.0f : 0.0f;
-    k.params[1] = s->exposure;
-    k.params[2] = s->l_white;
-    k.params[3] = s->enabled && in->bloom && s->bloom_strength > 0.0f ? s->bloom_strength : 0.0f;
+    k.hdr_enabled = s->enabled ? 1 : 0;
+    k.exposure = s->exposure;
+    k.l_white = s->l_white;
+    k.bloom_strength = s->enabled && in->bloom && s->bloom_strength > 0.0f ? s->bloom_strength : 0.0f;
     ob_compute_pass_use(&t->pass, &k, sizeof k);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OB_BINDING_HDR_RESULT, in->result);
     glBindTextureUnit(0, in->radiance);

@@ -23,8 +23,8 @@ static void upsample(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_depth,
 {
     ob_resample_constants c;
     ob_resample_fill(&c, g);
-    c.sigma[0] = UPSAMPLE_SIGMA_DEPTH;
-    c.sigma[1] = sky;
+    c.upsample_depth_sigma = UPSAMPLE_SIGMA_DEPTH;
+    c.upsample_sky_value = sky;
     ob_compute_pass_use(p, &c, sizeof c);
     glBindTextureUnit(0, full_depth);
     glBindTextureUnit(1, full_normal);

@@ -80,15 +80,15 @@ static ob_error run_view(ob_view_pass *v, const ob_view_inputs *in)
     }
     ob_view_constants k;
     memset(&k, 0, sizeof k);
-    k.size[0] = (float)in->width;
-    k.size[1] = (float)in->height;
-    k.size[2] = in->far_z > 0.0f ? in->far_z : 1.0f;
-    k.size[3] = in->max_samples > 0 ? 1.0f / (float)in->max_samples : 0.0f;
-    k.mode[0] = (int)in->view;
-    k.mode[1] = in->directional ? 1 : 0;
-    k.mode[2] = in->samples;
-    k.mode[3] = in->multiplier ? 1 : 0;
-    k.grid[0] = in->grid_k > 0 ? in->grid_k : 1;
+    k.view_mode = (int)in->view;
+    k.directional = in->directional ? 1 : 0;
+    k.sample_count = in->samples;
+    k.use_multiplier = in->multiplier ? 1 : 0;
+    k.ao_k = in->grid_k > 0 ? in->grid_k : 1;
+    k.far_z = in->far_z > 0.0f ? in->far_z : 1.0f;
+    k.inv_max_samples = in->max_samples > 0 ? 1.0f / (float)in->max_samples : 0.0f;
+    k.size[0] = in->width;
+    k.size[1] = in->height;
 
     saved_state saved;
     memset(&saved, 0, sizeof saved);

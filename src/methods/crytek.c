@@ -47,14 +47,9 @@ static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params,
 {
     crytek_state *s = p;
     ob_crytek_constants *c = &s->constants;
-    int count = (int)params[P_SAMPLES], sampling = (int)params[P_SAMPLING];
-    /* Adaptive counts: Halton prefixes of one kernel, as in ssao.c. */
-    int base = ob_adaptive_base(count);
-    if (in->sample_multiplier) {
-        count = 3 * base > OB_CRYTEK_MAX_SAMPLES ? OB_CRYTEK_MAX_SAMPLES / 3 * 3 : 3 * base;
-        base = count / 3;
-        sampling = OB_SAMPLING_HALTON;
-    }
+    const ob_sample_plan plan =
+        ob_method_sample_plan(in, (int)params[P_SAMPLES], (int)params[P_SAMPLING], OB_CRYTEK_MAX_SAMPLES);
+    const int count = plan.count, sampling = plan.sampling;
     if (count != s->kernel_count || sampling != s->kernel_sampling) {
         ob_sphere_kernel(&c->kernel[0][0], count, (ob_sampling)sampling, KERNEL_SEED);
         s->kernel_count = count;
@@ -66,11 +61,11 @@ static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params,
     c->correction = params[P_CORRECTION] != 0.0f ? 1 : 0;
     c->samples = count;
     c->noise = (int)params[P_NOISE];
-    c->adaptive = in->sample_multiplier ? 1 : 0;
-    c->adaptive_base = base;
+    c->adaptive = plan.adaptive ? 1 : 0;
+    c->adaptive_base = plan.base;
     size_t used = offsetof(ob_crytek_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     ob_method_kit_use(&s->kit, c, used, in, out, GL_R32F);
-    glBindTextureUnit(3, in->sample_multiplier ? in->sample_multiplier : s->kit.noise);
+    ob_method_kit_bind_multiplier(&s->kit, in);
     ob_dispatch_2d(in->width, in->height, OB_CRYTEK_GROUP_X, OB_CRYTEK_GROUP_Y);
     return OB_OK;
 }

@@ -40,6 +40,22 @@ void ob_method_destroy_state(const ob_method_impl *m, void *state)
     free(state);
 }
 
+ob_sample_plan ob_method_sample_plan(const ob_ao_inputs *in, int samples, int sampling, int max)
+{
+    ob_sample_plan p = {samples, ob_adaptive_base(samples), sampling, in->sample_multiplier != 0};
+    if (p.adaptive) {
+        p.count = 3 * p.base > max ? max / 3 * 3 : 3 * p.base;
+        p.base = p.count / 3;
+        p.sampling = OB_SAMPLING_MODE_HALTON;
+    }
+    return p;
+}
+
+void ob_method_kit_bind_multiplier(const ob_method_kit *kit, const ob_ao_inputs *in)
+{
+    glBindTextureUnit(3, in->sample_multiplier ? in->sample_multiplier : kit->noise);
+}
+
 void ob_method_kit_use(ob_method_kit *kit, const void *constants, size_t size, const ob_ao_inputs *in,
                        const ob_ao_outputs *out, GLenum format)
 {

@@ -108,6 +108,22 @@ void ob_method_destroy_state(const ob_method_impl *m, void *state);
 void ob_method_kit_use(ob_method_kit *kit, const void *constants, size_t size, const ob_ao_inputs *in,
                        const ob_ao_outputs *out, GLenum format);
 
+/* Adaptive sample counts (seed 003 §4.1) for a method with a kernel of `samples` entries: how many
+ * entries to build and the base count the edge pass's multiplier (1..3) scales. Under adaptive
+ * sampling (in->sample_multiplier) the kernel holds 3 x base entries (at most `max`, a multiple of
+ * 3) from Halton numbers, whose prefixes are evenly spread where random ones are not; otherwise
+ * it is `samples` entries from `sampling`. */
+typedef struct ob_sample_plan {
+    int count;      /* kernel entries to build and upload */
+    int base;       /* the count at multiplier 1 */
+    int sampling;   /* OB_SAMPLING_MODE_* of the kernel */
+    bool adaptive;
+} ob_sample_plan;
+ob_sample_plan ob_method_sample_plan(const ob_ao_inputs *in, int samples, int sampling, int max);
+/* Bind the multiplier of adaptive sampling to texture unit 3 (the noise tile when off, so the
+ * sampler is always valid). */
+void ob_method_kit_bind_multiplier(const ob_method_kit *kit, const ob_ao_inputs *in);
+
 /* Option lists shared by methods' enum parameters (registry.c), in the order of the
  * OB_SAMPLING_MODE_*, OB_DIRECTIONS_MODE_* and OB_NOISE_* values of shaders/ob_enums.h. */
 extern const char *const ob_sampling_options[];  /* random, halton */

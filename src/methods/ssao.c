@@ -46,16 +46,9 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, c
 {
     ssao_state *s = p;
     ob_ssao_constants *c = &s->constants;
-    int count = (int)params[P_SAMPLES];
-    int sampling = (int)params[P_SAMPLING], directions = (int)params[P_DIRECTIONS];
-    /* Adaptive counts take base x 1..3 prefixes of one kernel: Halton's prefixes are evenly
-     * spread (seed 003 §4.1), random ones are not. */
-    int base = ob_adaptive_base(count);
-    if (in->sample_multiplier) {
-        count = 3 * base > OB_SSAO_MAX_SAMPLES ? OB_SSAO_MAX_SAMPLES / 3 * 3 : 3 * base;
-        base = count / 3;
-        sampling = OB_SAMPLING_HALTON;
-    }
+    const ob_sample_plan plan =
+        ob_method_sample_plan(in, (int)params[P_SAMPLES], (int)params[P_SAMPLING], OB_SSAO_MAX_SAMPLES);
+    const int count = plan.count, sampling = plan.sampling, directions = (int)params[P_DIRECTIONS];
     if (count != s->kernel_count || sampling != s->kernel_sampling || directions != s->kernel_directions) {
         ob_hemisphere_kernel(&c->kernel[0][0], count, (ob_sampling)sampling, (ob_direction_pdf)directions, KERNEL_SEED);
         s->kernel_count = count;
@@ -67,12 +60,12 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, c
     c->intensity = params[P_INTENSITY];
     c->samples = count;
     c->noise = (int)params[P_NOISE];
-    c->adaptive = in->sample_multiplier ? 1 : 0;
-    c->adaptive_base = base;
+    c->adaptive = plan.adaptive ? 1 : 0;
+    c->adaptive_base = plan.base;
     /* Upload only the kernel entries in use. */
     size_t used = offsetof(ob_ssao_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     ob_method_kit_use(&s->kit, c, used, in, out, GL_R32F);
-    glBindTextureUnit(3, in->sample_multiplier ? in->sample_multiplier : s->kit.noise);
+    ob_method_kit_bind_multiplier(&s->kit, in);
     ob_dispatch_2d(in->width, in->height, OB_SSAO_GROUP_X, OB_SSAO_GROUP_Y);
     return OB_OK;
 }

@@ -8,6 +8,7 @@ build=$(cd "$1" && pwd) src=$(cd "$2" && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 unset OBSCURA_DATA_DIR
+cmake=${CMAKE:-cmake} cc=${CC:-cc} # the build's own, when CTest runs this
 fails=0
 ok() { :; }
 bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
@@ -17,7 +18,7 @@ step() { # step NAME COMMAND...: run quietly, show the log on failure
     if "${@:2}" >"$tmp/log" 2>&1; then ok; else bad "$1"; tail -20 "$tmp/log"; return 1; fi
 }
 
-step "cmake --install" cmake --install "$build" --prefix "$tmp/stage" || exit 1
+step "cmake --install" "$cmake" --install "$build" --prefix "$tmp/stage" || exit 1
 mv "$tmp/stage" "$tmp/prefix"
 prefix=$tmp/prefix
 pc=$(find "$prefix" -name obscura.pc)
@@ -48,7 +49,7 @@ else bad "installed obscura list names no bunny: $(tail -3 "$tmp/list")"; fi
 
 # ---- a host program elsewhere finds the data directory beside the installed library ----
 printf '#include <obscura/obscura.h>\n#include <stdio.h>\nint main(void) { puts(ob_data_dir()); return 0; }\n' >"$tmp/host.c"
-if step "a host program against the installed library" cc -std=c11 -Wall -Werror -I"$prefix/include" "$tmp/host.c" \
+if step "a host program against the installed library" "$cc" -std=c11 -Wall -Werror -I"$prefix/include" "$tmp/host.c" \
         -o "$tmp/host" -L"$libdir" -lobscura -Wl,-rpath,"$libdir"; then
     found=$(cd / && "$tmp/host")
     [ "$found" = "$(cd "$prefix/share/obscura" && pwd -P)" ] || bad "ob_data_dir() from a host: '$found', want $prefix/share/obscura"
@@ -58,9 +59,9 @@ fi
 
 # ---- examples/embed through the CMake package ----
 flags="-Wall -Wextra -Werror"
-if step "cmake configure of examples/embed" cmake -S "$src/examples/embed" -B "$tmp/cm" -DCMAKE_PREFIX_PATH="$prefix" \
-        -DCMAKE_BUILD_TYPE=Release "-DCMAKE_C_FLAGS=$flags" &&
-   step "cmake build of examples/embed" cmake --build "$tmp/cm"; then
+if step "cmake configure of examples/embed" "$cmake" -S "$src/examples/embed" -B "$tmp/cm" -DCMAKE_PREFIX_PATH="$prefix" \
+        -DCMAKE_BUILD_TYPE=Release "-DCMAKE_C_COMPILER=$cc" "-DCMAKE_C_FLAGS=$flags" &&
+   step "cmake build of examples/embed" "$cmake" --build "$tmp/cm"; then
     if "$tmp/cm/embed" --method ssao --filter gaussian --out "$tmp/cm_ao.pfm"; then ok; else bad "embed (CMake) failed"; fi
     [ -s "$tmp/cm_ao.pfm" ] || bad "embed (CMake) wrote no AO"
     loads_installed "$tmp/cm/embed" || bad "embed (CMake) does not load the installed library"
@@ -69,7 +70,7 @@ fi
 # ---- examples/embed through pkg-config ----
 mkdir -p "$tmp/pc"
 if PKG_CONFIG_PATH="$libdir/pkgconfig" step "make (pkg-config) of examples/embed" \
-        make -C "$src/examples/embed" OUT="$tmp/pc" CFLAGS="-O2 $flags"; then
+        make -C "$src/examples/embed" CC="$cc" OUT="$tmp/pc" CFLAGS="-O2 $flags"; then
     if "$tmp/pc/embed" --method hbao --filter bilateral --size 256x192 --out "$tmp/pc_ao.pfm"; then ok
     else bad "embed (pkg-config) failed"; fi
     [ -s "$tmp/pc_ao.pfm" ] || bad "embed (pkg-config) wrote no AO"

@@ -4,8 +4,9 @@ BUILD      ?= build
 ASAN_BUILD ?= build-asan
 JOBS       ?= $(shell nproc)
 CMAKE_FLAGS ?=
+PREFIX     ?= /usr/local
 
-.PHONY: all build deps demo test test-gpu test-asan clean
+.PHONY: all build deps demo test test-gpu test-asan install clean
 
 all: build
 
@@ -19,13 +20,20 @@ deps:
 demo: deps build
 	@scripts/demo.sh $(BUILD)/obscura out
 
+# libobscura (shared), its header, CMake package and obscura.pc, the obscura CLI and the data
+# directory (share/obscura) under PREFIX; DESTDIR works as usual.
+install: build
+	@cmake --install $(BUILD) --prefix $(PREFIX)
+
 # Every test: the GPU/CLI suite on llvmpipe (or a GPU) in the normal build, and the CPU tests
-# again under AddressSanitizer + UndefinedBehaviorSanitizer.
+# again under AddressSanitizer + UndefinedBehaviorSanitizer. The sanitizer tree is also the
+# build without the viewer (OB_VIEWER=OFF: no GLFW, no Dear ImGui), so CI configures and builds
+# that too.
 test: deps build test-asan
 	@ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 test-asan:
-	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DOB_WERROR=ON -DOB_SANITIZE=ON -DOB_GPU_TESTS=OFF $(CMAKE_FLAGS) >/dev/null
+	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DOB_WERROR=ON -DOB_SANITIZE=ON -DOB_GPU_TESTS=OFF -DOB_VIEWER=OFF $(CMAKE_FLAGS) >/dev/null
 	@cmake --build $(ASAN_BUILD) -j $(JOBS)
 	@ctest --test-dir $(ASAN_BUILD) --output-on-failure -L cpu -j $(JOBS)
 

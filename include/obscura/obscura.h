@@ -30,6 +30,13 @@
 extern "C" {
 #endif
 
+/* libobscura.so exports what this header declares and nothing else: the library is compiled with
+ * -fvisibility=hidden, and this pragma (popped at the end) gives these declarations default
+ * visibility. */
+#if defined(__GNUC__)
+#pragma GCC visibility push(default)
+#endif
+
 #define OB_VERSION_STRING "0.1.0"
 
 /* ---- errors ---------------------------------------------------------------------------------
@@ -210,8 +217,19 @@ ob_error ob_find_camera(const ob_scene *scene, const char *name_or_index, ob_cam
  * (levels outside [0, 4]), OB_ERR_OUT_OF_MEMORY (also when a mesh would pass 2^32 indices). */
 ob_scene *ob_tessellate_scene(const ob_scene *scene, int levels);
 
-/* Directory holding scenes/ (named scene sidecars): the source tree by default, overridden by the
- * OBSCURA_DATA_DIR environment variable. */
+/* The data directory: scenes/ (named scene sidecars), data/ (files they name, e.g. the repacked
+ * oa_dm1.pk3) and shaders/ (what the viewer reloads). No path is compiled in; the first of these
+ * wins:
+ *   1. the OBSCURA_DATA_DIR environment variable when set and not empty (read on every call);
+ *   2. beside the loaded libobscura (dladdr; in a static link, the executable): where the install
+ *      puts it, <libdir>/../share/obscura = <prefix>/share/obscura, then a build tree's
+ *      share/obscura in the library's directory or its parent (the build links that to the
+ *      source tree's scenes/, data/ and shaders/);
+ *   3. the same beside the executable (/proc/self/exe): <bindir>/../share/obscura, then a build
+ *      tree's;
+ *   4. "." (the working directory).
+ * Steps 2-4 count a directory only when it holds scenes/, and run once per process. Never NULL;
+ * thread-safe. */
 const char *ob_data_dir(void);
 
 /* Built-in scenes that need no file. */
@@ -561,6 +579,10 @@ ob_error ob_compare_images(const float *test, const float *reference, const uint
  * range not finite and > 0). */
 ob_error ob_error_heatmap(const float *test, const float *reference, const uint8_t *mask, int width, int height,
                           bool bottom_first, float range, uint8_t *rgb_out);
+
+#if defined(__GNUC__)
+#pragma GCC visibility pop
+#endif
 
 #ifdef __cplusplus
 }

@@ -2,7 +2,6 @@
 
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 
 static _Thread_local ob_error last_error = OB_OK;
 static _Thread_local char last_message[1024] = "";
@@ -75,15 +74,4 @@ void ob_clear_error(void)
 {
     last_error = OB_OK;
     last_message[0] = '\0';
-}
-
-const char *ob_data_dir(void)
-{
-    const char *env = getenv("OBSCURA_DATA_DIR");
-    if (env && *env) return env;
-#ifdef OB_DATA_DIR
-    return OB_DATA_DIR;
-#else
-    return ".";
-#endif
 }

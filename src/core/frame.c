@@ -349,11 +349,25 @@ ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t norma
                             &(ob_frame_desc){.view = (const float *)identity, .proj = proj, .grid = &grid,
                                              .frame_index = r->frame++});
     upload_frame(r);
+    void *fstate = ob_renderer_filter_state(r, s->filter, false, &err);
+    if (err != OB_OK) return err;
+    /* The method into the renderer's own full-size target, then the filter into the caller's. */
+    const ao_targets *t = ob_renderer_targets(r, 0);
     const ob_ao_inputs in = {.frame = &r->frame_constants, .linear_depth = linear_depth_tex, .view_normal = normal_tex,
                              .width = r->width, .height = r->height};
-    const ob_ao_outputs out = {.visibility = ao_out_tex};
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    const ob_ao_outputs out = {.visibility = t->raw};
+    const GLbitfield barrier = GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
+    glMemoryBarrier(barrier);
     err = run_method(r, &plan, &in, &out);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    return err;
+    glMemoryBarrier(barrier);
+    if (err != OB_OK) return err;
+    const ob_filter_inputs fin = {.src = t->raw, .dst = ao_out_tex, .scratch = t->scratch,
+                                  .linear_depth = linear_depth_tex, .view_normal = normal_tex, .width = r->width,
+                                  .height = r->height, .rgb = false, .sky = 1.0f};
+    err = ob_filter_impl_at(s->filter)->run(fstate, &fin, s->filter_params);
+    glMemoryBarrier(barrier);
+    if (err != OB_OK) return err;
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x in ob_compute_ao", e);
+    return OB_OK;
 }

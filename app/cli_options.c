@@ -573,8 +573,10 @@ static int check_sets(const cli_common *c, cli_config *configs, int count)
         if (t.filter >= 0 && c->filter_count > 1)
             return cli_fail(EXIT_USAGE, "--set %s: filter '%.*s' is not in --filters", a, t.prefix_len, a);
         /* One method and one filter: the library says which it is ("... but the filter is geometry"). */
-        ob_settings s = configs[0].settings;
-        if (ob_settings_set(&s, a) != OB_OK) return cli_fail_from_library();
+        ob_settings s;
+        if (ob_settings_init(&s, ob_method_at(configs[0].method)->name) != OB_OK ||
+            ob_settings_set_filter(&s, ob_filter_at(configs[0].filter)->name) != OB_OK || ob_settings_set(&s, a) != OB_OK)
+            return cli_fail_from_library();
     }
     return EXIT_OK;
 }
@@ -595,18 +597,19 @@ int cli_common_configs(const cli_common *c, cli_config **configs, int *count)
     cli_config *out = calloc((size_t)total, sizeof *out);
     if (!out) return cli_fail(EXIT_RUNTIME, "out of memory");
     int n = 0, code = EXIT_OK;
-    for (int m = 0; m < c->method_count && code == EXIT_OK; ++m) {
+    for (int m = 0; m < c->method_count; ++m) {
         bool counted = c->sample_count > 0 && takes_samples(c->methods[m], c->samples[0].count);
-        for (int f = 0; f < c->filter_count && code == EXIT_OK; ++f)
-            for (int a = 0; a < c->ao_count && code == EXIT_OK; ++a)
-                for (int q = 0; q < (counted ? c->sample_count : 1) && code == EXIT_OK; ++q) {
+        for (int f = 0; f < c->filter_count; ++f)
+            for (int a = 0; a < c->ao_count; ++a)
+                for (int q = 0; q < (counted ? c->sample_count : 1); ++q) {
                     cli_config *cfg = &out[n++];
                     *cfg = (cli_config){.method = c->methods[m], .filter = c->filters[f], .ao_divisor = c->ao_divisors[a],
                                         .samples = counted ? c->samples[q] : (cli_samples){0, NULL}};
-                    code = cli_common_apply(c, cfg);
                 }
     }
-    if (code == EXIT_OK) code = check_sets(c, out, n);
+    /* Whom each --set is for before any is applied: a misdirected one gets its own message. */
+    code = check_sets(c, out, n);
+    for (int i = 0; i < n && code == EXIT_OK; ++i) code = cli_common_apply(c, &out[i]);
     if (code != EXIT_OK) {
         free(out);
         return code;

@@ -493,7 +493,7 @@ static void row_label(const bench_row *r, char *out, size_t n)
 static cJSON *row_json(const bench_row *r, const bench_row *none, const ob_scene *scene)
 {
     cJSON *j = cJSON_CreateObject();
-    char label[CLI_MAX_LABEL + 32];
+    char label[CLI_MAX_LABEL + 32] = "";
     row_label(r, label, sizeof label);
     cJSON_AddStringToObject(j, "method", method_name(r->method));
     cJSON_AddStringToObject(j, "label", label);
@@ -581,7 +581,7 @@ static int write_csv(const char *path, const bench_state *st, const ob_scene *sc
                 snprintf(minus, sizeof minus, "%.4f", med - base);
                 if (base > 0.0) snprintf(ratio, sizeof ratio, "%.4f", med / base);
             }
-            char label[CLI_MAX_LABEL + 32];
+            char label[CLI_MAX_LABEL + 32] = "";
             row_label(r, label, sizeof label);
             len += (size_t)snprintf(buf + len, cap - len,
                                     "%s,%s,%s,%s,%s,%s,%s,%g,%d,%d,%d,%u,%s,%.4f,%.4f,%.4f,%s,%s,%s,%s\n",
@@ -728,7 +728,7 @@ int cmd_bench(int argc, char **argv)
                         int n = !is_base && has_samples[k] ? o.samples[j] : 0;
                         float r = !is_base && has_radius[k] ? o.radii[q] : 0.0f;
                         float rw = r * suggested / 4.0f;
-                        ob_settings s;
+                        ob_settings s = {0};
                         if ((code = configure(cfg, n, rw, &s)) != EXIT_OK) break;
                         bench_row *row = new_row(&st);
                         if (!row) {
@@ -740,7 +740,7 @@ int cmd_bench(int argc, char **argv)
                                            .radius_world = rw, .width = c->width, .height = c->height,
                                            .triangles = ob_query_scene_stats(scene).triangles, .baseline = baseline};
                         code = measure(eyes, views, eye_count, &s, &o, scratch, row);
-                        char what[512];
+                        char what[512] = "";
                         snprintf(what, sizeof what, "%s %s N=%d r=%g", cam.name, cfg->label, n, (double)r);
                         if (code == EXIT_OK) progress(&st, what);
                     }
@@ -757,7 +757,7 @@ int cmd_bench(int argc, char **argv)
             else code = cli_common_prepare(c, r);
             for (int k = 0; k < count && code == EXIT_OK; ++k) {
                 float rw = has_radius[k] ? o.radii[0] * suggested / 4.0f : 0.0f;
-                ob_settings s;
+                ob_settings s = {0};
                 if ((code = configure(&configs[k], has_samples[k] ? o.samples[0] : 0, rw, &s)) != EXIT_OK) break;
                 bench_row *row = new_row(&st);
                 if (!row) {
@@ -769,7 +769,7 @@ int cmd_bench(int argc, char **argv)
                                    .radius_world = rw, .width = o.sizes[z][0], .height = o.sizes[z][1],
                                    .triangles = ob_query_scene_stats(scene).triangles, .baseline = -1, .study = 1};
                 code = measure(&r, &cam, 1, &s, &o, scratch, row);
-                char what[512];
+                char what[512] = "";
                 snprintf(what, sizeof what, "%dx%d %s", o.sizes[z][0], o.sizes[z][1], configs[k].label);
                 if (code == EXIT_OK) progress(&st, what);
             }
@@ -787,7 +787,7 @@ int cmd_bench(int argc, char **argv)
             }
             for (int k = 0; k < count && code == EXIT_OK; ++k) {
                 float rw = has_radius[k] ? o.radii[0] * suggested / 4.0f : 0.0f;
-                ob_settings s;
+                ob_settings s = {0};
                 if ((code = configure(&configs[k], has_samples[k] ? o.samples[0] : 0, rw, &s)) != EXIT_OK) break;
                 bench_row *row = new_row(&st);
                 if (!row) {
@@ -800,7 +800,7 @@ int cmd_bench(int argc, char **argv)
                                    .triangles = ob_query_scene_stats(tess[l]).triangles, .tess = l, .baseline = -1,
                                    .study = 2};
                 code = measure(eyes, &cam, 1, &s, &o, scratch, row);
-                char what[512];
+                char what[512] = "";
                 snprintf(what, sizeof what, "%ux tris %s", 1u << (2 * l), configs[k].label);
                 if (code == EXIT_OK) progress(&st, what);
             }

@@ -73,7 +73,7 @@ static int fail_option(const char *opt)
 
 static int parse_methods(cli_common *c, bool list, const char *opt, const char *v)
 {
-    char items[CLI_MAX_LIST][ITEM_MAX];
+    char items[CLI_MAX_LIST][ITEM_MAX] = {{0}};
     int n = 0, code = elements(c, list, opt, v, items, &n);
     if (code != EXIT_OK) return code;
     if (list && !strcmp(v, "all")) { /* every method: cli_common_finish fills them in */
@@ -84,7 +84,7 @@ static int parse_methods(cli_common *c, bool list, const char *opt, const char *
     for (int k = 0; k < n; ++k) {
         int m = ob_find_method(items[k]);
         if (m < 0) {
-            ob_settings probe;
+            ob_settings probe = {0};
             ob_settings_init(&probe, items[k]); /* the library's "unknown method (known: ...)" */
             return list ? fail_option(opt) : cli_fail_from_library();
         }
@@ -98,13 +98,13 @@ static int parse_methods(cli_common *c, bool list, const char *opt, const char *
 
 static int parse_filters(cli_common *c, bool list, const char *opt, const char *v)
 {
-    char items[CLI_MAX_LIST][ITEM_MAX];
+    char items[CLI_MAX_LIST][ITEM_MAX] = {{0}};
     int n = 0, code = elements(c, list, opt, v, items, &n);
     if (code != EXIT_OK) return code;
     for (int k = 0; k < n; ++k) {
         int f = ob_find_filter(items[k]);
         if (f < 0) {
-            ob_settings probe;
+            ob_settings probe = {0};
             ob_settings_init(&probe, NULL);
             ob_settings_set_filter(&probe, items[k]); /* "unknown filter 'x' (known: ...)" */
             return fail_option(opt);
@@ -119,7 +119,7 @@ static int parse_filters(cli_common *c, bool list, const char *opt, const char *
 
 static int parse_ao_scales(cli_common *c, bool list, const char *opt, const char *v)
 {
-    char items[CLI_MAX_LIST][ITEM_MAX];
+    char items[CLI_MAX_LIST][ITEM_MAX] = {{0}};
     int n = 0, code = elements(c, list, opt, v, items, &n);
     if (code != EXIT_OK) return code;
     if (n > 3) return cli_fail(EXIT_USAGE, "%s: at most 3 scales (1, 0.5, 0.25), got '%s'", opt, v);
@@ -139,7 +139,7 @@ static int parse_ao_scales(cli_common *c, bool list, const char *opt, const char
 /* --quality and --samples: sample counts, each list free of repeats. */
 static int parse_samples(cli_common *c, bool quality, const char *opt, const char *v)
 {
-    char items[CLI_MAX_LIST][ITEM_MAX];
+    char items[CLI_MAX_LIST][ITEM_MAX] = {{0}};
     int n = 0, code = elements(c, true, opt, v, items, &n);
     if (code != EXIT_OK) return code;
     cli_samples *out = quality ? c->by_quality : c->by_number;
@@ -283,7 +283,7 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         if (!cli_parse_on_off(v, &c->adaptive)) return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
     } else if (!strcmp(a, "--light")) {
         if (c->light_count >= OB_MAX_LIGHTS) return cli_fail(EXIT_USAGE, "--light: at most %d lights", OB_MAX_LIGHTS);
-        ob_light probe;
+        ob_light probe = {0};
         if (ob_parse_light(v, &probe) != OB_OK) return fail_option(a);
         c->lights[c->light_count++] = v;
     } else if (!strcmp(a, "--env")) {
@@ -353,7 +353,7 @@ int cli_common_finish(cli_common *c)
 void cli_common_usage(FILE *f, const cli_common *c)
 {
     bool lists = takes(c, CLI_TAKES_LISTS);
-    fputs("\ncommon options (the same in render, sheet, compare and bench):\n", f);
+    fputs("\ncommon options (one parser for render, sheet, compare and bench):\n", f);
     if (takes(c, CLI_TAKES_SCENE)) {
         fputs("  --scene NAME|PATH     built-in (cornell, corner, sphere-on-plane), a named scene from\n"
               "                        scenes/ (bunny, fzk-haus, cornell-obj) or any model Assimp reads\n",
@@ -441,7 +441,7 @@ static set_target set_target_of(const char *a)
     if (!dot) return t;
     t.prefixed = true;
     t.prefix_len = (int)(dot - a);
-    char name[ITEM_MAX];
+    char name[ITEM_MAX] = "";
     snprintf(name, sizeof name, "%.*s", t.prefix_len, a);
     t.method = ob_find_method(name);
     t.filter = ob_find_filter(name);
@@ -465,7 +465,7 @@ void cli_config_label(const cli_common *c, const cli_config *cfg, const char *se
     if (c->filter_count > 1) append(out, n, "%sfilter %s", sep, ob_filter_at(cfg->filter)->name);
     if (c->ao_count > 1) append(out, n, "%sao %s", sep, ao_scale_text(cfg->ao_divisor));
     if (c->sample_count > 1 && cfg->samples.count > 0) {
-        char count[16];
+        char count[16] = "";
         snprintf(count, sizeof count, "%d", cfg->samples.count);
         if (cfg->samples.quality) append(out, n, "%squality %s", sep, cfg->samples.quality);
         else append(out, n, "%ssamples %s", sep, count);
@@ -475,12 +475,12 @@ void cli_config_label(const cli_common *c, const cli_config *cfg, const char *se
 /* The label as a file name: letters, digits, '-' and '_' ("hbao_filter-none_ao-0_5"). */
 static void make_stem(const cli_common *c, const cli_config *cfg, char *out, size_t n)
 {
-    char raw[CLI_MAX_LABEL];
+    char raw[CLI_MAX_LABEL] = "";
     snprintf(raw, sizeof raw, "%s", ob_method_at(cfg->method)->name);
     if (c->filter_count > 1) append(raw, sizeof raw, "%sfilter-%s", "_", ob_filter_at(cfg->filter)->name);
     if (c->ao_count > 1) append(raw, sizeof raw, "%sao-%s", "_", ao_scale_text(cfg->ao_divisor));
     if (c->sample_count > 1 && cfg->samples.count > 0) {
-        char count[16];
+        char count[16] = "";
         snprintf(count, sizeof count, "%d", cfg->samples.count);
         append(raw, sizeof raw, "%s%s", "_", cfg->samples.quality ? "quality-" : "samples-");
         append(raw, sizeof raw, "%s%s", cfg->samples.quality ? cfg->samples.quality : count, "");
@@ -548,7 +548,7 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
  * OB_ERR_INVALID_ARGUMENT when it does not. */
 static bool takes_samples(int method, int count)
 {
-    ob_settings probe;
+    ob_settings probe = {0};
     if (ob_settings_init(&probe, ob_method_at(method)->name) != OB_OK) return false;
     ob_error err = ob_settings_set_samples(&probe, count);
     if (err != OB_OK) ob_clear_error(); /* an out-of-range count is reported by cli_common_apply */
@@ -573,7 +573,7 @@ static int check_sets(const cli_common *c, cli_config *configs, int count)
         if (t.filter >= 0 && c->filter_count > 1)
             return cli_fail(EXIT_USAGE, "--set %s: filter '%.*s' is not in --filters", a, t.prefix_len, a);
         /* One method and one filter: the library says which it is ("... but the filter is geometry"). */
-        ob_settings s;
+        ob_settings s = {0};
         if (ob_settings_init(&s, ob_method_at(configs[0].method)->name) != OB_OK ||
             ob_settings_set_filter(&s, ob_filter_at(configs[0].filter)->name) != OB_OK || ob_settings_set(&s, a) != OB_OK)
             return cli_fail_from_library();

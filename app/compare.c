@@ -184,7 +184,7 @@ static bool track_file(outputs *out, const char *path)
 /* mkdir, remembering a directory this run made; fails on a path that exists but is no directory. */
 static int make_report_dir(outputs *out, const char *path)
 {
-    struct stat st;
+    struct stat st = {0};
     if (stat(path, &st) == 0) {
         if (S_ISDIR(st.st_mode)) return EXIT_OK;
         return cli_fail(EXIT_OUTPUT, "cannot create %s: it exists and is not a directory", path);
@@ -398,12 +398,12 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
         code = cli_fail(EXIT_RUNTIME, "out of memory");
         goto done;
     }
-    char dir[700];
+    char dir[700] = "";
     snprintf(dir, sizeof dir, "%s/%s", o->report, vr->dir);
     if ((code = make_report_dir(out, dir)) != EXIT_OK) goto done;
 
     /* The G-buffer is the same for every method: take it from a `none` frame. */
-    ob_settings s;
+    ob_settings s = {0};
     ob_settings_init(&s, "none");
     if (ob_render_frame(r, &cam, &s) != OB_OK) {
         code = cli_fail_from_library();
@@ -424,14 +424,14 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     const float proj_info[4] = {1.0f / proj[0][0], 1.0f / proj[1][1], proj[2][0], proj[2][1]};
     /* --sidecar and --up change the geometry the reference sees: they are part of its key (and
      * absent from it without them, so that existing caches still hit). */
-    char key[900];
+    char key[900] = "";
     int key_len = snprintf(key, sizeof key, "%s|%s|v1", in->name, cam.name);
     if ((c->sidecar || c->up != OB_UP_DEFAULT) && key_len > 0 && (size_t)key_len < sizeof key)
         snprintf(key + key_len, sizeof key - (size_t)key_len, "|sidecar=%s|up=%d", c->sidecar ? c->sidecar : "",
                  (int)c->up);
     code = reference_for(o, scene, &cm, key, depth, normals, proj_info, (const float *)inv_view, vr->radius, ref, vr);
     if (code != EXIT_OK) goto done;
-    char path[900];
+    char path[900] = "";
     snprintf(path, sizeof path, "%s/reference_ao.png", dir);
     if (!track_file(out, path)) {
         code = cli_fail(EXIT_RUNTIME, "out of memory");

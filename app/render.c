@@ -214,7 +214,7 @@ int cmd_render(int argc, char **argv)
 
     ob_scene *scene = cli_common_load_scene(c, NULL);
     if (!scene) return cli_fail_from_library();
-    ob_camera cam;
+    ob_camera cam = {0};
     if ((code = cli_common_camera(c, scene, NULL, &cam)) != EXIT_OK) {
         ob_destroy_scene(scene);
         return code;

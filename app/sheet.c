@@ -170,7 +170,7 @@ static int render_row(ob_renderer *r, const ob_camera *cam, const cli_config *cf
         ob_read_image(r, OB_IMAGE_AO_F32, ao, px * sizeof(float)) != OB_OK)
         return cli_fail_from_library();
     int y = row_y(row, c->height);
-    char label[CLI_MAX_LABEL + 32];
+    char label[CLI_MAX_LABEL + 32] = "";
     if (isnan(*ao_ms)) snprintf(label, sizeof label, "%s  ao -", name);
     else snprintf(label, sizeof label, "%s  ao %.1f ms", name, *ao_ms);
     draw_text(img, PAD + TEXT_INSET, y + TEXT_INSET, img->w - PAD, label);
@@ -195,7 +195,7 @@ int cmd_sheet(int argc, char **argv)
         free(configs);
         return cli_fail_from_library();
     }
-    ob_camera cam;
+    ob_camera cam = {0};
     if ((code = cli_common_camera(c, scene, NULL, &cam)) != EXIT_OK) {
         free(configs);
         ob_destroy_scene(scene);

@@ -10,29 +10,29 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "cli_options.h"
 
-enum { MAX_PASSES = 16, MAX_LIST = 16, MAX_METHODS = 32, MAX_CAMS = 32, MAX_SIZES = 16 };
+enum { MAX_PASSES = 16, MAX_LIST = CLI_MAX_LIST, MAX_CAMS = 32, MAX_SIZES = 16 };
 
 static const double VR_BUDGET_MS = 1000.0 / 90.0;
 
 typedef struct bench_opts {
-    const char *scene, *methods, *json, *csv, *cameras, *filter;
-    int samples[MAX_LIST], sample_count;
+    cli_common common;            /* scene, methods, filters, AO scales, lighting, ... */
+    const char *json, *csv, *cameras;
+    int samples[CLI_MAX_LIST], sample_count; /* the sweep's N: --samples or --quality */
     float radii[MAX_LIST];
     int radius_count;
-    int width, height, frames, warmup;
-    bool size_given, stereo, scaling, verbose, hdr_off, shadow_given;
+    int frames, warmup;
+    bool stereo, scaling;
     float ipd;
-    ob_shadow_method shadow;
     int sizes[MAX_SIZES][2], size_count;
-    ob_gpu_kind gpu;
 } bench_opts;
 
 /* One measured configuration: per pass and whole-frame statistics (stereo: both eyes summed). */
 typedef struct bench_row {
     int camera;           /* index into the scene's presets */
     int method;           /* registry index */
+    const cli_config *cfg; /* its combination of the lists (method, filter, AO scale) */
     int samples;          /* 0 = the method takes no sample count */
     float r;              /* the sweep's r (0 = the method takes no radius) */
     float radius_world;
@@ -54,30 +54,28 @@ typedef struct bench_state {
     double start;
 } bench_state;
 
-static void bench_usage(FILE *f)
+static void bench_usage(FILE *f, const cli_common *defaults)
 {
     fputs("usage: obscura bench [options]\n"
           "\n"
           "GPU time per pass (GL timestamp queries) of every AO method over sample counts N and\n"
           "radii r, after warm-up frames, as median/min/max over the measured frames, against a\n"
-          "no-AO ('none') frame of the same camera: the tables of seed 000 §5.1-5.2.\n"
+          "no-AO ('none') frame of the same camera, filter and AO scale: the tables of seed 000 §5.1-5.2.\n"
+          "Each combination of --methods, --filters and --ao-scales is its own table.\n"
           "\n"
-          "  --scene S             scene (default cornell)\n"
           "  --cameras A,B         camera presets by name or index (default: every preset)\n"
-          "  --methods all|A,B     methods (default all); none is always measured as the baseline\n"
-          "  --samples 12,24,36,64 samples per pixel N (methods without a count run once)\n"
+          "  --samples 12,24,36,64 the sweep's samples per pixel N (methods without a count run once);\n"
+          "                        --quality low,high names them by preset instead\n"
           "  --radius 2,4,8        r as a multiple of a quarter of the scene's suggested radius:\n"
           "                        radius = r x suggested / 4, so r = 4 is the suggested radius and\n"
-          "                        2/4/8 are half/1x/2x (seed 000's r are metres on one scene)\n"
-          "  --size WxH            image size (default 800x600; --stereo: 1080x1200 per eye)\n"
+          "                        2/4/8 are half/1x/2x (seed 000's r are metres on one scene); N and r\n"
+          "                        are set after --set\n"
           "  --frames N            measured frames per configuration (default 50)\n"
           "  --warmup N            frames rendered first and not measured (default 5)\n"
-          "  --filter NAME         denoising filter (default geometry)\n"
-          "  --shadow none|hard|pcf|vsm  shadow maps (default pcf); none isolates the AO passes\n"
-          "  --hdr on|off          tone mapping (default on)\n"
           "  --stereo              two eyes (one renderer each), eye offset +-ipd/2 along the\n"
           "                        camera's right vector, the same symmetric projection per eye;\n"
-          "                        frame = both eyes, against the 11.1 ms (90 Hz) budget\n"
+          "                        frame = both eyes, against the 11.1 ms (90 Hz) budget; --size is\n"
+          "                        per eye (default 1080x1200)\n"
           "  --ipd D               interpupillary distance in world units (default 0.064)\n"
           "  --scaling             instead of the sweep: AO-pass ms of each method against\n"
           "                        resolution and against triangles (scene tessellated 1x, 4x, 16x)\n"
@@ -86,11 +84,12 @@ static void bench_usage(FILE *f)
           "                        2560x1440,3840x2160)\n"
           "  --json FILE           every number, with GL renderer/version, CPU, commit and date\n"
           "  --csv FILE            one row per configuration and pass\n"
-          "  --gpu auto|hw|sw      as for render; -v prints the GL renderer\n"
           "\n"
-          "stdout: one table per method, rows N, columns r, cells 'AO-pass ms / frame ms' (medians);\n"
-          "stderr: a progress bar with the configurations done and the time left.\n",
+          "stdout: one table per method (per combination), rows N, columns r, cells 'AO-pass ms /\n"
+          "frame ms' (medians); stderr: a progress bar with the configurations done and the time left.\n"
+          "The methods' --methods default is every method but none, which is always measured.\n",
           f);
+    cli_common_usage(f, defaults);
 }
 
 static bool parse_int(const char *v, long lo, long hi, int *out)
@@ -102,20 +101,7 @@ static bool parse_int(const char *v, long lo, long hi, int *out)
     return true;
 }
 
-/* Comma lists of integers or positive numbers. */
-static bool parse_int_list(const char *v, int *out, int *count)
-{
-    char buf[256];
-    snprintf(buf, sizeof buf, "%s", v);
-    *count = 0;
-    char *save = NULL;
-    for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
-        if (*count >= MAX_LIST || !parse_int(t, 1, 4096, &out[*count])) return false;
-        ++*count;
-    }
-    return *count > 0;
-}
-
+/* Comma lists of positive numbers and sizes. */
 static bool parse_float_list(const char *v, float *out, int *count)
 {
     char buf[256];
@@ -144,37 +130,37 @@ static bool parse_size_list(const char *v, int sizes[][2], int *count)
 
 static int parse(int argc, char **argv, bench_opts *o)
 {
-    *o = (bench_opts){.scene = "cornell", .filter = "geometry", .width = 800, .height = 600, .frames = 50,
-                      .warmup = 5, .ipd = 0.064f,
-                      .samples = {12, 24, 36, 64}, .sample_count = 4, .radii = {2.0f, 4.0f, 8.0f}, .radius_count = 3,
+    *o = (bench_opts){.frames = 50, .warmup = 5, .ipd = 0.064f, .radii = {2.0f, 4.0f, 8.0f}, .radius_count = 3,
                       .sizes = {{640, 480}, {1280, 720}, {1920, 1080}, {2560, 1440}, {3840, 2160}}, .size_count = 5};
+    cli_common *c = &o->common;
+    cli_common_init(c, "bench", CLI_TAKES_SCENE | CLI_TAKES_LISTS);
+    c->scene = "cornell";
+    c->default_method = NULL; /* every method */
+    c->width = 800;
+    c->height = 600;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            bench_usage(stdout);
+            bench_usage(stdout, c);
             return -1;
         }
-        if (!strcmp(a, "-v")) { o->verbose = true; continue; }
         if (!strcmp(a, "--stereo")) { o->stereo = true; continue; }
         if (!strcmp(a, "--scaling")) { o->scaling = true; continue; }
+        int taken = cli_common_option(c, argc, argv, &i);
+        if (taken == CLI_TAKEN) continue;
+        if (taken != CLI_NOT_MINE) return taken;
+        const char *const own[] = {"--cameras", "--json", "--csv", "--radius", "--sizes", "--frames", "--warmup", "--ipd"};
+        bool known = false;
+        for (size_t k = 0; k < sizeof own / sizeof own[0]; ++k) known = known || !strcmp(a, own[k]);
+        if (!known) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura bench --help)", a);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura bench --help)", a);
         const char *v = argv[++i];
-        if (!strcmp(a, "--scene")) o->scene = v;
-        else if (!strcmp(a, "--methods")) o->methods = strcmp(v, "all") ? v : NULL;
-        else if (!strcmp(a, "--cameras")) o->cameras = v;
+        if (!strcmp(a, "--cameras")) o->cameras = v;
         else if (!strcmp(a, "--json")) o->json = v;
         else if (!strcmp(a, "--csv")) o->csv = v;
-        else if (!strcmp(a, "--filter")) o->filter = v;
-        else if (!strcmp(a, "--samples")) {
-            if (!parse_int_list(v, o->samples, &o->sample_count))
-                return cli_fail(EXIT_USAGE, "--samples: expected a comma list of 1..4096, got '%s'", v);
-        } else if (!strcmp(a, "--radius")) {
+        else if (!strcmp(a, "--radius")) {
             if (!parse_float_list(v, o->radii, &o->radius_count))
                 return cli_fail(EXIT_USAGE, "--radius: expected a comma list of positive numbers, got '%s'", v);
-        } else if (!strcmp(a, "--size")) {
-            if (!cli_parse_size(v, &o->width, &o->height))
-                return cli_fail(EXIT_USAGE, "--size: expected WIDTHxHEIGHT with positive integers, got '%s'", v);
-            o->size_given = true;
         } else if (!strcmp(a, "--sizes")) {
             if (!parse_size_list(v, o->sizes, &o->size_count))
                 return cli_fail(EXIT_USAGE, "--sizes: expected a comma list of WIDTHxHEIGHT, got '%s'", v);
@@ -185,25 +171,26 @@ static int parse(int argc, char **argv, bench_opts *o)
         } else if (!strcmp(a, "--ipd")) {
             if (!cli_parse_float(v, &o->ipd) || !(o->ipd >= 0.0f))
                 return cli_fail(EXIT_USAGE, "--ipd: expected a number >= 0, got '%s'", v);
-        } else if (!strcmp(a, "--shadow")) {
-            if (!cli_parse_shadow(v, &o->shadow))
-                return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
-            o->shadow_given = true;
-        } else if (!strcmp(a, "--hdr")) {
-            bool on = true;
-            if (!cli_parse_on_off(v, &on)) return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
-            o->hdr_off = !on;
-        } else if (!strcmp(a, "--gpu")) {
-            if (!cli_parse_gpu(v, &o->gpu)) return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
-        } else {
-            return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura bench --help)", a);
         }
     }
     if (o->stereo && o->scaling) return cli_fail(EXIT_USAGE, "--stereo and --scaling exclude each other");
-    if (o->stereo && !o->size_given) {
-        o->width = 1080;
-        o->height = 1200;
+    int code = cli_common_finish(c);
+    if (code != EXIT_OK) return code;
+    if (o->stereo && !c->has_size) {
+        c->width = 1080;
+        c->height = 1200;
     }
+    /* The sample counts are the sweep's rows (set per configuration by configure), not a list of
+     * the combinations: they leave the common lists. */
+    static const int default_samples[] = {12, 24, 36, 64};
+    o->sample_count = c->sample_count > 0 ? c->sample_count : 4;
+    for (int k = 0; k < o->sample_count; ++k) o->samples[k] = c->sample_count > 0 ? c->samples[k].count : default_samples[k];
+    c->sample_count = 0;
+    /* none is always measured, as the baseline of each filter and AO scale. */
+    int kept = 0;
+    for (int k = 0; k < c->method_count; ++k)
+        if (strcmp(ob_method_at(c->methods[k])->name, "none")) c->methods[kept++] = c->methods[k];
+    c->method_count = kept;
     const char *outs[2] = {o->json, o->csv};
     for (int i = 0; i < 2; ++i)
         if (outs[i] && !cli_output_writable(outs[i]))
@@ -323,13 +310,11 @@ static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, con
     return EXIT_OK;
 }
 
-/* The settings of one configuration; samples 0 / r 0 leave the method's own. */
-static int configure(const bench_opts *o, int method, int samples, float radius_world, ob_settings *s)
+/* The settings of one configuration: its combination's, then the sweep's N and r (samples 0 /
+ * r 0 leave the method's own). */
+static int configure(const cli_config *cfg, int samples, float radius_world, ob_settings *s)
 {
-    if (ob_settings_init(s, ob_method_at(method)->name) != OB_OK) return cli_fail_from_library();
-    if (ob_settings_set_filter(s, o->filter) != OB_OK) return cli_fail_from_library();
-    if (o->shadow_given) s->shadow.method = (ob_shadow_method)o->shadow;
-    s->hdr.enabled = !o->hdr_off;
+    *s = cfg->settings;
     if (samples > 0 && ob_settings_set_samples(s, samples) != OB_OK) return cli_fail_from_library();
     if (radius_world > 0.0f) {
         char buf[64];
@@ -355,30 +340,6 @@ static int takes_samples(const bench_opts *o, int method, bool *yes)
             return EXIT_OK;
         }
         return cli_fail_from_library();
-    }
-    return EXIT_OK;
-}
-
-static int method_list(const bench_opts *o, int *idx, int *count)
-{
-    *count = 0;
-    if (!o->methods) {
-        for (int i = 0; i < ob_method_count() && *count < MAX_METHODS; ++i)
-            if (strcmp(ob_method_at(i)->name, "none")) idx[(*count)++] = i;
-        return EXIT_OK;
-    }
-    char buf[512];
-    snprintf(buf, sizeof buf, "%s", o->methods);
-    char *save = NULL;
-    for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
-        int k = ob_find_method(t);
-        if (k < 0) {
-            ob_settings probe;
-            ob_settings_init(&probe, t); /* the library's "unknown method (known: ...)" message */
-            return cli_fail_from_library();
-        }
-        if (!strcmp(t, "none")) continue; /* always measured as the baseline */
-        if (*count < MAX_METHODS) idx[(*count)++] = k;
     }
     return EXIT_OK;
 }
@@ -447,22 +408,23 @@ static void git_commit(char *out, size_t n)
 static const char *method_name(int m) { return ob_method_at(m)->name; }
 
 static void print_tables(const bench_opts *o, const ob_scene *scene, const bench_state *st, const int *cams, int cam_count,
-                         const int *methods, int method_count)
+                         const cli_config *configs, int config_count)
 {
     const char *unit = o->stereo ? "both eyes" : "one view";
     for (int c = 0; c < cam_count; ++c) {
         const char *cname = ob_query_camera(scene, cams[c]).name;
-        const bench_row *none = NULL;
-        for (int i = 0; i < st->count; ++i)
-            if (st->rows[i].camera == cams[c] && !strcmp(method_name(st->rows[i].method), "none")) none = &st->rows[i];
         printf("\n== %s, camera %s, %dx%d%s, median of %d frames (%s) ==\n", ob_query_scene_name(scene), cname,
-               o->width, o->height, o->stereo ? " per eye" : "", o->frames, unit);
-        if (none)
-            printf("none: frame %.3f ms (%.1f FPS)%s\n", none->frame_med, 1000.0 / none->frame_med,
+               o->common.width, o->common.height, o->stereo ? " per eye" : "", o->frames, unit);
+        /* The none frames: one per filter and AO scale, each the baseline of its combinations. */
+        for (int i = 0; i < st->count; ++i) {
+            const bench_row *none = &st->rows[i];
+            if (none->camera != cams[c] || none->baseline != i) continue;
+            printf("%s: frame %.3f ms (%.1f FPS)%s\n", none->cfg->label, none->frame_med, 1000.0 / none->frame_med,
                    o->stereo ? (none->frame_med <= VR_BUDGET_MS ? ", within 11.1 ms" : ", over 11.1 ms") : "");
-        for (int mi = 0; mi < method_count; ++mi) {
-            int m = methods[mi];
-            printf("\n%s: AO-pass ms / frame ms", method_name(m));
+        }
+        for (int k = 0; k < config_count; ++k) {
+            const cli_config *cfg = &configs[k];
+            printf("\n%s: AO-pass ms / frame ms", cfg->label);
             if (o->stereo) printf(" (frame budget 11.1 ms at 90 Hz; * = over)");
             printf("\n%-8s", "");
             float rs[MAX_LIST];
@@ -471,17 +433,17 @@ static void print_tables(const bench_opts *o, const ob_scene *scene, const bench
             int nn = 0;
             for (int i = 0; i < st->count; ++i) {
                 const bench_row *r = &st->rows[i];
-                if (r->camera != cams[c] || r->method != m) continue;
+                if (r->camera != cams[c] || r->cfg != cfg) continue;
                 bool seen = false;
-                for (int k = 0; k < rn; ++k) seen = seen || rs[k] == r->r;
+                for (int q = 0; q < rn; ++q) seen = seen || rs[q] == r->r;
                 if (!seen && rn < MAX_LIST) rs[rn++] = r->r;
                 seen = false;
-                for (int k = 0; k < nn; ++k) seen = seen || ns[k] == r->samples;
+                for (int q = 0; q < nn; ++q) seen = seen || ns[q] == r->samples;
                 if (!seen && nn < MAX_LIST) ns[nn++] = r->samples;
             }
-            for (int k = 0; k < rn; ++k) {
+            for (int q = 0; q < rn; ++q) {
                 char h[32];
-                if (rs[k] > 0.0f) snprintf(h, sizeof h, "r = %g", (double)rs[k]);
+                if (rs[q] > 0.0f) snprintf(h, sizeof h, "r = %g", (double)rs[q]);
                 else snprintf(h, sizeof h, "r = -");
                 printf(" %20s", h);
             }
@@ -493,13 +455,14 @@ static void print_tables(const bench_opts *o, const ob_scene *scene, const bench
                 if (ns[j] > 0) snprintf(h, sizeof h, "N = %d", ns[j]);
                 else snprintf(h, sizeof h, "N = -");
                 printf("%-8s", h);
-                for (int k = 0; k < rn; ++k) {
+                for (int q = 0; q < rn; ++q) {
                     const bench_row *hit = NULL;
                     for (int i = 0; i < st->count; ++i) {
                         const bench_row *r = &st->rows[i];
-                        if (r->camera == cams[c] && r->method == m && r->samples == ns[j] && r->r == rs[k]) hit = r;
+                        if (r->camera == cams[c] && r->cfg == cfg && r->samples == ns[j] && r->r == rs[q]) hit = r;
                     }
                     char cell[48];
+                    const bench_row *none = hit && hit->baseline >= 0 ? &st->rows[hit->baseline] : NULL;
                     if (hit) {
                         snprintf(cell, sizeof cell, "%.3f / %.3f%s", hit->ao_ms, hit->frame_med,
                                  o->stereo && hit->frame_med > VR_BUDGET_MS ? "*" : "");
@@ -519,10 +482,23 @@ static void print_tables(const bench_opts *o, const ob_scene *scene, const bench
     }
 }
 
+/* A row's label: its combination's, then the sweep's N and r where the method takes them. */
+static void row_label(const bench_row *r, char *out, size_t n)
+{
+    int len = snprintf(out, n, "%s", r->cfg->label);
+    if (r->samples > 0 && len >= 0 && (size_t)len < n) len += snprintf(out + len, n - (size_t)len, " \xc2\xb7 N %d", r->samples);
+    if (r->r > 0.0f && len >= 0 && (size_t)len < n) snprintf(out + len, n - (size_t)len, " \xc2\xb7 r %g", (double)r->r);
+}
+
 static cJSON *row_json(const bench_row *r, const bench_row *none, const ob_scene *scene)
 {
     cJSON *j = cJSON_CreateObject();
+    char label[CLI_MAX_LABEL + 32] = "";
+    row_label(r, label, sizeof label);
     cJSON_AddStringToObject(j, "method", method_name(r->method));
+    cJSON_AddStringToObject(j, "label", label);
+    cJSON_AddStringToObject(j, "filter", ob_filter_at(r->cfg->filter)->name);
+    cJSON_AddNumberToObject(j, "ao_scale", 1.0 / r->cfg->ao_divisor);
     cJSON_AddStringToObject(j, "camera", ob_query_camera(scene, r->camera).name);
     if (r->samples > 0) cJSON_AddNumberToObject(j, "samples", r->samples);
     else cJSON_AddNullToObject(j, "samples");
@@ -572,12 +548,12 @@ static const bench_row *baseline_of(const bench_state *st, const bench_row *r)
 
 static int write_csv(const char *path, const bench_state *st, const ob_scene *scene, int eyes)
 {
-    size_t cap = 4096 + (size_t)st->count * MAX_PASSES * 200, len = 0;
+    size_t cap = 4096 + (size_t)st->count * (MAX_PASSES + 1) * (300 + CLI_MAX_LABEL), len = 0;
     char *buf = malloc(cap);
     if (!buf) return cli_fail(EXIT_RUNTIME, "out of memory");
     len += (size_t)snprintf(buf + len, cap - len,
-                            "scene,camera,method,samples,r,radius_world,width,height,eyes,triangles,pass,median_ms,"
-                            "min_ms,max_ms,fps,minus_none_ms,ratio_none\n");
+                            "scene,camera,method,samples,r,radius_world,filter,ao_scale,width,height,eyes,triangles,pass,"
+                            "median_ms,min_ms,max_ms,fps,minus_none_ms,ratio_none,label\n");
     for (int i = 0; i < st->count; ++i) {
         const bench_row *r = &st->rows[i];
         const bench_row *none = baseline_of(st, r);
@@ -605,10 +581,14 @@ static int write_csv(const char *path, const bench_state *st, const ob_scene *sc
                 snprintf(minus, sizeof minus, "%.4f", med - base);
                 if (base > 0.0) snprintf(ratio, sizeof ratio, "%.4f", med / base);
             }
-            len += (size_t)snprintf(buf + len, cap - len, "%s,%s,%s,%s,%s,%s,%d,%d,%d,%u,%s,%.4f,%.4f,%.4f,%s,%s,%s\n",
+            char label[CLI_MAX_LABEL + 32] = "";
+            row_label(r, label, sizeof label);
+            len += (size_t)snprintf(buf + len, cap - len,
+                                    "%s,%s,%s,%s,%s,%s,%s,%g,%d,%d,%d,%u,%s,%.4f,%.4f,%.4f,%s,%s,%s,%s\n",
                                     ob_query_scene_name(scene), ob_query_camera(scene, r->camera).name,
-                                    method_name(r->method), samples, rr, rw, r->width, r->height, eyes, r->triangles,
-                                    frame ? "frame" : r->pass[p], med, lo, hi, fps, minus, ratio);
+                                    method_name(r->method), samples, rr, rw, ob_filter_at(r->cfg->filter)->name,
+                                    1.0 / r->cfg->ao_divisor, r->width, r->height, eyes, r->triangles,
+                                    frame ? "frame" : r->pass[p], med, lo, hi, fps, minus, ratio, label);
         }
     }
     ob_error e = ob_write_text(path, buf);
@@ -623,14 +603,14 @@ typedef struct scaling_verdict {
     double tri_ratio, mpx_spread; /* max/min AO ms over tessellation; max |ms/MP / median - 1| */
 } scaling_verdict;
 
-static scaling_verdict verdict(const bench_state *st, int method)
+static scaling_verdict verdict(const bench_state *st, const cli_config *cfg)
 {
     scaling_verdict v = {false, false, 0.0, 0.0};
     double lo = INFINITY, hi = 0.0, per_mp[MAX_SIZES] = {0};
     int n = 0;
     for (int i = 0; i < st->count; ++i) {
         const bench_row *r = &st->rows[i];
-        if (r->method != method) continue;
+        if (r->cfg != cfg) continue;
         if (r->study == 2) {
             lo = fmin(lo, r->ao_ms);
             hi = fmax(hi, r->ao_ms);
@@ -660,40 +640,55 @@ int cmd_bench(int argc, char **argv)
     bench_opts o;
     int code = parse(argc, argv, &o);
     if (code != 0) return code < 0 ? EXIT_OK : code;
+    const cli_common *c = &o.common;
 
-    /* Everything that can be checked without a GPU first. */
-    int methods[MAX_METHODS] = {0}, method_count = 0;
-    if ((code = method_list(&o, methods, &method_count)) != EXIT_OK) return code;
-    bool has_samples[MAX_METHODS] = {false}, has_radius[MAX_METHODS] = {false};
-    for (int i = 0; i < method_count; ++i) {
-        if ((code = takes_samples(&o, methods[i], &has_samples[i])) != EXIT_OK) return code;
-        has_radius[i] = method_has_param(methods[i], "radius");
-    }
-    ob_settings probe;
-    if (ob_settings_init(&probe, "none") != OB_OK || ob_settings_set_filter(&probe, o.filter) != OB_OK)
-        return cli_fail_from_library();
-    int none = ob_find_method("none");
-
-    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = o.scene});
-    if (!scene) return cli_fail_from_library();
-    int cams[MAX_CAMS] = {0}, cam_count = 0;
-    if ((code = camera_list(&o, scene, cams, &cam_count)) != EXIT_OK) {
-        ob_destroy_scene(scene);
-        return code;
-    }
-    const float suggested = ob_query_scene_ao_radius(scene);
-
-    ob_context *ctx = cli_make_context(o.gpu, o.verbose);
-    if (!ctx) {
-        code = cli_fail_from_library();
-        ob_destroy_scene(scene);
-        return code;
-    }
-
+    /* Everything that can be checked without a GPU first: the combinations of the lists with
+     * their settings, each method's N, the scene and the cameras. */
+    cli_config *configs = NULL, *bases = NULL;
+    int count = 0, base_count = c->filter_count * c->ao_count;
+    bool *has_samples = NULL, *has_radius = NULL;
+    ob_scene *scene = NULL;
+    ob_context *ctx = NULL;
     bench_state st = {0};
     ob_renderer *eyes[2] = {NULL, NULL};
     ob_scene *tess[3] = {NULL, NULL, NULL};
-    double *scratch = calloc((size_t)o.frames * (MAX_PASSES + 1), sizeof(double));
+    double *scratch = NULL;
+    if (c->method_count > 0 && (code = cli_common_configs(c, &configs, &count)) != EXIT_OK) return code;
+    /* The none frames, one per filter and AO scale: the same settings but the method. */
+    bases = calloc((size_t)base_count, sizeof *bases);
+    has_samples = calloc((size_t)count + 1, sizeof *has_samples);
+    has_radius = calloc((size_t)count + 1, sizeof *has_radius);
+    if (!bases || !has_samples || !has_radius) {
+        code = cli_fail(EXIT_RUNTIME, "out of memory");
+        goto cleanup;
+    }
+    for (int f = 0, b = 0; f < c->filter_count && code == EXIT_OK; ++f)
+        for (int a = 0; a < c->ao_count && code == EXIT_OK; ++a, ++b) {
+            bases[b] = (cli_config){.method = ob_find_method("none"), .filter = c->filters[f], .ao_divisor = c->ao_divisors[a]};
+            code = cli_common_apply(c, &bases[b]);
+        }
+    for (int k = 0; k < count && code == EXIT_OK; ++k) {
+        code = takes_samples(&o, configs[k].method, &has_samples[k]);
+        has_radius[k] = method_has_param(configs[k].method, "radius");
+    }
+    if (code != EXIT_OK) goto cleanup;
+
+    scene = cli_common_load_scene(c, NULL);
+    if (!scene) {
+        code = cli_fail_from_library();
+        goto cleanup;
+    }
+    int cams[MAX_CAMS] = {0}, cam_count = 0;
+    if ((code = camera_list(&o, scene, cams, &cam_count)) != EXIT_OK) goto cleanup;
+    const float suggested = ob_query_scene_ao_radius(scene);
+
+    ctx = cli_make_context(c->gpu, c->verbose);
+    if (!ctx) {
+        code = cli_fail_from_library();
+        goto cleanup;
+    }
+
+    scratch = calloc((size_t)o.frames * (MAX_PASSES + 1), sizeof(double));
     int eye_count = o.stereo ? 2 : 1;
     const double t0 = now_s();
     st.start = t0;
@@ -702,90 +697,87 @@ int cmd_bench(int argc, char **argv)
         goto cleanup;
     }
 
-    /* Configurations per camera of the sweep: one none frame, then each method's grid. */
-    int per_cam = 1;
-    for (int i = 0; i < method_count; ++i)
-        per_cam += (has_samples[i] ? o.sample_count : 1) * (has_radius[i] ? o.radius_count : 1);
+    /* Configurations per camera of the sweep: the none frames, then each combination's grid. */
+    int per_cam = base_count;
+    for (int k = 0; k < count; ++k) per_cam += (has_samples[k] ? o.sample_count : 1) * (has_radius[k] ? o.radius_count : 1);
 
     if (!o.scaling) {
         st.total = per_cam * cam_count;
-        for (int e = 0; e < eye_count; ++e) {
-            eyes[e] = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.width, .height = o.height});
-            if (!eyes[e] || ob_renderer_set_scene(eyes[e], scene) != OB_OK) {
-                code = cli_fail_from_library();
-                goto cleanup;
-            }
+        for (int e = 0; e < eye_count && code == EXIT_OK; ++e) {
+            eyes[e] = ob_make_renderer(ctx, &(ob_renderer_desc){.width = c->width, .height = c->height});
+            if (!eyes[e] || ob_renderer_set_scene(eyes[e], scene) != OB_OK) code = cli_fail_from_library();
+            else code = cli_common_prepare(c, eyes[e]);
         }
-        for (int c = 0; c < cam_count && code == EXIT_OK; ++c) {
-            ob_camera cam = ob_query_camera(scene, cams[c]);
+        for (int ci = 0; ci < cam_count && code == EXIT_OK; ++ci) {
+            ob_camera cam = ob_query_camera(scene, cams[ci]);
             ob_camera views[2];
             if (o.stereo) eye_cameras(&cam, o.ipd, views);
             else views[0] = cam;
-            int base = st.count;
-            for (int mi = -1; mi < method_count && code == EXIT_OK; ++mi) {
-                int m = mi < 0 ? none : methods[mi];
-                int nn = mi >= 0 && has_samples[mi] ? o.sample_count : 1;
-                int rn = mi >= 0 && has_radius[mi] ? o.radius_count : 1;
+            const int base = st.count; /* the none rows of this camera, in the order of bases */
+            for (int k = -base_count; k < count && code == EXIT_OK; ++k) {
+                const bool is_base = k < 0;
+                const cli_config *cfg = is_base ? &bases[k + base_count] : &configs[k];
+                int nn = !is_base && has_samples[k] ? o.sample_count : 1;
+                int rn = !is_base && has_radius[k] ? o.radius_count : 1;
+                /* The none row of the same filter and AO scale. */
+                int baseline = -1;
+                for (int b = 0; b < base_count; ++b)
+                    if (bases[b].filter == cfg->filter && bases[b].ao_divisor == cfg->ao_divisor) baseline = base + b;
                 for (int j = 0; j < nn && code == EXIT_OK; ++j)
-                    for (int k = 0; k < rn && code == EXIT_OK; ++k) {
-                        int n = mi >= 0 && has_samples[mi] ? o.samples[j] : 0;
-                        float r = mi >= 0 && has_radius[mi] ? o.radii[k] : 0.0f;
+                    for (int q = 0; q < rn && code == EXIT_OK; ++q) {
+                        int n = !is_base && has_samples[k] ? o.samples[j] : 0;
+                        float r = !is_base && has_radius[k] ? o.radii[q] : 0.0f;
                         float rw = r * suggested / 4.0f;
-                        ob_settings s;
-                        if ((code = configure(&o, m, n, rw, &s)) != EXIT_OK) break;
+                        ob_settings s = {0};
+                        if ((code = configure(cfg, n, rw, &s)) != EXIT_OK) break;
                         bench_row *row = new_row(&st);
                         if (!row) {
                             code = cli_fail(EXIT_RUNTIME, "out of memory");
                             break;
                         }
-                        *row = (bench_row){.camera = cams[c], .method = m, .samples = n, .r = r, .radius_world = rw,
-                                           .width = o.width, .height = o.height,
-                                           .triangles = ob_query_scene_stats(scene).triangles,
-                                           .baseline = mi < 0 ? -1 : base};
+                        /* A none row is its own baseline: its differences are 0 and ratios 1. */
+                        *row = (bench_row){.camera = cams[ci], .method = cfg->method, .cfg = cfg, .samples = n, .r = r,
+                                           .radius_world = rw, .width = c->width, .height = c->height,
+                                           .triangles = ob_query_scene_stats(scene).triangles, .baseline = baseline};
                         code = measure(eyes, views, eye_count, &s, &o, scratch, row);
-                        char what[192];
-                        snprintf(what, sizeof what, "%s %s N=%d r=%g", cam.name, method_name(m), n, (double)r);
+                        char what[512] = "";
+                        snprintf(what, sizeof what, "%s %s N=%d r=%g", cam.name, cfg->label, n, (double)r);
                         if (code == EXIT_OK) progress(&st, what);
                     }
             }
-            /* The none row is its own baseline: its differences are 0 and ratios 1. */
-            if (code == EXIT_OK) st.rows[base].baseline = base;
         }
-        if (code == EXIT_OK) print_tables(&o, scene, &st, cams, cam_count, methods, method_count);
+        if (code == EXIT_OK) print_tables(&o, scene, &st, cams, cam_count, configs, count);
     } else {
         /* Scaling: the first camera, the first N and r of the lists. */
         ob_camera cam = ob_query_camera(scene, cams[0]);
-        st.total = method_count * (o.size_count + 3);
+        st.total = count * (o.size_count + 3);
         for (int z = 0; z < o.size_count && code == EXIT_OK; ++z) {
             ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.sizes[z][0], .height = o.sizes[z][1]});
-            if (!r || ob_renderer_set_scene(r, scene) != OB_OK) {
-                code = cli_fail_from_library();
-                ob_destroy_renderer(r);
-                break;
-            }
-            for (int mi = 0; mi < method_count && code == EXIT_OK; ++mi) {
-                float rw = has_radius[mi] ? o.radii[0] * suggested / 4.0f : 0.0f;
-                ob_settings s;
-                if ((code = configure(&o, methods[mi], has_samples[mi] ? o.samples[0] : 0, rw, &s)) != EXIT_OK) break;
+            if (!r || ob_renderer_set_scene(r, scene) != OB_OK) code = cli_fail_from_library();
+            else code = cli_common_prepare(c, r);
+            for (int k = 0; k < count && code == EXIT_OK; ++k) {
+                float rw = has_radius[k] ? o.radii[0] * suggested / 4.0f : 0.0f;
+                ob_settings s = {0};
+                if ((code = configure(&configs[k], has_samples[k] ? o.samples[0] : 0, rw, &s)) != EXIT_OK) break;
                 bench_row *row = new_row(&st);
                 if (!row) {
                     code = cli_fail(EXIT_RUNTIME, "out of memory");
                     break;
                 }
-                *row = (bench_row){.camera = cams[0], .method = methods[mi], .samples = has_samples[mi] ? o.samples[0] : 0,
-                                   .r = has_radius[mi] ? o.radii[0] : 0.0f, .radius_world = rw, .width = o.sizes[z][0],
-                                   .height = o.sizes[z][1], .triangles = ob_query_scene_stats(scene).triangles,
-                                   .baseline = -1, .study = 1};
+                *row = (bench_row){.camera = cams[0], .method = configs[k].method, .cfg = &configs[k],
+                                   .samples = has_samples[k] ? o.samples[0] : 0, .r = has_radius[k] ? o.radii[0] : 0.0f,
+                                   .radius_world = rw, .width = o.sizes[z][0], .height = o.sizes[z][1],
+                                   .triangles = ob_query_scene_stats(scene).triangles, .baseline = -1, .study = 1};
                 code = measure(&r, &cam, 1, &s, &o, scratch, row);
-                char what[192];
-                snprintf(what, sizeof what, "%dx%d %s", o.sizes[z][0], o.sizes[z][1], method_name(methods[mi]));
+                char what[512] = "";
+                snprintf(what, sizeof what, "%dx%d %s", o.sizes[z][0], o.sizes[z][1], configs[k].label);
                 if (code == EXIT_OK) progress(&st, what);
             }
             ob_destroy_renderer(r);
         }
         if (code == EXIT_OK) {
-            eyes[0] = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.width, .height = o.height});
-            if (!eyes[0]) code = cli_fail_from_library();
+            eyes[0] = ob_make_renderer(ctx, &(ob_renderer_desc){.width = c->width, .height = c->height});
+            code = eyes[0] ? cli_common_prepare(c, eyes[0]) : cli_fail_from_library();
         }
         for (int l = 0; l < 3 && code == EXIT_OK; ++l) {
             tess[l] = ob_tessellate_scene(scene, l);
@@ -793,39 +785,40 @@ int cmd_bench(int argc, char **argv)
                 code = cli_fail_from_library();
                 break;
             }
-            for (int mi = 0; mi < method_count && code == EXIT_OK; ++mi) {
-                float rw = has_radius[mi] ? o.radii[0] * suggested / 4.0f : 0.0f;
-                ob_settings s;
-                if ((code = configure(&o, methods[mi], has_samples[mi] ? o.samples[0] : 0, rw, &s)) != EXIT_OK) break;
+            for (int k = 0; k < count && code == EXIT_OK; ++k) {
+                float rw = has_radius[k] ? o.radii[0] * suggested / 4.0f : 0.0f;
+                ob_settings s = {0};
+                if ((code = configure(&configs[k], has_samples[k] ? o.samples[0] : 0, rw, &s)) != EXIT_OK) break;
                 bench_row *row = new_row(&st);
                 if (!row) {
                     code = cli_fail(EXIT_RUNTIME, "out of memory");
                     break;
                 }
-                *row = (bench_row){.camera = cams[0], .method = methods[mi], .samples = has_samples[mi] ? o.samples[0] : 0,
-                                   .r = has_radius[mi] ? o.radii[0] : 0.0f, .radius_world = rw, .width = o.width,
-                                   .height = o.height, .triangles = ob_query_scene_stats(tess[l]).triangles, .tess = l,
-                                   .baseline = -1, .study = 2};
+                *row = (bench_row){.camera = cams[0], .method = configs[k].method, .cfg = &configs[k],
+                                   .samples = has_samples[k] ? o.samples[0] : 0, .r = has_radius[k] ? o.radii[0] : 0.0f,
+                                   .radius_world = rw, .width = c->width, .height = c->height,
+                                   .triangles = ob_query_scene_stats(tess[l]).triangles, .tess = l, .baseline = -1,
+                                   .study = 2};
                 code = measure(eyes, &cam, 1, &s, &o, scratch, row);
-                char what[192];
-                snprintf(what, sizeof what, "%ux tris %s", 1u << (2 * l), method_name(methods[mi]));
+                char what[512] = "";
+                snprintf(what, sizeof what, "%ux tris %s", 1u << (2 * l), configs[k].label);
                 if (code == EXIT_OK) progress(&st, what);
             }
         }
         if (code == EXIT_OK) {
             printf("\n== scaling: AO-pass median ms, %s camera %s, %d frames ==\n", ob_query_scene_name(scene), cam.name,
                    o.frames);
-            for (int mi = 0; mi < method_count; ++mi) {
-                printf("\n%s\n  resolution:", method_name(methods[mi]));
+            for (int k = 0; k < count; ++k) {
+                printf("\n%s\n  resolution:", configs[k].label);
                 for (int i = 0; i < st.count; ++i)
-                    if (st.rows[i].method == methods[mi] && st.rows[i].study == 1)
+                    if (st.rows[i].cfg == &configs[k] && st.rows[i].study == 1)
                         printf("  %dx%d %.3f ms (%.3f ms/MP)", st.rows[i].width, st.rows[i].height, st.rows[i].ao_ms,
                                st.rows[i].ao_ms / (st.rows[i].width * (double)st.rows[i].height * 1e-6));
                 printf("\n  triangles: ");
                 for (int i = 0; i < st.count; ++i)
-                    if (st.rows[i].method == methods[mi] && st.rows[i].study == 2)
+                    if (st.rows[i].cfg == &configs[k] && st.rows[i].study == 2)
                         printf("  %u tris %.3f ms", st.rows[i].triangles, st.rows[i].ao_ms);
-                scaling_verdict v = verdict(&st, methods[mi]);
+                scaling_verdict v = verdict(&st, &configs[k]);
                 printf("\n  flat in triangles: %s (max/min %.2f, < 1.2); linear in pixels: %s (ms/MP within %.0f%% of "
                        "the median, limit 30%%)\n",
                        v.flat_in_triangles ? "yes" : "no", v.tri_ratio, v.linear_in_pixels ? "yes" : "no",
@@ -844,6 +837,12 @@ int cmd_bench(int argc, char **argv)
         struct tm tm_utc;
         gmtime_r(&t, &tm_utc);
         strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", &tm_utc);
+        /* The filters as one string: "geometry", or "none,geometry" for a list. */
+        char filters[256] = "";
+        for (int f = 0; f < c->filter_count; ++f) {
+            size_t len = strlen(filters);
+            snprintf(filters + len, sizeof filters - len, "%s%s", f ? "," : "", ob_filter_at(c->filters[f])->name);
+        }
         cJSON *root = cJSON_CreateObject();
         cJSON_AddStringToObject(root, "tool", "obscura bench " OB_VERSION_STRING);
         cJSON_AddStringToObject(root, "date", date);
@@ -859,8 +858,8 @@ int cmd_bench(int argc, char **argv)
         cJSON_AddNumberToObject(root, "scene_radius", suggested);
         cJSON_AddStringToObject(root, "radius_rule", "radius_world = r x scene_radius / 4 (r = 4: the suggested radius)");
         cJSON_AddStringToObject(root, "mode", o.scaling ? "scaling" : o.stereo ? "stereo" : "sweep");
-        cJSON_AddNumberToObject(root, "width", o.width);
-        cJSON_AddNumberToObject(root, "height", o.height);
+        cJSON_AddNumberToObject(root, "width", c->width);
+        cJSON_AddNumberToObject(root, "height", c->height);
         cJSON_AddNumberToObject(root, "eyes", eye_count);
         if (o.stereo) {
             cJSON_AddNumberToObject(root, "ipd", o.ipd);
@@ -868,7 +867,7 @@ int cmd_bench(int argc, char **argv)
         }
         cJSON_AddNumberToObject(root, "frames", o.frames);
         cJSON_AddNumberToObject(root, "warmup", o.warmup);
-        cJSON_AddStringToObject(root, "filter", o.filter);
+        cJSON_AddStringToObject(root, "filter", filters);
         cJSON_AddNumberToObject(root, "seconds", seconds);
         cJSON *arr = cJSON_AddArrayToObject(root, "configurations");
         for (int i = 0; i < st.count; ++i) {
@@ -878,10 +877,11 @@ int cmd_bench(int argc, char **argv)
         }
         if (o.scaling) {
             cJSON *sc = cJSON_AddArrayToObject(root, "scaling");
-            for (int mi = 0; mi < method_count; ++mi) {
-                scaling_verdict v = verdict(&st, methods[mi]);
+            for (int k = 0; k < count; ++k) {
+                scaling_verdict v = verdict(&st, &configs[k]);
                 cJSON *j = cJSON_CreateObject();
-                cJSON_AddStringToObject(j, "method", method_name(methods[mi]));
+                cJSON_AddStringToObject(j, "method", method_name(configs[k].method));
+                cJSON_AddStringToObject(j, "label", configs[k].label);
                 cJSON_AddNumberToObject(j, "triangle_max_min_ratio", v.tri_ratio);
                 cJSON_AddBoolToObject(j, "flat_in_triangles", v.flat_in_triangles);
                 cJSON_AddNumberToObject(j, "ms_per_megapixel_spread", v.mpx_spread);
@@ -895,7 +895,12 @@ int cmd_bench(int argc, char **argv)
         else if (ob_write_text(o.json, text) != OB_OK) code = cli_fail_library_as(EXIT_OUTPUT);
         free(text);
     }
-    if (code == EXIT_OK && o.csv) code = write_csv(o.csv, &st, scene, eye_count);
+    /* The CSV after the JSON: a failed CSV takes the JSON of this run away again, so that a failed
+     * run leaves no partial pair. */
+    if (code == EXIT_OK && o.csv) {
+        code = write_csv(o.csv, &st, scene, eye_count);
+        if (code != EXIT_OK && o.json) remove(o.json);
+    }
 
 cleanup:
     free(scratch);
@@ -904,5 +909,9 @@ cleanup:
     for (int l = 0; l < 3; ++l) ob_destroy_scene(tess[l]);
     ob_destroy_context(ctx);
     ob_destroy_scene(scene);
+    free(has_samples);
+    free(has_radius);
+    free(bases);
+    free(configs);
     return code;
 }

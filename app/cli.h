@@ -1,4 +1,5 @@
-/* The obscura CLI: shared helpers for the subcommands. */
+/* The obscura CLI: shared helpers for the subcommands (cli.c) and the subcommands' entry points.
+ * The options every rendering command shares are in cli_options.h. */
 #ifndef OB_CLI_H
 #define OB_CLI_H
 
@@ -16,7 +17,9 @@ enum {
     EXIT_NO_GPU = 5,  /* no OpenGL 4.5 context could be made */
 };
 
-/* Print "obscura: MESSAGE" (one line) and return the exit code for the library's last error. */
+/* Print "obscura: MESSAGE" (one line) and return the exit code for the library's last error.
+ * ob_get_error clears the code it returns, so call this only while the failing call's error is
+ * still pending (nothing has read it since). */
 int cli_fail_from_library(void);
 /* The library's last message with an explicit exit code (e.g. EXIT_OUTPUT for a failed write). */
 int cli_fail_library_as(int code);

@@ -21,61 +21,78 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "cli_options.h"
 
-enum { MAX_VIEWS = 16, MAX_METHODS = 32, FRAMES = 5 };
+enum { MAX_VIEWS = 16, FRAMES = 5 };
 
 typedef struct compare_opts {
+    cli_common common;
     const char *views[MAX_VIEWS]; /* "scene" or "scene:camera" */
     int view_count;
-    const char *methods;          /* comma list or NULL = all */
     const char *report;
-    int width, height, spp, quality_samples;
+    int spp;
     float radius;                 /* 0 = the scene's suggested radius */
-    ob_gpu_kind gpu;
-    bool no_cache, verbose;
+    bool no_cache;
 } compare_opts;
 
+/* One row of a view's table: one combination of the lists. */
 typedef struct method_result {
-    char name[64];
+    char name[64];                /* the method */
+    char label[CLI_MAX_LABEL];    /* "hbao · filter none · ao 0.5"; the method alone with single values */
+    char stem[CLI_MAX_LABEL];     /* its images: STEM_final.png, STEM_ao.png, STEM_error.png */
+    const cli_config *config;
     ob_metrics m;
     bool directional;
     ob_metrics rgb; /* directional methods: HDR radiance against the one-bounce reference */
     double ao_ms, frame_ms;
 } method_result;
 
-static void compare_usage(FILE *f)
+static void compare_usage(FILE *f, const cli_common *defaults)
 {
     fputs("usage: obscura compare --scene S[:CAMERA] [--scene ...] --report DIR [options]\n"
           "\n"
           "Renders every method on the same inputs, ray-traces the ground truth AO_R from the very\n"
           "G-buffer points (Embree), and writes DIR/index.html, DIR/results.json and the images.\n"
+          "Each combination of --methods, --filters, --ao-scales and --quality is one row.\n"
           "\n"
           "  --scene S[:CAMERA]    a scene (see `obscura list`) and optionally a camera preset\n"
-          "                        (default 'default'); repeatable, one report section each\n"
+          "                        (default --camera, else 'default'); repeatable, one report section\n"
+          "                        each; --sidecar, --up, --eye/--target/--fov apply to every scene\n"
           "  --report DIR          where the report goes (created if missing)\n"
-          "  --methods A,B,...     methods to compare (default all)\n"
-          "  --quality Q           low|medium|high|ultra (12/24/36/64 samples) for every method\n"
-          "  --size WxH            image size (default 320x240)\n"
           "  --spp N               reference rays per pixel (default 512: mean standard error < 0.01)\n"
           "  --radius R            AO radius R in world units for every method and the reference\n"
-          "                        (default: each scene's suggested radius)\n"
+          "                        (default: each scene's suggested radius; a --set M.radius=... wins\n"
+          "                        for method M, the reference keeps R)\n"
           "  --no-cache            recompute the reference even if a cached one exists\n"
-          "  --gpu auto|hw|sw      as for render; -v prints the GL renderer\n",
+          "\n"
+          "The one-bounce reference of the directional methods takes the lights of --light and a\n"
+          "constant ambient (--ambient-color), so --ambient hemisphere|env is not taken here.\n",
           f);
+    cli_common_usage(f, defaults);
 }
 
 static int parse(int argc, char **argv, compare_opts *o)
 {
-    *o = (compare_opts){.width = 320, .height = 240, .spp = 512};
+    *o = (compare_opts){.spp = 512};
+    cli_common_init(&o->common, "compare", CLI_TAKES_CAMERA | CLI_TAKES_LISTS);
+    o->common.default_method = NULL; /* every method */
+    o->common.width = 320;
+    o->common.height = 240;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            compare_usage(stdout);
+            compare_usage(stdout, &o->common);
             return -1;
         }
-        if (!strcmp(a, "-v")) { o->verbose = true; continue; }
-        if (!strcmp(a, "--no-cache")) { o->no_cache = true; continue; }
+        if (!strcmp(a, "--no-cache")) {
+            o->no_cache = true;
+            continue;
+        }
+        int taken = cli_common_option(&o->common, argc, argv, &i);
+        if (taken == CLI_TAKEN) continue;
+        if (taken != CLI_NOT_MINE) return taken;
+        if (strcmp(a, "--scene") && strcmp(a, "--report") && strcmp(a, "--spp") && strcmp(a, "--radius"))
+            return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura compare --help)", a);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura compare --help)", a);
         const char *v = argv[++i];
         if (!strcmp(a, "--scene")) {
@@ -83,30 +100,23 @@ static int parse(int argc, char **argv, compare_opts *o)
             o->views[o->view_count++] = v;
         } else if (!strcmp(a, "--report")) {
             o->report = v;
-        } else if (!strcmp(a, "--methods")) {
-            o->methods = strcmp(v, "all") ? v : NULL;
-        } else if (!strcmp(a, "--quality")) {
-            o->quality_samples = ob_quality_samples(v);
-            if (o->quality_samples < 0) return cli_fail(EXIT_USAGE, "--quality: expected low, medium, high or ultra, got '%s'", v);
-        } else if (!strcmp(a, "--size")) {
-            if (!cli_parse_size(v, &o->width, &o->height))
-                return cli_fail(EXIT_USAGE, "--size: expected WIDTHxHEIGHT with positive integers, got '%s'", v);
         } else if (!strcmp(a, "--spp")) {
             char *end = NULL;
             long n = strtol(v, &end, 10);
             if (end == v || *end || n < 2 || n > 1 << 20) return cli_fail(EXIT_USAGE, "--spp: expected 2..1048576, got '%s'", v);
             o->spp = (int)n;
-        } else if (!strcmp(a, "--radius")) {
+        } else {
             if (!cli_parse_float(v, &o->radius) || !(o->radius > 0.0f))
                 return cli_fail(EXIT_USAGE, "--radius: expected a positive number, got '%s'", v);
-        } else if (!strcmp(a, "--gpu")) {
-            if (!cli_parse_gpu(v, &o->gpu)) return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
-        } else {
-            return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura compare --help)", a);
         }
     }
     if (!o->report) return cli_fail(EXIT_USAGE, "--report DIR is required (see obscura compare --help)");
     if (o->view_count == 0) return cli_fail(EXIT_USAGE, "--scene is required (see obscura compare --help)");
+    if (!*o->report) return cli_fail(EXIT_USAGE, "--report: expected a directory, got ''");
+    int code = cli_common_finish(&o->common);
+    if (code != EXIT_OK) return code;
+    if (o->common.ambient_mode != OB_AMBIENT_CONSTANT)
+        return cli_fail(EXIT_USAGE, "--ambient: compare takes only 'constant' (the one-bounce reference has a constant ambient)");
     return 0;
 }
 
@@ -141,6 +151,65 @@ static void safe_name(char *out, size_t n, const char *in)
 static bool make_dir(const char *path)
 {
     return mkdir(path, 0777) == 0 || errno == EEXIST;
+}
+
+/* What this run wrote into the report: removed again when a later step fails, so that a failed
+ * run leaves no partial report (directories only when this run made them and they are empty). */
+typedef struct outputs {
+    char **files, **dirs;
+    int file_count, file_cap, dir_count, dir_cap;
+} outputs;
+
+static bool push_path(char ***list, int *count, int *cap, const char *path)
+{
+    if (*count == *cap) {
+        int grown = *cap ? 2 * *cap : 32;
+        char **p = realloc(*list, (size_t)grown * sizeof *p);
+        if (!p) return false;
+        *list = p;
+        *cap = grown;
+    }
+    char *copy = strdup(path);
+    if (!copy) return false;
+    (*list)[(*count)++] = copy;
+    return true;
+}
+
+/* A file of the report, written (or about to be: a failure in between still removes it). */
+static bool track_file(outputs *out, const char *path)
+{
+    return push_path(&out->files, &out->file_count, &out->file_cap, path);
+}
+
+/* mkdir, remembering a directory this run made; fails on a path that exists but is no directory. */
+static int make_report_dir(outputs *out, const char *path)
+{
+    struct stat st = {0};
+    if (stat(path, &st) == 0) {
+        if (S_ISDIR(st.st_mode)) return EXIT_OK;
+        return cli_fail(EXIT_OUTPUT, "cannot create %s: it exists and is not a directory", path);
+    }
+    if (mkdir(path, 0777) != 0) return cli_fail(EXIT_OUTPUT, "cannot create %s: %s", path, strerror(errno));
+    if (!push_path(&out->dirs, &out->dir_count, &out->dir_cap, path)) {
+        rmdir(path);
+        return cli_fail(EXIT_RUNTIME, "out of memory");
+    }
+    return EXIT_OK;
+}
+
+static void outputs_finish(outputs *out, bool failed)
+{
+    for (int i = out->file_count - 1; i >= 0; --i) {
+        if (failed) remove(out->files[i]);
+        free(out->files[i]);
+    }
+    for (int i = out->dir_count - 1; i >= 0; --i) {
+        if (failed) rmdir(out->dirs[i]);
+        free(out->dirs[i]);
+    }
+    free(out->files);
+    free(out->dirs);
+    *out = (outputs){0};
 }
 
 static uint64_t fnv1a(const void *data, size_t n, uint64_t h)
@@ -184,38 +253,16 @@ typedef struct view_result {
     float radius;
     double ref_seconds, ref_stderr_mean, bounce_seconds;
     bool ref_cached, has_bounce;
-    method_result methods[MAX_METHODS];
+    method_result *methods; /* one per configuration */
     int method_count;
 } view_result;
-
-static int method_list(const compare_opts *o, int *indices)
-{
-    int n = 0;
-    if (!o->methods) {
-        for (int i = 0; i < ob_method_count() && n < MAX_METHODS; ++i) indices[n++] = i;
-        return n;
-    }
-    char buf[512];
-    snprintf(buf, sizeof buf, "%s", o->methods);
-    char *save = NULL;
-    for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
-        int k = ob_find_method(t);
-        if (k < 0) {
-            ob_settings probe;
-            ob_settings_init(&probe, t); /* sets the library's "unknown method (known: ...)" message */
-            return -1;
-        }
-        if (n < MAX_METHODS) indices[n++] = k;
-    }
-    return n;
-}
 
 /* The reference AO for this view: from the cache, or ray-traced and cached. */
 static int reference_for(const compare_opts *o, const ob_scene *scene, const ob_camera *cam, const char *view_key,
                          const float *depth, const float *normals, const float proj_info[4], const float inv_view[16],
                          float radius, float *ref, view_result *vr)
 {
-    int w = o->width, h = o->height;
+    int w = o->common.width, h = o->common.height;
     size_t px = (size_t)w * (size_t)h;
     char dir[512], path[700];
     uint64_t key = fnv1a(view_key, strlen(view_key), 1469598103934665603ull);
@@ -284,7 +331,7 @@ static int reference_for(const compare_opts *o, const ob_scene *scene, const ob_
                 pos[3 * i + 1] = se[i];
                 pos[3 * i + 2] = 0.0f;
             }
-            if (ob_write_pfm(path, w, h, 3, pos) != OB_OK && o->verbose)
+            if (ob_write_pfm(path, w, h, 3, pos) != OB_OK && o->common.verbose)
                 fprintf(stderr, "obscura: note: could not cache the reference in %s\n", path);
         }
     }
@@ -294,27 +341,39 @@ static int reference_for(const compare_opts *o, const ob_scene *scene, const ob_
     return code;
 }
 
-static int run_view(const compare_opts *o, ob_context *ctx, const char *spec, view_result *vr)
+/* A --scene: loaded, with its camera, before anything is written. */
+typedef struct view_input {
+    char name[256]; /* as --scene named it: part of the reference cache key */
+    ob_scene *scene;
+    ob_camera cam;
+} view_input;
+
+static int load_view(const compare_opts *o, const char *spec, view_input *in)
 {
-    char scene_name[256];
-    snprintf(scene_name, sizeof scene_name, "%s", spec);
-    const char *camera = "default";
-    char *colon = strrchr(scene_name, ':');
+    const cli_common *c = &o->common;
+    snprintf(in->name, sizeof in->name, "%s", spec);
+    const char *camera = NULL;
+    char *colon = strrchr(in->name, ':');
     if (colon && !strchr(colon, '/')) {
         *colon = '\0';
         camera = colon + 1;
     }
-    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = scene_name});
-    if (!scene) return cli_fail_from_library();
+    if (camera && c->has_eye)
+        return cli_fail(EXIT_USAGE, "--scene %s: a camera preset and --eye/--target exclude each other", spec);
+    in->scene = cli_common_load_scene(c, in->name);
+    if (!in->scene) return cli_fail_from_library();
+    return cli_common_camera(c, in->scene, camera, &in->cam);
+}
+
+static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in, const cli_config *configs, int count,
+                    outputs *out, view_result *vr)
+{
+    const cli_common *c = &o->common;
+    const ob_scene *scene = in->scene;
+    const ob_camera cam = in->cam;
     int code = EXIT_OK;
-    ob_camera cam;
-    ob_renderer *r = NULL;
     float *depth = NULL, *normals = NULL, *ref = NULL, *ao = NULL, *ref_rgb = NULL, *test_rgb = NULL;
     uint8_t *rgba = NULL, *mask = NULL, *heat = NULL;
-    if (ob_find_camera(scene, camera, &cam) != OB_OK) {
-        code = cli_fail_from_library();
-        goto done;
-    }
     snprintf(vr->scene, sizeof vr->scene, "%s", ob_query_scene_name(scene));
     snprintf(vr->camera, sizeof vr->camera, "%s", cam.name);
     char safe_scene[128], safe_cam[64];
@@ -323,13 +382,11 @@ static int run_view(const compare_opts *o, ob_context *ctx, const char *spec, vi
     snprintf(vr->dir, sizeof vr->dir, "%s_%s", safe_scene, safe_cam);
     vr->radius = o->radius > 0.0f ? o->radius : ob_query_scene_ao_radius(scene);
 
-    int w = o->width, h = o->height;
+    int w = c->width, h = c->height;
     size_t px = (size_t)w * (size_t)h;
-    r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = w, .height = h});
-    if (!r || ob_renderer_set_scene(r, scene) != OB_OK) {
-        code = cli_fail_from_library();
-        goto done;
-    }
+    vr->methods = calloc((size_t)count, sizeof *vr->methods);
+    if (!vr->methods) return cli_fail(EXIT_RUNTIME, "out of memory");
+    if (ob_renderer_set_scene(r, scene) != OB_OK) return cli_fail_from_library();
     depth = malloc(px * sizeof(float));
     normals = malloc(px * 3 * sizeof(float));
     ref = malloc(px * sizeof(float));
@@ -341,15 +398,12 @@ static int run_view(const compare_opts *o, ob_context *ctx, const char *spec, vi
         code = cli_fail(EXIT_RUNTIME, "out of memory");
         goto done;
     }
-    char dir[700];
+    char dir[700] = "";
     snprintf(dir, sizeof dir, "%s/%s", o->report, vr->dir);
-    if (!make_dir(dir)) {
-        code = cli_fail(EXIT_OUTPUT, "cannot create %s: %s", dir, strerror(errno));
-        goto done;
-    }
+    if ((code = make_report_dir(out, dir)) != EXIT_OK) goto done;
 
     /* The G-buffer is the same for every method: take it from a `none` frame. */
-    ob_settings s;
+    ob_settings s = {0};
     ob_settings_init(&s, "none");
     if (ob_render_frame(r, &cam, &s) != OB_OK) {
         code = cli_fail_from_library();
@@ -360,49 +414,53 @@ static int run_view(const compare_opts *o, ob_context *ctx, const char *spec, vi
     for (size_t i = 0; i < px; ++i) mask[i] = depth[i] > 0.0f;
 
     /* The same camera matrices as the renderer (renderer.c): for the world points. */
-    ob_camera c = cam;
-    if (c.fov_y_deg <= 0.0f) c.fov_y_deg = 60.0f;
-    if (c.up[0] == 0.0f && c.up[1] == 0.0f && c.up[2] == 0.0f) c.up[1] = 1.0f;
+    ob_camera cm = cam;
+    if (cm.fov_y_deg <= 0.0f) cm.fov_y_deg = 60.0f;
+    if (cm.up[0] == 0.0f && cm.up[1] == 0.0f && cm.up[2] == 0.0f) cm.up[1] = 1.0f;
     mat4 view, inv_view, proj;
-    glm_lookat(c.eye, c.target, c.up, view);
+    glm_lookat(cm.eye, cm.target, cm.up, view);
     glm_mat4_inv(view, inv_view);
-    glm_perspective(glm_rad(c.fov_y_deg), (float)w / (float)h, 1.0f, 2.0f, proj);
+    glm_perspective(glm_rad(cm.fov_y_deg), (float)w / (float)h, 1.0f, 2.0f, proj);
     const float proj_info[4] = {1.0f / proj[0][0], 1.0f / proj[1][1], proj[2][0], proj[2][1]};
-    char key[600];
-    snprintf(key, sizeof key, "%s|%s|v1", scene_name, cam.name);
-    code = reference_for(o, scene, &c, key, depth, normals, proj_info, (const float *)inv_view, vr->radius, ref, vr);
+    /* --sidecar and --up change the geometry the reference sees: they are part of its key (and
+     * absent from it without them, so that existing caches still hit). */
+    char key[900] = "";
+    int key_len = snprintf(key, sizeof key, "%s|%s|v1", in->name, cam.name);
+    if ((c->sidecar || c->up != OB_UP_DEFAULT) && key_len > 0 && (size_t)key_len < sizeof key)
+        snprintf(key + key_len, sizeof key - (size_t)key_len, "|sidecar=%s|up=%d", c->sidecar ? c->sidecar : "",
+                 (int)c->up);
+    code = reference_for(o, scene, &cm, key, depth, normals, proj_info, (const float *)inv_view, vr->radius, ref, vr);
     if (code != EXIT_OK) goto done;
-    char path[900];
+    char path[900] = "";
     snprintf(path, sizeof path, "%s/reference_ao.png", dir);
+    if (!track_file(out, path)) {
+        code = cli_fail(EXIT_RUNTIME, "out of memory");
+        goto done;
+    }
     if (write_grey(path, ref, w, h) != OB_OK) {
         code = cli_fail_library_as(EXIT_OUTPUT);
         goto done;
     }
 
-    int indices[MAX_METHODS];
-    int n = method_list(o, indices);
-    if (n < 0) {
-        code = cli_fail_from_library();
-        goto done;
-    }
     /* The one-bounce reference, for directional methods only: their composed radiance (direct x M
-     * + bounce) against shadow rays + one diffuse bounce + ambient x AO_R (ob_reference_bounce).
-     * It casts a shadow ray per light at every bounce hit, so it takes a quarter of the AO rays. */
+     * + bounce) against shadow rays + one diffuse bounce + ambient x AO_R (ob_reference_bounce),
+     * with the lights and the constant ambient the rows render with. It casts a shadow ray per
+     * light at every bounce hit, so it takes a quarter of the AO rays. */
     bool any_directional = false;
-    for (int k = 0; k < n; ++k) any_directional = any_directional || ob_method_at(indices[k])->directional;
+    for (int k = 0; k < count; ++k) any_directional = any_directional || ob_method_at(configs[k].method)->directional;
     if (any_directional) {
+        const ob_settings *lit = &configs[0].settings;
         ref_rgb = malloc(px * 3 * sizeof(float));
         test_rgb = malloc(px * 3 * sizeof(float));
         float *albedo = malloc(px * 3 * sizeof(float)), *pos = malloc(px * 3 * sizeof(float));
         float *nrm = malloc(px * 3 * sizeof(float));
-        ob_settings defaults;
-        ob_settings_init(&defaults, "none");
         struct timespec t0, t1;
         clock_gettime(CLOCK_MONOTONIC, &t0);
         bool ok = ref_rgb && test_rgb && albedo && pos && nrm &&
                   ob_read_image(r, OB_IMAGE_ALBEDO_F32, albedo, px * 3 * sizeof(float)) == OB_OK &&
                   ob_reference_points(depth, normals, w, h, proj_info, (const float *)inv_view, pos, nrm) == OB_OK &&
-                  ob_reference_bounce(scene, NULL, 0, defaults.ambient, pos, nrm, albedo, px,
+                  ob_reference_bounce(scene, lit->light_count > 0 ? lit->lights : NULL, lit->light_count, lit->ambient,
+                                      pos, nrm, albedo, px,
                                       &(ob_reference_desc){.spp = o->spp / 4 > 16 ? o->spp / 4 : 16,
                                                            .radius = vr->radius, .progress = true},
                                       ref_rgb) == OB_OK;
@@ -419,13 +477,20 @@ static int run_view(const compare_opts *o, ob_context *ctx, const char *spec, vi
     }
     char radius_set[64];
     snprintf(radius_set, sizeof radius_set, "radius=%.9g", (double)vr->radius);
-    for (int k = 0; k < n; ++k) {
-        const ob_method_info *mi = ob_method_at(indices[k]);
+    for (int k = 0; k < count; ++k) {
+        const cli_config *cfg = &configs[k];
+        const ob_method_info *mi = ob_method_at(cfg->method);
         method_result *mr = &vr->methods[vr->method_count++];
         snprintf(mr->name, sizeof mr->name, "%s", mi->name);
-        ob_settings_init(&s, mi->name);
-        if (o->quality_samples > 0) ob_settings_set_samples(&s, o->quality_samples);
-        if (!isnan(ob_settings_get(&s, "radius"))) ob_settings_set(&s, radius_set);
+        snprintf(mr->label, sizeof mr->label, "%s", cfg->label);
+        snprintf(mr->stem, sizeof mr->stem, "%s", cfg->stem);
+        mr->config = cfg;
+        s = cfg->settings;
+        /* Every method at the reference's radius, unless a --set gave this one its own. */
+        bool radius_given = false;
+        for (int p = 0; p < mi->param_count; ++p)
+            if (!strcmp(mi->params[p].name, "radius")) radius_given = (s.params_set >> p) & 1u;
+        if (!radius_given && !isnan(ob_settings_get(&s, "radius"))) ob_settings_set(&s, radius_set);
         double ao_ms[FRAMES], frame_ms[FRAMES];
         for (int f = 0; f < FRAMES; ++f) {
             if (ob_render_frame(r, &cam, &s) != OB_OK) {
@@ -455,21 +520,29 @@ static int run_view(const compare_opts *o, ob_context *ctx, const char *spec, vi
             goto done;
         }
         ob_read_image(r, OB_IMAGE_FINAL_RGBA8, rgba, px * 4);
-        snprintf(path, sizeof path, "%s/%s_final.png", dir, mi->name);
-        ob_error e = ob_write_png(path, w, h, 4, rgba);
-        snprintf(path, sizeof path, "%s/%s_ao.png", dir, mi->name);
-        if (e == OB_OK) e = write_grey(path, ao, w, h);
-        /* Error map: +-0.5 of visibility saturates. */
-        if (e == OB_OK) e = ob_error_heatmap(ao, ref, mask, w, h, true, 0.5f, heat);
-        snprintf(path, sizeof path, "%s/%s_error.png", dir, mi->name);
-        if (e == OB_OK) e = ob_write_png(path, w, h, 3, heat);
+        static const char *const kinds[3] = {"final", "ao", "error"};
+        ob_error e = OB_OK;
+        for (int q = 0; q < 3 && e == OB_OK; ++q) {
+            snprintf(path, sizeof path, "%s/%s_%s.png", dir, mr->stem, kinds[q]);
+            if (!track_file(out, path)) {
+                code = cli_fail(EXIT_RUNTIME, "out of memory");
+                goto done;
+            }
+            if (q == 0) e = ob_write_png(path, w, h, 4, rgba);
+            else if (q == 1) e = write_grey(path, ao, w, h);
+            else {
+                /* Error map: +-0.5 of visibility saturates. */
+                e = ob_error_heatmap(ao, ref, mask, w, h, true, 0.5f, heat);
+                if (e == OB_OK) e = ob_write_png(path, w, h, 3, heat);
+            }
+        }
         if (e != OB_OK) {
             code = cli_fail_library_as(EXIT_OUTPUT);
             goto done;
         }
-        if (o->verbose)
+        if (c->verbose)
             fprintf(stderr, "obscura: %s/%s %-12s RMSE %.4f bias %+.4f SSIM %.3f ao %.2f ms\n", vr->scene, vr->camera,
-                    mi->name, mr->m.rmse, mr->m.bias, mr->m.ssim, mr->ao_ms);
+                    mr->label, mr->m.rmse, mr->m.bias, mr->m.ssim, mr->ao_ms);
     }
 done:
     free(depth);
@@ -481,20 +554,18 @@ done:
     free(rgba);
     free(mask);
     free(heat);
-    ob_destroy_renderer(r);
-    ob_destroy_scene(scene);
     return code;
 }
 
 /* ---- outputs ------------------------------------------------------------------------------- */
 
-static int write_json(const compare_opts *o, ob_context *ctx, const view_result *views, int count)
+static int write_json(const compare_opts *o, ob_context *ctx, const view_result *views, int count, outputs *out)
 {
     cJSON *root = cJSON_CreateObject();
     cJSON_AddStringToObject(root, "renderer", ob_query_renderer(ctx));
     cJSON_AddStringToObject(root, "gl_version", ob_query_gl_version(ctx));
-    cJSON_AddNumberToObject(root, "width", o->width);
-    cJSON_AddNumberToObject(root, "height", o->height);
+    cJSON_AddNumberToObject(root, "width", o->common.width);
+    cJSON_AddNumberToObject(root, "height", o->common.height);
     cJSON_AddNumberToObject(root, "reference_spp", o->spp);
     time_t now = time(NULL);
     char date[32];
@@ -518,6 +589,12 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
             const method_result *m = &vr->methods[k];
             cJSON *e = cJSON_CreateObject();
             cJSON_AddStringToObject(e, "method", m->name);
+            /* The row's settings: the label names those that vary between rows. */
+            cJSON_AddStringToObject(e, "label", m->label);
+            cJSON_AddStringToObject(e, "filter", ob_filter_at(m->config->filter)->name);
+            cJSON_AddNumberToObject(e, "ao_scale", 1.0 / m->config->ao_divisor);
+            if (m->config->samples.quality) cJSON_AddStringToObject(e, "quality", m->config->samples.quality);
+            if (m->config->samples.count > 0) cJSON_AddNumberToObject(e, "samples", m->config->samples.count);
             cJSON_AddNumberToObject(e, "rmse", m->m.rmse);
             cJSON_AddNumberToObject(e, "mae", m->m.mae);
             cJSON_AddNumberToObject(e, "bias", m->m.bias);
@@ -543,26 +620,34 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
     if (!text) return cli_fail(EXIT_RUNTIME, "out of memory writing results.json");
     char path[700];
     snprintf(path, sizeof path, "%s/results.json", o->report);
+    if (!track_file(out, path)) {
+        free(text);
+        return cli_fail(EXIT_RUNTIME, "out of memory");
+    }
     ob_error e = ob_write_text(path, text);
     free(text);
     return e == OB_OK ? EXIT_OK : cli_fail_library_as(EXIT_OUTPUT);
 }
 
 /* Quality against time for one view, as SVG through gnuplot (Debian's gnuplot-nox). */
-static int write_chart(const compare_opts *o, const view_result *vr, char *svg_path, size_t n)
+static int write_chart(const compare_opts *o, const view_result *vr, outputs *out)
 {
-    char data[700], script[700];
-    snprintf(svg_path, n, "%s/%s/chart.svg", o->report, vr->dir);
+    char svg_path[700], data[700], script[700];
+    snprintf(svg_path, sizeof svg_path, "%s/%s/chart.svg", o->report, vr->dir);
     snprintf(data, sizeof data, "%s/%s/chart.dat", o->report, vr->dir);
     snprintf(script, sizeof script, "%s/%s/chart.gp", o->report, vr->dir);
+    if (!track_file(out, data) || !track_file(out, script) || !track_file(out, svg_path))
+        return cli_fail(EXIT_RUNTIME, "out of memory");
     FILE *f = fopen(data, "w");
     if (!f) return cli_fail(EXIT_OUTPUT, "cannot write %s: %s", data, strerror(errno));
+    /* Labels in double quotes: gnuplot reads "hbao · filter none" as one column. */
     for (int k = 0; k < vr->method_count; ++k)
-        fprintf(f, "%.6f %.6f %s\n", vr->methods[k].ao_ms, vr->methods[k].m.rmse, vr->methods[k].name);
+        fprintf(f, "%.6f %.6f \"%s\"\n", vr->methods[k].ao_ms, vr->methods[k].m.rmse, vr->methods[k].label);
     fclose(f);
     f = fopen(script, "w");
     if (!f) return cli_fail(EXIT_OUTPUT, "cannot write %s: %s", script, strerror(errno));
     fprintf(f,
+            "set encoding utf8\n"
             "set terminal svg size 560,360 font 'sans,11' background rgb 'white' noenhanced\n"
             "set output '%s.tmp'\n"
             "set xlabel 'AO pass, ms (GPU timestamps)'\n"
@@ -609,11 +694,12 @@ static void embed_file(FILE *out, const char *path)
     fclose(f);
 }
 
-static int write_html(const compare_opts *o, ob_context *ctx, const view_result *views, int count)
+static int write_html(const compare_opts *o, ob_context *ctx, const view_result *views, int count, outputs *out)
 {
     char path[700], tmp[720];
     snprintf(path, sizeof path, "%s/index.html", o->report);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    if (!track_file(out, path)) return cli_fail(EXIT_RUNTIME, "out of memory");
     FILE *f = fopen(tmp, "w");
     if (!f) return cli_fail(EXIT_OUTPUT, "cannot write %s: %s", path, strerror(errno));
     fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>Obscura: AO against ground truth</title>\n"
@@ -623,8 +709,8 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
           ".grid{display:flex;flex-wrap:wrap;gap:10px}.cell{font-size:12px}.cell img{display:block;border:1px solid #ccc}"
           ".note{color:#666}</style></head><body>\n<h1>Screen-space AO against the ray-traced ground truth</h1>\n<p class=\"note\">",
           f);
-    fprintf(f, "%dx%d, reference %d rays per pixel (cosine-weighted, AO<sub>R</sub> as in DESIGN.md), GPU: ", o->width,
-            o->height, o->spp);
+    fprintf(f, "%dx%d, reference %d rays per pixel (cosine-weighted, AO<sub>R</sub> as in DESIGN.md), GPU: ",
+            o->common.width, o->common.height, o->spp);
     html_escape(f, ob_query_renderer(ctx));
     fputs(". Error maps: red = the method is brighter (misses occlusion), blue = darker; &plusmn;0.5 saturates. "
           "Click a column to sort.</p>\n",
@@ -643,7 +729,7 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
         for (int k = 0; k < vr->method_count; ++k) {
             const method_result *m = &vr->methods[k];
             fputs("<tr><td>", f);
-            html_escape(f, m->name);
+            html_escape(f, m->label);
             fprintf(f, "</td><td>%.4f</td><td>%+.4f</td><td>%.4f</td><td>%.3f</td><td>%s%.2f</td><td>%.2f</td><td>%.1f</td></tr>\n",
                     m->m.rmse, m->m.bias, m->m.mae, m->m.ssim, isfinite(m->m.psnr) ? "" : "&infin;",
                     isfinite(m->m.psnr) ? m->m.psnr : 0.0, m->ao_ms, m->frame_ms);
@@ -659,7 +745,7 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
                 const method_result *m = &vr->methods[k];
                 if (!m->directional) continue;
                 fputs("<tr><td>", f);
-                html_escape(f, m->name);
+                html_escape(f, m->label);
                 fprintf(f, "</td><td>%.4f</td><td>%+.4f</td><td>%.3f</td></tr>\n", m->rgb.rmse, m->rgb.bias, m->rgb.ssim);
             }
             fputs("</tbody></table>\n", f);
@@ -670,16 +756,16 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
         embed_file(f, svg);
         fputs("</div>\n<div class=\"grid\">", f);
         fprintf(f, "<div class=\"cell\"><img src=\"%s/reference_ao.png\" width=\"%d\" height=\"%d\" alt=\"reference\">reference AO</div>",
-                vr->dir, o->width, o->height);
+                vr->dir, o->common.width, o->common.height);
         fputs("</div>\n", f);
         for (int k = 0; k < vr->method_count; ++k) {
-            const char *mn = vr->methods[k].name;
+            const method_result *m = &vr->methods[k];
             fputs("<div class=\"grid\">", f);
             const char *kinds[3] = {"final", "ao", "error"};
             for (int q = 0; q < 3; ++q) {
-                fprintf(f, "<div class=\"cell\"><img src=\"%s/%s_%s.png\" width=\"%d\" height=\"%d\" alt=\"\">", vr->dir, mn,
-                        kinds[q], o->width, o->height);
-                html_escape(f, mn);
+                fprintf(f, "<div class=\"cell\"><img src=\"%s/%s_%s.png\" width=\"%d\" height=\"%d\" alt=\"\">", vr->dir,
+                        m->stem, kinds[q], o->common.width, o->common.height);
+                html_escape(f, m->label);
                 fprintf(f, " %s</div>", kinds[q]);
             }
             fputs("</div>\n", f);
@@ -718,29 +804,54 @@ int cmd_compare(int argc, char **argv)
     compare_opts o;
     int code = parse(argc, argv, &o);
     if (code != 0) return code < 0 ? EXIT_OK : code;
-    int probe[MAX_METHODS];
-    if (method_list(&o, probe) < 0) return cli_fail_from_library();
-    if (!make_dir(o.report)) return cli_fail(EXIT_OUTPUT, "cannot create %s: %s", o.report, strerror(errno));
-    ob_context *ctx = cli_make_context(o.gpu, o.verbose);
-    if (!ctx) return cli_fail_from_library();
+    const cli_common *c = &o.common;
+
+    /* Everything is checked before the report directory is touched: the combinations and their
+     * settings, every scene and camera, the context and the renderer's size. */
+    cli_config *configs = NULL;
+    int count = 0;
+    if ((code = cli_common_configs(c, &configs, &count)) != EXIT_OK) return code;
+    view_input inputs[MAX_VIEWS];
+    memset(inputs, 0, sizeof inputs);
     view_result *views = calloc(MAX_VIEWS, sizeof *views);
-    if (!views) {
-        ob_destroy_context(ctx);
-        return cli_fail(EXIT_RUNTIME, "out of memory");
-    }
+    ob_context *ctx = NULL;
+    ob_renderer *r = NULL;
+    outputs out = {0};
     int done = 0;
-    for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) {
-        code = run_view(&o, ctx, o.views[v], &views[v]);
-        if (code == EXIT_OK) {
-            char svg[700];
-            code = write_chart(&o, &views[v], svg, sizeof svg);
-            ++done;
-        }
+    if (!views) {
+        code = cli_fail(EXIT_RUNTIME, "out of memory");
+        goto cleanup;
     }
-    if (code == EXIT_OK) code = write_json(&o, ctx, views, done);
-    if (code == EXIT_OK) code = write_html(&o, ctx, views, done);
+    for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) code = load_view(&o, o.views[v], &inputs[v]);
+    if (code != EXIT_OK) goto cleanup;
+    ctx = cli_make_context(c->gpu, c->verbose);
+    if (!ctx) {
+        code = cli_fail_from_library();
+        goto cleanup;
+    }
+    r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = c->width, .height = c->height});
+    if (!r) {
+        code = cli_fail_from_library();
+        goto cleanup;
+    }
+    if ((code = cli_common_prepare(c, r)) != EXIT_OK) goto cleanup;
+
+    if ((code = make_report_dir(&out, o.report)) != EXIT_OK) goto cleanup;
+    for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) {
+        code = run_view(&o, r, &inputs[v], configs, count, &out, &views[v]);
+        if (code == EXIT_OK) code = write_chart(&o, &views[v], &out);
+        if (code == EXIT_OK) ++done;
+    }
+    if (code == EXIT_OK) code = write_json(&o, ctx, views, done, &out);
+    if (code == EXIT_OK) code = write_html(&o, ctx, views, done, &out);
     if (code == EXIT_OK) printf("report: %s/index.html\n", o.report);
+cleanup:
+    outputs_finish(&out, code != EXIT_OK);
+    for (int v = 0; v < MAX_VIEWS && views; ++v) free(views[v].methods);
     free(views);
+    for (int v = 0; v < MAX_VIEWS; ++v) ob_destroy_scene(inputs[v].scene);
+    ob_destroy_renderer(r);
     ob_destroy_context(ctx);
+    free(configs);
     return code;
 }

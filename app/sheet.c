@@ -21,7 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
+#include "cli_options.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -34,139 +34,55 @@ enum {
     STRIP_H = 24,    /* header and label strips */
     TEXT_SCALE = 2,  /* each font pixel -> 2x2 */
     TEXT_INSET = 3,  /* text offset from a strip's top-left corner */
-    MAX_METHODS = 32,
-    MAX_SETS = 64,
     FRAMES = 3,      /* frames per method; the label shows the median AO pass time */
 };
 static const uint8_t STRIP_RGB[3] = {224, 224, 224};
 static const uint8_t TEXT_RGB[3] = {16, 16, 16};
 
-static void sheet_usage(FILE *f)
+static void sheet_usage(FILE *f, const cli_common *defaults)
 {
     fputs("usage: obscura sheet --scene NAME --out FILE.png [options]\n"
           "\n"
-          "A contact sheet: one row per AO method, the final image and the AO map side by side,\n"
-          "each row labelled with the method and the median GPU time of its AO pass (3 frames).\n"
+          "A contact sheet: one row per AO method (per combination of the lists), the final image and\n"
+          "the AO map side by side, each row labelled with its settings and the median GPU time of\n"
+          "its AO pass (3 frames). --size is the size of each tile.\n"
           "\n"
-          "  --scene NAME|PATH     built-in (cornell, corner, sphere-on-plane), a named scene from\n"
-          "                        scenes/ (bunny, fzk-haus, cornell-obj) or any model Assimp reads\n"
-          "  --out FILE.png        the sheet (required)\n"
-          "  --camera NAME|INDEX   a camera preset of the scene (default: 'default')\n"
-          "  --size WxH            size of each tile (default 320x240)\n"
-          "  --methods A,B,...     methods, one row each (default: every method, see `obscura list`)\n"
-          "  --quality Q           low, medium, high or ultra: 12, 24, 36 or 64 samples per pixel for\n"
-          "                        every method that takes a sample count\n"
-          "  --set M.P=V           set a parameter of method M, validated (repeatable; after --quality)\n"
-          "  --gpu auto|hw|sw      hardware EGL device, Mesa llvmpipe, or hardware first (default auto)\n"
-          "  -v                    print the GL renderer and device\n",
+          "  --out FILE.png        the sheet (required)\n",
           f);
+    cli_common_usage(f, defaults);
 }
 
 typedef struct sheet_opts {
-    const char *scene, *camera, *out, *methods;
-    const char *sets[MAX_SETS];
-    int set_count;
-    int width, height;
-    int quality_samples; /* from --quality; 0 = not given */
-    bool verbose;
-    ob_gpu_kind gpu;
+    cli_common common;
+    const char *out;
 } sheet_opts;
 
 static int parse(int argc, char **argv, sheet_opts *o)
 {
-    *o = (sheet_opts){.width = 320, .height = 240};
+    *o = (sheet_opts){.out = NULL};
+    cli_common_init(&o->common, "sheet", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_LISTS);
+    o->common.default_method = NULL; /* every method */
+    o->common.width = 320;
+    o->common.height = 240;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            sheet_usage(stdout);
+            sheet_usage(stdout, &o->common);
             return -1;
         }
-        if (!strcmp(a, "-v")) { o->verbose = true; continue; }
+        int taken = cli_common_option(&o->common, argc, argv, &i);
+        if (taken == CLI_TAKEN) continue;
+        if (taken != CLI_NOT_MINE) return taken;
+        if (strcmp(a, "--out") != 0) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura sheet --help)", a);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura sheet --help)", a);
-        const char *v = argv[++i];
-        if (!strcmp(a, "--scene")) o->scene = v;
-        else if (!strcmp(a, "--camera")) o->camera = v;
-        else if (!strcmp(a, "--out")) o->out = v;
-        else if (!strcmp(a, "--methods")) o->methods = v;
-        else if (!strcmp(a, "--set")) {
-            if (o->set_count >= MAX_SETS) return cli_fail(EXIT_USAGE, "--set: too many");
-            o->sets[o->set_count++] = v;
-        } else if (!strcmp(a, "--size")) {
-            if (!cli_parse_size(v, &o->width, &o->height))
-                return cli_fail(EXIT_USAGE, "--size: expected WIDTHxHEIGHT with positive integers, got '%s'", v);
-        } else if (!strcmp(a, "--quality")) {
-            o->quality_samples = ob_quality_samples(v);
-            if (o->quality_samples < 0)
-                return cli_fail(EXIT_USAGE, "--quality: expected low, medium, high or ultra, got '%s'", v);
-        } else if (!strcmp(a, "--gpu")) {
-            if (!cli_parse_gpu(v, &o->gpu)) return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
-        } else {
-            return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura sheet --help)", a);
-        }
+        o->out = argv[++i];
     }
-    if (!o->scene) return cli_fail(EXIT_USAGE, "--scene NAME is required (see obscura sheet --help)");
+    if (!o->common.scene) return cli_fail(EXIT_USAGE, "--scene NAME is required (see obscura sheet --help)");
     if (!o->out) return cli_fail(EXIT_USAGE, "--out FILE.png is required (see obscura sheet --help)");
+    int code = cli_common_finish(&o->common);
+    if (code != EXIT_OK) return code;
     if (!cli_output_writable(o->out))
         return cli_fail(EXIT_OUTPUT, "cannot write %s: its directory does not exist or is not writable", o->out);
-    return 0;
-}
-
-/* The --quality preset's sample count for one method. A method that takes no sample count
- * (none) is left as it is; a count beyond the method's range is an error. */
-static ob_error apply_quality(ob_settings *s, int samples)
-{
-    if (samples <= 0) return OB_OK;
-    ob_error err = ob_settings_set_samples(s, samples);
-    return err == OB_ERR_INVALID_ARGUMENT ? OB_OK : err;
-}
-
-/* Settings for each method of --methods (default: the whole registry, in order), then --quality,
- * then each --set applied to the method its prefix names. */
-static int make_settings(const sheet_opts *o, ob_settings *settings, int *count)
-{
-    *count = 0;
-    if (!o->methods) {
-        if (ob_method_count() > MAX_METHODS)
-            return cli_fail(EXIT_USAGE, "more than %d methods: pick some with --methods", MAX_METHODS);
-        for (int i = 0; i < ob_method_count(); ++i)
-            if (ob_settings_init(&settings[(*count)++], ob_method_at(i)->name) != OB_OK) return cli_fail_from_library();
-    } else {
-        const char *p = o->methods;
-        for (;;) {
-            size_t len = strcspn(p, ",");
-            char name[128];
-            snprintf(name, sizeof name, "%.*s", (int)len, p);
-            if (*count >= MAX_METHODS) return cli_fail(EXIT_USAGE, "--methods: more than %d methods", MAX_METHODS);
-            if (ob_settings_init(&settings[*count], name) != OB_OK) return cli_fail_from_library();
-            for (int i = 0; i < *count; ++i)
-                if (settings[i].method == settings[*count].method)
-                    return cli_fail(EXIT_USAGE, "--methods: '%s' is listed twice", name);
-            ++*count;
-            if (p[len] == '\0') break;
-            p += len + 1;
-        }
-    }
-    for (int i = 0; i < *count; ++i)
-        if (apply_quality(&settings[i], o->quality_samples) != OB_OK) return cli_fail_from_library();
-    for (int k = 0; k < o->set_count; ++k) {
-        const char *a = o->sets[k];
-        const char *dot = strchr(a, '.'), *eq = strchr(a, '=');
-        if (!dot || !eq || dot > eq || dot == a)
-            return cli_fail(EXIT_USAGE, "--set: expected METHOD.PARAM=VALUE, got '%s'", a);
-        size_t mlen = (size_t)(dot - a);
-        int target = -1;
-        for (int i = 0; i < *count; ++i) {
-            const char *name = ob_method_at(settings[i].method)->name;
-            if (strlen(name) == mlen && !strncmp(name, a, mlen)) target = i;
-        }
-        if (target < 0) {
-            char name[128];
-            snprintf(name, sizeof name, "%.*s", (int)mlen, a);
-            if (ob_find_method(name) < 0) return cli_fail(EXIT_USAGE, "--set %s: unknown method '%s'", a, name);
-            return cli_fail(EXIT_USAGE, "--set %s: method '%s' is not in --methods", a, name);
-        }
-        if (ob_settings_set(&settings[target], a) != OB_OK) return cli_fail_from_library();
-    }
     return 0;
 }
 
@@ -230,15 +146,15 @@ static void put_ao_tile(sheet_image *img, int x, int y, int tw, int th, const fl
 static int row_y(int row, int th) { return STRIP_H + row * (STRIP_H + th); }
 
 /* ---- rendering -------------------------------------------------------------------------------- */
-/* FRAMES frames of one method; its row goes into the sheet, the median AO pass time into *ao_ms
- * (NaN when the renderer timed no "ao" pass). */
-static int render_row(ob_renderer *r, const ob_camera *cam, const ob_settings *s, sheet_image *img, int row,
-                      const sheet_opts *o, uint8_t *rgba, float *ao, double *ao_ms)
+/* FRAMES frames of one configuration; its row goes into the sheet, the median AO pass time into
+ * *ao_ms (NaN when the renderer timed no "ao" pass). */
+static int render_row(ob_renderer *r, const ob_camera *cam, const cli_config *cfg, const char *name, sheet_image *img,
+                      int row, const cli_common *c, uint8_t *rgba, float *ao, double *ao_ms)
 {
     double ms[FRAMES];
     int timed = 0;
     for (int f = 0; f < FRAMES; ++f) {
-        if (ob_render_frame(r, cam, s) != OB_OK) return cli_fail_from_library();
+        if (ob_render_frame(r, cam, &cfg->settings) != OB_OK) return cli_fail_from_library();
         ob_pass_timing t[16];
         int n = ob_query_timings(r, t, 16);
         for (int p = 0; p < n; ++p)
@@ -249,18 +165,17 @@ static int render_row(ob_renderer *r, const ob_camera *cam, const ob_settings *s
     }
     *ao_ms = cli_median(ms, timed);
 
-    size_t px = (size_t)o->width * (size_t)o->height;
+    size_t px = (size_t)c->width * (size_t)c->height;
     if (ob_read_image(r, OB_IMAGE_FINAL_RGBA8, rgba, px * 4) != OB_OK ||
         ob_read_image(r, OB_IMAGE_AO_F32, ao, px * sizeof(float)) != OB_OK)
         return cli_fail_from_library();
-    int y = row_y(row, o->height);
-    char label[128];
-    const char *name = ob_method_at(s->method)->name;
+    int y = row_y(row, c->height);
+    char label[CLI_MAX_LABEL + 32] = "";
     if (isnan(*ao_ms)) snprintf(label, sizeof label, "%s  ao -", name);
     else snprintf(label, sizeof label, "%s  ao %.1f ms", name, *ao_ms);
     draw_text(img, PAD + TEXT_INSET, y + TEXT_INSET, img->w - PAD, label);
-    put_final_tile(img, PAD, y + STRIP_H, o->width, o->height, rgba);
-    put_ao_tile(img, 2 * PAD + o->width, y + STRIP_H, o->width, o->height, ao);
+    put_final_tile(img, PAD, y + STRIP_H, c->width, c->height, rgba);
+    put_ao_tile(img, 2 * PAD + c->width, y + STRIP_H, c->width, c->height, ao);
     return EXIT_OK;
 }
 
@@ -269,64 +184,75 @@ int cmd_sheet(int argc, char **argv)
     sheet_opts o;
     int code = parse(argc, argv, &o);
     if (code != 0) return code < 0 ? EXIT_OK : code;
+    const cli_common *c = &o.common;
 
     /* Everything that can be checked without a GPU is checked first. */
-    ob_settings settings[MAX_METHODS];
+    cli_config *configs = NULL;
     int count = 0;
-    code = make_settings(&o, settings, &count);
-    if (code != 0) return code;
-    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = o.scene});
-    if (!scene) return cli_fail_from_library();
-    ob_camera cam;
-    if (ob_find_camera(scene, o.camera ? o.camera : "default", &cam) != OB_OK) {
-        code = cli_fail_from_library();
+    if ((code = cli_common_configs(c, &configs, &count)) != EXIT_OK) return code;
+    ob_scene *scene = cli_common_load_scene(c, NULL);
+    if (!scene) {
+        free(configs);
+        return cli_fail_from_library();
+    }
+    ob_camera cam = {0};
+    if ((code = cli_common_camera(c, scene, NULL, &cam)) != EXIT_OK) {
+        free(configs);
         ob_destroy_scene(scene);
         return code;
     }
 
-    ob_context *ctx = cli_make_context(o.gpu, o.verbose);
+    ob_context *ctx = cli_make_context(c->gpu, c->verbose);
     if (!ctx) {
         code = cli_fail_from_library();
+        free(configs);
         ob_destroy_scene(scene);
         return code;
     }
     sheet_image img = {0};
     uint8_t *rgba = NULL;
     float *ao = NULL;
-    double ao_ms[MAX_METHODS];
-    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.width, .height = o.height});
+    double *ao_ms = calloc((size_t)count, sizeof *ao_ms);
+    /* The sheet's font is ASCII only: its labels separate the settings with commas. */
+    char(*names)[CLI_MAX_LABEL] = calloc((size_t)count, sizeof *names);
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = c->width, .height = c->height});
     if (!r || ob_renderer_set_scene(r, scene) != OB_OK) {
         code = cli_fail_from_library();
         goto cleanup;
     }
+    if ((code = cli_common_prepare(c, r)) != EXIT_OK) goto cleanup;
     /* The renderer accepted the tile size (at most GL_MAX_TEXTURE_SIZE), so these sizes fit. */
-    img.w = 2 * o.width + 3 * PAD;
-    img.h = STRIP_H + count * (STRIP_H + o.height) + PAD;
-    size_t px = (size_t)o.width * (size_t)o.height;
+    img.w = 2 * c->width + 3 * PAD;
+    img.h = STRIP_H + count * (STRIP_H + c->height) + PAD;
+    size_t px = (size_t)c->width * (size_t)c->height;
     img.rgb = malloc((size_t)img.w * (size_t)img.h * 3);
     rgba = malloc(px * 4);
     ao = malloc(px * sizeof(float));
-    if (!img.rgb || !rgba || !ao) {
+    if (!img.rgb || !rgba || !ao || !ao_ms || !names) {
         code = cli_fail(EXIT_RUNTIME, "out of memory for a %dx%d sheet", img.w, img.h);
         goto cleanup;
     }
     fill_rect(&img, 0, 0, img.w, img.h, STRIP_RGB);
-    draw_text(&img, PAD + TEXT_INSET, TEXT_INSET, PAD + o.width, "final");
-    draw_text(&img, 2 * PAD + o.width + TEXT_INSET, TEXT_INSET, img.w - PAD, "ao");
-    for (int i = 0; i < count && code == EXIT_OK; ++i)
-        code = render_row(r, &cam, &settings[i], &img, i, &o, rgba, ao, &ao_ms[i]);
+    draw_text(&img, PAD + TEXT_INSET, TEXT_INSET, PAD + c->width, "final");
+    draw_text(&img, 2 * PAD + c->width + TEXT_INSET, TEXT_INSET, img.w - PAD, "ao");
+    for (int i = 0; i < count && code == EXIT_OK; ++i) {
+        cli_config_label(c, &configs[i], ", ", names[i], sizeof names[i]);
+        code = render_row(r, &cam, &configs[i], names[i], &img, i, c, rgba, ao, &ao_ms[i]);
+    }
     if (code == EXIT_OK && ob_write_png(o.out, img.w, img.h, 3, img.rgb) != OB_OK)
         code = cli_fail_library_as(EXIT_OUTPUT);
     if (code == EXIT_OK)
         for (int i = 0; i < count; ++i) {
-            const char *name = ob_method_at(settings[i].method)->name;
-            if (isnan(ao_ms[i])) printf("%-10s ao        - ms\n", name);
-            else printf("%-10s ao %8.3f ms\n", name, ao_ms[i]);
+            if (isnan(ao_ms[i])) printf("%-10s ao        - ms\n", names[i]);
+            else printf("%-10s ao %8.3f ms\n", names[i], ao_ms[i]);
         }
 cleanup:
     free(img.rgb);
     free(rgba);
     free(ao);
+    free(ao_ms);
+    free(names);
+    free(configs);
     ob_destroy_renderer(r);
     ob_destroy_context(ctx);
     ob_destroy_scene(scene);

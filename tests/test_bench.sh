@@ -39,6 +39,16 @@ expect 2 "unknown camera" -- "${B[@]}" --cameras nosuch
 expect 2 "exclude" -- "${B[@]}" --stereo --scaling
 expect 2 "unknown option" -- "${B[@]}" --frobnicate 1
 expect 4 "cannot write" -- bench --scene corner --json /nonexistent-dir/b.json
+# The lists: one line naming the option and the bad value, before anything is measured.
+expect 2 "^obscura: --filters: unknown filter 'nosuch'" -- "${B[@]}" --filters none,nosuch
+expect 2 "^obscura: --filters: expected a comma list, got ''$" -- "${B[@]}" --filters ''
+expect 2 "^obscura: --filters: empty element in 'none,,geometry'$" -- "${B[@]}" --filters none,,geometry
+expect 2 "^obscura: --filters: 'none' is listed twice" -- "${B[@]}" --filters none,none
+expect 2 "^obscura: --ao-scales: expected 1, 0.5 or 0.25, got '0.3'$" -- "${B[@]}" --ao-scales 0.3
+expect 2 "^obscura: --ao-scale: expected 1, 0.5 or 0.25, got '0.3'$" -- "${B[@]}" --ao-scale 0.3
+expect 2 "^obscura: --adaptive: expected on or off, got 'maybe'$" -- "${B[@]}" --adaptive maybe
+expect 2 "^obscura: --quality: expected low, medium, high or ultra, got 'bogus' in 'low,bogus'$" -- "${B[@]}" --quality low,bogus
+expect 2 "^obscura: --samples: '12' is listed twice" -- "${B[@]}" --samples 12,12
 
 # check_json FILE MODE: the schema, and every time positive and finite.
 check_json() {
@@ -96,6 +106,40 @@ else
     bad "bench CSV: $(head -3 "$dir/b.csv")"
 fi
 if grep -q "AO-pass ms / frame ms" "$dir/stdout" && grep -q "N = 12" "$dir/stdout" && grep -q "r = 4" "$dir/stdout"; then ok; else bad "bench table: $(cat "$dir/stdout")"; fi
+
+# --ao-scale and --adaptive take effect: the AO runs at half size (downsample and upsample passes)
+# with the edge pre-pass, in every configuration, none included.
+if "$OBSCURA" "${B[@]}" --methods ssao --samples 12 --radius 4 --ao-scale 0.5 --adaptive on >"$dir/stdout" 2>"$dir/stderr" &&
+    check_json "$dir/b.json" sweep && python3 - "$dir/b.json" <<'PY'
+import json, sys
+for c in json.load(open(sys.argv[1]))["configurations"]:
+    passes = [p["name"] for p in c["passes"]]
+    assert c["ao_scale"] == 0.5, c["ao_scale"]
+    for p in ("downsample", "edges", "upsample"):
+        assert p in passes, (c["label"], passes)
+PY
+then ok; else bad "bench --ao-scale 0.5 --adaptive on: $(cat "$dir/stderr")"; fi
+
+# Lists: each combination of --filters x --ao-scales is its own table and labelled rows, each
+# against the none frame of its own filter and AO scale.
+if "$OBSCURA" "${B[@]}" --methods ssao --samples 12 --radius 4 --cameras default --filters none,geometry --ao-scales 1,0.5 \
+    >"$dir/stdout" 2>"$dir/stderr" && check_json "$dir/b.json" sweep && python3 - "$dir/b.json" "$dir/b.csv" <<'PY'
+import csv, json, sys
+d = json.load(open(sys.argv[1]))
+cfgs = d["configurations"]
+dot = " \u00b7 "
+combos = [("none", 1), ("none", 0.5), ("geometry", 1), ("geometry", 0.5)]
+want = ["none%sfilter %s%sao %g" % (dot, f, dot, a) for f, a in combos]
+want += ["ssao%sfilter %s%sao %g%sN 12%sr 4" % (dot, f, dot, a, dot, dot) for f, a in combos]
+assert [c["label"] for c in cfgs] == want, [c["label"] for c in cfgs]
+assert [(c["filter"], c["ao_scale"]) for c in cfgs] == combos + combos
+assert d["filter"] == "none,geometry", d["filter"]
+rows = list(csv.DictReader(open(sys.argv[2], encoding="utf-8")))
+assert {r["label"] for r in rows} == set(want), {r["label"] for r in rows}
+assert {(r["filter"], float(r["ao_scale"])) for r in rows} == set(combos)
+PY
+then ok; else bad "bench lists: $(cat "$dir/stderr")"; fi
+grep -q "^ssao · filter none · ao 0.5: AO-pass ms / frame ms" "$dir/stdout" && ok || bad "bench lists table: $(cat "$dir/stdout")"
 
 # Stereo (two renderers) and scaling (sizes and tessellation), tiny.
 if "$OBSCURA" "${B[@]}" --methods ssao --samples 12 --radius 4 --stereo --cameras default >"$dir/stdout" 2>"$dir/stderr" &&

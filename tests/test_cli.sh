@@ -53,6 +53,12 @@ expect 2 "out of range" -- "${R[@]}" --set geometry.radius=99
 expect 2 "but the filter is geometry" -- "${R[@]}" --set gaussian.sigma=1
 expect 2 "no parameter 'nosuch'" -- "${R[@]}" --filter bilateral --set bilateral.nosuch=1
 expect 2 "unknown command" -- frobnicate
+# render takes one value of each setting: the list spellings of sheet, compare and bench are not its.
+expect 2 "unknown option '--methods'" -- "${R[@]}" --methods ssao,hbao
+expect 2 "unknown option '--filters'" -- "${R[@]}" --filters none,geometry
+expect 2 "quality: expected low, medium, high or ultra, got 'low,high'" -- "${R[@]}" --quality low,high
+expect 2 "eye and --target go together" -- "${R[@]}" --scene corner --eye 1,2,3
+expect 2 "ambient env needs --env" -- "${R[@]}" --scene corner --ambient env
 expect 3 "cannot read|no such file" -- "${R[@]}" --scene "$dir/missing.obj"
 head -c 3000 /dev/urandom >"$dir/corrupt.ply"
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1 2\nzzz\n' >"$dir/corrupt2.ply"
@@ -109,6 +115,27 @@ fi
 "$OBSCURA" render --scene corner --size 96x64 --gpu sw --out "$dir/c2.png" --ao-out "$dir/c2.pfm" 2>/dev/null
 cmp -s "$dir/c.pfm" "$dir/c2.pfm" && ok || bad "AO differs between two identical runs"
 cmp -s "$dir/c.png" "$dir/c2.png" && ok || bad "final image differs between two identical runs"
+
+# --view goes through the library's view pass (ob_read_view, as the viewer's ob_present draws it):
+# every view decodes at the image size, RGB (final: RGBA as before), and the ao view is exactly the
+# grey of --ao-png.
+for v in final ao normals depth shadow radiance samples bounce; do
+    if "$OBSCURA" render --scene cornell --size 64x48 --view "$v" --out "$dir/view_$v.png" --ao-png "$dir/view_${v}_ao.png" \
+        2>"$dir/stderr"; then
+        read -r w h c lo hi mean < <("$IMGCHECK" "$dir/view_$v.png")
+        want=3
+        [ "$v" = final ] && want=4
+        [ "$w $h $c" = "64 48 $want" ] && ok || bad "--view $v is '$w $h $c'"
+    else
+        bad "--view $v failed: $(cat "$dir/stderr")"
+    fi
+done
+read -r w h c lo hi mean < <("$IMGCHECK" "$dir/view_ao.png")
+read -r w2 h2 c2 lo2 hi2 mean2 < <("$IMGCHECK" "$dir/view_ao_ao.png")
+[ "$lo $hi $mean" = "$lo2 $hi2 $mean2" ] && [ "$lo" -lt 250 ] && ok || bad "ao view '$lo $hi $mean' is not the AO PNG '$lo2 $hi2 $mean2'"
+read -r w h c lo hi mean < <("$IMGCHECK" "$dir/view_normals.png")
+[ "$hi" -gt "$lo" ] && ok || bad "normals view is flat: $lo..$hi"
+rm -f "$dir"/view_*.png
 
 # list --json carries every method with its parameter table, and the built-in scenes.
 if "$OBSCURA" list --json >"$dir/list.json" && python3 - "$dir/list.json" <<'PY'

@@ -78,6 +78,93 @@ grep -q '&lt;img src=x onerror=alert(1)&gt;' "$dir/report/index.html" && ok || b
 grep -q '<img src=x' "$dir/report/index.html" && bad "the hostile name reached the page as markup" || ok
 grep -q '<svg' "$dir/report/index.html" && ok || bad "no chart in the page"
 
+# expect_compare CODE PATTERN -- ARGS...: exit code, one stderr line matching PATTERN, and no report
+# left: bad input is found before anything is written.
+expect_compare() {
+    local code=$1 pattern=$2
+    shift 3
+    rm -rf "$dir/bad"
+    "$OBSCURA" compare "$@" --report "$dir/bad" >"$dir/stdout" 2>"$dir/stderr"
+    local got=$?
+    local lines
+    lines=$(wc -l <"$dir/stderr")
+    if [ "$got" -ne "$code" ]; then bad "compare $* exited $got, want $code: $(cat "$dir/stderr")"; return; fi
+    if [ "$lines" -ne 1 ]; then bad "compare $* printed $lines lines on stderr: $(cat "$dir/stderr")"; return; fi
+    if ! grep -qiE -e "$pattern" "$dir/stderr"; then bad "compare $*: '$(cat "$dir/stderr")' lacks /$pattern/"; return; fi
+    if [ -e "$dir/bad" ]; then bad "compare $* left a report: $(ls -R "$dir/bad")"; return; fi
+    ok
+}
+C=(--scene corner --size 32x24 --spp 8)
+expect_compare 2 "^obscura: --filters: unknown filter 'nosuch'" -- "${C[@]}" --filters none,nosuch
+expect_compare 2 "^obscura: --filters: expected a comma list, got ''$" -- "${C[@]}" --filters ''
+expect_compare 2 "^obscura: --filters: empty element in 'none,,geometry'$" -- "${C[@]}" --filters none,,geometry
+expect_compare 2 "^obscura: --filters: 'none' is listed twice" -- "${C[@]}" --filters none,none
+expect_compare 2 "^obscura: --ao-scales: expected 1, 0.5 or 0.25, got '0.3'$" -- "${C[@]}" --ao-scales 0.3
+expect_compare 2 "^obscura: --ao-scales: '0.5' is listed twice" -- "${C[@]}" --ao-scales 1,0.5,0.5
+expect_compare 2 "^obscura: --methods: expected a comma list, got ''$" -- "${C[@]}" --methods ''
+expect_compare 2 "^obscura: --methods: unknown method 'nosuch'" -- "${C[@]}" --methods ssao,nosuch
+expect_compare 2 "^obscura: --quality: expected low, medium, high or ultra, got 'bogus' in 'low,bogus'$" -- "${C[@]}" --quality low,bogus
+expect_compare 2 "exclude each other" -- "${C[@]}" --quality low --samples 12
+expect_compare 2 "hbao.radius=0.5: method 'hbao' is not in --methods" -- "${C[@]}" --methods ssao --set hbao.radius=0.5
+expect_compare 2 "unknown camera 'nosuch'" -- "${C[@]}" --scene corner:nosuch
+expect_compare 2 "GL_MAX_TEXTURE_SIZE" -- "${C[@]}" --size 100000x8
+# A report directory that exists keeps what it had.
+mkdir -p "$dir/kept" && echo keep >"$dir/kept/notes.txt"
+"$OBSCURA" compare "${C[@]}" --filters none,none --report "$dir/kept" >/dev/null 2>&1
+[ "$(ls "$dir/kept")" = "notes.txt" ] && ok || bad "a failed compare changed an existing report: $(ls "$dir/kept")"
+
+# Lists: every combination of --methods x --filters x --ao-scales is its own row, labelled with
+# the settings that vary, with its own images, in results.json, the table and the chart.
+if "$OBSCURA" compare --scene cornell:front --methods hbao --filters none,geometry --ao-scales 1,0.5 --size 48x36 --spp 16 \
+    --report "$dir/lists" >"$dir/stdout" 2>"$dir/stderr"; then ok; else bad "compare with lists failed: $(tail -3 "$dir/stderr")"; fi
+if python3 - "$dir/lists" <<'PY'
+import json, math, os, sys
+report = sys.argv[1]
+r = json.load(open(os.path.join(report, "results.json")))
+(v,) = r["views"]
+rows = v["methods"]
+want = ["hbao \u00b7 filter none \u00b7 ao 1", "hbao \u00b7 filter none \u00b7 ao 0.5",
+        "hbao \u00b7 filter geometry \u00b7 ao 1", "hbao \u00b7 filter geometry \u00b7 ao 0.5"]
+assert [m["label"] for m in rows] == want, [m["label"] for m in rows]
+assert [(m["method"], m["filter"], m["ao_scale"]) for m in rows] == [
+    ("hbao", "none", 1), ("hbao", "none", 0.5), ("hbao", "geometry", 1), ("hbao", "geometry", 0.5)], rows
+for m in rows:
+    assert math.isfinite(m["rmse"]) and 0 <= m["rmse"] <= 1, m
+assert len({m["rmse"] for m in rows}) == 4, "the settings took no effect: %s" % [m["rmse"] for m in rows]
+html = open(os.path.join(report, "index.html"), encoding="utf-8").read()
+chart = open(os.path.join(report, v["dir"], "chart.svg"), encoding="utf-8").read()
+for label in want:
+    assert "<td>%s</td>" % label in html, label
+    assert label in chart, label
+for stem in ("hbao_filter-none_ao-1", "hbao_filter-none_ao-0_5", "hbao_filter-geometry_ao-1", "hbao_filter-geometry_ao-0_5"):
+    for kind in ("final", "ao", "error"):
+        path = os.path.join(report, v["dir"], "%s_%s.png" % (stem, kind))
+        assert os.path.exists(path), path
+        assert 'src="%s/%s_%s.png"' % (v["dir"], stem, kind) in html, stem
+PY
+then ok; else bad "compare with lists: results.json, table, chart or images"; fi
+
+# compare takes the common options: --filter, --ao-scale, --eye/--target and --set take effect.
+E=(--scene corner --methods ssao --filter none --ao-scale 0.5 --eye 1.5,1.2,1.8 --target 0,0.2,0 --size 48x36 --spp 16)
+if "$OBSCURA" compare "${E[@]}" --report "$dir/common" >/dev/null 2>"$dir/stderr" &&
+    "$OBSCURA" compare "${E[@]}" --set ssao.radius=0.05 --report "$dir/common_set" >/dev/null 2>>"$dir/stderr"; then
+    ok
+else
+    bad "compare with the common options failed: $(tail -3 "$dir/stderr")"
+fi
+if python3 - "$dir/common/results.json" "$dir/common_set/results.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+for r in (a, b):
+    (v,) = r["views"]
+    assert v["camera"] == "explicit", v["camera"]
+    (m,) = v["methods"]
+    assert (m["method"], m["label"], m["filter"], m["ao_scale"]) == ("ssao", "ssao", "none", 0.5), m
+ra, rb = a["views"][0]["methods"][0]["rmse"], b["views"][0]["methods"][0]["rmse"]
+assert ra != rb, "--set ssao.radius took no effect (%s)" % ra
+PY
+then ok; else bad "compare --filter/--ao-scale/--eye/--set did not take effect"; fi
+
 # Headless Chromium: no console errors or failed loads, and a screenshot that is not blank.
 chrome=$(command -v chromium || command -v chromium-browser || true)
 if [ -z "$chrome" ]; then

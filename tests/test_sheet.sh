@@ -48,6 +48,9 @@ expect 2 "WIDTHxHEIGHT" -- "${S[@]}" --size 0x4
 expect 2 "unknown camera" -- "${S[@]}" --camera nosuch
 expect 2 "scene NAME is required" -- sheet --out "$dir/out.png"
 expect 4 "cannot write" -- sheet --scene corner --size ${TW}x${TH} --out /nonexistent-dir/sheet.png
+expect 2 "unknown filter 'nosuch'" -- "${S[@]}" --filter nosuch
+expect 2 "empty element in 'none,,geometry'" -- "${S[@]}" --filters none,,geometry
+expect 2 "eye and --target go together" -- "${S[@]}" --eye 1,1,1
 
 # none and ssao: two rows; stdout names each method with its median AO time. A wide radius makes
 # the corner's occlusion plain at this size.
@@ -106,6 +109,26 @@ for name, y0 in (("header", 0), ("none label", strip), ("ssao label", 2 * strip 
     assert min(region(0, y0, w, y0 + strip)) < 60, f"{name} strip has no dark text"
 PY
 then ok; else bad "sheet regions"; fi
+
+# --filter takes effect: ssao with no filter is another AO tile than with the default geometry
+# filter. Lists give a row per combination, labelled with what varies.
+"$OBSCURA" "${S[@]}" --methods ssao --quality low --set ssao.radius=2 >/dev/null 2>&1 && mv "$dir/out.png" "$dir/geometry.png"
+if "$OBSCURA" "${S[@]}" --methods ssao --quality low --set ssao.radius=2 --filter none >"$dir/stdout" 2>"$dir/stderr"; then
+    mv "$dir/out.png" "$dir/none.png"
+    read -r d < <("$IMGCHECK" diff "$dir/geometry.png" "$dir/none.png")
+    awk -v d="${d:-0}" 'BEGIN { exit !(d > 0) }' && grep -qE '^ssao +ao ' "$dir/stdout" && ok || bad "--filter none changed nothing ($d)"
+else
+    bad "sheet --filter none failed: $(cat "$dir/stderr")"
+fi
+rm -f "$dir/geometry.png" "$dir/none.png"
+if "$OBSCURA" "${S[@]}" --methods ssao --filters none,geometry --ao-scale 0.5 >"$dir/stdout" 2>"$dir/stderr"; then
+    read -r w h c lo hi mean < <("$IMGCHECK" "$dir/out.png")
+    [ "$w $h" = "$(sheet_w) $(sheet_h 2)" ] && grep -qE '^ssao, filter none +ao ' "$dir/stdout" \
+        && grep -qE '^ssao, filter geometry +ao ' "$dir/stdout" && ok || bad "sheet --filters: ${w}x$h, $(cat "$dir/stdout")"
+else
+    bad "sheet --filters failed: $(cat "$dir/stderr")"
+fi
+rm -f "$dir/out.png"
 
 # Default --methods: every registered method, one row each.
 count=$("$OBSCURA" list --json | python3 -c 'import json, sys; print(len(json.load(sys.stdin)["methods"]))')

@@ -1,0 +1,649 @@
+/* The common options of the rendering commands (cli_options.h): parsing, usage, settings. */
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_options.h"
+
+enum { ITEM_MAX = 64 }; /* longest element of a comma list (names are short; a long one is a typo) */
+
+/* The --ao-scale spellings and their divisors: the AO grid is 1, 2 or 4 full pixels wide. */
+static const struct {
+    const char *text;
+    int divisor;
+} AO_SCALES[] = {{"1", 1}, {"0.5", 2}, {"0.25", 4}};
+
+static const char *ao_scale_text(int divisor)
+{
+    for (size_t k = 0; k < sizeof AO_SCALES / sizeof AO_SCALES[0]; ++k)
+        if (AO_SCALES[k].divisor == divisor) return AO_SCALES[k].text;
+    return "?";
+}
+
+static bool takes(const cli_common *c, unsigned what) { return (c->takes & what) != 0; }
+
+void cli_common_init(cli_common *c, const char *command, unsigned takes_mask)
+{
+    *c = (cli_common){.command = command, .takes = takes_mask, .default_method = "ssao", .width = 640, .height = 480};
+}
+
+/* ---- comma lists ------------------------------------------------------------------------------ */
+
+/* Split `text` at commas. An empty list, an empty element, one longer than ITEM_MAX - 1 or more
+ * than `max` elements is one line naming the option and the value. */
+static int split_list(const char *opt, const char *text, char items[][ITEM_MAX], int max, int *count)
+{
+    *count = 0;
+    if (!*text) return cli_fail(EXIT_USAGE, "%s: expected a comma list, got ''", opt);
+    const char *p = text;
+    for (;;) {
+        size_t len = strcspn(p, ",");
+        if (len == 0) return cli_fail(EXIT_USAGE, "%s: empty element in '%s'", opt, text);
+        if (len >= ITEM_MAX) return cli_fail(EXIT_USAGE, "%s: '%.*s' is too long", opt, (int)len, p);
+        if (*count >= max) return cli_fail(EXIT_USAGE, "%s: more than %d elements in '%s'", opt, max, text);
+        memcpy(items[*count], p, len);
+        items[*count][len] = '\0';
+        ++*count;
+        if (p[len] == '\0') break;
+        p += len + 1;
+    }
+    return EXIT_OK;
+}
+
+/* The elements of a list option, or the whole value as one element when the command takes no
+ * lists (then a comma is part of a bad name, reported as such). */
+static int elements(const cli_common *c, bool list, const char *opt, const char *text, char items[][ITEM_MAX], int *count)
+{
+    if (list && takes(c, CLI_TAKES_LISTS)) return split_list(opt, text, items, CLI_MAX_LIST, count);
+    if (strlen(text) >= ITEM_MAX) return cli_fail(EXIT_USAGE, "%s: '%s' is too long", opt, text);
+    snprintf(items[0], ITEM_MAX, "%s", text);
+    *count = 1;
+    return EXIT_OK;
+}
+
+/* The library's message for a failed call, behind the option's name. */
+static int fail_option(const char *opt)
+{
+    const char *msg = NULL;
+    ob_error err = ob_get_error(&msg);
+    return cli_fail(EXIT_USAGE, "%s: %s", opt, msg && *msg ? msg : ob_error_name(err));
+}
+
+static int parse_methods(cli_common *c, bool list, const char *opt, const char *v)
+{
+    char items[CLI_MAX_LIST][ITEM_MAX] = {{0}};
+    int n = 0, code = elements(c, list, opt, v, items, &n);
+    if (code != EXIT_OK) return code;
+    if (list && !strcmp(v, "all")) { /* every method: cli_common_finish fills them in */
+        c->method_count = 0;
+        c->default_method = NULL;
+        return CLI_TAKEN;
+    }
+    for (int k = 0; k < n; ++k) {
+        int m = ob_find_method(items[k]);
+        if (m < 0) {
+            ob_settings probe = {0};
+            ob_settings_init(&probe, items[k]); /* the library's "unknown method (known: ...)" */
+            return list ? fail_option(opt) : cli_fail_from_library();
+        }
+        for (int j = 0; j < k; ++j)
+            if (c->methods[j] == m) return cli_fail(EXIT_USAGE, "%s: '%s' is listed twice", opt, items[k]);
+        c->methods[k] = m;
+    }
+    c->method_count = n;
+    return CLI_TAKEN;
+}
+
+static int parse_filters(cli_common *c, bool list, const char *opt, const char *v)
+{
+    char items[CLI_MAX_LIST][ITEM_MAX] = {{0}};
+    int n = 0, code = elements(c, list, opt, v, items, &n);
+    if (code != EXIT_OK) return code;
+    for (int k = 0; k < n; ++k) {
+        int f = ob_find_filter(items[k]);
+        if (f < 0) {
+            ob_settings probe = {0};
+            ob_settings_init(&probe, NULL);
+            ob_settings_set_filter(&probe, items[k]); /* "unknown filter 'x' (known: ...)" */
+            return fail_option(opt);
+        }
+        for (int j = 0; j < k; ++j)
+            if (c->filters[j] == f) return cli_fail(EXIT_USAGE, "%s: '%s' is listed twice", opt, items[k]);
+        c->filters[k] = f;
+    }
+    c->filter_count = n;
+    return CLI_TAKEN;
+}
+
+static int parse_ao_scales(cli_common *c, bool list, const char *opt, const char *v)
+{
+    char items[CLI_MAX_LIST][ITEM_MAX] = {{0}};
+    int n = 0, code = elements(c, list, opt, v, items, &n);
+    if (code != EXIT_OK) return code;
+    if (n > 3) return cli_fail(EXIT_USAGE, "%s: at most 3 scales (1, 0.5, 0.25), got '%s'", opt, v);
+    for (int k = 0; k < n; ++k) {
+        int d = 0;
+        for (size_t s = 0; s < sizeof AO_SCALES / sizeof AO_SCALES[0]; ++s)
+            if (!strcmp(items[k], AO_SCALES[s].text)) d = AO_SCALES[s].divisor;
+        if (!d) return cli_fail(EXIT_USAGE, "%s: expected 1, 0.5 or 0.25, got '%s'", opt, items[k]);
+        for (int j = 0; j < k; ++j)
+            if (c->ao_divisors[j] == d) return cli_fail(EXIT_USAGE, "%s: '%s' is listed twice", opt, items[k]);
+        c->ao_divisors[k] = d;
+    }
+    c->ao_count = n;
+    return CLI_TAKEN;
+}
+
+/* --quality and --samples: sample counts, each list free of repeats. */
+static int parse_samples(cli_common *c, bool quality, const char *opt, const char *v)
+{
+    char items[CLI_MAX_LIST][ITEM_MAX] = {{0}};
+    int n = 0, code = elements(c, true, opt, v, items, &n);
+    if (code != EXIT_OK) return code;
+    cli_samples *out = quality ? c->by_quality : c->by_number;
+    for (int k = 0; k < n; ++k) {
+        cli_samples s = {0, NULL};
+        if (quality) {
+            s.count = ob_quality_samples(items[k]);
+            if (s.count < 0) {
+                if (n == 1) return cli_fail(EXIT_USAGE, "%s: expected low, medium, high or ultra, got '%s'", opt, v);
+                return cli_fail(EXIT_USAGE, "%s: expected low, medium, high or ultra, got '%s' in '%s'", opt, items[k], v);
+            }
+            /* The preset names are static strings of ours: keep the one argv spelled. */
+            static const char *const names[] = {"low", "medium", "high", "ultra"};
+            for (int q = 0; q < 4; ++q)
+                if (!strcmp(items[k], names[q])) s.quality = names[q];
+        } else {
+            char *end = NULL;
+            long x = strtol(items[k], &end, 10);
+            if (end == items[k] || *end || x < 1 || x > 4096) {
+                if (takes(c, CLI_TAKES_LISTS))
+                    return cli_fail(EXIT_USAGE, "%s: expected a comma list of 1..4096, got '%s'", opt, v);
+                return cli_fail(EXIT_USAGE, "%s: expected 1..4096, got '%s'", opt, v);
+            }
+            s.count = (int)x;
+        }
+        for (int j = 0; j < k; ++j)
+            if (out[j].count == s.count) return cli_fail(EXIT_USAGE, "%s: '%s' is listed twice", opt, items[k]);
+        out[k] = s;
+    }
+    if (quality) c->by_quality_count = n;
+    else c->by_number_count = n;
+    return CLI_TAKEN;
+}
+
+/* ---- the numeric lighting, shadow and tone-mapping options ------------------------------------- */
+
+static const struct {
+    const char *name;
+    size_t offset;
+    float min, max;
+    bool integer;
+    unsigned bit;
+} NUMBERS[] = {
+    {"--shadow-size", offsetof(cli_common, shadow_size), 16.0f, 16384.0f, true, CLI_GIVEN_SHADOW_SIZE},
+    {"--shadow-bias", offsetof(cli_common, shadow_bias), 0.0f, 100.0f, false, CLI_GIVEN_SHADOW_BIAS},
+    {"--shadow-slope-bias", offsetof(cli_common, slope_bias), 0.0f, 100.0f, false, CLI_GIVEN_SLOPE_BIAS},
+    {"--pcf-radius", offsetof(cli_common, pcf_radius), 1.0f, 8.0f, true, CLI_GIVEN_PCF_RADIUS},
+    {"--vsm-blur", offsetof(cli_common, vsm_blur), 0.0f, 16.0f, false, CLI_GIVEN_VSM_BLUR},
+    {"--vsm-bleed", offsetof(cli_common, vsm_bleed), 0.0f, 0.99f, false, CLI_GIVEN_VSM_BLEED},
+    {"--exposure", offsetof(cli_common, exposure), 1e-6f, 1e6f, false, CLI_GIVEN_EXPOSURE},
+    {"--key", offsetof(cli_common, key), 0.001f, 10.0f, false, CLI_GIVEN_KEY},
+    {"--white", offsetof(cli_common, white), 0.0f, 1e6f, false, CLI_GIVEN_WHITE},
+    {"--bloom", offsetof(cli_common, bloom), 0.0f, 10.0f, false, CLI_GIVEN_BLOOM},
+    {"--bloom-threshold", offsetof(cli_common, bloom_threshold), 0.0f, 1e6f, false, CLI_GIVEN_BLOOM_THRESHOLD},
+};
+
+static int parse_number(cli_common *c, size_t k, const char *v)
+{
+    float x = 0.0f;
+    if (!cli_parse_float(v, &x) || x < NUMBERS[k].min || x > NUMBERS[k].max || (NUMBERS[k].integer && x != floorf(x)))
+        return cli_fail(EXIT_USAGE, "%s: expected %s in [%g, %g], got '%s'", NUMBERS[k].name,
+                        NUMBERS[k].integer ? "an integer" : "a number", (double)NUMBERS[k].min, (double)NUMBERS[k].max, v);
+    char *field = (char *)c + NUMBERS[k].offset;
+    if (NUMBERS[k].integer) *(int *)field = (int)x;
+    else *(float *)field = x;
+    c->given |= NUMBERS[k].bit;
+    return CLI_TAKEN;
+}
+
+/* ---- the parser ------------------------------------------------------------------------------- */
+
+/* The options with a value, each with what the command must take for it (0 = every command). */
+static const struct {
+    const char *name;
+    unsigned needs;
+} WITH_VALUE[] = {
+    {"--scene", CLI_TAKES_SCENE},  {"--sidecar", 0},     {"--up", 0},
+    {"--camera", CLI_TAKES_CAMERA}, {"--eye", CLI_TAKES_CAMERA}, {"--target", CLI_TAKES_CAMERA},
+    {"--fov", CLI_TAKES_CAMERA},   {"--size", 0},        {"--method", 0},
+    {"--methods", CLI_TAKES_LISTS}, {"--set", 0},        {"--quality", 0},
+    {"--samples", 0},              {"--filter", 0},      {"--filters", CLI_TAKES_LISTS},
+    {"--ao-scale", 0},             {"--ao-scales", CLI_TAKES_LISTS}, {"--adaptive", 0},
+    {"--light", 0},                {"--env", 0},         {"--ambient", 0},
+    {"--ambient-color", 0},        {"--ao-light", 0},    {"--shadow", 0},
+    {"--hdr", 0},                  {"--gpu", 0},
+};
+
+int cli_common_option(cli_common *c, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i];
+    if (!strcmp(a, "-v")) {
+        c->verbose = true;
+        return CLI_TAKEN;
+    }
+    bool mine = false;
+    for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0] && !mine; ++k)
+        mine = !strcmp(a, WITH_VALUE[k].name) && (WITH_VALUE[k].needs == 0 || takes(c, WITH_VALUE[k].needs));
+    size_t number = sizeof NUMBERS / sizeof NUMBERS[0];
+    for (size_t k = 0; k < sizeof NUMBERS / sizeof NUMBERS[0] && !mine; ++k)
+        if (!strcmp(a, NUMBERS[k].name)) {
+            mine = true;
+            number = k;
+        }
+    if (!mine) return CLI_NOT_MINE;
+    if (*i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura %s --help)", a, c->command);
+    const char *v = argv[++*i];
+    if (number < sizeof NUMBERS / sizeof NUMBERS[0]) return parse_number(c, number, v);
+
+    if (!strcmp(a, "--scene")) c->scene = v;
+    else if (!strcmp(a, "--sidecar")) c->sidecar = v;
+    else if (!strcmp(a, "--up")) {
+        if (!cli_parse_up(v, &c->up)) return cli_fail(EXIT_USAGE, "--up: expected y or z, got '%s'", v);
+    } else if (!strcmp(a, "--camera")) c->camera = v;
+    else if (!strcmp(a, "--eye")) {
+        if (!cli_parse_vec3(v, c->eye)) return cli_fail(EXIT_USAGE, "--eye: expected X,Y,Z (finite numbers), got '%s'", v);
+        c->has_eye = true;
+    } else if (!strcmp(a, "--target")) {
+        if (!cli_parse_vec3(v, c->target))
+            return cli_fail(EXIT_USAGE, "--target: expected X,Y,Z (finite numbers), got '%s'", v);
+        c->has_target = true;
+    } else if (!strcmp(a, "--fov")) {
+        if (!cli_parse_float(v, &c->fov) || c->fov <= 0.0f || c->fov >= 179.0f)
+            return cli_fail(EXIT_USAGE, "--fov: expected degrees in (0, 179), got '%s'", v);
+        c->has_fov = true;
+    } else if (!strcmp(a, "--size")) {
+        if (!cli_parse_size(v, &c->width, &c->height))
+            return cli_fail(EXIT_USAGE, "--size: expected WIDTHxHEIGHT with positive integers, got '%s'", v);
+        c->has_size = true;
+    } else if (!strcmp(a, "--method") || !strcmp(a, "--methods")) {
+        return parse_methods(c, !strcmp(a, "--methods"), a, v);
+    } else if (!strcmp(a, "--filter") || !strcmp(a, "--filters")) {
+        return parse_filters(c, !strcmp(a, "--filters"), a, v);
+    } else if (!strcmp(a, "--ao-scale") || !strcmp(a, "--ao-scales")) {
+        return parse_ao_scales(c, !strcmp(a, "--ao-scales"), a, v);
+    } else if (!strcmp(a, "--quality") || !strcmp(a, "--samples")) {
+        return parse_samples(c, !strcmp(a, "--quality"), a, v);
+    } else if (!strcmp(a, "--set")) {
+        if (c->set_count >= CLI_MAX_SETS) return cli_fail(EXIT_USAGE, "--set: more than %d", CLI_MAX_SETS);
+        c->sets[c->set_count++] = v;
+    } else if (!strcmp(a, "--adaptive")) {
+        if (!cli_parse_on_off(v, &c->adaptive)) return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
+    } else if (!strcmp(a, "--light")) {
+        if (c->light_count >= OB_MAX_LIGHTS) return cli_fail(EXIT_USAGE, "--light: at most %d lights", OB_MAX_LIGHTS);
+        ob_light probe = {0};
+        if (ob_parse_light(v, &probe) != OB_OK) return fail_option(a);
+        c->lights[c->light_count++] = v;
+    } else if (!strcmp(a, "--env")) {
+        c->env = v;
+    } else if (!strcmp(a, "--ambient")) {
+        if (!strcmp(v, "constant")) c->ambient_mode = OB_AMBIENT_CONSTANT;
+        else if (!strcmp(v, "hemisphere")) c->ambient_mode = OB_AMBIENT_HEMISPHERE;
+        else if (!strcmp(v, "env")) c->ambient_mode = OB_AMBIENT_ENVIRONMENT;
+        else return cli_fail(EXIT_USAGE, "--ambient: expected constant, hemisphere or env, got '%s'", v);
+    } else if (!strcmp(a, "--ambient-color")) {
+        if (!cli_parse_vec3(v, c->ambient_color) || c->ambient_color[0] < 0.0f || c->ambient_color[1] < 0.0f ||
+            c->ambient_color[2] < 0.0f)
+            return cli_fail(EXIT_USAGE, "--ambient-color: expected R,G,B >= 0, got '%s'", v);
+        c->given |= CLI_GIVEN_AMBIENT_COLOR;
+    } else if (!strcmp(a, "--ao-light")) {
+        if (!strcmp(v, "ambient")) c->ao_all_light = false;
+        else if (!strcmp(v, "all")) c->ao_all_light = true;
+        else return cli_fail(EXIT_USAGE, "--ao-light: expected ambient or all, got '%s'", v);
+    } else if (!strcmp(a, "--shadow")) {
+        if (!cli_parse_shadow(v, &c->shadow)) return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
+        c->given |= CLI_GIVEN_SHADOW;
+    } else if (!strcmp(a, "--hdr")) {
+        bool on = true;
+        if (!cli_parse_on_off(v, &on)) return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
+        c->hdr_off = !on;
+    } else if (!strcmp(a, "--gpu")) {
+        if (!cli_parse_gpu(v, &c->gpu)) return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
+    }
+    return CLI_TAKEN;
+}
+
+int cli_common_finish(cli_common *c)
+{
+    if (c->has_eye != c->has_target) return cli_fail(EXIT_USAGE, "--eye and --target go together");
+    if (c->camera && c->has_eye) return cli_fail(EXIT_USAGE, "--camera and --eye/--target exclude each other");
+    if (c->has_eye && c->eye[0] == c->target[0] && c->eye[1] == c->target[1] && c->eye[2] == c->target[2])
+        return cli_fail(EXIT_USAGE, "--eye and --target are the same point");
+    if (c->ambient_mode == OB_AMBIENT_ENVIRONMENT && !c->env) return cli_fail(EXIT_USAGE, "--ambient env needs --env FILE.hdr");
+    if (c->method_count == 0) {
+        if (c->default_method) {
+            c->methods[0] = ob_find_method(c->default_method);
+            c->method_count = c->methods[0] >= 0 ? 1 : 0;
+        } else {
+            for (int m = 0; m < ob_method_count() && c->method_count < CLI_MAX_LIST; ++m) c->methods[c->method_count++] = m;
+        }
+    }
+    if (c->filter_count == 0) {
+        c->filters[0] = ob_find_filter("geometry");
+        c->filter_count = 1;
+    }
+    if (c->ao_count == 0) {
+        c->ao_divisors[0] = 1;
+        c->ao_count = 1;
+    }
+    /* Lists: one sample dimension, so both spellings at once would be ambiguous. A single-value
+     * command keeps render's rule: --samples overrides --quality. */
+    if (takes(c, CLI_TAKES_LISTS) && c->by_quality_count > 0 && c->by_number_count > 0)
+        return cli_fail(EXIT_USAGE, "--quality and --samples exclude each other (both give the sample counts)");
+    const cli_samples *from = c->by_number_count > 0 ? c->by_number : c->by_quality;
+    c->sample_count = c->by_number_count > 0 ? c->by_number_count : c->by_quality_count;
+    memcpy(c->samples, from, (size_t)c->sample_count * sizeof *from);
+    return EXIT_OK;
+}
+
+/* ---- usage ------------------------------------------------------------------------------------ */
+
+void cli_common_usage(FILE *f, const cli_common *c)
+{
+    bool lists = takes(c, CLI_TAKES_LISTS);
+    fputs("\ncommon options (one parser for render, sheet, compare and bench):\n", f);
+    if (takes(c, CLI_TAKES_SCENE)) {
+        fputs("  --scene NAME|PATH     built-in (cornell, corner, sphere-on-plane), a named scene from\n"
+              "                        scenes/ (bunny, fzk-haus, cornell-obj) or any model Assimp reads\n",
+              f);
+        if (c->scene) fprintf(f, "                        (default %s)\n", c->scene);
+        else fputs("                        (required)\n", f);
+    }
+    fputs("  --sidecar FILE        scene sidecar JSON (default: MODEL.obscura.json beside the model)\n"
+          "  --up y|z              the model's up axis (overrides the sidecar)\n",
+          f);
+    if (takes(c, CLI_TAKES_CAMERA))
+        fputs("  --camera NAME|INDEX   a camera preset of the scene (default: 'default', which frames the\n"
+              "                        scene's bounds unless its sidecar defines it)\n"
+              "  --eye X,Y,Z --target X,Y,Z [--fov DEG]   an explicit camera (world units, degrees)\n",
+              f);
+    fprintf(f, "  --size WxH            image size (default %dx%d)\n", c->width, c->height);
+    if (lists) {
+        fprintf(f, "  --methods all|A,B     AO methods, see `obscura list` (default %s); --method A for one\n",
+                c->default_method ? c->default_method : "all");
+        fputs("  --filters A,B         denoising filters after the AO pass: none, box4, gaussian, bilateral,\n"
+              "                        bilateral_sep, geometry (default geometry); --filter A for one\n"
+              "  --ao-scales S,S       AO at 1, 0.5 and/or 0.25 of the size, then joint bilateral\n"
+              "                        upsampling (default 1); --ao-scale S for one\n"
+              "  --quality Q,Q         low|medium|high|ultra = 12/24/36/64 samples per pixel (seed 000);\n"
+              "                        HBAO takes them as directions x steps\n"
+              "  --samples N,N         samples per pixel (instead of --quality)\n"
+              "                        Each combination of these lists is one row, labelled with the\n"
+              "                        values that vary (e.g. 'hbao · filter none · ao 0.5'); a method\n"
+              "                        that takes no sample count runs once\n",
+              f);
+    } else {
+        fprintf(f, "  --method NAME         AO method: see `obscura list` (default %s)\n",
+                c->default_method ? c->default_method : "all");
+        fputs("  --filter NAME         denoising after the AO pass: none, box4, gaussian, bilateral,\n"
+              "                        bilateral_sep, geometry (default)\n"
+              "  --ao-scale S          run the AO at 1, 0.5 or 0.25 of the size, then joint bilateral\n"
+              "                        upsampling (default 1)\n"
+              "  --quality Q           low|medium|high|ultra = 12/24/36/64 samples per pixel (seed 000);\n"
+              "                        HBAO takes them as directions x steps\n"
+              "  --samples N           samples per pixel, overriding --quality\n",
+              f);
+    }
+    fputs("  --set M.P=V           set a parameter of method or filter M, validated (repeatable; after\n"
+          "                        --quality), e.g. ssao.radius=0.5 or geometry.radius=7\n"
+          "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off)\n"
+          "  --light SPEC          replaces the scene's lights (repeatable, up to 8), e.g.\n"
+          "                        'directional dir=0.3,1,0.2 color=1,0.9,0.8 intensity=2',\n"
+          "                        'point pos=0,2,0 intensity=8 range=10',\n"
+          "                        'spot pos=0,3,0 dir=0,-1,0 cone=20,30 intensity=20'\n"
+          "  --ambient MODE        constant (default), hemisphere (sky/ground) or env (needs --env)\n"
+          "  --ambient-color R,G,B the constant ambient radiance (default 0.3,0.3,0.3)\n"
+          "  --env FILE.hdr        equirectangular environment map (Radiance .hdr)\n"
+          "  --ao-light ambient|all  AO darkens the ambient term (default) or all light\n"
+          "  --shadow none|hard|pcf|vsm  shadow maps for the lights (default pcf)\n"
+          "  --shadow-size N       shadow map resolution (default 2048)\n"
+          "  --shadow-bias B       constant bias in map texels; --shadow-slope-bias S slope-scaled\n"
+          "  --pcf-radius R        PCF kernel taps each side (1 = 3x3); --vsm-blur SIGMA (texels);\n"
+          "                        --vsm-bleed T (light-bleeding reduction, 0..1)\n"
+          "  --hdr on|off          tone mapping (Reinhard, auto key, bloom) or a plain clamp (default on)\n"
+          "  --exposure E          linear scale before tone mapping (default 1)\n"
+          "  --key A               Reinhard key (0.045..0.9); default automatic from the log-average\n"
+          "  --white L             L_white: the scaled luminance mapped to white (0 = eq. 2.3)\n"
+          "  --bloom S             bloom strength (0 = off); --bloom-threshold T\n"
+          "  --gpu auto|hw|sw      hardware EGL device, Mesa llvmpipe, or hardware first (default auto)\n"
+          "  -v                    print the GL renderer and device\n",
+          f);
+}
+
+/* ---- settings --------------------------------------------------------------------------------- */
+
+/* What an --set assignment names: "M.P=V" a method and/or filter M (none is both), "P=V" the
+ * method in use. */
+typedef struct set_target {
+    bool prefixed;
+    int method, filter; /* registry indices, -1 when M is not one */
+    int prefix_len;
+} set_target;
+
+static set_target set_target_of(const char *a)
+{
+    set_target t = {false, -1, -1, 0};
+    const char *eq = strchr(a, '=');
+    size_t key_len = eq ? (size_t)(eq - a) : strlen(a);
+    const char *dot = memchr(a, '.', key_len);
+    if (!dot) return t;
+    t.prefixed = true;
+    t.prefix_len = (int)(dot - a);
+    char name[ITEM_MAX] = "";
+    snprintf(name, sizeof name, "%.*s", t.prefix_len, a);
+    t.method = ob_find_method(name);
+    t.filter = ob_find_filter(name);
+    return t;
+}
+
+static bool set_applies(const set_target *t, const cli_config *cfg)
+{
+    return !t->prefixed || t->method == cfg->method || t->filter == cfg->filter;
+}
+
+static void append(char *out, size_t n, const char *fmt, const char *a, const char *b)
+{
+    size_t len = strlen(out);
+    if (len < n) snprintf(out + len, n - len, fmt, a, b);
+}
+
+void cli_config_label(const cli_common *c, const cli_config *cfg, const char *sep, char *out, size_t n)
+{
+    snprintf(out, n, "%s", ob_method_at(cfg->method)->name);
+    if (c->filter_count > 1) append(out, n, "%sfilter %s", sep, ob_filter_at(cfg->filter)->name);
+    if (c->ao_count > 1) append(out, n, "%sao %s", sep, ao_scale_text(cfg->ao_divisor));
+    if (c->sample_count > 1 && cfg->samples.count > 0) {
+        char count[16] = "";
+        snprintf(count, sizeof count, "%d", cfg->samples.count);
+        if (cfg->samples.quality) append(out, n, "%squality %s", sep, cfg->samples.quality);
+        else append(out, n, "%ssamples %s", sep, count);
+    }
+}
+
+/* The label as a file name: letters, digits, '-' and '_' ("hbao_filter-none_ao-0_5"). */
+static void make_stem(const cli_common *c, const cli_config *cfg, char *out, size_t n)
+{
+    char raw[CLI_MAX_LABEL] = "";
+    snprintf(raw, sizeof raw, "%s", ob_method_at(cfg->method)->name);
+    if (c->filter_count > 1) append(raw, sizeof raw, "%sfilter-%s", "_", ob_filter_at(cfg->filter)->name);
+    if (c->ao_count > 1) append(raw, sizeof raw, "%sao-%s", "_", ao_scale_text(cfg->ao_divisor));
+    if (c->sample_count > 1 && cfg->samples.count > 0) {
+        char count[16] = "";
+        snprintf(count, sizeof count, "%d", cfg->samples.count);
+        append(raw, sizeof raw, "%s%s", "_", cfg->samples.quality ? "quality-" : "samples-");
+        append(raw, sizeof raw, "%s%s", cfg->samples.quality ? cfg->samples.quality : count, "");
+    }
+    size_t k = 0;
+    for (const char *p = raw; *p && k + 1 < n; ++p) {
+        char ch = *p;
+        bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '-' || ch == '_';
+        out[k++] = ok ? ch : '_';
+    }
+    out[k] = '\0';
+}
+
+int cli_common_apply(const cli_common *c, cli_config *cfg)
+{
+    ob_settings *s = &cfg->settings;
+    if (ob_settings_init(s, ob_method_at(cfg->method)->name) != OB_OK) return cli_fail_from_library();
+    if (ob_settings_set_filter(s, ob_filter_at(cfg->filter)->name) != OB_OK ||
+        ob_settings_set_ao_divisor(s, cfg->ao_divisor) != OB_OK)
+        return cli_fail_from_library();
+    s->adaptive = c->adaptive;
+    for (int i = 0; i < c->light_count; ++i)
+        if (ob_parse_light(c->lights[i], &s->lights[i]) != OB_OK) return cli_fail_from_library();
+    s->light_count = c->light_count;
+    s->ambient_mode = c->ambient_mode;
+    if (c->given & CLI_GIVEN_AMBIENT_COLOR) memcpy(s->ambient, c->ambient_color, sizeof s->ambient);
+    s->ao_all_light = c->ao_all_light;
+    ob_shadow_settings *sh = &s->shadow;
+    if (c->given & CLI_GIVEN_SHADOW) sh->method = c->shadow;
+    if (c->given & CLI_GIVEN_SHADOW_SIZE) sh->size = c->shadow_size;
+    if (c->given & CLI_GIVEN_SHADOW_BIAS) sh->bias = c->shadow_bias;
+    if (c->given & CLI_GIVEN_SLOPE_BIAS) sh->slope_bias = c->slope_bias;
+    if (c->given & CLI_GIVEN_PCF_RADIUS) sh->pcf_radius = c->pcf_radius;
+    if (c->given & CLI_GIVEN_VSM_BLUR) sh->vsm_blur = c->vsm_blur;
+    if (c->given & CLI_GIVEN_VSM_BLEED) sh->vsm_bleed = c->vsm_bleed;
+    ob_hdr_settings *hdr = &s->hdr;
+    hdr->enabled = !c->hdr_off;
+    if (c->given & CLI_GIVEN_EXPOSURE) hdr->exposure = c->exposure;
+    if (c->given & CLI_GIVEN_KEY) hdr->key = c->key;
+    if (c->given & CLI_GIVEN_WHITE) hdr->l_white = c->white;
+    if (c->given & CLI_GIVEN_BLOOM) hdr->bloom_strength = c->bloom;
+    if (c->given & CLI_GIVEN_BLOOM_THRESHOLD) hdr->bloom_threshold = c->bloom_threshold;
+    /* A method with no sample count (none) ignores --quality/--samples; anything else that the
+     * method refuses (beyond its table) is an error. */
+    if (cfg->samples.count > 0) {
+        ob_error err = ob_settings_set_samples(s, cfg->samples.count);
+        if (err == OB_ERR_INVALID_ARGUMENT) {
+            ob_clear_error();
+            cfg->samples = (cli_samples){0, NULL};
+        } else if (err != OB_OK) {
+            return cli_fail_from_library();
+        }
+    }
+    for (int k = 0; k < c->set_count; ++k) {
+        set_target t = set_target_of(c->sets[k]);
+        if (set_applies(&t, cfg) && ob_settings_set(s, c->sets[k]) != OB_OK) return cli_fail_from_library();
+    }
+    /* After the samples: a method that took none is labelled without them. */
+    cli_config_label(c, cfg, " \xc2\xb7 ", cfg->label, sizeof cfg->label); /* U+00B7 middle dot */
+    make_stem(c, cfg, cfg->stem, sizeof cfg->stem);
+    return EXIT_OK;
+}
+
+/* Whether the method takes a sample count: ob_settings_set_samples refuses with
+ * OB_ERR_INVALID_ARGUMENT when it does not. */
+static bool takes_samples(int method, int count)
+{
+    ob_settings probe = {0};
+    if (ob_settings_init(&probe, ob_method_at(method)->name) != OB_OK) return false;
+    ob_error err = ob_settings_set_samples(&probe, count);
+    if (err != OB_OK) ob_clear_error(); /* an out-of-range count is reported by cli_common_apply */
+    return err != OB_ERR_INVALID_ARGUMENT;
+}
+
+/* Each --set must reach at least one combination; the reasons it does not, one line each. */
+static int check_sets(const cli_common *c, cli_config *configs, int count)
+{
+    for (int k = 0; k < c->set_count; ++k) {
+        const char *a = c->sets[k];
+        set_target t = set_target_of(a);
+        if (!t.prefixed && c->method_count > 1)
+            return cli_fail(EXIT_USAGE, "--set %s: expected METHOD.PARAM=VALUE with more than one method", a);
+        if (t.prefixed && t.method < 0 && t.filter < 0)
+            return cli_fail(EXIT_USAGE, "--set %s: unknown method '%.*s' (nor a filter; see obscura list)", a, t.prefix_len, a);
+        bool reached = false;
+        for (int i = 0; i < count && !reached; ++i) reached = set_applies(&t, &configs[i]);
+        if (reached) continue;
+        if (t.method >= 0 && takes(c, CLI_TAKES_LISTS))
+            return cli_fail(EXIT_USAGE, "--set %s: method '%.*s' is not in --methods", a, t.prefix_len, a);
+        if (t.filter >= 0 && c->filter_count > 1)
+            return cli_fail(EXIT_USAGE, "--set %s: filter '%.*s' is not in --filters", a, t.prefix_len, a);
+        /* One method and one filter: the library says which it is ("... but the filter is geometry"). */
+        ob_settings s = {0};
+        if (ob_settings_init(&s, ob_method_at(configs[0].method)->name) != OB_OK ||
+            ob_settings_set_filter(&s, ob_filter_at(configs[0].filter)->name) != OB_OK || ob_settings_set(&s, a) != OB_OK)
+            return cli_fail_from_library();
+    }
+    return EXIT_OK;
+}
+
+int cli_common_configs(const cli_common *c, cli_config **configs, int *count)
+{
+    *configs = NULL;
+    *count = 0;
+    int total = 0;
+    for (int m = 0; m < c->method_count; ++m) {
+        bool counted = c->sample_count > 0 && takes_samples(c->methods[m], c->samples[0].count);
+        total += c->filter_count * c->ao_count * (counted ? c->sample_count : 1);
+    }
+    if (total > CLI_MAX_CONFIGS)
+        return cli_fail(EXIT_USAGE, "%d combinations of the lists (methods x filters x ao scales x samples), more than %d",
+                        total, CLI_MAX_CONFIGS);
+    if (total == 0) return cli_fail(EXIT_USAGE, "no method to run");
+    cli_config *out = calloc((size_t)total, sizeof *out);
+    if (!out) return cli_fail(EXIT_RUNTIME, "out of memory");
+    int n = 0, code = EXIT_OK;
+    for (int m = 0; m < c->method_count; ++m) {
+        bool counted = c->sample_count > 0 && takes_samples(c->methods[m], c->samples[0].count);
+        for (int f = 0; f < c->filter_count; ++f)
+            for (int a = 0; a < c->ao_count; ++a)
+                for (int q = 0; q < (counted ? c->sample_count : 1); ++q) {
+                    cli_config *cfg = &out[n++];
+                    *cfg = (cli_config){.method = c->methods[m], .filter = c->filters[f], .ao_divisor = c->ao_divisors[a],
+                                        .samples = counted ? c->samples[q] : (cli_samples){0, NULL}};
+                }
+    }
+    /* Whom each --set is for before any is applied: a misdirected one gets its own message. */
+    code = check_sets(c, out, n);
+    for (int i = 0; i < n && code == EXIT_OK; ++i) code = cli_common_apply(c, &out[i]);
+    if (code != EXIT_OK) {
+        free(out);
+        return code;
+    }
+    *configs = out;
+    *count = n;
+    return EXIT_OK;
+}
+
+/* ---- scene, camera, renderer ------------------------------------------------------------------ */
+
+ob_scene *cli_common_load_scene(const cli_common *c, const char *name)
+{
+    return ob_load_scene(&(ob_scene_desc){.name = name ? name : c->scene, .sidecar = c->sidecar, .up = c->up});
+}
+
+int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *preset, ob_camera *cam)
+{
+    if (c->has_eye) {
+        memset(cam, 0, sizeof *cam);
+        memcpy(cam->eye, c->eye, sizeof cam->eye);
+        memcpy(cam->target, c->target, sizeof cam->target);
+        cam->fov_y_deg = c->has_fov ? c->fov : 60.0f;
+        snprintf(cam->name, sizeof cam->name, "explicit");
+        return EXIT_OK;
+    }
+    const char *name = preset ? preset : c->camera ? c->camera : "default";
+    if (ob_find_camera(scene, name, cam) != OB_OK) return cli_fail_from_library();
+    if (c->has_fov) cam->fov_y_deg = c->fov;
+    return EXIT_OK;
+}
+
+int cli_common_prepare(const cli_common *c, ob_renderer *r)
+{
+    if (c->env && ob_renderer_set_environment(r, c->env) != OB_OK) return cli_fail_from_library();
+    return EXIT_OK;
+}

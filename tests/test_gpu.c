@@ -207,6 +207,21 @@ static void test_ssao(ob_renderer *r, const ob_settings *s)
     for (int i = 0; i < W * H; ++i) max_diff = fmax(max_diff, fabs(ext[i] - raw[i]));
     /* RGBA16F normals read back as floats are exact, so the result must be identical. */
     CHECK(max_diff == 0.0, "engine-texture AO differs from the pipeline by %g", max_diff);
+    /* ... and with the settings' filter, the pipeline's filtered AO exactly. */
+    CHECK(ob_render_frame(r, &test_cam, s) == OB_OK, "frame 3");
+    float *filtered = malloc(n);
+    CHECK(ob_read_image(r, OB_IMAGE_AO_F32, filtered, n) == OB_OK, "read filtered ao");
+    CHECK(ob_compute_ao_filtered(r, tex[0], tex[1], (const float *)proj, &s2, tex[2]) == OB_OK, "ob_compute_ao_filtered");
+    glGetTextureImage(tex[2], 0, GL_RED, GL_FLOAT, (GLsizei)n, ext);
+    double filtered_diff = 0.0, raw_diff = 0.0;
+    for (int i = 0; i < W * H; ++i) {
+        filtered_diff = fmax(filtered_diff, fabs(ext[i] - filtered[i]));
+        raw_diff = fmax(raw_diff, fabs(ext[i] - raw[i]));
+    }
+    CHECK(filtered_diff == 0.0 && raw_diff > 0.0,
+          "engine-texture filtered AO: %g from the pipeline's filtered AO (0 expected), %g from the raw", filtered_diff,
+          raw_diff);
+    free(filtered);
     glDeleteTextures(3, tex);
     free(depth);
     free(normal3);

@@ -3,7 +3,7 @@
  * The host makes its own headless OpenGL 4.5 core context (EGL device platform, through epoxy),
  * ray-casts a sphere of radius 1 resting on a floor on the CPU into its own linear-depth (R32F,
  * positive view depth, 0 = sky) and view-normal (RGBA16F) textures, and hands them to
- * ob_compute_ao with the method and filter named on the command line. It reads the AO back,
+ * ob_compute_ao_filtered with the method and filter named on the command line. It reads the AO back,
  * writes it (PFM) and checks that the floor is darker where the sphere meets it than far away.
  *
  *   embed [--method ssao] [--filter geometry] [--size 320x240] [--radius 1] [--out ao.pfm]
@@ -114,7 +114,7 @@ int main(int argc, char **argv)
         }
     }
     /* The radius is in world units, here the sphere's (the library knows no scene to take it
-     * from). The settings carry the filter too; ob_compute_ao runs the method alone (raw AO). */
+     * from). ob_compute_ao_filtered runs the method, then the filter, on our textures. */
     ob_settings settings;
     char set[64];
     snprintf(set, sizeof set, "radius=%s", radius);
@@ -145,7 +145,8 @@ int main(int argc, char **argv)
     const float proj[16] = {1.0f / (aspect * t), 0, 0, 0, 0, 1.0f / t, 0, 0,
                             0, 0, (z_far + z_near) / (z_near - z_far), -1.0f,
                             0, 0, 2.0f * z_far * z_near / (z_near - z_far), 0};
-    if (ob_compute_ao(renderer, tex[0], tex[1], proj, &settings, tex[2]) != OB_OK) return fail(1, "ob_compute_ao");
+    if (ob_compute_ao_filtered(renderer, tex[0], tex[1], proj, &settings, tex[2]) != OB_OK)
+        return fail(1, "ob_compute_ao_filtered");
     glGetTextureImage(tex[2], 0, GL_RED, GL_FLOAT, (GLsizei)(n * sizeof(float)), ao);
 
     /* The floor around the contact (the sphere within 0.3-0.6 above it) against the open floor. */

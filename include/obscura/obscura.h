@@ -467,17 +467,21 @@ ob_error ob_read_view(ob_renderer *r, ob_view view, uint8_t *dst, size_t dst_siz
  * unchanged). Process-wide and not thread-safe: call it between frames on the GL thread. */
 ob_error ob_set_shader_directory(const char *dir);
 
-/* Run the settings' method and then their filter on an engine's own textures (ob_renderer owns
- * the scratch targets; the AO runs at the renderer's size: ao_divisor and adaptive sampling are
- * for ob_render_frame). Only methods that read depth and normals alone and write plain visibility
- * (not ssdo*, which need the frame's direct light: OB_ERR_INVALID_ARGUMENT). linear_depth is R32F
- * positive view depth, normal is RGBA16F/RGBA32F view-space normal, both of the renderer's size;
- * ao_out is an R32F texture of that size (written with image stores, which need the format to
- * match). proj is the column-major projection matrix used to rasterise them; view space is taken
- * as world space (no lights are involved). Errors: OB_ERR_INVALID_ARGUMENT, OB_ERR_SHADER,
- * OB_ERR_GL. */
+/* Run the settings' method on an engine's own textures: the raw AO, as OB_IMAGE_AO_RAW_F32 of a
+ * frame (ob_renderer owns the scratch targets; the AO runs at the renderer's size: ao_divisor and
+ * adaptive sampling are for ob_render_frame). Only methods that read depth and normals alone and
+ * write plain visibility (not ssdo*, which need the frame's direct light:
+ * OB_ERR_INVALID_ARGUMENT). linear_depth is R32F positive view depth, normal is RGBA16F/RGBA32F
+ * view-space normal, both of the renderer's size; ao_out is an R32F texture of that size (written
+ * with image stores, which need the format to match). proj is the column-major projection matrix
+ * used to rasterise them; view space is taken as world space (no lights are involved). Errors:
+ * OB_ERR_INVALID_ARGUMENT, OB_ERR_SHADER, OB_ERR_GL. */
 ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex,
                        const float proj[16], const ob_settings *settings, uint32_t ao_out_tex);
+/* The same, followed by the settings' filter (ob_settings_set_filter) on the same depth and
+ * normals: the denoised AO an engine composes with, as OB_IMAGE_AO_F32 of a full-size frame. */
+ob_error ob_compute_ao_filtered(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex,
+                                const float proj[16], const ob_settings *settings, uint32_t ao_out_tex);
 
 /* ---- image files (written atomically: temporary file, then rename) -------------------------- */
 /* Top-row-first RGBA8 or grey (channels 1, 3 or 4). */

@@ -329,8 +329,9 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     return OB_OK;
 }
 
-ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex, const float proj[16],
-                       const ob_settings *s, uint32_t ao_out_tex)
+/* ob_compute_ao and ob_compute_ao_filtered: the method, and the filter when asked. */
+static ob_error compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex, const float proj[16],
+                           const ob_settings *s, uint32_t ao_out_tex, bool filtered)
 {
     if (!r || !proj || !linear_depth_tex || !normal_tex || !ao_out_tex)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: NULL argument");
@@ -349,18 +350,19 @@ ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t norma
                             &(ob_frame_desc){.view = (const float *)identity, .proj = proj, .grid = &grid,
                                              .frame_index = r->frame++});
     upload_frame(r);
-    void *fstate = ob_renderer_filter_state(r, s->filter, false, &err);
+    void *fstate = filtered ? ob_renderer_filter_state(r, s->filter, false, &err) : NULL;
     if (err != OB_OK) return err;
-    /* The method into the renderer's own full-size target, then the filter into the caller's. */
+    /* Filtered: the method into the renderer's own full-size target, then the filter into the
+     * caller's. */
     const ao_targets *t = ob_renderer_targets(r, 0);
     const ob_ao_inputs in = {.frame = &r->frame_constants, .linear_depth = linear_depth_tex, .view_normal = normal_tex,
                              .width = r->width, .height = r->height};
-    const ob_ao_outputs out = {.visibility = t->raw};
+    const ob_ao_outputs out = {.visibility = filtered ? t->raw : ao_out_tex};
     const GLbitfield barrier = GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
     glMemoryBarrier(barrier);
     err = run_method(r, &plan, &in, &out);
     glMemoryBarrier(barrier);
-    if (err != OB_OK) return err;
+    if (err != OB_OK || !filtered) return err;
     const ob_filter_inputs fin = {.src = t->raw, .dst = ao_out_tex, .scratch = t->scratch,
                                   .linear_depth = linear_depth_tex, .view_normal = normal_tex, .width = r->width,
                                   .height = r->height, .rgb = false, .sky = 1.0f};
@@ -368,6 +370,18 @@ ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t norma
     glMemoryBarrier(barrier);
     if (err != OB_OK) return err;
     GLenum e = glGetError();
-    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x in ob_compute_ao", e);
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x in ob_compute_ao_filtered", e);
     return OB_OK;
+}
+
+ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex, const float proj[16],
+                       const ob_settings *s, uint32_t ao_out_tex)
+{
+    return compute_ao(r, linear_depth_tex, normal_tex, proj, s, ao_out_tex, false);
+}
+
+ob_error ob_compute_ao_filtered(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex, const float proj[16],
+                                const ob_settings *s, uint32_t ao_out_tex)
+{
+    return compute_ao(r, linear_depth_tex, normal_tex, proj, s, ao_out_tex, true);
 }

@@ -133,7 +133,7 @@ static int parse(int argc, char **argv, bench_opts *o)
     *o = (bench_opts){.frames = 50, .warmup = 5, .ipd = 0.064f, .radii = {2.0f, 4.0f, 8.0f}, .radius_count = 3,
                       .sizes = {{640, 480}, {1280, 720}, {1920, 1080}, {2560, 1440}, {3840, 2160}}, .size_count = 5};
     cli_common *c = &o->common;
-    cli_common_init(c, "bench", CLI_TAKES_SCENE | CLI_TAKES_LISTS);
+    cli_common_init(c, "bench", CLI_TAKES_SCENE | CLI_TAKES_LISTS | CLI_TAKES_GPU);
     c->scene = "cornell";
     c->default_method = NULL; /* every method */
     c->width = 800;

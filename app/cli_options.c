@@ -224,13 +224,13 @@ static const struct {
     {"--ao-scale", 0},             {"--ao-scales", CLI_TAKES_LISTS}, {"--adaptive", 0},
     {"--light", 0},                {"--env", 0},         {"--ambient", 0},
     {"--ambient-color", 0},        {"--ao-light", 0},    {"--shadow", 0},
-    {"--hdr", 0},                  {"--gpu", 0},
+    {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
 
 int cli_common_option(cli_common *c, int argc, char **argv, int *i)
 {
     const char *a = argv[*i];
-    if (!strcmp(a, "-v")) {
+    if (!strcmp(a, "-v") && takes(c, CLI_TAKES_GPU)) {
         c->verbose = true;
         return CLI_TAKEN;
     }
@@ -353,7 +353,7 @@ int cli_common_finish(cli_common *c)
 void cli_common_usage(FILE *f, const cli_common *c)
 {
     bool lists = takes(c, CLI_TAKES_LISTS);
-    fputs("\ncommon options (one parser for render, sheet, compare and bench):\n", f);
+    fputs("\ncommon options (one parser for render, sheet, compare, bench and view):\n", f);
     if (takes(c, CLI_TAKES_SCENE)) {
         fputs("  --scene NAME|PATH     built-in (cornell, corner, sphere-on-plane), a named scene from\n"
               "                        scenes/ (bunny, fzk-haus, cornell-obj) or any model Assimp reads\n",
@@ -416,10 +416,12 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "  --exposure E          linear scale before tone mapping (default 1)\n"
           "  --key A               Reinhard key (0.045..0.9); default automatic from the log-average\n"
           "  --white L             L_white: the scaled luminance mapped to white (0 = eq. 2.3)\n"
-          "  --bloom S             bloom strength (0 = off); --bloom-threshold T\n"
-          "  --gpu auto|hw|sw      hardware EGL device, Mesa llvmpipe, or hardware first (default auto)\n"
-          "  -v                    print the GL renderer and device\n",
+          "  --bloom S             bloom strength (0 = off); --bloom-threshold T\n",
           f);
+    if (takes(c, CLI_TAKES_GPU))
+        fputs("  --gpu auto|hw|sw      hardware EGL device, Mesa llvmpipe, or hardware first (default auto)\n"
+              "  -v                    print the GL renderer and device\n",
+              f);
 }
 
 /* ---- settings --------------------------------------------------------------------------------- */

@@ -1,5 +1,5 @@
 /* The options the rendering commands share: render, sheet, compare and bench (and the viewer
- * once it moves over). One parser, one usage block, and one place that turns the options into
+ * the viewer). One parser, one usage block, and one place that turns the options into
  * ob_settings and a camera, so that every command takes every option that applies to it and
  * spells, checks and applies it the same way.
  *
@@ -37,6 +37,7 @@ enum {
     CLI_TAKES_SCENE = 1u << 0,  /* --scene, one (compare has its own repeatable S[:CAMERA]) */
     CLI_TAKES_CAMERA = 1u << 1, /* --camera, --eye, --target, --fov */
     CLI_TAKES_LISTS = 1u << 2,  /* --methods, --filters, --ao-scales, and --quality/--samples as lists */
+    CLI_TAKES_GPU = 1u << 3,    /* --gpu and -v: the command makes its own headless context (not view) */
 };
 
 /* cli_common_option's answers besides an exit code (which is never 0: EXIT_OK means nothing to

@@ -74,7 +74,7 @@ static void compare_usage(FILE *f, const cli_common *defaults)
 static int parse(int argc, char **argv, compare_opts *o)
 {
     *o = (compare_opts){.spp = 512};
-    cli_common_init(&o->common, "compare", CLI_TAKES_CAMERA | CLI_TAKES_LISTS);
+    cli_common_init(&o->common, "compare", CLI_TAKES_CAMERA | CLI_TAKES_LISTS | CLI_TAKES_GPU);
     o->common.default_method = NULL; /* every method */
     o->common.width = 320;
     o->common.height = 240;

@@ -40,7 +40,7 @@ typedef struct render_opts {
 static void render_defaults(render_opts *o)
 {
     *o = (render_opts){.view = OB_VIEW_FINAL, .frames = 1};
-    cli_common_init(&o->common, "render", CLI_TAKES_SCENE | CLI_TAKES_CAMERA);
+    cli_common_init(&o->common, "render", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_GPU);
     o->common.scene = "cornell";
     o->common.default_method = "ssao";
     o->common.width = 640;

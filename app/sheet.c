@@ -60,7 +60,7 @@ typedef struct sheet_opts {
 static int parse(int argc, char **argv, sheet_opts *o)
 {
     *o = (sheet_opts){.out = NULL};
-    cli_common_init(&o->common, "sheet", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_LISTS);
+    cli_common_init(&o->common, "sheet", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_LISTS | CLI_TAKES_GPU);
     o->common.default_method = NULL; /* every method */
     o->common.width = 320;
     o->common.height = 240;

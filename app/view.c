@@ -124,7 +124,7 @@ void reload_shaders(viewer *v)
     ob_renderer *fresh = ob_make_renderer(v->ctx, &(ob_renderer_desc){.width = v->fb_width, .height = v->fb_height});
     ob_camera cam = current_camera(v);
     bool ok = fresh && ob_renderer_set_scene(fresh, v->scene) == OB_OK &&
-              (!v->o.env || ob_renderer_set_environment(fresh, v->o.env) == OB_OK) &&
+              (!v->o.common.env || ob_renderer_set_environment(fresh, v->o.common.env) == OB_OK) &&
               ob_render_frame(fresh, &cam, &v->s) == OB_OK;
     if (!ok) {
         const char *msg = "";
@@ -243,7 +243,7 @@ int cmd_view(int argc, char **argv)
         free(v);
         return code;
     }
-    v->scene = ob_load_scene(&(ob_scene_desc){.name = v->o.scene, .sidecar = v->o.sidecar, .up = v->o.up});
+    v->scene = cli_common_load_scene(&v->o.common, NULL);
     if (!v->scene) {
         code = cli_fail_from_library();
         goto done;
@@ -269,7 +269,7 @@ int cmd_view(int argc, char **argv)
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
     glfwWindowHint(GLFW_SRGB_CAPABLE, GLFW_FALSE); /* the library writes sRGB bytes itself */
-    v->window = glfwCreateWindow(v->o.width, v->o.height, "Obscura", NULL, NULL);
+    v->window = glfwCreateWindow(v->o.common.width, v->o.common.height, "Obscura", NULL, NULL);
     if (!v->window) {
         code = cli_fail(EXIT_NO_GPU, "view: no OpenGL 4.5 core window: %s", glfw_message);
         glfwTerminate();
@@ -285,11 +285,11 @@ int cmd_view(int argc, char **argv)
     }
     glfwGetFramebufferSize(v->window, &v->fb_width, &v->fb_height);
     v->r = ob_make_renderer(v->ctx, &(ob_renderer_desc){.width = v->fb_width, .height = v->fb_height});
-    if (!v->r || ob_renderer_set_scene(v->r, v->scene) != OB_OK ||
-        (v->o.env && ob_renderer_set_environment(v->r, v->o.env) != OB_OK)) {
+    if (!v->r || ob_renderer_set_scene(v->r, v->scene) != OB_OK) {
         code = cli_fail_from_library();
         goto close;
     }
+    if ((code = cli_common_prepare(&v->o.common, v->r)) != 0) goto close;
     if (!gui_init(v->window)) {
         code = cli_fail(EXIT_NO_GPU, "view: Dear ImGui could not start on this context");
         goto close;

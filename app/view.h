@@ -10,21 +10,19 @@
 #include <stdint.h>
 
 #include "cli.h"
+#include "cli_options.h"
 
 /* Fixed capacities: registry sizes, timed passes, scene presets and --cycles' upper bound. */
 enum { MAX_METHODS = 32, MAX_PASSES = 16, MAX_CAMERAS = 64, MAX_CYCLES = 100 };
 
 /* ---- options (view_options.c) ---------------------------------------------------------------- */
 typedef struct view_opts {
-    const char *scene, *sidecar, *camera, *method, *filter, *env, *shots, *script, *log, *methods;
-    const char *sets[64];
-    int set_count;
-    ob_up_axis up;
-    int quality_samples;
-    float ao_scale;
-    bool adaptive, vsync, gui, hdr_off, test_mode;
-    int shadow_method, shadow_size; /* -1 = the default */
-    int width, height, cycles;
+    /* Scene, camera, window size, method, filter, --set, quality, lights, shadows, ambient and
+     * HDR: the options every rendering command shares (app/cli_options.h). */
+    cli_common common;
+    const char *shots, *script, *log, *methods;
+    bool vsync, gui, test_mode;
+    int cycles;
     float seconds;
 } view_opts;
 

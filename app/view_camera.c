@@ -61,13 +61,26 @@ ob_camera current_camera(const viewer *v)
 int camera_setup(viewer *v)
 {
     v->camera_index = 0;
-    if (v->o.camera) {
+    const cli_common *c = &v->o.common;
+    if (c->camera) {
         ob_camera found;
-        if (ob_find_camera(v->scene, v->o.camera, &found) != OB_OK) return cli_fail_from_library();
+        if (ob_find_camera(v->scene, c->camera, &found) != OB_OK) return cli_fail_from_library();
         for (int i = 0; i < ob_query_camera_count(v->scene); ++i)
             if (!strcmp(ob_query_camera(v->scene, i).name, found.name)) v->camera_index = i;
     }
     use_camera(v, v->camera_index);
+    if (c->has_eye || c->has_fov) {
+        /* --eye/--target (and --fov) as every command takes them: the fly camera starts there. */
+        ob_camera cam;
+        int code = cli_common_camera(c, v->scene, NULL, &cam);
+        if (code != 0) return code;
+        memcpy(v->eye, cam.eye, sizeof v->eye);
+        for (int i = 0; i < 3; ++i) v->fwd[i] = cam.target[i] - cam.eye[i];
+        vnorm(v->fwd);
+        if (vlen(cam.up) > 0.0f) memcpy(v->up, cam.up, sizeof v->up);
+        vnorm(v->up);
+        if (cam.fov_y_deg > 0.0f) v->fov = cam.fov_y_deg;
+    }
     ob_scene_stats st = ob_query_scene_stats(v->scene);
     float diag[3] = {st.bounds_max[0] - st.bounds_min[0], st.bounds_max[1] - st.bounds_min[1],
                      st.bounds_max[2] - st.bounds_min[2]};

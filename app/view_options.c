@@ -7,23 +7,15 @@
 
 #include "view.h"
 
-static void view_usage(FILE *f)
+static void view_usage(FILE *f, const cli_common *c)
 {
     fputs("usage: obscura view [options]\n"
           "\n"
           "An interactive window: fly the camera, switch methods, tune every parameter live and\n"
           "watch the GPU time of each pass. Needs a display (on a server: xvfb-run -a obscura view).\n"
+          "--size is the window's size; --camera the preset to start from; --quality applies to each\n"
+          "method picked; a --set for any method goes to that method's values.\n"
           "\n"
-          "  --scene NAME|PATH     as for render (default fzk-haus)\n"
-          "  --sidecar FILE        scene sidecar JSON; --up y|z the model's up axis\n"
-          "  --camera NAME|INDEX   the preset to start from (default: the first)\n"
-          "  --method NAME         the method to start with (default ssao)\n"
-          "  --filter NAME         the filter to start with (default geometry)\n"
-          "  --quality Q           low|medium|high|ultra, applied to each method picked\n"
-          "  --set M.P=V           a parameter, validated (repeatable)\n"
-          "  --ao-scale S          1, 0.5 or 0.25; --adaptive on|off\n"
-          "  --shadow none|hard|pcf|vsm   --shadow-size N   --hdr on|off   --env FILE.hdr\n"
-          "  --size WxH            the window's size (default 1280x720)\n"
           "  --vsync on|off        (default on; test mode turns it off)\n"
           "  --gui on|off          show the panel at start (default on)\n"
           "  --shots DIR           where screenshots go (default screenshots/; test mode: beside --log)\n"
@@ -33,8 +25,10 @@ static void view_usage(FILE *f)
           "    --cycles N          times through the whole set (default 3)\n"
           "    --methods A,B,..    the methods to cycle (default all, none included)\n"
           "    --log FILE.csv      one row per camera x method: average FPS and ms per pass\n"
-          "                        (required), and a screenshot each in FILE's directory\n"
-          "\n"
+          "                        (required), and a screenshot each in FILE's directory\n",
+          f);
+    cli_common_usage(f, c);
+    fputs("\n"
           "keys: W A S D move, Q E down/up, Shift 4x faster, right mouse button held: look,\n"
           "      scroll: zoom (field of view), 1-9 camera presets, Tab next preset, L lock the\n"
           "      camera, M / Shift+M next / previous method, V / Shift+V next / previous view,\n"
@@ -52,84 +46,54 @@ static void view_usage(FILE *f)
 
 int parse_view_opts(int argc, char **argv, view_opts *o)
 {
-    *o = (view_opts){.scene = "fzk-haus", .method = "ssao", .filter = "geometry", .ao_scale = 1.0f, .vsync = true,
-                     .gui = true, .shadow_method = -1, .shadow_size = -1, .width = 1280, .height = 720,
-                     .cycles = 3, .seconds = 5.0f};
+    *o = (view_opts){.vsync = true, .gui = true, .cycles = 3, .seconds = 5.0f};
+    cli_common *c = &o->common;
+    cli_common_init(c, "view", CLI_TAKES_SCENE | CLI_TAKES_CAMERA);
+    c->scene = "fzk-haus";
+    c->width = 1280;
+    c->height = 720;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            view_usage(stdout);
+            view_usage(stdout, c);
             return -1;
         }
         if (!strcmp(a, "--test-mode")) {
             o->test_mode = true;
             continue;
         }
-        static const char *const with_value[] = {"--scene", "--sidecar", "--camera", "--method", "--filter", "--env",
-                                                 "--shots", "--script", "--log", "--methods", "--set", "--up",
-                                                 "--quality", "--ao-scale", "--adaptive", "--vsync", "--gui", "--hdr",
-                                                 "--shadow", "--shadow-size", "--size", "--seconds", "--cycles"};
+        int taken = cli_common_option(c, argc, argv, &i);
+        if (taken == CLI_TAKEN) continue;
+        if (taken != CLI_NOT_MINE) return taken;
+        static const char *const with_value[] = {"--shots", "--script", "--log", "--methods", "--vsync",
+                                                 "--gui",   "--seconds", "--cycles"};
         bool known = false;
         for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; ++k) known = known || !strcmp(a, with_value[k]);
         if (!known) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura view --help)", a);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura view --help)", a);
         const char *v = argv[++i];
-        if (!strcmp(a, "--scene")) o->scene = v;
-        else if (!strcmp(a, "--sidecar")) o->sidecar = v;
-        else if (!strcmp(a, "--camera")) o->camera = v;
-        else if (!strcmp(a, "--method")) o->method = v;
-        else if (!strcmp(a, "--filter")) o->filter = v;
-        else if (!strcmp(a, "--env")) o->env = v;
-        else if (!strcmp(a, "--shots")) o->shots = v;
+        if (!strcmp(a, "--shots")) o->shots = v;
         else if (!strcmp(a, "--script")) o->script = v;
         else if (!strcmp(a, "--log")) o->log = v;
         else if (!strcmp(a, "--methods")) o->methods = v;
-        else if (!strcmp(a, "--set")) {
-            if (o->set_count >= 64) return cli_fail(EXIT_USAGE, "--set: too many");
-            o->sets[o->set_count++] = v;
-        } else if (!strcmp(a, "--up")) {
-            if (!cli_parse_up(v, &o->up)) return cli_fail(EXIT_USAGE, "--up: expected y or z, got '%s'", v);
-        } else if (!strcmp(a, "--quality")) {
-            o->quality_samples = ob_quality_samples(v);
-            if (o->quality_samples < 0) return cli_fail(EXIT_USAGE, "--quality: expected low, medium, high or ultra, got '%s'", v);
-        } else if (!strcmp(a, "--ao-scale")) {
-            if (!cli_parse_ao_scale(v, &o->ao_scale))
-                return cli_fail(EXIT_USAGE, "--ao-scale: expected 1, 0.5 or 0.25, got '%s'", v);
-        } else if (!strcmp(a, "--adaptive")) {
-            if (!cli_parse_on_off(v, &o->adaptive)) return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
-        } else if (!strcmp(a, "--vsync")) {
+        else if (!strcmp(a, "--vsync")) {
             if (!cli_parse_on_off(v, &o->vsync)) return cli_fail(EXIT_USAGE, "--vsync: expected on or off, got '%s'", v);
         } else if (!strcmp(a, "--gui")) {
             if (!cli_parse_on_off(v, &o->gui)) return cli_fail(EXIT_USAGE, "--gui: expected on or off, got '%s'", v);
-        } else if (!strcmp(a, "--hdr")) {
-            bool on = true;
-            if (!cli_parse_on_off(v, &on)) return cli_fail(EXIT_USAGE, "--hdr: expected on or off, got '%s'", v);
-            o->hdr_off = !on;
-        } else if (!strcmp(a, "--shadow")) {
-            ob_shadow_method m = OB_SHADOW_NONE;
-            if (!cli_parse_shadow(v, &m)) return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
-            o->shadow_method = (int)m;
-        } else if (!strcmp(a, "--shadow-size")) {
-            char *end = NULL;
-            long n = strtol(v, &end, 10);
-            if (end == v || *end || n < 16 || n > 16384) return cli_fail(EXIT_USAGE, "--shadow-size: expected 16..16384, got '%s'", v);
-            o->shadow_size = (int)n;
-        } else if (!strcmp(a, "--size")) {
-            if (!cli_parse_size(v, &o->width, &o->height) || o->width < 16 || o->height < 16 || o->width > 16384 ||
-                o->height > 16384)
-                return cli_fail(EXIT_USAGE, "--size: expected WIDTHxHEIGHT, each 16..16384, got '%s'", v);
         } else if (!strcmp(a, "--seconds")) {
             if (!cli_parse_float(v, &o->seconds) || !(o->seconds >= 0.0f) || o->seconds > 3600.0f)
                 return cli_fail(EXIT_USAGE, "--seconds: expected 0..3600, got '%s'", v);
-        } else if (!strcmp(a, "--cycles")) {
+        } else {
             char *end = NULL;
             long n = strtol(v, &end, 10);
             if (end == v || *end || n < 1 || n > MAX_CYCLES) return cli_fail(EXIT_USAGE, "--cycles: expected 1..%d, got '%s'", MAX_CYCLES, v);
             o->cycles = (int)n;
-        } else {
-            return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura view --help)", a);
         }
     }
+    int code = cli_common_finish(c);
+    if (code != 0) return code;
+    if (c->width < 16 || c->height < 16 || c->width > 16384 || c->height > 16384)
+        return cli_fail(EXIT_USAGE, "--size: expected a window of 16..16384 each way, got %dx%d", c->width, c->height);
     if (o->test_mode && !o->log) return cli_fail(EXIT_USAGE, "--test-mode needs --log FILE.csv");
     if (!o->test_mode && (o->log || o->methods))
         return cli_fail(EXIT_USAGE, "--log and --methods belong to --test-mode");

@@ -146,7 +146,7 @@ static void panel_lights(viewer *v)
     }
     static const char *const ambients[] = {"constant", "hemisphere", "environment"};
     int am = (int)v->s.ambient_mode;
-    if (gui_combo("ambient", &am, ambients, v->o.env ? 3 : 2)) v->s.ambient_mode = (ob_ambient_mode)am;
+    if (gui_combo("ambient", &am, ambients, v->o.common.env ? 3 : 2)) v->s.ambient_mode = (ob_ambient_mode)am;
     if (v->s.ambient_mode == OB_AMBIENT_CONSTANT) gui_color3("ambient colour", v->s.ambient);
     if (v->s.ambient_mode == OB_AMBIENT_HEMISPHERE) {
         gui_color3("sky", v->s.sky);

@@ -45,49 +45,54 @@ void set_view(viewer *v, int index)
 
 int setup_settings(viewer *v)
 {
-    const view_opts *o = &v->o;
-    if (ob_settings_init(&v->s, o->method) != OB_OK) return cli_fail_from_library();
+    const cli_common *c = &v->o.common;
+    /* The settings the command line asks for, built as every rendering command builds them
+     * (method, filter, AO scale, quality, lights, shadows, ambient, HDR, and the --set that name
+     * the starting method or filter). */
+    cli_config cfg = {.method = c->methods[0], .filter = c->filters[0], .ao_divisor = c->ao_divisors[0],
+                      .samples = c->sample_count > 0 ? c->samples[0] : (cli_samples){0, NULL}};
+    int code = cli_common_apply(c, &cfg);
+    if (code != 0) return code;
+    v->s = cfg.settings;
     for (int m = 0; m < ob_method_count() && m < MAX_METHODS; ++m) {
         ob_settings tmp;
         ob_settings_init(&tmp, ob_method_at(m)->name);
         memcpy(v->method_params[m], tmp.params, sizeof tmp.params);
     }
-    if (ob_settings_set_filter(&v->s, o->filter) != OB_OK || ob_settings_set_ao_scale(&v->s, o->ao_scale) != OB_OK)
-        return cli_fail_from_library();
-    v->s.adaptive = o->adaptive;
-    if (o->shadow_method >= 0) v->s.shadow.method = (ob_shadow_method)o->shadow_method;
-    if (o->shadow_size > 0) v->s.shadow.size = o->shadow_size;
     /* Scenes are static: the maps only change with the lights or the shadow settings, not with
      * the camera (on llvmpipe FZK-Haus's sun + 2 cube maps cost 500+ ms a frame otherwise). */
     v->s.shadow.reuse = true;
-    v->s.hdr.enabled = !o->hdr_off;
-    if (o->quality_samples > 0) {
+    if (c->sample_count > 0) {
         static const int counts[] = {12, 24, 36, 64};
         for (int q = 0; q < 4; ++q)
-            if (counts[q] == o->quality_samples) v->quality = q + 1;
-        ob_error err = ob_settings_set_samples(&v->s, o->quality_samples);
-        if (err != OB_OK && err != OB_ERR_INVALID_ARGUMENT) return cli_fail_from_library();
+            if (counts[q] == c->samples[0].count) v->quality = q + 1;
     }
-    /* --set may name any method (ssao.radius=...): it goes to that method's stored values. */
-    for (int i = 0; i < o->set_count; ++i) {
-        const char *dot = strchr(o->sets[i], '.'), *eq = strchr(o->sets[i], '=');
-        int m = v->s.method;
-        if (dot && eq && dot < eq) {
-            char name[64];
-            snprintf(name, sizeof name, "%.*s", (int)(dot - o->sets[i]), o->sets[i]);
-            if (ob_find_method(name) >= 0) m = ob_find_method(name);
+    /* A --set naming another method goes to that method's stored values, for when it is picked. */
+    for (int i = 0; i < c->set_count; ++i) {
+        const char *dot = strchr(c->sets[i], '.'), *eq = strchr(c->sets[i], '=');
+        if (!dot || !eq || dot > eq) continue;
+        char name[64];
+        snprintf(name, sizeof name, "%.*s", (int)(dot - c->sets[i]), c->sets[i]);
+        int m = ob_find_method(name), current = v->s.method;
+        if (m == current) continue; /* cli_common_apply set it */
+        if (m < 0) {
+            /* The current filter's (set already, harmless twice) or a name the library refuses. */
+            if (ob_settings_set(&v->s, c->sets[i]) != OB_OK) return cli_fail_from_library();
+            continue;
         }
-        int current = v->s.method;
-        if (m != current) select_method(v, m);
+        select_method(v, m);
         /* Report before switching back: select_method clears the library's error (with a
          * quality preset), and a failure ends the viewer anyway. */
-        if (ob_settings_set(&v->s, o->sets[i]) != OB_OK) return cli_fail_from_library();
-        if (m != current) select_method(v, current);
+        if (ob_settings_set(&v->s, c->sets[i]) != OB_OK) return cli_fail_from_library();
+        select_method(v, current);
     }
-    /* The scene's lights as explicit ones, so the panel can edit them. */
-    v->s.light_count = ob_query_scene_light_count(v->scene);
-    if (v->s.light_count > OB_MAX_LIGHTS) v->s.light_count = OB_MAX_LIGHTS;
-    for (int i = 0; i < v->s.light_count; ++i) v->s.lights[i] = ob_query_scene_light(v->scene, i);
-    if (o->env) v->s.ambient_mode = OB_AMBIENT_ENVIRONMENT;
+    /* The scene's lights as explicit ones (unless --light gave some), so the panel can edit them. */
+    if (v->s.light_count == 0) {
+        v->s.light_count = ob_query_scene_light_count(v->scene);
+        if (v->s.light_count > OB_MAX_LIGHTS) v->s.light_count = OB_MAX_LIGHTS;
+        for (int i = 0; i < v->s.light_count; ++i) v->s.lights[i] = ob_query_scene_light(v->scene, i);
+    }
+    /* --env alone lights the scene with it, as the viewer always has (--ambient picks otherwise). */
+    if (c->env && c->ambient_mode == OB_AMBIENT_CONSTANT) v->s.ambient_mode = OB_AMBIENT_ENVIRONMENT;
     return 0;
 }

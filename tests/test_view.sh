@@ -193,6 +193,19 @@ if [ $code -eq 2 ] && grep -q "unknown option '--bogus'" "$dir/bad4.err"; then o
 printf '0.1 quit\n' >"$dir/quit.txt"
 if xrun 120 "$OBSCURA" view --scene corner --gui off --size 160x120 --set hbao.radius=1 --script "$dir/quit.txt" \
     >/dev/null 2>"$dir/set_other.err"; then ok; else bad "--set for another method: exit $? ($(tail -2 "$dir/set_other.err"))"; fi
+# The viewer takes the options every rendering command takes (one parser): with the same camera,
+# lights, shadows and method its first frame is byte for byte what `render` writes.
+common=(--scene corner --size 160x120 --eye 1.5,1.2,1.5 --target 0,0,0 --method hbao --shadow hard
+        --light 'spot pos=1,2,1 dir=-1,-2,-1 cone=20,30 intensity=8')
+printf '0.1 screenshot %s\n0.2 quit\n' "$dir/common_view.png" >"$dir/common.txt"
+if xrun 120 "$OBSCURA" view "${common[@]}" --gui off --script "$dir/common.txt" >/dev/null 2>"$dir/common.err" &&
+    "$OBSCURA" render "${common[@]}" --out "$dir/common_render.png" 2>>"$dir/common.err" &&
+    cmp -s "$dir/common_view.png" "$dir/common_render.png"; then ok
+else bad "view with render's options differs from render: $(tail -2 "$dir/common.err")"; fi
+# --gpu belongs to the headless commands: the viewer's context is its window's.
+"$OBSCURA" view --gpu sw >/dev/null 2>"$dir/gpu.err"
+code=$?
+if [ $code -eq 2 ] && grep -q "unknown option '--gpu'" "$dir/gpu.err"; then ok; else bad "view --gpu: exit $code, $(cat "$dir/gpu.err")"; fi
 # ... and a bad one is reported as such even with a quality preset (whose method switch back
 # must not clear the library's error first).
 env -u DISPLAY "$OBSCURA" view --scene corner --quality high --set hbao.nope=1 >/dev/null 2>"$dir/bad5.err"

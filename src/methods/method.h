@@ -45,6 +45,10 @@ typedef struct ob_ao_inputs {
     GLuint sample_multiplier; /* 0 = off */
     GLuint radiance;          /* OB_READS_RADIANCE: full-resolution RGBA16F direct radiance */
     GLuint albedo;            /* OB_READS_ALBEDO: full-resolution albedo */
+    /* OB_READS_DEPTH_MIPS: the prefiltered MIP chain of linear_depth (R32F, level 0 = the AO
+     * grid's depth), or 0 where the frame has none (ob_compute_ao); a method then reads level 0. */
+    GLuint depth_mips;
+    int depth_mip_levels;
 } ob_ao_inputs;
 
 /* Where a method writes: textures of the inputs' size. */

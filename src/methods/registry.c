@@ -12,7 +12,8 @@
     X(crytek)         \
     X(alchemy)        \
     X(ssdo)           \
-    X(ssdo_merged)
+    X(ssdo_merged)    \
+    X(gtao)
 
 #define OB_X_EXTERN(name) extern const ob_method_impl ob_method_##name;
 OB_METHODS(OB_X_EXTERN)

@@ -1,0 +1,235 @@
+#version 450 core
+/* Ground-truth ambient occlusion (Jimenez, Wu, Pesce & Jarabo 2016, "Practical Realtime
+ * Strategies for Accurate Indirect Occlusion", §4-5): the cosine-weighted visibility of
+ * DESIGN.md's AO_R, integrated analytically between two horizons per slice.
+ *
+ *   A(x) = 1/π ∫_0^π ∫_{h1(φ)}^{h2(φ)} cos(θ - n(φ))^+ |sin θ| dθ dφ                 (eq. 3, 5)
+ *
+ * φ picks a slice: the plane through the eye, x and a screen direction d(φ). In it θ is the angle
+ * from the view vector V (toward the eye), n(φ) the angle of the normal projected onto the slice,
+ * and h1, h2 the horizons found by marching the depth buffer on both sides (eq. 6-7: the largest
+ * cos θ among the samples within R, never below the tangent, θ = n ± π/2). The inner integral has
+ * the closed form (eq. 10)
+ *
+ *   â(h, n) = 1/4 (-cos(2h - n) + cos n + 2 h sin n),      a(φ) = â(h1, n) + â(h2, n),
+ *
+ * and the projected normal's length |n_φ| weights each slice, so that the mean over slices of
+ * |n_φ| a(φ) is the cosine-weighted integral over the normal's hemisphere (exactly 1 when open,
+ * at any angle between the normal and V). The φ integral is the mean over N_slices directions
+ * (k + jitter) π / N_slices.
+ *
+ * What counts as an occluder is AO_R's: a depth-buffer sample within R of x (falloff 0 gives the
+ * definition's hard cut; falloff f fades occluders over the last f R). Like every horizon method
+ * this treats the depth buffer as a height field: everything below the horizon is occluded, so
+ * thin objects occlude too much behind them (`thin` stretches the depth component of a sample's
+ * distance, as in Jimenez et al. §5's thickness heuristic, so thin objects count less).
+ *
+ * AO is visibility: 1 = open. Sky (depth 0) writes 1. */
+#include "gtao_params.h"
+#include "common.glsl"
+#include "noise.glsl"
+
+layout(local_size_x = OB_GTAO_GROUP_X, local_size_y = OB_GTAO_GROUP_Y) in;
+
+layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
+layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
+layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
+layout(binding = 3) uniform sampler2D depth_mips;   /* R32F MIP chain of linear depth (depth_mips = 1) */
+layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+
+const float PI = 3.14159265358979;
+const float HALF_PI = 1.57079632679490;
+
+/* Steps are spread as s^2 of the radius (s uniform in [0, 1)): nearer occluders subtend larger
+ * angles and decide the contact occlusion of creases, so they get the denser sampling (the same
+ * choice as XeGTAO's sample distribution power 2). */
+const float STEP_POWER = 1.0;
+
+/* 4x4 ordered-dither ranks: every value 0..15 once per tile (the same ranks as hbao.glsl). */
+const float bayer4[16] = float[16](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0,
+                                   3.0, 11.0, 1.0, 9.0, 15.0, 7.0, 13.0, 5.0);
+
+/* Per-pixel jitters in [0, 1) of the slice angles (x) and of the step distances (y).
+ *   texture4: the slice jitter is the angle of the 4x4 rotation tile (16 shuffled angles) and the
+ *     step jitter the 4x4 Bayer rank; the two are unrelated, and a 4x4 window averages all 16 of
+ *     each exactly (seed 004 §3.3);
+ *   ign: interleaved gradient noise of the pixel and of the transposed pixel (see hbao.glsl).
+ * gtao.slice_offset / step_offset move both along an R2 sequence with the frame index when
+ * temporal noise is on. */
+vec2 jitters(ivec2 pix)
+{
+    vec2 j;
+    if (gtao.noise == OB_NOISE_IGN) {
+        j = vec2(ob_interleaved_gradient_noise(vec2(pix)), ob_interleaved_gradient_noise(vec2(pix.yx)));
+    } else {
+        vec2 r = texelFetch(noise_tile, pix % 4, 0).xy;
+        ivec2 t = pix % 4;
+        j = vec2(fract(atan(r.y, r.x) / (2.0 * PI) + 1.0), (bayer4[t.y * 4 + t.x] + 0.5) / 16.0);
+    }
+    return fract(j + vec2(gtao.slice_offset, gtao.step_offset));
+}
+
+/* n(φ) for the slice with unit normal `axis` and in-slice direction o ⟂ V: the angle of the
+ * normal projected onto the slice (eq. 5), and that projection's length. */
+float projected_normal(vec3 n, vec3 v, vec3 axis, vec3 o, out float len)
+{
+    vec3 pn = n - axis * dot(n, axis);
+    len = length(pn);
+    if (len < 1e-6) return 0.0;
+    return atan(dot(pn, o), dot(pn, v));
+}
+
+/* Depth at texel q of MIP `level` and that texel's centre in AO-grid pixels. Level 0 is the AO
+ * grid's own depth; a coarser level's texel stands for the 2^L x 2^L block it covers. */
+float sample_depth(ivec2 q, int level, out vec2 centre)
+{
+    if (level == 0) {
+        centre = vec2(q) + 0.5;
+        return texelFetch(linear_depth, q, 0).r;
+    }
+    ivec2 ql = q >> level;
+    centre = (vec2(ql) + 0.5) * float(1 << level);
+    return texelFetch(depth_mips, ql, level).r;
+}
+
+/* What a sample told the horizon search. */
+const int SAMPLE_NONE = 0;   /* sky, P's own texel or straight along the view ray: no occluder */
+const int SAMPLE_INSIDE = 1; /* a surface point within R (weight > 0): theta is its horizon angle */
+const int SAMPLE_BEYOND = 2; /* a surface point at R or farther */
+
+/* Bisections of the last gap in which the surface leaves the sphere of radius R (see main). */
+const int REFINE_STEPS = 2;
+
+/* The sample at AO-grid position `at`, dist_px from P along the slice: its horizon angle from V
+ * on this side (the tangent's angle minus the sample's weighted rise above the tangent t). */
+int sample_theta(vec2 at, float dist_px, vec3 p, vec3 n, vec3 t, float inv_len_n, float tangent, out float theta)
+{
+    theta = tangent;
+    int level = 0;
+    if (gtao.depth_mips != 0) level = clamp(int(log2(dist_px) - gtao.mip_offset), 0, gtao.max_mip);
+    vec2 qc;
+    float sd = sample_depth(ivec2(floor(at)), level, qc);
+    if (sd <= 0.0) return SAMPLE_NONE; /* sky: nothing there */
+    vec3 w = ob_view_position(qc, sd, frame.ao_inv_size, frame.ao_proj_info) - p;
+    if (dot(w, w) <= 0.0) return SAMPLE_NONE;
+    float w_len = length(vec3(w.xy, w.z * (1.0 + gtao.thin)));
+    float weight = clamp(w_len * gtao.falloff_mul + gtao.falloff_add, 0.0, 1.0);
+    if (weight <= 0.0) return SAMPLE_BEYOND;
+    /* The sample's angle above the tangent, in the slice's coordinates: along the tangent,
+     * dot(w, t); across it, toward the normal, dot(w, n) / |n_φ| (the normal's part across the
+     * slice is perpendicular to every in-slice direction). A sample on P's plane gives exactly 0,
+     * also where snapping to the texel centre moved it off the slice, so open planes read exactly
+     * 1 (the sample's own angle from V would sit above this slice's tangent there). atan2 keeps
+     * angles past the slice's zenith, which occluders on the side the normal leans away from
+     * reach. eq. 6-7 with AO_R's range: the horizon rises to the sample by its weight. */
+    float rise = atan(dot(w, n) * inv_len_n, dot(w, t));
+    theta = tangent - weight * max(rise, 0.0);
+    return SAMPLE_INSIDE;
+}
+
+void main()
+{
+    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(frame.ao_size);
+    if (any(greaterThanEqual(pix, size))) return;
+    float d = texelFetch(linear_depth, pix, 0).r;
+    if (d <= 0.0) {
+        imageStore(ao_out, pix, vec4(1.0));
+        return;
+    }
+    vec2 centre = vec2(pix) + 0.5;
+    vec3 p = ob_view_position(centre, d, frame.ao_inv_size, frame.ao_proj_info);
+    vec3 v = -normalize(p);
+    vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
+    /* Interpolated normals at silhouettes can face away from the eye; the integral then has no
+     * visible hemisphere left. Tilt them until they face the eye by a little (as hbao.glsl). */
+    float nv = dot(n, v);
+    if (nv < 0.02) n = normalize(n + (0.02 - nv) * v);
+
+    /* A screen offset (dx, dy) px at P's depth is the view offset (dx, dy) * to_view * d. */
+    vec2 to_view = frame.ao_proj_info.xy * frame.ao_inv_size * 2.0;
+    float radius = gtao.radius;
+    vec2 jit = jitters(pix);
+    int slices = gtao.slices, steps = gtao.steps;
+
+    float visibility = 0.0, open_sky = 0.0;
+    for (int k = 0; k < slices; ++k) {
+        float phi = (float(k) + jit.x) * PI / float(slices);
+        vec2 dir = vec2(cos(phi), sin(phi));
+        /* The slice: the plane through the eye and the screen line through P along dir. Its
+         * normal is P x (the view offset of a step along dir), exact for any pixel aspect and an
+         * off-centre frustum; o is dir's side of the slice, perpendicular to V. */
+        vec3 dv = vec3(dir * to_view, 0.0);
+        vec3 axis = normalize(cross(v, dv));
+        vec3 o = cross(axis, v);
+        float len_n = 0.0;
+        float ang_n = projected_normal(n, v, axis, o, len_n);
+        /* A normal (almost) across the slice: the slice carries no weight (|n_φ| ~ 0). */
+        if (len_n < 1e-4) continue;
+        float inv_len_n = 1.0 / len_n;
+        /* R along this screen direction, in AO pixels. */
+        float radius_px = radius / (d * length(dir * to_view));
+
+        /* side 0 marches along +dir (θ > 0), side 1 along -dir (θ < 0). h[s] is the horizon's
+         * angle from V measured toward its side, starting at the tangent, so it never drops
+         * below the surface. */
+        float h[2];
+        for (int side = 0; side < 2; ++side) {
+            float sgn = side == 0 ? 1.0 : -1.0;
+            /* The surface falls away on the side the normal leans to: its tangent lies at
+             * π/2 + n from V on side 0 and at π/2 - n on side 1. */
+            float tangent = HALF_PI + sgn * ang_n;
+            vec3 t = cos(tangent) * v + sin(tangent) * sgn * o; /* the tangent's unit direction */
+            float horizon = tangent;
+            /* The last step within R (0 = P itself), for the refinement below. */
+            float inside_px = 0.0;
+            bool refined = false;
+            for (int j = 0; j < steps; ++j) {
+                float s = (float(j) + jit.y) / float(steps);
+                /* At least 1.5 px out, so the first step never reads P's own texel. */
+                float dist_px = 1.5 + pow(s, STEP_POWER) * max(radius_px - 1.5, 0.0);
+                if (dist_px > radius_px) break;
+                vec2 at = centre + sgn * dir * dist_px;
+                if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, vec2(size)))) break;
+                float theta = 0.0;
+                int status = sample_theta(at, dist_px, p, n, t, inv_len_n, tangent, theta);
+                if (status == SAMPLE_INSIDE) {
+                    horizon = min(horizon, theta);
+                    inside_px = dist_px;
+                } else if (status == SAMPLE_BEYOND && !refined) {
+                    /* The surface left the sphere of radius R between the last step inside and
+                     * this one. On a wall that climbs away from P (every crease) the horizon
+                     * within R is exactly where it leaves, so sparse steps always stop short of
+                     * it and read too little occlusion. Bisect the gap a few times, once per
+                     * side: each halving halves that shortfall, for one fetch. */
+                    refined = true;
+                    float lo = inside_px, hi = dist_px;
+                    for (int b = 0; b < REFINE_STEPS; ++b) {
+                        float mid = 0.5 * (lo + hi);
+                        int m = sample_theta(centre + sgn * dir * mid, mid, p, n, t, inv_len_n, tangent, theta);
+                        if (m == SAMPLE_INSIDE) {
+                            horizon = min(horizon, theta);
+                            lo = mid;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                }
+            }
+            h[side] = max(horizon, 0.0); /* a horizon on this side cannot pass V */
+        }
+        /* eq. 10 with θ signed: the horizon of side 1 is at -h[1], that of side 0 at h[0]. */
+        float h0 = -h[1], h1 = h[0];
+        float cos_n = cos(ang_n), sin_n = sin(ang_n);
+        float a = 0.25 * (-cos(2.0 * h0 - ang_n) + cos_n + 2.0 * h0 * sin_n) +
+                  0.25 * (-cos(2.0 * h1 - ang_n) + cos_n + 2.0 * h1 * sin_n);
+        visibility += len_n * a;
+        /* The same slice with nothing above its tangents: â(n + π/2) + â(n - π/2) = cos n + n sin n. */
+        open_sky += len_n * (cos_n + ang_n * sin_n);
+    }
+    /* The mean over slices of |n_φ| a(φ) is the φ integral only in the limit: with a few slices
+     * an open surface seen at an angle reads 0.990-1.010 (corner, 3 slices). Dividing by the same
+     * quadrature of the unoccluded hemisphere, whose exact integral is 1, makes open surfaces
+     * exactly 1 at any slice count and converges to the same value. */
+    imageStore(ao_out, pix, vec4(open_sky > 0.0 ? clamp(visibility / open_sky, 0.0, 1.0) : 1.0));
+}

@@ -1,0 +1,374 @@
+/* gtao (shaders/gtao.glsl) against what it estimates:
+ *   - the closed-form AO_R next to one wall (DESIGN.md): a floor point at h from the wall has
+ *     AO_R = 1 - (acos a - a sqrt(1 - a^2)) / π, a = h / R; open floor reads exactly 1;
+ *   - one test body, two implementations: a CPU port of the same slice integral on a synthetic
+ *     depth buffer (a box on a floor, ray cast here) agrees with the GPU pass. */
+#include <cglm/cglm.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "gpu/gpu.h"
+#include "obscura/obscura.h"
+#include "sampling/sampling.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+enum { W = 160, H = 120 };
+
+static double ao_r_one_wall(double h, double r)
+{
+    double a = h / r;
+    if (a >= 1.0) return 1.0;
+    return 1.0 - (acos(a) - a * sqrt(1.0 - a * a)) / M_PI;
+}
+
+/* ---- the analytic corner -------------------------------------------------------------------- */
+static void test_corner(ob_context *ctx)
+{
+    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "corner"});
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
+    CHECK(scene && r, "corner scene and renderer");
+    if (!scene || !r) return;
+    ob_renderer_set_scene(r, scene);
+    /* Looking down at the floor beside the wall x = 0, away from the wall z = 0. */
+    const ob_camera cam = {.eye = {1.6f, 2.2f, 2.0f}, .target = {0.35f, 0.0f, 2.0f}, .up = {0, 1, 0},
+                           .fov_y_deg = 60.0f, .near_z = 0.05f, .far_z = 20.0f, .name = "wall"};
+    const float radius = 0.5f;
+    ob_settings s;
+    ob_settings_init(&s, "gtao");
+    ob_settings_set_filter(&s, "none");
+    /* Many slices and steps: the estimator converged, no filter, the definition's hard cut. */
+    CHECK(ob_settings_set(&s, "gtao.radius=0.5") == OB_OK && ob_settings_set(&s, "gtao.slices=16") == OB_OK &&
+              ob_settings_set(&s, "gtao.steps=32") == OB_OK && ob_settings_set(&s, "gtao.falloff=0") == OB_OK,
+          "settings");
+    CHECK(ob_render_frame(r, &cam, &s) == OB_OK, "frame");
+    size_t n = (size_t)W * H;
+    float *ao = malloc(n * sizeof(float)), *depth = malloc(n * sizeof(float));
+    float *normals = malloc(n * 3 * sizeof(float)), *pos = malloc(n * 3 * sizeof(float));
+    float *wn = malloc(n * 3 * sizeof(float));
+    ob_read_image(r, OB_IMAGE_AO_RAW_F32, ao, n * sizeof(float));
+    ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, n * sizeof(float));
+    ob_read_image(r, OB_IMAGE_NORMAL_F32, normals, n * 3 * sizeof(float));
+    mat4 view, proj, inv_view;
+    glm_lookat((float *)cam.eye, (float *)cam.target, (float *)cam.up, view);
+    glm_perspective(glm_rad(cam.fov_y_deg), (float)W / (float)H, cam.near_z, cam.far_z, proj);
+    glm_mat4_inv(view, inv_view);
+    const float info[4] = {1.0f / proj[0][0], 1.0f / proj[1][1], proj[2][0], proj[2][1]};
+    ob_reference_points(depth, normals, W, H, info, (const float *)inv_view, pos, wn);
+
+    /* Bins of h / R: the mean of gtao against the mean of the closed form over the same pixels. */
+    enum { BINS = 10 };
+    double sum_ao[BINS] = {0}, sum_ref[BINS] = {0};
+    int count[BINS] = {0}, open_count = 0;
+    float open_min = 1.0f;
+    for (size_t i = 0; i < n; ++i) {
+        const float *p = &pos[3 * i], *nn = &wn[3 * i];
+        bool floor = depth[i] > 0.0f && nn[1] > 0.99f && fabsf(p[1]) < 1e-3f;
+        /* Far (> R) from the wall z = 0 and from the planes' far edges. */
+        if (!floor || p[2] < 1.2f || p[2] > 2.8f || p[0] > 4.0f - radius) continue;
+        double h = p[0];
+        if (h >= radius * 1.02) {
+            open_min = fminf(open_min, ao[i]);
+            ++open_count;
+            continue;
+        }
+        int b = (int)(h / radius * BINS);
+        if (b < 0 || b >= BINS) continue;
+        sum_ao[b] += ao[i];
+        sum_ref[b] += ao_r_one_wall(h, radius);
+        ++count[b];
+    }
+    printf("  gtao beside one wall (R 0.5, 16 x 32, no filter): h/R bin, pixels, gtao, AO_R\n");
+    for (int b = 0; b < BINS; ++b) {
+        if (count[b] == 0) continue;
+        double g = sum_ao[b] / count[b], ref = sum_ref[b] / count[b];
+        printf("    %.1f-%.1f %4d %.3f %.3f\n", (double)b / BINS, (double)(b + 1) / BINS, count[b], g, ref);
+        CHECK(fabs(g - ref) <= 0.03, "h/R %.1f-%.1f: gtao %.3f, AO_R %.3f", (double)b / BINS, (double)(b + 1) / BINS,
+              g, ref);
+    }
+    int covered = 0;
+    for (int b = 0; b < BINS; ++b) covered += count[b] >= 10;
+    CHECK(covered >= 8, "the bins near the wall have pixels (%d of %d)", covered, BINS);
+    CHECK(open_count > 500 && open_min >= 0.9999f, "open floor reads 1 (%d pixels, lowest %.6f)", open_count,
+          (double)open_min);
+    free(ao);
+    free(depth);
+    free(normals);
+    free(pos);
+    free(wn);
+    ob_destroy_renderer(r);
+    ob_destroy_scene(scene);
+}
+
+/* ---- one test body, two implementations ------------------------------------------------------ */
+
+/* A synthetic G-buffer: the floor y = 0 and an axis-aligned box on it, ray cast from a camera. */
+typedef struct synth {
+    float depth[W * H];      /* linear view depth, 0 = sky */
+    float normal[W * H * 4]; /* view space, w = 1 */
+    float proj_info[4];
+    mat4 proj;
+} synth;
+
+static bool hit_box(const vec3 o, const vec3 d, const vec3 lo, const vec3 hi, float *t_out, vec3 n_out)
+{
+    float t0 = 0.0f, t1 = 1e30f;
+    int axis = -1;
+    float sign = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+        if (fabsf(d[k]) < 1e-12f) {
+            if (o[k] < lo[k] || o[k] > hi[k]) return false;
+            continue;
+        }
+        float a = (lo[k] - o[k]) / d[k], b = (hi[k] - o[k]) / d[k];
+        float s = -1.0f;
+        if (a > b) {
+            float tmp = a;
+            a = b;
+            b = tmp;
+            s = 1.0f;
+        }
+        if (a > t0) {
+            t0 = a;
+            axis = k;
+            sign = s;
+        }
+        if (b < t1) t1 = b;
+        if (t0 > t1) return false;
+    }
+    if (axis < 0) return false;
+    *t_out = t0;
+    glm_vec3_zero(n_out);
+    n_out[axis] = sign;
+    return true;
+}
+
+static void make_synth(synth *g)
+{
+    vec3 eye = {0.0f, 1.6f, 3.2f}, target = {0.0f, 0.3f, 0.0f}, up = {0, 1, 0};
+    mat4 view;
+    glm_lookat(eye, target, up, view);
+    glm_perspective(glm_rad(55.0f), (float)W / (float)H, 0.1f, 30.0f, g->proj);
+    g->proj_info[0] = 1.0f / g->proj[0][0];
+    g->proj_info[1] = 1.0f / g->proj[1][1];
+    g->proj_info[2] = g->proj[2][0];
+    g->proj_info[3] = g->proj[2][1];
+    const vec3 lo = {-0.5f, 0.0f, -0.6f}, hi = {0.4f, 0.7f, 0.2f};
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            /* The ray through the pixel centre, in view space, as common.glsl reconstructs it. */
+            float ndc_x = ((float)x + 0.5f) / W * 2.0f - 1.0f, ndc_y = ((float)y + 0.5f) / H * 2.0f - 1.0f;
+            vec3 dv = {(ndc_x + g->proj_info[2]) * g->proj_info[0], (ndc_y + g->proj_info[3]) * g->proj_info[1], -1.0f};
+            /* To world: the view matrix is a rotation + translation. */
+            mat4 inv;
+            glm_mat4_inv(view, inv);
+            vec3 dw;
+            glm_mat4_mulv3(inv, dv, 0.0f, dw);
+            float best = 1e30f;
+            vec3 nw = {0, 0, 0};
+            if (dw[1] < -1e-6f) {
+                float t = -eye[1] / dw[1]; /* the floor */
+                vec3 p;
+                glm_vec3_scale(dw, t, p);
+                glm_vec3_add(p, eye, p);
+                if (fabsf(p[0]) < 6.0f && fabsf(p[2]) < 6.0f) {
+                    best = t;
+                    glm_vec3_copy((vec3){0, 1, 0}, nw);
+                }
+            }
+            float tb = 0.0f;
+            vec3 nb;
+            if (hit_box(eye, dw, lo, hi, &tb, nb) && tb < best) {
+                best = tb;
+                glm_vec3_copy(nb, nw);
+            }
+            size_t i = (size_t)y * W + (size_t)x;
+            /* dv has z = -1, so t along it is the linear depth. */
+            g->depth[i] = best < 1e29f ? best : 0.0f;
+            vec3 nv;
+            glm_mat4_mulv3(view, nw, 0.0f, nv);
+            memcpy(&g->normal[4 * i], nv, sizeof nv);
+            g->normal[4 * i + 3] = 1.0f;
+        }
+}
+
+/* shaders/gtao.glsl on the CPU, texture4 noise, full-resolution depth; the same constants. */
+static const float bayer4[16] = {0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
+
+static void view_position(const synth *g, float px, float py, float d, vec3 out)
+{
+    float ndc_x = px * (1.0f / W) * 2.0f - 1.0f, ndc_y = py * (1.0f / H) * 2.0f - 1.0f;
+    out[0] = (ndc_x + g->proj_info[2]) * d * g->proj_info[0];
+    out[1] = (ndc_y + g->proj_info[3]) * d * g->proj_info[1];
+    out[2] = -d;
+}
+
+enum { NONE = 0, INSIDE = 1, BEYOND = 2 };
+
+static int sample_theta(const synth *g, float ax, float ay, const vec3 p, const vec3 n, const vec3 t, float inv_len_n,
+                        float tangent, float radius, float *theta)
+{
+    *theta = tangent;
+    int qx = (int)floorf(ax), qy = (int)floorf(ay);
+    float sd = g->depth[qy * W + qx];
+    if (sd <= 0.0f) return NONE;
+    vec3 s, w;
+    view_position(g, (float)qx + 0.5f, (float)qy + 0.5f, sd, s);
+    glm_vec3_sub(s, (float *)p, w);
+    if (glm_vec3_dot(w, w) <= 0.0f) return NONE;
+    if (glm_vec3_norm(w) >= radius) return BEYOND;
+    float rise = atan2f(glm_vec3_dot(w, (float *)n) * inv_len_n, glm_vec3_dot(w, (float *)t));
+    *theta = tangent - fmaxf(rise, 0.0f);
+    return INSIDE;
+}
+
+static float cpu_gtao(const synth *g, const float rot[16][2], int x, int y, float radius, int slices, int steps)
+{
+    const float half_pi = 1.57079632679490f, pi = 3.14159265358979f;
+    float d = g->depth[y * W + x];
+    if (d <= 0.0f) return 1.0f;
+    float cx = (float)x + 0.5f, cy = (float)y + 0.5f;
+    vec3 p, v, n;
+    view_position(g, cx, cy, d, p);
+    glm_vec3_negate_to(p, v);
+    glm_vec3_normalize(v);
+    glm_vec3_copy((float *)&g->normal[4 * (y * W + x)], n);
+    glm_vec3_normalize(n);
+    float nv = glm_vec3_dot(n, v);
+    if (nv < 0.02f) {
+        vec3 tmp;
+        glm_vec3_scale(v, 0.02f - nv, tmp);
+        glm_vec3_add(n, tmp, n);
+        glm_vec3_normalize(n);
+    }
+    const float to_view[2] = {g->proj_info[0] * (1.0f / W) * 2.0f, g->proj_info[1] * (1.0f / H) * 2.0f};
+    int tx = x % 4, ty = y % 4;
+    const float *r = rot[ty * 4 + tx];
+    float jx = atan2f(r[1], r[0]) / (2.0f * pi) + 1.0f;
+    jx -= floorf(jx);
+    float jy = (bayer4[ty * 4 + tx] + 0.5f) / 16.0f;
+    float vis = 0.0f, open_sky = 0.0f;
+    for (int k = 0; k < slices; ++k) {
+        float phi = ((float)k + jx) * pi / (float)slices;
+        float dir[2] = {cosf(phi), sinf(phi)};
+        vec3 dv = {dir[0] * to_view[0], dir[1] * to_view[1], 0.0f}, axis, o, pn, tmp;
+        glm_vec3_cross(v, dv, axis);
+        glm_vec3_normalize(axis);
+        glm_vec3_cross(axis, v, o);
+        glm_vec3_scale(axis, glm_vec3_dot(n, axis), tmp);
+        glm_vec3_sub(n, tmp, pn);
+        float len_n = glm_vec3_norm(pn);
+        if (len_n < 1e-4f) continue;
+        float ang_n = atan2f(glm_vec3_dot(pn, o), glm_vec3_dot(pn, v));
+        float radius_px = radius / (d * sqrtf(dv[0] * dv[0] + dv[1] * dv[1]));
+        float h[2];
+        for (int side = 0; side < 2; ++side) {
+            float sgn = side == 0 ? 1.0f : -1.0f;
+            float tangent = half_pi + sgn * ang_n;
+            vec3 t, a, b;
+            glm_vec3_scale(v, cosf(tangent), a);
+            glm_vec3_scale(o, sinf(tangent) * sgn, b);
+            glm_vec3_add(a, b, t);
+            float horizon = tangent, inside_px = 0.0f, theta = 0.0f;
+            bool refined = false;
+            for (int j = 0; j < steps; ++j) {
+                float s = ((float)j + jy) / (float)steps;
+                float dist = 1.5f + s * fmaxf(radius_px - 1.5f, 0.0f);
+                if (dist > radius_px) break;
+                float ax = cx + sgn * dir[0] * dist, ay = cy + sgn * dir[1] * dist;
+                if (ax < 0.0f || ay < 0.0f || ax >= W || ay >= H) break;
+                int st = sample_theta(g, ax, ay, p, n, t, 1.0f / len_n, tangent, radius, &theta);
+                if (st == INSIDE) {
+                    horizon = fminf(horizon, theta);
+                    inside_px = dist;
+                } else if (st == BEYOND && !refined) {
+                    refined = true;
+                    float lo = inside_px, hi = dist;
+                    for (int it = 0; it < 2; ++it) {
+                        float mid = 0.5f * (lo + hi);
+                        int m = sample_theta(g, cx + sgn * dir[0] * mid, cy + sgn * dir[1] * mid, p, n, t,
+                                             1.0f / len_n, tangent, radius, &theta);
+                        if (m == INSIDE) {
+                            horizon = fminf(horizon, theta);
+                            lo = mid;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                }
+            }
+            h[side] = fmaxf(horizon, 0.0f);
+        }
+        float h0 = -h[1], h1 = h[0], cn = cosf(ang_n), sn = sinf(ang_n);
+        float a = 0.25f * (-cosf(2.0f * h0 - ang_n) + cn + 2.0f * h0 * sn) +
+                  0.25f * (-cosf(2.0f * h1 - ang_n) + cn + 2.0f * h1 * sn);
+        vis += len_n * a;
+        open_sky += len_n * (cn + ang_n * sn);
+    }
+    return open_sky > 0.0f ? fminf(fmaxf(vis / open_sky, 0.0f), 1.0f) : 1.0f;
+}
+
+static void test_cpu_port(ob_context *ctx)
+{
+    synth *g = calloc(1, sizeof *g);
+    make_synth(g);
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
+    CHECK(r != NULL, "renderer");
+    if (!r) {
+        free(g);
+        return;
+    }
+    GLuint tex[3] = {ob_make_texture_2d(GL_R32F, W, H), ob_make_texture_2d(GL_RGBA32F, W, H),
+                     ob_make_texture_2d(GL_R32F, W, H)};
+    glTextureSubImage2D(tex[0], 0, 0, 0, W, H, GL_RED, GL_FLOAT, g->depth);
+    glTextureSubImage2D(tex[1], 0, 0, 0, W, H, GL_RGBA, GL_FLOAT, g->normal);
+    const float radius = 0.4f;
+    ob_settings s;
+    ob_settings_init(&s, "gtao");
+    CHECK(ob_settings_set(&s, "gtao.radius=0.4") == OB_OK, "radius");
+    CHECK(ob_compute_ao(r, tex[0], tex[1], (const float *)g->proj, &s, tex[2]) == OB_OK, "ob_compute_ao gtao");
+    float *gpu = malloc((size_t)W * H * sizeof(float));
+    glGetTextureImage(tex[2], 0, GL_RED, GL_FLOAT, (GLsizei)((size_t)W * H * sizeof(float)), gpu);
+    float rot[16][2];
+    ob_rotation_noise_4x4(&rot[0][0], 0x4E01u);
+    double worst = 0.0, sum = 0.0, mean_ao = 0.0;
+    int over = 0, occluded = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            float c = cpu_gtao(g, rot, x, y, radius, 3, 6);
+            double d = fabs((double)c - (double)gpu[y * W + x]);
+            worst = fmax(worst, d);
+            sum += d;
+            over += d > 1e-3;
+            mean_ao += c;
+            occluded += c < 0.9f;
+        }
+    printf("  gtao CPU port vs GPU, %dx%d box on a floor: mean |diff| %.2g, worst %.2g, %d pixels over 1e-3, mean AO "
+           "%.3f, %d pixels below 0.9\n",
+           W, H, sum / (W * H), worst, over, mean_ao / (W * H), occluded);
+    CHECK(occluded > 300, "the synthetic scene has occlusion to compare (%d pixels below 0.9)", occluded);
+    CHECK(over == 0, "CPU and GPU agree within 1e-3 (%d pixels over, worst %.3g)", over, worst);
+    glDeleteTextures(3, tex);
+    free(gpu);
+    free(g);
+    ob_destroy_renderer(r);
+}
+
+int main(void)
+{
+    ob_context *ctx = ob_make_context(NULL);
+    if (!ctx) {
+        const char *msg = NULL;
+        ob_get_error(&msg);
+        fprintf(stderr, "no context: %s\n", msg);
+        return 1;
+    }
+    test_corner(ctx);
+    test_cpu_port(ctx);
+    ob_destroy_context(ctx);
+    return check_finish("test_gtao");
+}

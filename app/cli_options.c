@@ -224,6 +224,7 @@ static const struct {
     {"--ao-scale", 0},             {"--ao-scales", CLI_TAKES_LISTS}, {"--adaptive", 0},
     {"--light", 0},                {"--env", 0},         {"--ambient", 0},
     {"--ambient-color", 0},        {"--ao-light", 0},    {"--shadow", 0},
+    {"--multibounce", 0},
     {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
 
@@ -302,6 +303,9 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         if (!strcmp(v, "ambient")) c->ao_all_light = false;
         else if (!strcmp(v, "all")) c->ao_all_light = true;
         else return cli_fail(EXIT_USAGE, "--ao-light: expected ambient or all, got '%s'", v);
+    } else if (!strcmp(a, "--multibounce")) {
+        if (!cli_parse_on_off(v, &c->multibounce))
+            return cli_fail(EXIT_USAGE, "--multibounce: expected on or off, got '%s'", v);
     } else if (!strcmp(a, "--shadow")) {
         if (!cli_parse_shadow(v, &c->shadow)) return cli_fail(EXIT_USAGE, "--shadow: expected none, hard, pcf or vsm, got '%s'", v);
         c->given |= CLI_GIVEN_SHADOW;
@@ -407,6 +411,8 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "  --ambient-color R,G,B the constant ambient radiance (default 0.3,0.3,0.3)\n"
           "  --env FILE.hdr        equirectangular environment map (Radiance .hdr)\n"
           "  --ao-light ambient|all  AO darkens the ambient term (default) or all light\n"
+          "  --multibounce on|off  AO through Jimenez et al. 2016's multi-bounce fit with the albedo\n"
+          "                        (bright surfaces lift their occlusion; default off)\n"
           "  --shadow none|hard|pcf|vsm  shadow maps for the lights (default pcf)\n"
           "  --shadow-size N       shadow map resolution (default 2048)\n"
           "  --shadow-bias B       constant bias in map texels; --shadow-slope-bias S slope-scaled\n"
@@ -510,6 +516,7 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
     s->ambient_mode = c->ambient_mode;
     if (c->given & CLI_GIVEN_AMBIENT_COLOR) memcpy(s->ambient, c->ambient_color, sizeof s->ambient);
     s->ao_all_light = c->ao_all_light;
+    s->multibounce = c->multibounce;
     ob_shadow_settings *sh = &s->shadow;
     if (c->given & CLI_GIVEN_SHADOW) sh->method = c->shadow;
     if (c->given & CLI_GIVEN_SHADOW_SIZE) sh->size = c->shadow_size;

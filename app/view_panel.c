@@ -153,6 +153,7 @@ static void panel_lights(viewer *v)
         gui_color3("ground", v->s.ground);
     }
     gui_checkbox("AO darkens all light", &v->s.ao_all_light);
+    gui_checkbox("multi-bounce AO (Jimenez 2016)", &v->s.multibounce);
 }
 
 static void panel_hdr(viewer *v)

@@ -22,6 +22,17 @@ layout(binding = 5) uniform sampler2D environment;    /* equirectangular radianc
 layout(binding = 6) uniform sampler2D bounce_map;     /* RGBA16F one-bounce indirect light (SSDO) */
 layout(binding = 0, rgba16f) uniform writeonly image2D hdr_out;
 
+/* Jimenez, Wu, Pesce & Jarabo 2016, §5 "Approximated multiple bounces": a cubic fit, per colour
+ * channel, of the visibility after infinitely many diffuse bounces between surfaces of the
+ * receiver's albedo, fitted by the paper to ray-traced references; never below one bounce. */
+vec3 ob_multibounce(float v, vec3 albedo)
+{
+    vec3 a = 2.0404 * albedo - 0.3324;
+    vec3 b = -4.7951 * albedo + 0.6417;
+    vec3 c = 2.7552 * albedo + 0.6903;
+    return max(vec3(v), ((v * a + b) * v + c) * v);
+}
+
 vec3 ob_environment_radiance(vec3 dir)
 {
     /* Equirectangular, +Y up: u from atan2(x, -z), v from the elevation. */
@@ -58,7 +69,8 @@ void main()
         color = (direct + ambient * albedo) * m;
         if (cmp.add_bounce != 0) color += texelFetch(bounce_map, pix, 0).rgb * albedo;
     } else {
-        color = (cmp.ao_all_light != 0 ? direct * ao : direct) + ambient * albedo * ao;
+        vec3 vis = cmp.multibounce != 0 ? ob_multibounce(ao, albedo) : vec3(ao);
+        color = (cmp.ao_all_light != 0 ? direct * vis : direct) + ambient * albedo * vis;
     }
     imageStore(hdr_out, pix, vec4(color, 1.0));
 }

@@ -11,7 +11,7 @@ OB_CONSTANTS_BEGIN(ob_compose_constants, OB_BINDING_PASS)
     OB_INT ao_all_light; /* 1: AO darkens all light, 0: only the ambient term (ob_settings.ao_all_light) */
     OB_INT directional;  /* 1: the AO texture holds a directional method's RGB modulation factor M */
     OB_INT add_bounce;   /* 1: add the one-bounce light x albedo (a method that writes a bounce) */
-    OB_INT pad0;
+    OB_INT multibounce;  /* 1: visibility through Jimenez et al. 2016's multi-bounce fit with the albedo */
 OB_CONSTANTS_END(ob_compose_constants, cmp)
 OB_CONSTANTS_SIZE(ob_compose_constants, 16);
 

@@ -317,6 +317,11 @@ typedef struct ob_settings {
     float ambient[3];             /* constant ambient radiance (multiplied by AO) */
     float sky[3], ground[3];      /* hemisphere ambient: radiance from above and from below */
     bool ao_all_light;            /* AO darkens all light, not only the ambient term */
+    /* Jimenez et al. 2016's multi-bounce fit (§5, "Approximated multiple bounces"): the AO the
+     * ambient term is multiplied by becomes max(v, ((a v + b) v + c) v) per colour channel, with
+     * a, b, c linear in the albedo, so light bouncing between nearby bright surfaces lifts the
+     * occlusion (white walls lose about half of their darkening, black ones none). */
+    bool multibounce;
     float background[3];          /* linear RGB of pixels with no geometry */
 } ob_settings;
 

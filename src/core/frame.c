@@ -272,7 +272,8 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
                                   .bounce = plan->bounce ? r->bounce : 0,
                                   .width = r->width,
                                   .height = r->height,
-                                  .ao_all_light = s->ao_all_light};
+                                  .ao_all_light = s->ao_all_light,
+                                  .multibounce = s->multibounce};
     ob_timer_begin(&r->timers, "compose");
     ob_compose_run(&r->compose, &ci, r->radiance);
     glMemoryBarrier(barrier);

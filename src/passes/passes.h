@@ -107,6 +107,7 @@ typedef struct ob_compose_inputs {
     GLuint bounce;        /* 0 = none */
     int width, height;
     bool ao_all_light;      /* AO multiplies the direct light too */
+    bool multibounce;       /* the visibility goes through the multi-bounce fit (compose.glsl) */
 } ob_compose_inputs;
 
 ob_error ob_compose_init(ob_compose_pass *c);

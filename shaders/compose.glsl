@@ -20,6 +20,7 @@ layout(binding = 3) uniform sampler2D ao_map;         /* R32F visibility, or RGB
 layout(binding = 4) uniform sampler2D direct_map;     /* RGBA16F direct radiance */
 layout(binding = 5) uniform sampler2D environment;    /* equirectangular radiance, for the background */
 layout(binding = 6) uniform sampler2D bounce_map;     /* RGBA16F one-bounce indirect light (SSDO) */
+layout(binding = 7) uniform sampler2D bent_map;       /* RGBA16F view-space bent normal (cmp.bent_normal) */
 layout(binding = 0, rgba16f) uniform writeonly image2D hdr_out;
 
 /* Jimenez, Wu, Pesce & Jarabo 2016, §5 "Approximated multiple bounces": a cubic fit, per colour
@@ -59,9 +60,17 @@ void main()
     float ao = texelFetch(ao_map, pix, 0).r;
     vec3 direct = texelFetch(direct_map, pix, 0).rgb;
 
+    /* The ambient light arrives through the unoccluded part of the hemisphere: with a bent normal
+     * (Jimenez et al. 2016 §5, "Bent normals"), look it up along that cone's mean direction
+     * instead of the normal. Filtering averaged it, so it is renormalised here. */
+    vec3 na = n;
+    if (cmp.bent_normal != 0) {
+        vec3 b = texelFetch(bent_map, pix, 0).xyz;
+        if (dot(b, b) > 1e-8) na = normalize(mat3(frame.inv_view) * b);
+    }
     vec3 ambient = frame.ambient.rgb;
-    if (mode == OB_AMBIENT_MODE_HEMISPHERE) ambient = mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * n.y);
-    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) ambient = max(ob_sh_irradiance(frame.sh, n), vec3(0.0));
+    if (mode == OB_AMBIENT_MODE_HEMISPHERE) ambient = mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * na.y);
+    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) ambient = max(ob_sh_irradiance(frame.sh, na), vec3(0.0));
 
     vec3 color;
     if (cmp.directional != 0) {

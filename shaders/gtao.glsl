@@ -36,6 +36,7 @@ layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
 layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
 layout(binding = 3) uniform sampler2D depth_mips;   /* R32F MIP chain of linear depth (depth_mips = 1) */
 layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+layout(binding = 1, rgba16f) uniform writeonly image2D bent_out; /* view-space bent normal (bent_normals = 1) */
 
 const float PI = 3.14159265358979;
 const float HALF_PI = 1.57079632679490;
@@ -92,6 +93,17 @@ float sample_depth(ivec2 q, int level, out vec2 centre)
     return texelFetch(depth_mips, ql, level).r;
 }
 
+/* The cosine-weighted mean direction of the visible arc [h0, h1] of a slice (the first moment of
+ * eq. 3's integrand: ∫ (sin θ, cos θ) cos(θ - n) |sin θ| dθ in closed form, Jimenez et al. 2016
+ * §5 "Bent normals"), in view space: along V (cos θ) and along o (sin θ). */
+vec3 slice_bent(float h0, float h1, float n, vec3 v, vec3 o)
+{
+    float t0 = (6.0 * sin(h0 - n) - sin(3.0 * h0 - n) + 6.0 * sin(h1 - n) - sin(3.0 * h1 - n) + 16.0 * sin(n) -
+                3.0 * (sin(h0 + n) + sin(h1 + n))) / 12.0;
+    float t1 = (-cos(3.0 * h0 - n) - cos(3.0 * h1 - n) + 8.0 * cos(n) - 3.0 * (cos(h0 + n) + cos(h1 + n))) / 12.0;
+    return t1 * v + t0 * o;
+}
+
 /* What a sample told the horizon search. */
 const int SAMPLE_NONE = 0;   /* sky, P's own texel or straight along the view ray: no occluder */
 const int SAMPLE_INSIDE = 1; /* a surface point within R (weight > 0): theta is its horizon angle */
@@ -135,6 +147,7 @@ void main()
     float d = texelFetch(linear_depth, pix, 0).r;
     if (d <= 0.0) {
         imageStore(ao_out, pix, vec4(1.0));
+        if (gtao.bent_normals != 0) imageStore(bent_out, pix, vec4(0.0));
         return;
     }
     vec2 centre = vec2(pix) + 0.5;
@@ -153,6 +166,7 @@ void main()
     int slices = gtao.slices, steps = gtao.steps;
 
     float visibility = 0.0, open_sky = 0.0;
+    vec3 bent = vec3(0.0); /* Σ |n_φ| (b(φ) - b_open(φ)), see the end */
     for (int k = 0; k < slices; ++k) {
         float phi = (float(k) + jit.x) * PI / float(slices);
         vec2 dir = vec2(cos(phi), sin(phi));
@@ -226,10 +240,20 @@ void main()
         visibility += len_n * a;
         /* The same slice with nothing above its tangents: â(n + π/2) + â(n - π/2) = cos n + n sin n. */
         open_sky += len_n * (cos_n + ang_n * sin_n);
+        if (gtao.bent_normals != 0)
+            bent += len_n * (slice_bent(h0, h1, ang_n, v, o) - slice_bent(ang_n - HALF_PI, ang_n + HALF_PI, ang_n, v, o));
     }
     /* The mean over slices of |n_φ| a(φ) is the φ integral only in the limit: with a few slices
      * an open surface seen at an angle reads 0.990-1.010 (corner, 3 slices). Dividing by the same
      * quadrature of the unoccluded hemisphere, whose exact integral is 1, makes open surfaces
      * exactly 1 at any slice count and converges to the same value. */
     imageStore(ao_out, pix, vec4(open_sky > 0.0 ? clamp(visibility / open_sky, 0.0, 1.0) : 1.0));
+    if (gtao.bent_normals != 0) {
+        /* The bent normal: the visible hemisphere's cosine-weighted mean direction. Open, it is
+         * 2/3 n exactly; the slices estimate only how occlusion moves it from there (the same
+         * quadrature of the open hemisphere subtracted, as for the visibility), so an open
+         * surface gets its own normal at any slice count. */
+        vec3 b = (2.0 / 3.0) * n + bent / float(slices);
+        imageStore(bent_out, pix, vec4(dot(b, b) > 1e-12 ? normalize(b) : n, 0.0));
+    }
 }

@@ -23,7 +23,11 @@ OB_CONSTANTS_BEGIN(ob_gtao_constants, OB_BINDING_PASS)
     OB_FLOAT step_offset;     /*   when temporal noise is on; 0 otherwise */
     OB_FLOAT mip_offset;      /* log2 of the step distance (px) below which the full-resolution depth is read */
     OB_INT max_mip;           /* the coarsest MIP level a step may read */
+    OB_INT bent_normals;      /* 1: also write the bent normal (image 1) */
+    OB_FLOAT pad0;
+    OB_FLOAT pad1;
+    OB_FLOAT pad2;
 OB_CONSTANTS_END(ob_gtao_constants, gtao)
-OB_CONSTANTS_SIZE(ob_gtao_constants, 3 * 16);
+OB_CONSTANTS_SIZE(ob_gtao_constants, 4 * 16);
 
 #endif

@@ -29,6 +29,7 @@
 #define OB_VIEW_MODE_RADIANCE 5
 #define OB_VIEW_MODE_SAMPLES 6
 #define OB_VIEW_MODE_BOUNCE 7
+#define OB_VIEW_MODE_BENT_NORMALS 8
 
 /* Per-pixel noise of the methods' "noise" enum parameter (registry.c's ob_noise_options order):
  * a tiled 4x4 texture, or Jimenez's interleaved gradient noise. */

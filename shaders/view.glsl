@@ -26,6 +26,10 @@ void main()
     case OB_VIEW_MODE_SHADOW: c = vec3(s.a); break; /* the key light's visibility */
     case OB_VIEW_MODE_RADIANCE: c = ob_linear_to_srgb(s.rgb); break;
     case OB_VIEW_MODE_BOUNCE: c = directional ? ob_linear_to_srgb(s.rgb) : vec3(0.0); break;
+    /* directional here: the method wrote a bent normal (filtering averaged it: renormalise). */
+    case OB_VIEW_MODE_BENT_NORMALS:
+        c = directional && dot(s.xyz, s.xyz) > 1e-8 ? normalize(s.xyz) * 0.5 + 0.5 : vec3(0.0);
+        break;
     case OB_VIEW_MODE_SAMPLES: {
         /* As the renderer's read_sample_counts: the block of AO pixel pix / k. */
         float count = float(vw.sample_count);

@@ -43,16 +43,18 @@ static void test_corner(ob_context *ctx)
     ob_settings_set_filter(&s, "none");
     /* Many slices and steps: the estimator converged, no filter, the definition's hard cut. */
     CHECK(ob_settings_set(&s, "gtao.radius=0.5") == OB_OK && ob_settings_set(&s, "gtao.slices=16") == OB_OK &&
-              ob_settings_set(&s, "gtao.steps=32") == OB_OK && ob_settings_set(&s, "gtao.falloff=0") == OB_OK,
+              ob_settings_set(&s, "gtao.steps=32") == OB_OK && ob_settings_set(&s, "gtao.falloff=0") == OB_OK &&
+              ob_settings_set(&s, "gtao.bent_normals=on") == OB_OK,
           "settings");
     CHECK(ob_render_frame(r, &cam, &s) == OB_OK, "frame");
     size_t n = (size_t)W * H;
     float *ao = malloc(n * sizeof(float)), *depth = malloc(n * sizeof(float));
     float *normals = malloc(n * 3 * sizeof(float)), *pos = malloc(n * 3 * sizeof(float));
-    float *wn = malloc(n * 3 * sizeof(float));
+    float *wn = malloc(n * 3 * sizeof(float)), *bent = malloc(n * 3 * sizeof(float));
     ob_read_image(r, OB_IMAGE_AO_RAW_F32, ao, n * sizeof(float));
     ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, n * sizeof(float));
     ob_read_image(r, OB_IMAGE_NORMAL_F32, normals, n * 3 * sizeof(float));
+    ob_read_image(r, OB_IMAGE_BENT_NORMAL_F32, bent, n * 3 * sizeof(float));
     mat4 view, proj, inv_view;
     glm_lookat((float *)cam.eye, (float *)cam.target, (float *)cam.up, view);
     glm_perspective(glm_rad(cam.fov_y_deg), (float)W / (float)H, cam.near_z, cam.far_z, proj);
@@ -63,18 +65,31 @@ static void test_corner(ob_context *ctx)
     /* Bins of h / R: the mean of gtao against the mean of the closed form over the same pixels. */
     enum { BINS = 10 };
     double sum_ao[BINS] = {0}, sum_ref[BINS] = {0};
-    int count[BINS] = {0}, open_count = 0;
+    int count[BINS] = {0}, open_count = 0, near_count = 0, near_away = 0;
     float open_min = 1.0f;
+    double open_bent_worst = 0.0, near_tilt = 0.0;
     for (size_t i = 0; i < n; ++i) {
         const float *p = &pos[3 * i], *nn = &wn[3 * i];
         bool floor = depth[i] > 0.0f && nn[1] > 0.99f && fabsf(p[1]) < 1e-3f;
         /* Far (> R) from the wall z = 0 and from the planes' far edges. */
         if (!floor || p[2] < 1.2f || p[2] > 2.8f || p[0] > 4.0f - radius) continue;
         double h = p[0];
+        /* The bent normal in world space (filter none: as the pass wrote it). */
+        vec3 bv = {bent[3 * i], bent[3 * i + 1], bent[3 * i + 2]}, bw;
+        glm_mat4_mulv3(inv_view, bv, 0.0f, bw);
+        glm_vec3_normalize(bw);
         if (h >= radius * 1.02) {
             open_min = fminf(open_min, ao[i]);
+            /* Open: the bent normal is the normal (0, 1, 0). */
+            open_bent_worst = fmax(open_bent_worst, acos(fmin(1.0, (double)bw[1])));
             ++open_count;
             continue;
+        }
+        if (h < 0.3 * radius) {
+            /* Next to the wall x = 0 the visible cone leans away from it, toward +x. */
+            ++near_count;
+            near_away += bw[0] > 0.05f;
+            near_tilt += asin(fmax(-1.0, fmin(1.0, (double)bw[0])));
         }
         int b = (int)(h / radius * BINS);
         if (b < 0 || b >= BINS) continue;
@@ -95,11 +110,19 @@ static void test_corner(ob_context *ctx)
     CHECK(covered >= 8, "the bins near the wall have pixels (%d of %d)", covered, BINS);
     CHECK(open_count > 500 && open_min >= 0.9999f, "open floor reads 1 (%d pixels, lowest %.6f)", open_count,
           (double)open_min);
+    printf("  bent normal: open floor within %.3f deg of the normal; within 0.3 R of the wall %d of %d lean away, "
+           "mean %.1f deg\n",
+           open_bent_worst * 180.0 / M_PI, near_away, near_count, near_count ? near_tilt / near_count * 180.0 / M_PI : 0.0);
+    CHECK(open_bent_worst < 0.5 * M_PI / 180.0, "open floor: bent normal = normal (off by %.3f deg)",
+          open_bent_worst * 180.0 / M_PI);
+    CHECK(near_count > 50 && near_away == near_count, "beside the wall the bent normal leans away (%d of %d)", near_away,
+          near_count);
     free(ao);
     free(depth);
     free(normals);
     free(pos);
     free(wn);
+    free(bent);
     ob_destroy_renderer(r);
     ob_destroy_scene(scene);
 }

@@ -108,7 +108,7 @@ static uint8_t *expected_view(ob_renderer *r, ob_view view, float far_z, float m
         [OB_VIEW_AO] = OB_IMAGE_AO_RGB_F32,     [OB_VIEW_NORMALS] = OB_IMAGE_NORMAL_F32,
         [OB_VIEW_DEPTH] = OB_IMAGE_DEPTH_F32,   [OB_VIEW_SHADOW] = OB_IMAGE_SHADOW_F32,
         [OB_VIEW_RADIANCE] = OB_IMAGE_RADIANCE_F32, [OB_VIEW_SAMPLES] = OB_IMAGE_SAMPLES_F32,
-        [OB_VIEW_BOUNCE] = OB_IMAGE_BOUNCE_F32};
+        [OB_VIEW_BOUNCE] = OB_IMAGE_BOUNCE_F32, [OB_VIEW_BENT_NORMALS] = OB_IMAGE_BENT_NORMAL_F32};
     ob_image_kind kind = kinds[view];
     size_t px = (size_t)W * (size_t)H;
     float *buf = malloc(ob_image_size(r, kind));
@@ -116,8 +116,13 @@ static uint8_t *expected_view(ob_renderer *r, ob_view view, float far_z, float m
     CHECK(ob_read_image(r, kind, buf, ob_image_size(r, kind)) == OB_OK, "read %s", ob_view_name(view));
     int channels = ob_image_size(r, kind) == px * 3 * sizeof(float) ? 3 : 1;
     for (size_t i = 0; i < px; ++i) {
+        /* Bent normals: renormalised (filtering averages them), black where there is none. */
+        float len = 0.0f;
+        for (int c = 0; c < 3 && view == OB_VIEW_BENT_NORMALS; ++c) len += buf[i * 3 + (size_t)c] * buf[i * 3 + (size_t)c];
+        len = sqrtf(len);
         for (int c = 0; c < 3; ++c) {
             float v = buf[i * (size_t)channels + (size_t)(channels == 3 ? c : 0)];
+            if (view == OB_VIEW_BENT_NORMALS) v = len > 1e-4f ? v / len * 0.5f + 0.5f : 0.0f;
             if (view == OB_VIEW_NORMALS) v = v * 0.5f + 0.5f;
             else if (view == OB_VIEW_RADIANCE || view == OB_VIEW_BOUNCE) v = srgb(v);
             else if (view == OB_VIEW_DEPTH) v = v > 0.0f ? 1.0f - v / far_z : 0.0f;
@@ -143,7 +148,8 @@ static int max_byte_diff(const uint8_t *a, const uint8_t *b, size_t n)
 /* ---- tests ---------------------------------------------------------------------------------- */
 static void test_view_names(void)
 {
-    const char *names[OB_VIEW_COUNT] = {"final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce"};
+    const char *names[OB_VIEW_COUNT] = {"final",    "ao",      "normals", "depth", "shadow",
+                                        "radiance", "samples", "bounce",  "bent_normals"};
     for (int v = 0; v < OB_VIEW_COUNT; ++v) {
         CHECK(!strcmp(ob_view_name((ob_view)v), names[v]), "view %d is '%s'", v, ob_view_name((ob_view)v));
         int back = -1;
@@ -287,6 +293,11 @@ static void test_present_views(ob_renderer *r)
         int samples = (int)ob_settings_get(&d, "samples");
         check_views(r, &d, "ssdo", (float)samples);
     }
+    /* A method that writes a bent normal: its view is the renormalised direction. */
+    ob_settings g;
+    ob_settings_init(&g, "gtao");
+    ob_settings_set(&g, "gtao.bent_normals=on");
+    if (frame(r, &g)) check_views(r, &g, "gtao with bent normals", 36.0f);
 }
 
 static void test_resize(ob_context *ctx, const ob_settings *s)

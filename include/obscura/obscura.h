@@ -400,6 +400,8 @@ typedef enum ob_image_kind {
     OB_IMAGE_AO_RGB_F32,      /* M after filter and upsampling, 3 floats per pixel, bottom row first */
     OB_IMAGE_BOUNCE_F32,      /* the one-bounce indirect light off a white receiver (compose multiplies
                                  it by the albedo), after filter and upsampling, 3 floats, bottom row first */
+    OB_IMAGE_BENT_NORMAL_F32, /* the method's view-space bent normal (gtao with bent_normals on), after
+                                 filter and upsampling (not renormalised), 3 floats; zeros otherwise */
 } ob_image_kind;
 
 /* Bytes needed for an image of the renderer's size. */
@@ -428,7 +430,8 @@ int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max);
  *   samples   samples each pixel took / the most any pixel could take that frame (the method's
  *             count, under adaptive sampling its base x 3; the CLI divides by the image's largest
  *             count instead), grey; 0 for sky
- *   bounce    directional methods' one-bounce light, clamped and sRGB-encoded; black otherwise */
+ *   bounce    directional methods' one-bounce light, clamped and sRGB-encoded; black otherwise
+ *   bent_normals  the method's bent normal (renormalised) as b * 0.5 + 0.5; black when it wrote none */
 typedef enum ob_view {
     OB_VIEW_FINAL = 0,
     OB_VIEW_AO,
@@ -438,11 +441,12 @@ typedef enum ob_view {
     OB_VIEW_RADIANCE,
     OB_VIEW_SAMPLES,
     OB_VIEW_BOUNCE,
+    OB_VIEW_BENT_NORMALS,
     OB_VIEW_COUNT
 } ob_view;
 
-/* "final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce" (the CLI's --view
- * names); "" if out of range. */
+/* "final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce", "bent_normals" (the
+ * CLI's --view names); "" if out of range. */
 const char *ob_view_name(ob_view view);
 
 /* Draw the last frame (OB_VIEW_FINAL) or one of its debug views into `framebuffer` (0 = the

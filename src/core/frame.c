@@ -132,6 +132,7 @@ typedef struct method_plan {
     uint32_t writes;  /* ob_method_active_writes */
     bool rgb;         /* OB_WRITES_VISIBILITY_RGB: M instead of visibility */
     bool bounce;      /* OB_WRITES_BOUNCE among the active outputs */
+    bool bent;        /* OB_WRITES_BENT_NORMAL among the active outputs */
 } method_plan;
 
 static ob_error plan_method(ob_renderer *r, const ob_settings *s, method_plan *p)
@@ -148,6 +149,7 @@ static ob_error plan_method(ob_renderer *r, const ob_settings *s, method_plan *p
     p->writes = ob_method_active_writes(p->impl, p->params);
     p->rgb = (p->impl->writes & OB_WRITES_VISIBILITY_RGB) != 0;
     p->bounce = (p->writes & OB_WRITES_BOUNCE) != 0;
+    p->bent = (p->writes & OB_WRITES_BENT_NORMAL) != 0;
     ob_error err = OB_OK;
     p->state = ob_renderer_method_state(r, s->method, &err);
     return err;
@@ -202,7 +204,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         ob_edges_run(&r->edges, g, t->depth, t->normal, t->multiplier);
         glMemoryBarrier(barrier);
     }
-    if (plan->rgb || (plan->impl->writes & OB_WRITES_BOUNCE)) {
+    if (plan->rgb || (plan->impl->writes & OB_WRITES_BOUNCE) || plan->bent) {
         err = ob_renderer_rgb_targets(r, t);
         if (err != OB_OK) return err;
     }
@@ -217,8 +219,10 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
                              .albedo = reads & OB_READS_ALBEDO ? r->gbuffer.albedo : 0};
     /* Every declared output gets a target, also one that these params leave unwritten. */
     const ob_ao_outputs out = {.visibility = plan->rgb ? t->raw_rgb : t->raw,
-                               .bounce = plan->impl->writes & OB_WRITES_BOUNCE ? t->bounce_raw : 0};
+                               .bounce = plan->impl->writes & OB_WRITES_BOUNCE ? t->bounce_raw : 0,
+                               .bent_normal = plan->bent ? t->bent_raw : 0};
     r->last_rgb = plan->rgb;
+    r->last_bent = plan->bent;
     ob_timer_begin(&r->timers, "ao");
     err = run_method(r, plan, &in, &out);
     if (err != OB_OK) return err;
@@ -240,10 +244,22 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
             err = run_filter(filter, fstate, t, t->bounce_raw, g->k > 1 ? t->bounce_filtered : r->bounce,
                              t->scratch_rgb, true, 0.0f, s);
     }
+    if (err == OB_OK && plan->bent) {
+        /* The bent normal through the same filter's RGB variant (sky 0, no direction); compose
+         * renormalises what the weights average. */
+        void *bstate = ob_renderer_filter_state(r, s->filter, true, &err);
+        glMemoryBarrier(barrier);
+        if (err == OB_OK)
+            err = run_filter(filter, bstate, t, t->bent_raw, g->k > 1 ? t->bent_filtered : r->bent, t->scratch_rgb, true,
+                             0.0f, s);
+    }
     if (err != OB_OK) return err;
     glMemoryBarrier(barrier);
     if (g->k > 1) {
         ob_timer_begin(&r->timers, "upsample");
+        if (plan->bent)
+            ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
+                                t->bent_filtered, r->bent, 0.0f);
         if (!plan->rgb) {
             ob_upsample_run(&r->upsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
                             t->filtered, r->ao);
@@ -270,6 +286,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
                                   .environment = r->environment.texture,
                                   .directional = plan->rgb,
                                   .bounce = plan->bounce ? r->bounce : 0,
+                                  .bent_normal = plan->bent ? r->bent : 0,
                                   .width = r->width,
                                   .height = r->height,
                                   .ao_all_light = s->ao_all_light,
@@ -338,7 +355,7 @@ static ob_error compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t n
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: NULL argument");
     if (check_settings(s) != OB_OK) return ob_peek_error(NULL);
     const ob_method_impl *m = ob_method_impl_at(s->method);
-    if ((m->reads & (OB_READS_RADIANCE | OB_READS_ALBEDO)) || (m->writes & ~OB_WRITES_VISIBILITY))
+    if ((m->reads & (OB_READS_RADIANCE | OB_READS_ALBEDO)) || (m->writes & (OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE)))
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: %s needs the frame's direct light (ob_render_frame)",
                             m->info.name);
     method_plan plan;

@@ -81,6 +81,7 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
     case OB_IMAGE_RADIANCE_F32:
     case OB_IMAGE_AO_RGB_F32:
     case OB_IMAGE_BOUNCE_F32:
+    case OB_IMAGE_BENT_NORMAL_F32:
     case OB_IMAGE_HDR_F32:
     case OB_IMAGE_ALBEDO_F32: return px * 3 * sizeof(float);
     case OB_IMAGE_SHADOW_F32: return px * sizeof(float);
@@ -134,6 +135,10 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
         break;
     case OB_IMAGE_BOUNCE_F32:
         if (r->last_rgb) return read_rgb(r->bounce, r->width, r->height, dst, 3);
+        memset(dst, 0, need);
+        break;
+    case OB_IMAGE_BENT_NORMAL_F32:
+        if (r->last_bent) return read_rgb(r->bent, r->width, r->height, dst, 3);
         memset(dst, 0, need);
         break;
     case OB_IMAGE_SAMPLES_F32: {

@@ -15,8 +15,9 @@ static void release_scales(ob_renderer *r)
         ao_targets *t = &r->scales[i];
         GLuint tex[4] = {t->raw, t->filtered, t->scratch, t->multiplier};
         glDeleteTextures(4, tex);
-        GLuint rgb[5] = {t->raw_rgb, t->filtered_rgb, t->scratch_rgb, t->bounce_raw, t->bounce_filtered};
-        glDeleteTextures(5, rgb);
+        GLuint rgb[7] = {t->raw_rgb, t->filtered_rgb, t->scratch_rgb, t->bounce_raw, t->bounce_filtered,
+                         t->bent_raw, t->bent_filtered};
+        glDeleteTextures(7, rgb);
         if (t->grid.k > 1) {
             GLuint own[2] = {t->depth, t->normal};
             glDeleteTextures(2, own);
@@ -69,8 +70,8 @@ void ob_destroy_renderer(ob_renderer *r)
     ob_shadows_destroy(&r->shadows);
     ob_hdr_destroy(&r->hdr);
     ob_environment_destroy(&r->environment);
-    GLuint tex[6] = {r->ao, r->final, r->direct, r->radiance, r->ao_rgb, r->bounce};
-    glDeleteTextures(6, tex);
+    GLuint tex[7] = {r->ao, r->final, r->direct, r->radiance, r->ao_rgb, r->bounce, r->bent};
+    glDeleteTextures(7, tex);
     if (r->frame_ubo) glDeleteBuffers(1, &r->frame_ubo);
     ob_timers_destroy(&r->timers);
     free(r);
@@ -166,8 +167,8 @@ ob_error ob_renderer_resize(ob_renderer *r, int width, int height)
         glDeleteTextures(4, full);
         return err;
     }
-    GLuint old[6] = {r->ao, r->final, r->direct, r->radiance, r->ao_rgb, r->bounce};
-    glDeleteTextures(6, old);
+    GLuint old[7] = {r->ao, r->final, r->direct, r->radiance, r->ao_rgb, r->bounce, r->bent};
+    glDeleteTextures(7, old);
     r->ao = full[0];
     r->final = full[1];
     r->direct = full[2];
@@ -176,6 +177,7 @@ ob_error ob_renderer_resize(ob_renderer *r, int width, int height)
      * by ob_renderer_targets; the full-resolution scale's depth and normal were the old G-buffer's. */
     r->ao_rgb = 0;
     r->bounce = 0;
+    r->bent = 0;
     release_scales(r);
     r->last_scale = 0;
     r->width = width;
@@ -250,10 +252,13 @@ ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t)
         t->scratch_rgb = ob_make_texture_2d(GL_RGBA16F, w, h);
         t->bounce_raw = ob_make_texture_2d(GL_RGBA16F, w, h);
         t->bounce_filtered = ob_make_texture_2d(GL_RGBA16F, w, h);
+        t->bent_raw = ob_make_texture_2d(GL_RGBA16F, w, h);
+        t->bent_filtered = ob_make_texture_2d(GL_RGBA16F, w, h);
         t->rgb_ready = true;
     }
     if (!r->ao_rgb) r->ao_rgb = ob_make_texture_2d(GL_RGBA16F, r->width, r->height);
     if (!r->bounce) r->bounce = ob_make_texture_2d(GL_RGBA16F, r->width, r->height);
+    if (!r->bent) r->bent = ob_make_texture_2d(GL_RGBA16F, r->width, r->height);
     if (!r->upsample_rgb_ready) {
         if (ob_upsample_init_rgb(&r->upsample_rgb) != OB_OK) return ob_peek_error(NULL);
         r->upsample_rgb_ready = true;

@@ -21,6 +21,8 @@ typedef struct ao_targets {
     /* Directional methods (OB_WRITES_VISIBILITY_RGB, OB_WRITES_BOUNCE): RGBA16F M and bounce
      * chains, made when one first runs. */
     GLuint raw_rgb, filtered_rgb, scratch_rgb, bounce_raw, bounce_filtered;
+    /* Methods that write a bent normal (OB_WRITES_BENT_NORMAL): RGBA16F, made with the above. */
+    GLuint bent_raw, bent_filtered;
     bool ready, rgb_ready;
 } ao_targets;
 
@@ -44,6 +46,7 @@ struct ob_renderer {
     GLuint direct;             /* RGBA16F direct radiance; alpha = the key light's visibility */
     GLuint radiance;           /* RGBA16F composed HDR radiance, before tone mapping */
     GLuint ao_rgb, bounce;     /* RGBA16F full-resolution M and bounce (made on first use) */
+    GLuint bent;               /* RGBA16F full-resolution bent normal (made with them) */
     GLuint frame_ubo;          /* the per-frame block at OB_BINDING_FRAME */
     ob_frame_constants frame_constants;
     void **method_states;      /* lazily made by the method kit, one per registry entry */
@@ -62,6 +65,7 @@ struct ob_renderer {
     float last_params[OB_MAX_PARAMS];
     bool last_adaptive;
     bool last_rgb;             /* the last frame's method wrote RGB M (and maybe a bounce) */
+    bool last_bent;            /* the last frame's method wrote a bent normal */
     bool has_frame;            /* the targets hold a whole frame (ob_present) */
     float last_far;            /* the last frame's far plane (the depth view's scale) */
     ob_view_pass view;         /* ob_present */

@@ -10,7 +10,7 @@
 #include "gtao_params.h"
 #include "methods/method.h"
 
-enum { P_RADIUS, P_FALLOFF, P_THIN, P_SLICES, P_STEPS, P_NOISE, P_TEMPORAL, P_DEPTH_MIPS, P_COUNT };
+enum { P_RADIUS, P_FALLOFF, P_THIN, P_SLICES, P_STEPS, P_NOISE, P_TEMPORAL, P_DEPTH_MIPS, P_BENT_NORMALS, P_COUNT };
 
 static const ob_param_info gtao_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -39,6 +39,10 @@ static const ob_param_info gtao_params[P_COUNT] = {
                     "move the jitters along an R2 sequence with the frame index (for temporal accumulation)", false},
     [P_DEPTH_MIPS] = {"depth_mips", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                       "far steps read the prefiltered depth MIP chain (SAO's trick) instead of full resolution", false},
+    /* Off: the constant ambient does not depend on direction, so the default frame needs none. */
+    [P_BENT_NORMALS] = {"bent_normals", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
+                        "also write the bent normal (the visible cone's mean direction) for compose's ambient lookup",
+                        false},
 };
 
 /* The R2 sequence's steps (Roberts 2018, the plastic number's powers): the best-spread 2D
@@ -78,6 +82,13 @@ static void fill_constants(ob_gtao_constants *c, const float *params, uint32_t f
     c->step_offset = temporal ? fmodf((float)(frame_index % 4096u) * R2_A2, 1.0f) : 0.0f;
     c->mip_offset = MIP_OFFSET;
     c->max_mip = max_mip;
+    c->bent_normals = params[P_BENT_NORMALS] != 0.0f ? 1 : 0;
+}
+
+/* The bent normal only when asked for. */
+static uint32_t gtao_active_writes(const float *params)
+{
+    return OB_WRITES_VISIBILITY | (params[P_BENT_NORMALS] != 0.0f ? OB_WRITES_BENT_NORMAL : 0u);
 }
 
 static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
@@ -86,7 +97,9 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
     ob_gtao_constants c = {0};
     int max_mip = in->depth_mips ? in->depth_mip_levels - 1 : 0;
     fill_constants(&c, params, in->frame->frame_index, max_mip);
+    c.bent_normals = c.bent_normals && out->bent_normal ? 1 : 0;
     ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
+    if (c.bent_normals) glBindImageTexture(1, out->bent_normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     /* Without the chain the sampler still needs a texture: the depth itself (never read then). */
     glBindTextureUnit(3, in->depth_mips ? in->depth_mips : in->linear_depth);
     ob_dispatch_2d(in->width, in->height, OB_GTAO_GROUP_X, OB_GTAO_GROUP_Y);
@@ -135,8 +148,9 @@ const ob_method_impl ob_method_gtao = {
     .constants_size = sizeof(ob_gtao_constants),
     .state_size = sizeof(gtao_state),
     .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS,
-    .writes = OB_WRITES_VISIBILITY,
+    .writes = OB_WRITES_VISIBILITY | OB_WRITES_BENT_NORMAL,
     .run = gtao_run,
+    .active_writes = gtao_active_writes,
     .set_samples = gtao_set_samples,
     .count_samples = gtao_count_samples,
 };

@@ -28,7 +28,7 @@ enum {
     OB_WRITES_VISIBILITY_RGB = 1u << 1, /* RGBA16F per-channel modulation factor M (a directional method,
                                            ob_method_info.directional) instead of R32F visibility */
     OB_WRITES_BOUNCE = 1u << 2,         /* RGBA16F one-bounce indirect light off a white receiver */
-    OB_WRITES_BENT_NORMAL = 1u << 3,    /* reserved: the unoccluded mean direction */
+    OB_WRITES_BENT_NORMAL = 1u << 3,    /* RGBA16F bent normal: the visible cone's cosine-weighted mean direction */
 };
 
 /* What a method gets each frame. The camera, the AO grid, the lights and the ambient light are in
@@ -55,6 +55,8 @@ typedef struct ob_ao_inputs {
 typedef struct ob_ao_outputs {
     GLuint visibility;        /* R32F, or RGBA16F for OB_WRITES_VISIBILITY_RGB */
     GLuint bounce;            /* RGBA16F, when the method writes OB_WRITES_BOUNCE (else 0) */
+    GLuint bent_normal;       /* RGBA16F view-space unit bent normal (xyz; 0 for sky), when the active
+                                 outputs include OB_WRITES_BENT_NORMAL (else 0) */
 } ob_ao_outputs;
 
 /* The base count that the multiplier scales under adaptive sampling. */

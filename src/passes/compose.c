@@ -19,6 +19,7 @@ void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_
     k.directional = in->directional ? 1 : 0;
     k.add_bounce = in->directional && in->bounce ? 1 : 0;
     k.multibounce = in->multibounce ? 1 : 0;
+    k.bent_normal = in->bent_normal ? 1 : 0;
     ob_compute_pass_use(&c->pass, &k, sizeof k);
     glBindTextureUnit(0, in->linear_depth);
     glBindTextureUnit(1, in->normal);
@@ -28,6 +29,7 @@ void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_
     /* Without an environment map the sampler is never read; bind a valid texture all the same. */
     glBindTextureUnit(5, in->environment ? in->environment : in->direct);
     glBindTextureUnit(6, in->bounce ? in->bounce : in->direct);
+    glBindTextureUnit(7, in->bent_normal ? in->bent_normal : in->direct);
     glBindImageTexture(0, hdr_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(in->width, in->height, OB_COMPOSE_GROUP_X, OB_COMPOSE_GROUP_Y);
 }

@@ -108,6 +108,7 @@ typedef struct ob_compose_inputs {
     int width, height;
     bool ao_all_light;      /* AO multiplies the direct light too */
     bool multibounce;       /* the visibility goes through the multi-bounce fit (compose.glsl) */
+    GLuint bent_normal;     /* RGBA16F view-space bent normal for the ambient lookup; 0 = the normal */
 } ob_compose_inputs;
 
 ob_error ob_compose_init(ob_compose_pass *c);

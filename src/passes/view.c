@@ -159,6 +159,7 @@ void ob_view_destroy(ob_view_pass *v)
 const char *ob_view_name(ob_view view)
 {
     static const char *const names[OB_VIEW_COUNT] = {"final",    "ao",      "normals", "depth",
-                                                     "shadow",   "radiance", "samples", "bounce"};
+                                                     "shadow",   "radiance", "samples", "bounce",
+                                                     "bent_normals"};
     return (int)view >= 0 && view < OB_VIEW_COUNT ? names[view] : "";
 }

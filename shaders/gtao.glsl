@@ -41,10 +41,10 @@ layout(binding = 1, rgba16f) uniform writeonly image2D bent_out; /* view-space b
 const float PI = 3.14159265358979;
 const float HALF_PI = 1.57079632679490;
 
-/* Steps are spread as s^2 of the radius (s uniform in [0, 1)): nearer occluders subtend larger
- * angles and decide the contact occlusion of creases, so they get the denser sampling (the same
- * choice as XeGTAO's sample distribution power 2). */
-const float STEP_POWER = 1.0;
+/* Steps are uniform strata of [1.5 px, R's projection] (XeGTAO squares them toward the centre).
+ * With the definition's hard cut at R, the horizon of a crease is where the wall leaves the
+ * sphere of radius R, at the far end of the search; on the training views squared steps read
+ * more too-open bias (docs/methods.md). */
 
 /* 4x4 ordered-dither ranks: every value 0..15 once per tile (the same ranks as hbao.glsl). */
 const float bayer4[16] = float[16](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0,
@@ -70,16 +70,6 @@ vec2 jitters(ivec2 pix)
     return fract(j + vec2(gtao.slice_offset, gtao.step_offset));
 }
 
-/* n(φ) for the slice with unit normal `axis` and in-slice direction o ⟂ V: the angle of the
- * normal projected onto the slice (eq. 5), and that projection's length. */
-float projected_normal(vec3 n, vec3 v, vec3 axis, vec3 o, out float len)
-{
-    vec3 pn = n - axis * dot(n, axis);
-    len = length(pn);
-    if (len < 1e-6) return 0.0;
-    return atan(dot(pn, o), dot(pn, v));
-}
-
 /* Depth at texel q of MIP `level` and that texel's centre in AO-grid pixels. Level 0 is the AO
  * grid's own depth; a coarser level's texel stands for the 2^L x 2^L block it covers. */
 float sample_depth(ivec2 q, int level, out vec2 centre)
@@ -102,6 +92,23 @@ vec3 slice_bent(float h0, float h1, float n, vec3 v, vec3 o)
                 3.0 * (sin(h0 + n) + sin(h1 + n))) / 12.0;
     float t1 = (-cos(3.0 * h0 - n) - cos(3.0 * h1 - n) + 8.0 * cos(n) - 3.0 * (cos(h0 + n) + cos(h1 + n))) / 12.0;
     return t1 * v + t0 * o;
+}
+
+/* atan2 to about 2e-4 rad (a minimax polynomial on [0, 1] after folding the octants), for the
+ * per-sample angle: the GLSL built-in costs several times as much on llvmpipe, and 1e-5 rad is
+ * far below what the depth buffer resolves (about 1e-4 of visibility). y = 0 gives exactly 0, so samples on P's plane
+ * still rise by exactly nothing. */
+float fast_atan2(float y, float x)
+{
+    float ax = abs(x), ay = abs(y);
+    float hi = max(ax, ay);
+    if (hi <= 0.0) return 0.0;
+    float a = min(ax, ay) / hi;
+    float a2 = a * a;
+    float r = ((-0.0464964749 * a2 + 0.15931422) * a2 - 0.327622764) * a2 * a + a;
+    if (ay > ax) r = HALF_PI - r;
+    if (x < 0.0) r = PI - r;
+    return y < 0.0 ? -r : r;
 }
 
 /* What a sample told the horizon search. */
@@ -134,7 +141,7 @@ int sample_theta(vec2 at, float dist_px, vec3 p, vec3 n, vec3 t, float inv_len_n
      * 1 (the sample's own angle from V would sit above this slice's tangent there). atan2 keeps
      * angles past the slice's zenith, which occluders on the side the normal leans away from
      * reach. eq. 6-7 with AO_R's range: the horizon rises to the sample by its weight. */
-    float rise = atan(dot(w, n) * inv_len_n, dot(w, t));
+    float rise = fast_atan2(dot(w, n) * inv_len_n, dot(w, t));
     theta = tangent - weight * max(rise, 0.0);
     return SAMPLE_INSIDE;
 }
@@ -167,20 +174,26 @@ void main()
 
     float visibility = 0.0, open_sky = 0.0;
     vec3 bent = vec3(0.0); /* Σ |n_φ| (b(φ) - b_open(φ)), see the end */
-    for (int k = 0; k < slices; ++k) {
-        float phi = (float(k) + jit.x) * PI / float(slices);
-        vec2 dir = vec2(cos(phi), sin(phi));
+    /* Slice k's direction at angle (k + jitter) π / N: the first from the jitter, each next one
+     * turned by π / N (two sines per pixel instead of two per slice). */
+    float phi0 = jit.x * PI / float(slices), dphi = PI / float(slices);
+    vec2 dir = vec2(cos(phi0), sin(phi0));
+    vec2 turn = vec2(cos(dphi), sin(dphi));
+    for (int k = 0; k < slices; ++k, dir = vec2(dir.x * turn.x - dir.y * turn.y, dir.x * turn.y + dir.y * turn.x)) {
         /* The slice: the plane through the eye and the screen line through P along dir. Its
          * normal is P x (the view offset of a step along dir), exact for any pixel aspect and an
          * off-centre frustum; o is dir's side of the slice, perpendicular to V. */
         vec3 dv = vec3(dir * to_view, 0.0);
         vec3 axis = normalize(cross(v, dv));
         vec3 o = cross(axis, v);
-        float len_n = 0.0;
-        float ang_n = projected_normal(n, v, axis, o, len_n);
+        /* n(φ) and |n_φ| (eq. 5): the normal projected onto the slice. */
+        vec3 pn = n - axis * dot(n, axis);
+        float len_n = length(pn);
         /* A normal (almost) across the slice: the slice carries no weight (|n_φ| ~ 0). */
         if (len_n < 1e-4) continue;
         float inv_len_n = 1.0 / len_n;
+        float cos_n = dot(pn, v) * inv_len_n, sin_n = dot(pn, o) * inv_len_n;
+        float ang_n = fast_atan2(sin_n, cos_n);
         /* R along this screen direction, in AO pixels. */
         float radius_px = radius / (d * length(dir * to_view));
 
@@ -193,15 +206,17 @@ void main()
             /* The surface falls away on the side the normal leans to: its tangent lies at
              * π/2 + n from V on side 0 and at π/2 - n on side 1. */
             float tangent = HALF_PI + sgn * ang_n;
-            vec3 t = cos(tangent) * v + sin(tangent) * sgn * o; /* the tangent's unit direction */
+            /* The tangent's unit direction: cos(π/2 + sgn n) v + sin(π/2 + sgn n) sgn o. */
+            vec3 t = (-sgn * sin_n) * v + (sgn * cos_n) * o;
             float horizon = tangent;
-            /* The last step within R (0 = P itself), for the refinement below. */
-            float inside_px = 0.0;
-            bool refined = false;
+            /* The last step within R (0 = P itself), and the first gap in which the surface
+             * leaves the sphere of radius R, for the refinement below. */
+            float inside_px = 0.0, gap_lo = 0.0, gap_hi = 0.0;
             for (int j = 0; j < steps; ++j) {
                 float s = (float(j) + jit.y) / float(steps);
-                /* At least 1.5 px out, so the first step never reads P's own texel. */
-                float dist_px = 1.5 + pow(s, STEP_POWER) * max(radius_px - 1.5, 0.0);
+                /* Uniform strata (STEP_POWER 1), at least 1.5 px out, so the first step never
+                 * reads P's own texel. */
+                float dist_px = 1.5 + s * max(radius_px - 1.5, 0.0);
                 if (dist_px > radius_px) break;
                 vec2 at = centre + sgn * dir * dist_px;
                 if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, vec2(size)))) break;
@@ -210,31 +225,29 @@ void main()
                 if (status == SAMPLE_INSIDE) {
                     horizon = min(horizon, theta);
                     inside_px = dist_px;
-                } else if (status == SAMPLE_BEYOND && !refined) {
-                    /* The surface left the sphere of radius R between the last step inside and
-                     * this one. On a wall that climbs away from P (every crease) the horizon
-                     * within R is exactly where it leaves, so sparse steps always stop short of
-                     * it and read too little occlusion. Bisect the gap a few times, once per
-                     * side: each halving halves that shortfall, for one fetch. */
-                    refined = true;
-                    float lo = inside_px, hi = dist_px;
-                    for (int b = 0; b < REFINE_STEPS; ++b) {
-                        float mid = 0.5 * (lo + hi);
-                        int m = sample_theta(centre + sgn * dir * mid, mid, p, n, t, inv_len_n, tangent, theta);
-                        if (m == SAMPLE_INSIDE) {
-                            horizon = min(horizon, theta);
-                            lo = mid;
-                        } else {
-                            hi = mid;
-                        }
-                    }
+                } else if (status == SAMPLE_BEYOND && gap_hi == 0.0) {
+                    gap_lo = inside_px;
+                    gap_hi = dist_px;
+                }
+            }
+            /* The surface left the sphere of radius R between gap_lo and gap_hi. On a wall that
+             * climbs away from P (every crease) the horizon within R is exactly where it leaves,
+             * so sparse steps always stop short of it and read too little occlusion. Bisect that
+             * gap a few times (after the march, so SIMD lanes stay in step): each halving halves
+             * the shortfall, for one fetch. */
+            for (int b = 0; b < REFINE_STEPS && gap_hi > 0.0; ++b) {
+                float mid = 0.5 * (gap_lo + gap_hi), theta = 0.0;
+                if (sample_theta(centre + sgn * dir * mid, mid, p, n, t, inv_len_n, tangent, theta) == SAMPLE_INSIDE) {
+                    horizon = min(horizon, theta);
+                    gap_lo = mid;
+                } else {
+                    gap_hi = mid;
                 }
             }
             h[side] = max(horizon, 0.0); /* a horizon on this side cannot pass V */
         }
         /* eq. 10 with θ signed: the horizon of side 1 is at -h[1], that of side 0 at h[0]. */
         float h0 = -h[1], h1 = h[0];
-        float cos_n = cos(ang_n), sin_n = sin(ang_n);
         float a = 0.25 * (-cos(2.0 * h0 - ang_n) + cos_n + 2.0 * h0 * sin_n) +
                   0.25 * (-cos(2.0 * h1 - ang_n) + cos_n + 2.0 * h1 * sin_n);
         visibility += len_n * a;

@@ -3,6 +3,7 @@
 #ifndef OB_PASSES_H
 #define OB_PASSES_H
 
+#include "depth_mips_params.h"
 #include "gpu/gpu.h"
 #include "lighting_params.h"
 #include "resample_params.h"
@@ -68,6 +69,45 @@ void ob_upsample_run_rgb(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_de
 /* Adaptive sample counts: a multiplier 1/2/3 per OB_EDGE_BLOCK^2 AO pixels (seed 003 §4.1). */
 ob_error ob_edges_init(ob_compute_pass *p);
 void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLuint ao_normal, GLuint multiplier);
+
+/* ---- depth MIP prefilter: depth_mips.c, shaders/depth_mips.glsl (issue 13) -------------------
+ * A MIP chain of linear view depth (R32F, positive along -Z, 0 = sky) built in one dispatch, for
+ * the horizon-based methods to read far taps from coarser levels (McGuire et al. 2012, SAO §2.2).
+ * Level 0 is a copy of the input; level L (GL's size rule: max(1, size >> L)) holds, per texel, the
+ * depth of ONE level-0 pixel under it: SAO's rotated-grid child of each 2x2, or the farthest
+ * geometry of the 2x2 when that child is sky; 0 only where all four are sky. No value is ever a
+ * blend, so no level has a surface between a foreground and a background (the shader says why).
+ * Reading: level-L texel p stands for level-0 pixels [p 2^L, (p+1) 2^L); fetch pixel x's texel at
+ * min(x >> L, size_L - 1). The depth is that of one pixel inside the footprint, not of its centre. */
+typedef struct ob_depth_mips {
+    ob_compute_pass pass;
+    GLuint texture;    /* R32F, `levels` levels, GL_NEAREST_MIPMAP_NEAREST, clamp to edge; 0 before the first run */
+    int width, height; /* level 0, px */
+    int levels;        /* ob_depth_mips_level_count(width, height): 5 from 16 px up, fewer below */
+} ob_depth_mips;
+
+/* min(OB_DEPTH_MIPS_LEVELS, 1 + floor(log2(max(width, height)))): a texture cannot have more. */
+int ob_depth_mips_level_count(int width, int height);
+/* Level `level`'s size: max(1, width >> level) x max(1, height >> level). */
+void ob_depth_mips_level_size(int width, int height, int level, int *level_width, int *level_height);
+/* The pass's constants for an input of width x height (pure; no GL). */
+void ob_depth_mips_fill(ob_depth_mips_constants *c, int width, int height);
+/* Builds the program; the texture is made by the first run. Errors: OB_ERR_INVALID_ARGUMENT (NULL),
+ * OB_ERR_SHADER. */
+ob_error ob_depth_mips_init(ob_depth_mips *m);
+/* Build every level from linear_depth (R32F, width x height, complete; the caller makes its writes
+ * visible to texture fetches first). Remakes m->texture (a new name) when the size differs from the
+ * last run's; readers must take m->texture after each run. Issues a texture-fetch and image-access
+ * barrier after its dispatch. Not timed here: the caller brackets it with ob_timer_begin. Errors:
+ * OB_ERR_INVALID_ARGUMENT (NULL m, m not initialised, linear_depth 0), OB_ERR_BAD_SIZE (width or
+ * height <= 0), OB_ERR_GL (the texture could not be made; m keeps its old one and nothing runs). */
+ob_error ob_depth_mips_run(ob_depth_mips *m, GLuint linear_depth, int width, int height);
+/* Safe on a zeroed or already destroyed m. */
+void ob_depth_mips_destroy(ob_depth_mips *m);
+/* The CPU twin of the shader, for the tests: levels[L] (max(1, width >> L) x max(1, height >> L)
+ * floats, row-major, for L below the returned count) from depth (width x height). Returns
+ * ob_depth_mips_level_count(width, height). */
+int ob_depth_mips_reference(const float *depth, int width, int height, float *const levels[OB_DEPTH_MIPS_LEVELS]);
 
 /* ---- direct light: lighting.c, shaders/lighting.glsl ---------------------------------------- */
 typedef struct ob_lighting_pass { ob_compute_pass pass; ob_lighting_constants constants; } ob_lighting_pass;

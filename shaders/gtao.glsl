@@ -70,17 +70,25 @@ vec2 jitters(ivec2 pix)
     return fract(j + vec2(gtao.slice_offset, gtao.step_offset));
 }
 
-/* Depth at texel q of MIP `level` and that texel's centre in AO-grid pixels. Level 0 is the AO
- * grid's own depth; a coarser level's texel stands for the 2^L x 2^L block it covers. */
+/* Depth at texel q of MIP `level` and the centre of the full-resolution pixel it came from. Level
+ * 0 is the AO grid's own depth. The chain picks one child per level, SAO's rotated grid
+ * (shaders/depth_mips.glsl: texel p of level L is texel 2p + (p.y & 1, p.x & 1) of level L - 1),
+ * so following the same picks back down finds the one pixel whose depth a coarse texel holds, and
+ * the sample is reconstructed where that surface point really is: exact on planes, as at level 0.
+ * (Where the pick was sky and a sibling's depth stood in, the centre is a pixel off.) */
 float sample_depth(ivec2 q, int level, out vec2 centre)
 {
     if (level == 0) {
         centre = vec2(q) + 0.5;
         return texelFetch(linear_depth, q, 0).r;
     }
-    ivec2 ql = q >> level;
-    centre = (vec2(ql) + 0.5) * float(1 << level);
-    return texelFetch(depth_mips, ql, level).r;
+    /* Beyond a level's last texel (odd sizes) the chain holds nothing: clamp, as the pass does. */
+    ivec2 ql = min(q >> level, textureSize(depth_mips, level) - 1);
+    float sd = texelFetch(depth_mips, ql, level).r;
+    ivec2 c = ql;
+    for (int l = level; l > 0; --l) c = 2 * c + ivec2(c.y & 1, c.x & 1);
+    centre = vec2(c) + 0.5;
+    return sd;
 }
 
 /* The cosine-weighted mean direction of the visible arc [h0, h1] of a slice (the first moment of

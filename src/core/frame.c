@@ -129,6 +129,7 @@ typedef struct method_plan {
     const ob_method_impl *impl;
     void *state;
     float params[OB_MAX_PARAMS];
+    uint32_t reads;   /* ob_method_active_reads */
     uint32_t writes;  /* ob_method_active_writes */
     bool rgb;         /* OB_WRITES_VISIBILITY_RGB: M instead of visibility */
     bool bounce;      /* OB_WRITES_BOUNCE among the active outputs */
@@ -146,6 +147,7 @@ static ob_error plan_method(ob_renderer *r, const ob_settings *s, method_plan *p
         if (m->params[i].follows_scene_radius && !(s->params_set & (1u << i)) && r->scene_radius > 0.0f)
             p->params[i] = r->scene_radius;
     }
+    p->reads = ob_method_active_reads(p->impl, p->params);
     p->writes = ob_method_active_writes(p->impl, p->params);
     p->rgb = (p->impl->writes & OB_WRITES_VISIBILITY_RGB) != 0;
     p->bounce = (p->writes & OB_WRITES_BOUNCE) != 0;
@@ -204,11 +206,25 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         ob_edges_run(&r->edges, g, t->depth, t->normal, t->multiplier);
         glMemoryBarrier(barrier);
     }
+    GLuint mips = 0;
+    int mip_levels = 0;
+    if (plan->reads & OB_READS_DEPTH_MIPS) {
+        /* The prefiltered chain of the AO grid's depth (SAO's trick), one dispatch. */
+        ob_timer_begin(&r->timers, "depth_mips");
+        if (!r->depth_mips_ready) {
+            if (ob_depth_mips_init(&r->depth_mips) != OB_OK) return ob_peek_error(NULL);
+            r->depth_mips_ready = true;
+        }
+        err = ob_depth_mips_run(&r->depth_mips, t->depth, g->width, g->height);
+        if (err != OB_OK) return err;
+        mips = r->depth_mips.texture;
+        mip_levels = r->depth_mips.levels;
+    }
     if (plan->rgb || (plan->impl->writes & OB_WRITES_BOUNCE) || plan->bent) {
         err = ob_renderer_rgb_targets(r, t);
         if (err != OB_OK) return err;
     }
-    const uint32_t reads = plan->impl->reads;
+    const uint32_t reads = plan->reads;
     const ob_ao_inputs in = {.frame = f,
                              .linear_depth = t->depth,
                              .view_normal = t->normal,
@@ -216,7 +232,9 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
                              .height = g->height,
                              .sample_multiplier = s->adaptive ? t->multiplier : 0,
                              .radiance = reads & OB_READS_RADIANCE ? r->direct : 0,
-                             .albedo = reads & OB_READS_ALBEDO ? r->gbuffer.albedo : 0};
+                             .albedo = reads & OB_READS_ALBEDO ? r->gbuffer.albedo : 0,
+                             .depth_mips = mips,
+                             .depth_mip_levels = mip_levels};
     /* Every declared output gets a target, also one that these params leave unwritten. */
     const ob_ao_outputs out = {.visibility = plan->rgb ? t->raw_rgb : t->raw,
                                .bounce = plan->impl->writes & OB_WRITES_BOUNCE ? t->bounce_raw : 0,

@@ -69,6 +69,8 @@ struct ob_renderer {
     bool has_frame;            /* the targets hold a whole frame (ob_present) */
     float last_far;            /* the last frame's far plane (the depth view's scale) */
     ob_view_pass view;         /* ob_present */
+    ob_depth_mips depth_mips;  /* for methods that read OB_READS_DEPTH_MIPS, made on first use */
+    bool depth_mips_ready;
 };
 
 /* renderer.c: the lazily made states and targets. NULL / an error when making them failed. */

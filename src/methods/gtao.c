@@ -85,6 +85,12 @@ static void fill_constants(ob_gtao_constants *c, const float *params, uint32_t f
     c->bent_normals = params[P_BENT_NORMALS] != 0.0f ? 1 : 0;
 }
 
+/* The depth MIP chain only when asked for: the full-resolution path stays the baseline. */
+static uint32_t gtao_active_reads(const float *params)
+{
+    return OB_READS_DEPTH | OB_READS_NORMALS | (params[P_DEPTH_MIPS] != 0.0f ? OB_READS_DEPTH_MIPS : 0u);
+}
+
 /* The bent normal only when asked for. */
 static uint32_t gtao_active_writes(const float *params)
 {
@@ -150,6 +156,7 @@ const ob_method_impl ob_method_gtao = {
     .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS,
     .writes = OB_WRITES_VISIBILITY | OB_WRITES_BENT_NORMAL,
     .run = gtao_run,
+    .active_reads = gtao_active_reads,
     .active_writes = gtao_active_writes,
     .set_samples = gtao_set_samples,
     .count_samples = gtao_count_samples,

@@ -82,6 +82,9 @@ typedef struct ob_method_impl {
     ob_error (*run)(void *state, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out);
     /* Frees what init made beyond the kit; NULL for nothing. */
     void (*destroy)(void *state);
+    /* The inputs these params read, when a parameter turns one off (gtao's depth MIPs); NULL =
+     * every input in reads. */
+    uint32_t (*active_reads)(const float *params);
     /* The outputs these params produce, when a parameter turns one off (SSDO's bounce); NULL =
      * every output in writes. */
     uint32_t (*active_writes)(const float *params);
@@ -98,6 +101,8 @@ typedef struct ob_method_impl {
 
 /* Samples per pixel of a method with these (resolved) params; 0 for none. */
 int ob_method_samples(const ob_method_impl *m, const float *params);
+/* The inputs a method reads with these params (reads, less what a parameter turned off). */
+uint32_t ob_method_active_reads(const ob_method_impl *m, const float *params);
 /* The outputs a method produces with these params (writes, less what a parameter turned off). */
 uint32_t ob_method_active_writes(const ob_method_impl *m, const float *params);
 

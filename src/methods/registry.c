@@ -72,6 +72,11 @@ int ob_method_samples(const ob_method_impl *m, const float *params)
     return 0;
 }
 
+uint32_t ob_method_active_reads(const ob_method_impl *m, const float *params)
+{
+    return m->active_reads ? m->active_reads(params) & m->reads : m->reads;
+}
+
 uint32_t ob_method_active_writes(const ob_method_impl *m, const float *params)
 {
     return m->active_writes ? m->active_writes(params) & m->writes : m->writes;

@@ -31,11 +31,13 @@ OB_CONSTANTS_BEGIN(ob_filter_constants, OB_BINDING_PASS)
     OB_INT radius;            /* taps each side of the centre, 0..OB_FILTER_MAX_RADIUS */
     /* The range Gaussians' exponents, derived on the CPU (ob_filter_constants_init) so a tap costs
      * one exp(): w = exp(x^2 * falloff) with falloff = -1/(2 sigma^2); 0 switches a term off. */
-    OB_FLOAT depth_falloff;   /* x = relative depth difference |d_q - d_p| / d_p (unitless) */
-    OB_FLOAT normal_falloff;  /* x = angle between the normals, radians (geometry only) */
+    OB_FLOAT depth_falloff;   /* x = relative depth difference |d_q - d_p| / d_p (unitless); crease:
+                                 the same along n_p, |n_p . (P_q - P_p)| / d_p (crease.glsl eq. 2) */
+    OB_FLOAT normal_falloff;  /* x = angle between the normals, radians (geometry, crease) */
     OB_FLOAT sky_value;       /* what the RGB variant writes at sky pixels: 1 for M, 0 for the bounce */
     /* The spatial Gaussian (seed 000 eq. 4.4), normalised: w_i for tap offset i = 0..radius in .x;
-     * .yzw unused (std140 strides array elements by 16 bytes anyway). */
+     * .yzw unused (std140 strides array elements by 16 bytes anyway). crease: its eq. 1 per axis
+     * (1, ..., 1, 1/2 at the rim), unnormalised. */
     OB_VEC4 weights[OB_FILTER_MAX_RADIUS + 1];
 OB_CONSTANTS_END(ob_filter_constants, flt)
 OB_CONSTANTS_SIZE(ob_filter_constants, 2 * 16 + (OB_FILTER_MAX_RADIUS + 1) * 16);

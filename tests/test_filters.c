@@ -5,7 +5,10 @@
  *   - bilateral_sep against the full bilateral;
  *   - half- and quarter-resolution AO + joint bilateral upsampling against full resolution, and
  *     silhouettes keeping their own side's AO;
- *   - adaptive counts: more samples at edges, fewer in total. */
+ *   - adaptive counts: more samples at edges, fewer in total;
+ *   - `crease` (issue 13): the 4x4 noise tile cancels exactly on a tilted plane, independent noise
+ *     falls, no leak across a depth step, the RGB variant weighs like the R32F one, and the floor
+ *     beside the corner's crease keeps its raw AO. */
 #include <cglm/cglm.h>
 #include <epoxy/gl.h>
 #include <stdlib.h>
@@ -13,6 +16,7 @@
 
 #include "check.h"
 #include "filters/filter.h"
+#include "frame_params.h"
 #include "obscura/obscura.h"
 #include "passes/passes.h"
 #include "sampling/sampling.h"
@@ -90,7 +94,7 @@ static void test_edges(void)
 {
     synthetic s;
     make_synthetic(&s, 0.0f, true);
-    const char *names[] = {"gaussian", "bilateral", "bilateral_sep", "geometry", "box4"};
+    const char *names[] = {"gaussian", "bilateral", "bilateral_sep", "geometry", "box4", "crease"};
     for (size_t n = 0; n < sizeof names / sizeof names[0]; ++n) {
         float out[W * H];
         if (!run_filter(names[n], &s, out)) continue;
@@ -139,6 +143,248 @@ static void test_noise(void)
         CHECK(after <= 0.05 * raw, "geometry keeps %.1f%% of the variance (at most 5%%)", 100.0 * after / raw);
     }
     free_synthetic(&s);
+}
+
+/* ---- crease (src/filters/crease.c) ------------------------------------------------------------ */
+
+/* The synthetic textures' camera: 60 deg vertical fov, square pixels, centred. `crease` rebuilds
+ * view positions from the per-frame block as the methods do, so the tests bind one at
+ * OB_BINDING_FRAME as the renderer would. */
+static const float synthetic_ty = 0.57735027f; /* tan 30 deg */
+static GLuint synthetic_frame_ubo;
+
+static void bind_synthetic_frame(void)
+{
+    static ob_frame_constants f;
+    memset(&f, 0, sizeof f);
+    const float tx = synthetic_ty * (float)W / (float)H;
+    /* proj_info = (1/P00, 1/P11, P20, P21) of a symmetric perspective (common.glsl). */
+    f.proj_info[0] = f.ao_proj_info[0] = tx;
+    f.proj_info[1] = f.ao_proj_info[1] = synthetic_ty;
+    f.size[0] = f.ao_size[0] = (float)W;
+    f.size[1] = f.ao_size[1] = (float)H;
+    f.inv_size[0] = f.ao_inv_size[0] = 1.0f / (float)W;
+    f.inv_size[1] = f.ao_inv_size[1] = 1.0f / (float)H;
+    f.ao_k = 1;
+    if (!synthetic_frame_ubo) {
+        glCreateBuffers(1, &synthetic_frame_ubo);
+        glNamedBufferStorage(synthetic_frame_ubo, sizeof f, &f, 0);
+    }
+    glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_FRAME, synthetic_frame_ubo);
+}
+
+/* Eq. 1 of crease.glsl: with an even radius every residue mod 4 gets the same total weight, so a
+ * 4x4-periodic pattern averages to its mean. Pure: no GL. */
+static void test_crease_weights(void)
+{
+    const ob_filter_inputs in = {.width = W, .height = H};
+    for (int r = 2; r <= 4; r += 2) {
+        ob_filter_constants c;
+        ob_crease_constants_init(&c, &in, r, 0.005f, 0.35f);
+        float residue[4] = {0};
+        for (int i = -r; i <= r; ++i) residue[((i % 4) + 4) % 4] += c.weights[abs(i)][0];
+        for (int k = 1; k < 4; ++k)
+            CHECK_NEAR(residue[k], residue[0], 1e-6, "crease: a residue mod 4 of the window weighs as much as the others");
+        CHECK(c.radius == r && c.depth_falloff < 0.0f && c.normal_falloff < 0.0f, "crease constants for r = %d", r);
+    }
+}
+
+/* A plane tilted 45 deg toward the camera (a floor seen from above, view-space normal
+ * (0, 1, 1)/sqrt 2 at distance 1): its depth spans 0.9 .. 3.3 from the bottom row to the top, so
+ * only exact view positions put every tap on p's plane. pattern: the 4x4 noise tile, else
+ * independent noise 0.6 +- 0.2. */
+static void make_tilted(synthetic *s, bool pattern)
+{
+    static float depth[W * H], normal[W * H * 4];
+    const float c = 0.70710678f;
+    ob_rng rng;
+    ob_rng_seed(&rng, 7, 3);
+    float tile[16];
+    for (int k = 0; k < 16; ++k) tile[k] = 0.3f + 0.6f * ob_rng_float(&rng);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            int i = y * W + x;
+            /* P = d (ndc.x tx, ndc.y ty, -1) on n . P = -1 (common.glsl ob_view_position); n has
+             * no x, so d depends on the row alone. */
+            float ny = ((float)y + 0.5f) / (float)H * 2.0f - 1.0f;
+            depth[i] = -1.0f / (c * ny * synthetic_ty - c);
+            normal[4 * i + 0] = 0.0f;
+            normal[4 * i + 1] = c;
+            normal[4 * i + 2] = c;
+            normal[4 * i + 3] = 1.0f;
+            s->ao_in[i] = pattern ? tile[(y % 4) * 4 + x % 4] : 0.6f + 0.2f * (ob_rng_float(&rng) * 2.0f - 1.0f);
+        }
+    s->depth = upload(GL_R32F, W, H, GL_RED, depth);
+    s->normal = upload(GL_RGBA16F, W, H, GL_RGBA, normal);
+    s->ao = upload(GL_R32F, W, H, GL_RED, s->ao_in);
+    s->out = ob_make_texture_2d(GL_R32F, W, H);
+    s->scratch = ob_make_texture_2d(GL_R32F, W, H);
+}
+
+static void test_crease_plane(void)
+{
+    synthetic s;
+    float out[W * H];
+    make_tilted(&s, true);
+    if (run_filter("crease", &s, out)) {
+        double mean = 0.0, worst = 0.0;
+        for (int k = 0; k < 16; ++k) mean += s.ao_in[(k / 4) * W + k % 4] / 16.0;
+        for (int y = 2; y < H - 2; ++y)
+            for (int x = 2; x < W - 2; ++x) worst = fmax(worst, fabs(out[y * W + x] - mean));
+        printf("  crease on the 4x4 tile over a tilted plane: largest deviation from the tile mean %.2e\n", worst);
+        /* 1e-4: float sums of 25 taps; a tap dropped by a wrong plane distance would leave ~0.1. */
+        CHECK(worst < 1e-4, "crease leaves %.2e of the 4x4 tile on a tilted plane", worst);
+    }
+    free_synthetic(&s);
+
+    make_tilted(&s, false);
+    if (run_filter("crease", &s, out)) {
+        double raw = variance(s.ao_in, 16, W - 16, 16, H - 16), after = variance(out, 16, W - 16, 16, H - 16);
+        printf("  crease on independent noise over a tilted plane: variance %.5f -> %.5f (%.1f%%)\n", raw, after,
+               100.0 * after / raw);
+        /* Sum w^2 / (sum w)^2 of [1/2 1 1 1 1/2]^2 = (3.5/16)^2 = 4.8%; 10% leaves room. */
+        CHECK(after <= 0.10 * raw, "crease keeps %.1f%% of the variance (at most 10%%)", 100.0 * after / raw);
+    }
+    free_synthetic(&s);
+}
+
+/* The RGB variant (SSDO's M and bounce): the same weights on every channel, the sky's value from
+ * the CPU. A depth step with the sky in the last 8 columns; channel 0 against the R32F pass. */
+static void test_crease_rgb(void)
+{
+    static float depth[W * H], normal[W * H * 4], rgb[W * H * 4], red[W * H], got[W * H * 4], ref[W * H];
+    const float near_c[3] = {0.3f, 0.5f, 0.7f}, far_c[3] = {1.0f, 0.9f, 0.8f};
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            int i = y * W + x;
+            bool sky = x >= W - 8, near = x < W / 2;
+            depth[i] = sky ? 0.0f : near ? 2.0f : 10.0f;
+            normal[4 * i + 2] = 1.0f;
+            normal[4 * i + 3] = 1.0f;
+            /* A 4-periodic pattern along y: beside the step only the pairs along y survive (eq. 4),
+             * and they still cover its period, so the sides' values come back exactly. */
+            float tile = 0.1f * (float)(y % 4) / 3.0f - 0.05f;
+            for (int k = 0; k < 3; ++k) rgb[4 * i + k] = (near ? near_c[k] : far_c[k]) + tile;
+            rgb[4 * i + 3] = 1.0f;
+            red[i] = rgb[4 * i];
+        }
+    GLuint d = upload(GL_R32F, W, H, GL_RED, depth), n = upload(GL_RGBA16F, W, H, GL_RGBA, normal);
+    GLuint src = upload(GL_RGBA16F, W, H, GL_RGBA, rgb), dst = ob_make_texture_2d(GL_RGBA16F, W, H);
+    GLuint scratch = ob_make_texture_2d(GL_RGBA16F, W, H);
+    GLuint src1 = upload(GL_R32F, W, H, GL_RED, red), dst1 = ob_make_texture_2d(GL_R32F, W, H);
+    GLuint scratch1 = ob_make_texture_2d(GL_R32F, W, H);
+    const ob_filter_impl *f = ob_filter_impl_at(ob_find_filter("crease"));
+    CHECK(f && f->init_rgb, "crease has an RGB variant");
+    if (f && f->init_rgb) {
+        float params[OB_MAX_PARAMS] = {0};
+        for (int i = 0; i < f->info.param_count; ++i) params[i] = f->info.params[i].def;
+        void *st = f->init_rgb(), *st1 = f->init();
+        CHECK(st && st1, "crease init (RGB and R32F)");
+        if (st && st1) {
+            const ob_filter_inputs in = {src, dst, scratch, d, n, W, H, true, 0.0f};
+            const ob_filter_inputs in1 = {src1, dst1, scratch1, d, n, W, H, false, 1.0f};
+            CHECK(f->run(st, &in, params) == OB_OK && f->run(st1, &in1, params) == OB_OK, "crease runs");
+            glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            glGetTextureImage(dst, 0, GL_RGBA, GL_FLOAT, (GLsizei)sizeof got, got);
+            download(dst1, W, H, ref);
+            double worst = 0.0, sky_wrong = 0.0, leak = 0.0;
+            for (int y = 2; y < H - 2; ++y)
+                for (int x = 0; x < W; ++x) {
+                    int i = y * W + x;
+                    if (depth[i] <= 0.0f) {
+                        for (int k = 0; k < 3; ++k) sky_wrong = fmax(sky_wrong, fabs(got[4 * i + k]));
+                        continue;
+                    }
+                    worst = fmax(worst, fabs(got[4 * i] - ref[i]));
+                    /* No channel takes the other side's value near the step. */
+                    if (x >= W / 2 - 3 && x < W / 2 + 3) {
+                        const float *want = x < W / 2 ? near_c : far_c;
+                        for (int k = 0; k < 3; ++k) leak = fmax(leak, fabs(got[4 * i + k] - want[k]));
+                    }
+                }
+            printf("  crease RGB: channel 0 vs R32F %.2e, off the side's value at the step %.4f\n", worst, leak);
+            /* fp16 storage of values <= 1: 2^-11 each way. */
+            CHECK(worst < 2e-3, "crease RGB channel 0 differs from the R32F pass by %.2e", worst);
+            /* As the R32F edge test: 0.005; fp16 rounding is 5e-4. */
+            CHECK(leak < 0.005, "crease RGB leaks %.4f across the step", leak);
+            CHECK(sky_wrong == 0.0, "crease RGB: sky pixels hold %.3g instead of the sky value 0", sky_wrong);
+        }
+        if (st) f->destroy(st);
+        if (st1) f->destroy(st1);
+    }
+    GLuint t[8] = {d, n, src, dst, scratch, src1, dst1, scratch1};
+    glDeleteTextures(8, t);
+}
+
+/* Issue 13: on the corner scene the floor beside a wall keeps the method's own AO. Band: floor
+ * (y = 0) pixels with h = min(x, z) < 0.05 R, found from the depth read-back; mean of the filtered
+ * AO minus the raw AO over it, for each method. */
+static void test_crease_corner(ob_context *ctx)
+{
+    enum { CW = 200, CH = 150 };
+    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "corner"});
+    CHECK(scene != NULL, "corner loads");
+    if (!scene) return;
+    ob_camera cam;
+    ob_find_camera(scene, "diagonal", &cam);
+    const float R = ob_query_scene_ao_radius(scene);
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = CW, .height = CH});
+    ob_renderer_set_scene(r, scene);
+    size_t n = (size_t)CW * CH;
+    float *depth = malloc(n * sizeof(float)), *raw = malloc(n * sizeof(float)), *ao = malloc(n * sizeof(float));
+    bool *band = calloc(n, sizeof(bool));
+    mat4 view, inv;
+    vec3 up = {0.0f, 1.0f, 0.0f};
+    glm_lookat(cam.eye, cam.target, up, view);
+    glm_mat4_inv(view, inv);
+    const float ty = tanf(glm_rad(cam.fov_y_deg) * 0.5f), tx = ty * (float)CW / (float)CH;
+    const char *methods[] = {"ssao", "hbao", "alchemy"};
+    for (size_t m = 0; m < sizeof methods / sizeof methods[0]; ++m) {
+        double shift[2] = {0.0, 0.0};
+        int count = 0;
+        const char *filters[2] = {"crease", "geometry"};
+        for (int fi = 0; fi < 2; ++fi) {
+            ob_settings s;
+            ob_settings_init(&s, methods[m]);
+            ob_settings_set_filter(&s, filters[fi]);
+            CHECK(ob_render_frame(r, &cam, &s) == OB_OK, "corner frame, %s + %s", methods[m], filters[fi]);
+            ob_read_image(r, OB_IMAGE_AO_RAW_F32, raw, n * sizeof(float));
+            ob_read_image(r, OB_IMAGE_AO_F32, ao, n * sizeof(float));
+            if (m == 0 && fi == 0) {
+                ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, n * sizeof(float));
+                for (int y = 0; y < CH; ++y)
+                    for (int x = 0; x < CW; ++x) {
+                        size_t i = (size_t)y * CW + (size_t)x;
+                        float d = depth[i];
+                        if (d <= 0.0f) continue;
+                        vec4 pv = {((float)x + 0.5f) / CW * 2.0f - 1.0f, ((float)y + 0.5f) / CH * 2.0f - 1.0f, -1.0f, 1.0f}, pw;
+                        pv[0] *= tx * d;
+                        pv[1] *= ty * d;
+                        pv[2] = -d;
+                        glm_mat4_mulv(inv, pv, pw);
+                        band[i] = fabsf(pw[1]) < 1e-3f * d && pw[0] > 0.0f && pw[2] > 0.0f && fminf(pw[0], pw[2]) < 0.05f * R;
+                    }
+            }
+            count = 0;
+            for (size_t i = 0; i < n; ++i) {
+                if (!band[i]) continue;
+                shift[fi] += ao[i] - raw[i];
+                ++count;
+            }
+            shift[fi] /= count ? count : 1;
+        }
+        printf("  corner crease band (%d px, h < 0.05 R): %-8s crease %+.4f, geometry %+.4f against the raw AO\n", count,
+               methods[m], shift[0], shift[1]);
+        CHECK(count >= 20, "the crease band holds %d pixels", count);
+        CHECK(fabs(shift[0]) <= 0.03, "%s: crease moves the AO beside the crease by %+.4f (at most 0.03)", methods[m],
+              shift[0]);
+    }
+    free(depth);
+    free(raw);
+    free(ao);
+    free(band);
+    ob_destroy_renderer(r);
+    ob_destroy_scene(scene);
 }
 
 /* Upsampling on synthetic textures: a depth step at full resolution, the AO grid at half. */
@@ -303,10 +549,16 @@ int main(void)
         fprintf(stderr, "no context: %s\n", msg);
         return 1;
     }
+    bind_synthetic_frame(); /* crease reads the camera from the frame's block */
     test_edges();
     test_noise();
+    test_crease_weights();
+    test_crease_plane();
+    test_crease_rgb();
     test_upsample_silhouette();
     test_scenes(ctx);
+    test_crease_corner(ctx);
+    if (synthetic_frame_ubo) glDeleteBuffers(1, &synthetic_frame_ubo);
     ob_destroy_context(ctx);
     return check_finish("test_filters");
 }

@@ -49,6 +49,11 @@ const ob_filter_impl *ob_filter_impl_at(int index);
  * range term off. axis is left (0,0): ob_filter_run_separable sets it per pass. Pure: no GL. */
 void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in, int radius, float sigma_px,
                               float sigma_depth, float sigma_normal);
+/* `crease` (crease.c, shaders/crease.glsl): the constants above with the spatial weights of its
+ * eq. 1 (1 for taps 0..radius-1, 1/2 at the rim, unnormalised: the shader divides by the sum) and
+ * depth_falloff taken by the plane distance |n_p . (P_q - P_p)| / d_p. Pure: no GL. */
+void ob_crease_constants_init(ob_filter_constants *c, const ob_filter_inputs *in, int radius, float sigma_plane,
+                              float sigma_normal);
 /* The two dispatches of a separable filter (seed 000 eq. 4.6-4.7): along x from in->src into
  * in->scratch, a barrier, then along y into in->dst. Binds AO at texture unit 0, linear depth at
  * 1, view normals at 2 and the output image at 0. */

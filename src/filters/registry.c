@@ -9,6 +9,7 @@ extern const ob_filter_impl ob_filter_gaussian;
 extern const ob_filter_impl ob_filter_bilateral;
 extern const ob_filter_impl ob_filter_bilateral_sep;
 extern const ob_filter_impl ob_filter_geometry;
+extern const ob_filter_impl ob_filter_crease;
 
 static const ob_filter_impl *const filters[] = {
     &ob_filter_none,
@@ -17,6 +18,7 @@ static const ob_filter_impl *const filters[] = {
     &ob_filter_bilateral,
     &ob_filter_bilateral_sep,
     &ob_filter_geometry,
+    &ob_filter_crease,
 };
 
 int ob_filter_count(void) { return (int)(sizeof filters / sizeof filters[0]); }

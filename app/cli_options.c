@@ -26,7 +26,7 @@ static bool takes(const cli_common *c, unsigned what) { return (c->takes & what)
 
 void cli_common_init(cli_common *c, const char *command, unsigned takes_mask)
 {
-    *c = (cli_common){.command = command, .takes = takes_mask, .default_method = "ssao", .width = 640, .height = 480};
+    *c = (cli_common){.command = command, .takes = takes_mask, .default_method = "gtao", .width = 640, .height = 480};
 }
 
 /* ---- comma lists ------------------------------------------------------------------------------ */
@@ -335,7 +335,7 @@ int cli_common_finish(cli_common *c)
         }
     }
     if (c->filter_count == 0) {
-        c->filters[0] = ob_find_filter("geometry");
+        c->filters[0] = ob_find_filter("crease");
         c->filter_count = 1;
     }
     if (c->ao_count == 0) {
@@ -378,11 +378,11 @@ void cli_common_usage(FILE *f, const cli_common *c)
         fprintf(f, "  --methods all|A,B     AO methods, see `obscura list` (default %s); --method A for one\n",
                 c->default_method ? c->default_method : "all");
         fputs("  --filters A,B         denoising filters after the AO pass: none, box4, gaussian, bilateral,\n"
-              "                        bilateral_sep, geometry (default geometry); --filter A for one\n"
+              "                        bilateral_sep, geometry, crease (default crease); --filter A for one\n"
               "  --ao-scales S,S       AO at 1, 0.5 and/or 0.25 of the size, then joint bilateral\n"
               "                        upsampling (default 1); --ao-scale S for one\n"
               "  --quality Q,Q         low|medium|high|ultra = 12/24/36/64 samples per pixel (seed 000);\n"
-              "                        HBAO takes them as directions x steps\n"
+              "                        HBAO as directions x steps, gtao as 2 x slices x steps\n"
               "  --samples N,N         samples per pixel (instead of --quality)\n"
               "                        Each combination of these lists is one row, labelled with the\n"
               "                        values that vary (e.g. 'hbao · filter none · ao 0.5'); a method\n"
@@ -392,11 +392,11 @@ void cli_common_usage(FILE *f, const cli_common *c)
         fprintf(f, "  --method NAME         AO method: see `obscura list` (default %s)\n",
                 c->default_method ? c->default_method : "all");
         fputs("  --filter NAME         denoising after the AO pass: none, box4, gaussian, bilateral,\n"
-              "                        bilateral_sep, geometry (default)\n"
+              "                        bilateral_sep, geometry, crease (default)\n"
               "  --ao-scale S          run the AO at 1, 0.5 or 0.25 of the size, then joint bilateral\n"
               "                        upsampling (default 1)\n"
               "  --quality Q           low|medium|high|ultra = 12/24/36/64 samples per pixel (seed 000);\n"
-              "                        HBAO takes them as directions x steps\n"
+              "                        HBAO as directions x steps, gtao as 2 x slices x steps\n"
               "  --samples N           samples per pixel, overriding --quality\n",
               f);
     }

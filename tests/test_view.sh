@@ -144,7 +144,7 @@ cp -r "$(dirname "$0")/../shaders" "$dir/data/shaders"
 cp "$dir/data/shaders/ssao.glsl" "$dir/ssao.good"
 sed -i '25i this is not GLSL;' "$dir/data/shaders/ssao.glsl"
 printf '0.1 key R press\n0.2 screenshot %s\n0.3 quit\n' "$dir/after_bad_reload.png" >"$dir/reload.txt"
-if OBSCURA_DATA_DIR="$dir/data" xrun 120 "$OBSCURA" view --scene cornell --gui off --size 160x120 --script "$dir/reload.txt" \
+if OBSCURA_DATA_DIR="$dir/data" xrun 120 "$OBSCURA" view --scene cornell --method ssao --gui off --size 160x120 --script "$dir/reload.txt" \
     >/dev/null 2>"$dir/reload_bad.err"; then ok; else bad "bad reload ended the viewer: $(tail -2 "$dir/reload_bad.err")"; fi
 if grep -q "development builds" "$dir/reload_bad.err"; then
     echo "view: a release build, shader reload not tested"

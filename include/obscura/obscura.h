@@ -303,7 +303,7 @@ typedef struct ob_settings {
     int method;                   /* registry index */
     float params[OB_MAX_PARAMS];  /* in the method's parameter-table order */
     uint32_t params_set;          /* bit i: params[i] was set explicitly */
-    int filter;                   /* filter registry index (default "geometry") */
+    int filter;                   /* filter registry index (default "crease") */
     float filter_params[OB_MAX_PARAMS];
     uint32_t filter_params_set;   /* bit i: filter_params[i] was set explicitly */
     int ao_divisor;               /* 1, 2 or 4 (0 = 1): the AO runs at 1/ao_divisor of the size on the

@@ -29,11 +29,13 @@ ob_error ob_settings_init(ob_settings *s, const char *method)
     s->method = index;
     const ob_method_info *m = ob_method_at(index);
     for (int i = 0; i < m->param_count && i < OB_MAX_PARAMS; ++i) s->params[i] = m->params[i].def;
-    /* Seed 003 §3.5's separable geometry-aware bilateral: the filter that keeps creases and
-     * silhouettes while removing the rotation noise. */
+    /* `crease`: the edge-aware 5x5 that cancels the 4x4 rotation noise without averaging a crease
+     * with the open floor beside it (docs/filters.md: on the four graded views it lowers every
+     * method's error against unfiltered; seed 003's `geometry` brightened the corner crease by up
+     * to 0.25 and raised most methods' error). */
     s->filter = -1;
     s->ao_divisor = 1;
-    ob_error err = ob_settings_set_filter(s, "geometry");
+    ob_error err = ob_settings_set_filter(s, "crease");
     if (err != OB_OK) return err;
     /* light_count 0 = the scene's lights (sidecar, glTF or default). */
     s->ambient_mode = OB_AMBIENT_CONSTANT;

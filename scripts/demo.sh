@@ -31,7 +31,7 @@ for shot in "${shots[@]}"; do
     printf 'demo: %-26s' "$name"
     t0=$(date +%s.%N)
     # Five frames: the first pays for shader compilation, the medians are of warm frames.
-    "$bin" render --scene "$scene" --camera "$camera" --size "$size" --method ssao --frames 5 --timings \
+    "$bin" render --scene "$scene" --camera "$camera" --size "$size" --method gtao --frames 5 --timings \
         --out "$out/$name.png" --ao-png "$out/${name}_ao.png" --ao-out "$out/${name}_ao.pfm" >>"$timings"
     "$bin" render --scene "$scene" --camera "$camera" --size "$size" --method none --out "$out/${name}_noao.png"
     awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf " %5.1f s\n", b - a }'

@@ -128,7 +128,8 @@ const int SAMPLE_BEYOND = 2; /* a surface point at R or farther */
 const int REFINE_STEPS = 2;
 
 /* The sample at AO-grid position `at`, dist_px from P along the slice: its horizon angle from V
- * on this side (the tangent's angle minus the sample's weighted rise above the tangent t). */
+ * on this side (the tangent's angle minus the sample's weighted rise above the tangent t). A
+ * sample beyond R gets the angle it would have inside, for deciding whether to refine. */
 int sample_theta(vec2 at, float dist_px, vec3 p, vec3 n, vec3 t, float inv_len_n, float tangent, out float theta)
 {
     theta = tangent;
@@ -141,7 +142,6 @@ int sample_theta(vec2 at, float dist_px, vec3 p, vec3 n, vec3 t, float inv_len_n
     if (dot(w, w) <= 0.0) return SAMPLE_NONE;
     float w_len = length(vec3(w.xy, w.z * (1.0 + gtao.thin)));
     float weight = clamp(w_len * gtao.falloff_mul + gtao.falloff_add, 0.0, 1.0);
-    if (weight <= 0.0) return SAMPLE_BEYOND;
     /* The sample's angle above the tangent, in the slice's coordinates: along the tangent,
      * dot(w, t); across it, toward the normal, dot(w, n) / |n_φ| (the normal's part across the
      * slice is perpendicular to every in-slice direction). A sample on P's plane gives exactly 0,
@@ -150,6 +150,10 @@ int sample_theta(vec2 at, float dist_px, vec3 p, vec3 n, vec3 t, float inv_len_n
      * angles past the slice's zenith, which occluders on the side the normal leans away from
      * reach. eq. 6-7 with AO_R's range: the horizon rises to the sample by its weight. */
     float rise = fast_atan2(dot(w, n) * inv_len_n, dot(w, t));
+    if (weight <= 0.0) {
+        theta = tangent - max(rise, 0.0);
+        return SAMPLE_BEYOND;
+    }
     theta = tangent - weight * max(rise, 0.0);
     return SAMPLE_INSIDE;
 }
@@ -233,7 +237,9 @@ void main()
                 if (status == SAMPLE_INSIDE) {
                     horizon = min(horizon, theta);
                     inside_px = dist_px;
-                } else if (status == SAMPLE_BEYOND && gap_hi == 0.0) {
+                } else if (status == SAMPLE_BEYOND && gap_hi == 0.0 && theta < horizon) {
+                    /* Only where the surface out there stands above the horizon so far can the
+                     * part of it inside R raise the horizon (not on an open floor, say). */
                     gap_lo = inside_px;
                     gap_hi = dist_px;
                 }

@@ -243,10 +243,9 @@ static int sample_theta(const synth *g, float ax, float ay, const vec3 p, const 
     view_position(g, (float)qx + 0.5f, (float)qy + 0.5f, sd, s);
     glm_vec3_sub(s, (float *)p, w);
     if (glm_vec3_dot(w, w) <= 0.0f) return NONE;
-    if (glm_vec3_norm(w) >= radius) return BEYOND;
     float rise = atan2f(glm_vec3_dot(w, (float *)n) * inv_len_n, glm_vec3_dot(w, (float *)t));
     *theta = tangent - fmaxf(rise, 0.0f);
-    return INSIDE;
+    return glm_vec3_norm(w) >= radius ? BEYOND : INSIDE;
 }
 
 static float cpu_gtao(const synth *g, const float rot[16][2], int x, int y, float radius, int slices, int steps)
@@ -308,7 +307,7 @@ static float cpu_gtao(const synth *g, const float rot[16][2], int x, int y, floa
                 if (st == INSIDE) {
                     horizon = fminf(horizon, theta);
                     inside_px = dist;
-                } else if (st == BEYOND && !refined) {
+                } else if (st == BEYOND && !refined && theta < horizon) {
                     refined = true;
                     float lo = inside_px, hi = dist;
                     for (int it = 0; it < 2; ++it) {

@@ -6,6 +6,8 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "obscura/obscura.h"
+
 static int check_passed = 0;
 static int check_failed = 0;
 
@@ -25,6 +27,18 @@ static int check_failed = 0;
 #define CHECK_NEAR(a, b, tol, what)                                                          \
     CHECK(fabs((double)(a) - (double)(b)) <= (double)(tol), "%s: %.6g vs %.6g (tol %.3g)", what, \
           (double)(a), (double)(b), (double)(tol))
+
+/* The headless GL context every GPU suite starts with; NULL after one line on stderr naming why. */
+static inline ob_context *check_context(void)
+{
+    ob_context *ctx = ob_make_context(NULL);
+    if (!ctx) {
+        const char *msg = NULL;
+        ob_get_error(&msg);
+        fprintf(stderr, "no context: %s\n", msg);
+    }
+    return ctx;
+}
 
 static inline int check_finish(const char *suite)
 {

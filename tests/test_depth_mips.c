@@ -357,13 +357,8 @@ static void bench(void)
 
 int main(int argc, char **argv)
 {
-    ob_context *ctx = ob_make_context(NULL);
-    if (!ctx) {
-        const char *msg = NULL;
-        ob_get_error(&msg);
-        fprintf(stderr, "no context: %s\n", msg);
-        return 1;
-    }
+    ob_context *ctx = check_context();
+    if (!ctx) return 1;
     if (ob_depth_mips_init(&gpu) != OB_OK) {
         const char *msg = NULL;
         ob_get_error(&msg);

@@ -542,13 +542,8 @@ static void test_scenes(ob_context *ctx)
 
 int main(void)
 {
-    ob_context *ctx = ob_make_context(NULL);
-    if (!ctx) {
-        const char *msg = NULL;
-        ob_get_error(&msg);
-        fprintf(stderr, "no context: %s\n", msg);
-        return 1;
-    }
+    ob_context *ctx = check_context();
+    if (!ctx) return 1;
     bind_synthetic_frame(); /* crease reads the camera from the frame's block */
     test_edges();
     test_noise();

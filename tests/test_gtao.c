@@ -382,13 +382,8 @@ static void test_cpu_port(ob_context *ctx)
 
 int main(void)
 {
-    ob_context *ctx = ob_make_context(NULL);
-    if (!ctx) {
-        const char *msg = NULL;
-        ob_get_error(&msg);
-        fprintf(stderr, "no context: %s\n", msg);
-        return 1;
-    }
+    ob_context *ctx = check_context();
+    if (!ctx) return 1;
     test_corner(ctx);
     test_cpu_port(ctx);
     ob_destroy_context(ctx);

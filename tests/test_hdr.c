@@ -308,13 +308,8 @@ static void bench(int w, int h, int frames)
 
 int main(int argc, char **argv)
 {
-    ob_context *ctx = ob_make_context(NULL);
-    if (!ctx) {
-        const char *msg = NULL;
-        ob_get_error(&msg);
-        fprintf(stderr, "no context: %s\n", msg);
-        return 1;
-    }
+    ob_context *ctx = check_context();
+    if (!ctx) return 1;
     if (argc > 1 && strcmp(argv[1], "--bench") == 0) {
         int frames = argc > 2 ? atoi(argv[2]) : 50;
         printf("renderer: %s\n", ob_query_renderer(ctx));

@@ -229,13 +229,8 @@ static void test_multibounce(ob_renderer *r)
 
 int main(void)
 {
-    ob_context *ctx = ob_make_context(NULL);
-    if (!ctx) {
-        const char *msg = NULL;
-        ob_get_error(&msg);
-        fprintf(stderr, "no context: %s\n", msg);
-        return 1;
-    }
+    ob_context *ctx = check_context();
+    if (!ctx) return 1;
     ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "sphere-on-plane"});
     ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
     CHECK(scene && r && ob_renderer_set_scene(r, scene) == OB_OK, "scene");

@@ -214,13 +214,8 @@ static void test_registry_entry(int index)
 
 int main(void)
 {
-    ob_context *ctx = ob_make_context(NULL);
-    if (!ctx) {
-        const char *msg = NULL;
-        ob_get_error(&msg);
-        fprintf(stderr, "no context: %s\n", msg);
-        return 1;
-    }
+    ob_context *ctx = check_context();
+    if (!ctx) return 1;
     ob_scene *corner = ob_load_scene(&(ob_scene_desc){.name = "corner"});
     ob_scene *cornell = ob_load_scene(&(ob_scene_desc){.name = "cornell"});
     ob_renderer *rc = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});

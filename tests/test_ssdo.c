@@ -207,13 +207,8 @@ static void test_ranges(ob_renderer *r, const char *m, float scale)
 
 int main(void)
 {
-    ob_context *ctx = ob_make_context(NULL);
-    if (!ctx) {
-        const char *msg = NULL;
-        ob_get_error(&msg);
-        fprintf(stderr, "no context: %s\n", msg);
-        return 1;
-    }
+    ob_context *ctx = check_context();
+    if (!ctx) return 1;
     ob_scene *cornell = ob_load_scene(&(ob_scene_desc){.name = "cornell"});
     ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
     CHECK(cornell && r, "scene and renderer");

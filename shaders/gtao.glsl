@@ -34,7 +34,8 @@ layout(local_size_x = OB_GTAO_GROUP_X, local_size_y = OB_GTAO_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
 layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
 layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
-layout(binding = 3) uniform sampler2D depth_mips;   /* R32F MIP chain of linear depth (depth_mips = 1) */
+layout(binding = 3) uniform sampler2D depth_mips;   /* R32F MIP chain of linear depth (level 0 = linear_depth);
+                                                       without the chain, linear_depth itself */
 layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 layout(binding = 1, rgba16f) uniform writeonly image2D bent_out; /* view-space bent normal (bent_normals = 1) */
 
@@ -70,20 +71,19 @@ vec2 jitters(ivec2 pix)
     return fract(j + vec2(gtao.slice_offset, gtao.step_offset));
 }
 
-/* Depth at texel q of MIP `level` and the centre of the full-resolution pixel it came from. Level
- * 0 is the AO grid's own depth. The chain picks one child per level, SAO's rotated grid
- * (shaders/depth_mips.glsl: texel p of level L is texel 2p + (p.y & 1, p.x & 1) of level L - 1),
- * so following the same picks back down finds the one pixel whose depth a coarse texel holds, and
- * the sample is reconstructed where that surface point really is: exact on planes, as at level 0.
- * (Where the pick was sky and a sibling's depth stood in, the centre is a pixel off.) */
-float sample_depth(ivec2 q, int level, out vec2 centre)
+/* Depth at texel q of MIP `level` and the centre of the full-resolution pixel it came from. The
+ * chain's level 0 is the AO grid's depth itself (without the chain, unit 3 holds that depth and
+ * every level is 0), so there is one fetch path and no branch: llvmpipe runs both sides of a
+ * branch its lanes disagree on, and a second fetch path per sample doubled gtao's cost.
+ * The chain picks one child per level, SAO's rotated grid (shaders/depth_mips.glsl: texel p of
+ * level L is texel 2p + (p.y & 1, p.x & 1) of level L - 1), so following the same picks back down
+ * finds the one pixel whose depth a coarse texel holds, and the sample is reconstructed where
+ * that surface point really is: exact on planes, as at level 0. (Where the pick was sky and a
+ * sibling's depth stood in, the centre is a pixel off.) Beyond a level's last texel (odd sizes)
+ * the chain holds nothing: clamp, as the pass does (GL's level size, max(1, size >> L)). */
+float sample_depth(ivec2 q, int level, ivec2 size, out vec2 centre)
 {
-    if (level == 0) {
-        centre = vec2(q) + 0.5;
-        return texelFetch(linear_depth, q, 0).r;
-    }
-    /* Beyond a level's last texel (odd sizes) the chain holds nothing: clamp, as the pass does. */
-    ivec2 ql = min(q >> level, textureSize(depth_mips, level) - 1);
+    ivec2 ql = min(q >> level, max(size >> level, ivec2(1)) - 1);
     float sd = texelFetch(depth_mips, ql, level).r;
     ivec2 c = ql;
     for (int l = level; l > 0; --l) c = 2 * c + ivec2(c.y & 1, c.x & 1);
@@ -133,10 +133,11 @@ const int REFINE_STEPS = 2;
 int sample_theta(vec2 at, float dist_px, vec3 p, vec3 n, vec3 t, float inv_len_n, float tangent, out float theta)
 {
     theta = tangent;
-    int level = 0;
-    if (gtao.depth_mips != 0) level = clamp(int(log2(dist_px) - gtao.mip_offset), 0, gtao.max_mip);
+    /* floor(log2(dist x mip_scale)) as the position of the highest set bit: no log2 per sample
+     * (below 1 findMSB gives -1, clamped to 0). max_mip is 0 without the chain. */
+    int level = clamp(findMSB(int(dist_px * gtao.mip_scale)), 0, gtao.max_mip);
     vec2 qc;
-    float sd = sample_depth(ivec2(floor(at)), level, qc);
+    float sd = sample_depth(ivec2(floor(at)), level, ivec2(frame.ao_size), qc);
     if (sd <= 0.0) return SAMPLE_NONE; /* sky: nothing there */
     vec3 w = ob_view_position(qc, sd, frame.ao_inv_size, frame.ao_proj_info) - p;
     if (dot(w, w) <= 0.0) return SAMPLE_NONE;

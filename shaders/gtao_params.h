@@ -21,7 +21,8 @@ OB_CONSTANTS_BEGIN(ob_gtao_constants, OB_BINDING_PASS)
     OB_INT depth_mips;        /* 1: far steps read the prefiltered depth MIP chain (binding 3) */
     OB_FLOAT slice_offset;    /* added to the per-pixel jitters, from the frame index (R2 sequence) */
     OB_FLOAT step_offset;     /*   when temporal noise is on; 0 otherwise */
-    OB_FLOAT mip_offset;      /* log2 of the step distance (px) below which the full-resolution depth is read */
+    OB_FLOAT mip_scale;       /* 2^-offset: a step at distance x px reads level floor(log2(x mip_scale)), so
+                                 steps nearer than 2^offset px read the full-resolution depth */
     OB_INT max_mip;           /* the coarsest MIP level a step may read */
     OB_INT bent_normals;      /* 1: also write the bent normal (image 1) */
     OB_FLOAT pad0;

@@ -80,8 +80,8 @@ static void fill_constants(ob_gtao_constants *c, const float *params, uint32_t f
     bool temporal = params[P_TEMPORAL] != 0.0f;
     c->slice_offset = temporal ? fmodf((float)(frame_index % 4096u) * R2_A1, 1.0f) : 0.0f;
     c->step_offset = temporal ? fmodf((float)(frame_index % 4096u) * R2_A2, 1.0f) : 0.0f;
-    c->mip_offset = MIP_OFFSET;
-    c->max_mip = max_mip;
+    c->mip_scale = exp2f(-MIP_OFFSET);
+    c->max_mip = c->depth_mips ? max_mip : 0; /* level 0 only: unit 3 holds the depth itself */
     c->bent_normals = params[P_BENT_NORMALS] != 0.0f ? 1 : 0;
 }
 

@@ -42,7 +42,7 @@ layout(binding = 1, rgba16f) uniform writeonly image2D bent_out; /* view-space b
 const float PI = 3.14159265358979;
 const float HALF_PI = 1.57079632679490;
 
-/* Steps are uniform strata of [1.5 px, R's projection] (XeGTAO squares them toward the centre).
+/* STEPS: uniform strata of [1.5 px, R's projection] (XeGTAO squares them toward the centre).
  * With the definition's hard cut at R, the horizon of a crease is where the wall leaves the
  * sphere of radius R, at the far end of the search; on the training views squared steps read
  * more too-open bias (docs/methods.md). */
@@ -227,7 +227,7 @@ void main()
             float inside_px = 0.0, gap_lo = 0.0, gap_hi = 0.0;
             for (int j = 0; j < steps; ++j) {
                 float s = (float(j) + jit.y) / float(steps);
-                /* Uniform strata (STEP_POWER 1), at least 1.5 px out, so the first step never
+                /* Uniform strata (see STEPS above), at least 1.5 px out, so the first step never
                  * reads P's own texel. */
                 float dist_px = 1.5 + s * max(radius_px - 1.5, 0.0);
                 if (dist_px > radius_px) break;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Does a change leave every method's output alone? Renders every registered method at default
+# Does a change leave every method's output alone? Renders every method both builds know, at default
 # settings, and at --ao-scale 0.5 --filter bilateral, on four views (cornell:front,
 # corner:diagonal, bunny:front, fzk-haus:stair) at 160x120 with two builds of obscura, and
 # compares the AO PFMs (worst absolute difference, tolerance 1e-5) and the final PNGs (bytes).
@@ -10,7 +10,9 @@ set -euo pipefail
 [ $# -ge 2 ] || { echo "usage: $0 OLD_OBSCURA NEW_OBSCURA [OUTDIR]" >&2; exit 2; }
 old=$1 new=$2 out=${3:-$(mktemp -d)}
 mkdir -p "$out/old" "$out/new"
-methods=$("$new" list --json | python3 -c 'import json,sys; print(" ".join(m["name"] for m in json.load(sys.stdin)["methods"]))')
+# The methods both builds know (a method added since OLD has nothing to compare with).
+names() { "$1" list --json | python3 -c 'import json,sys; print("\n".join(m["name"] for m in json.load(sys.stdin)["methods"]))'; }
+methods=$(grep -Fxf <(names "$old") <(names "$new"))
 for v in cornell:front corner:diagonal bunny:front fzk-haus:stair; do
     scene=${v%%:*} cam=${v##*:}
     for m in $methods; do

@@ -30,19 +30,8 @@ static ob_error bilateral_run(void *state, const ob_filter_inputs *in, const flo
 {
     ob_filter_constants c;
     ob_filter_constants_init(&c, in, (int)params[P_RADIUS], params[P_SIGMA], params[P_SIGMA_DEPTH], 0.0f);
-    ob_compute_pass_use(state, &c, ob_filter_constants_used(&c));
-    glBindTextureUnit(0, in->src);
-    glBindTextureUnit(1, in->linear_depth);
-    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
-    ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
+    ob_filter_run_single(state, &c, ob_filter_constants_used(&c), in);
     return OB_OK;
-}
-
-static void bilateral_destroy(void *state)
-{
-    if (!state) return;
-    ob_compute_pass_destroy(state);
-    free(state);
 }
 
 const ob_filter_impl ob_filter_bilateral = {
@@ -53,6 +42,6 @@ const ob_filter_impl ob_filter_bilateral = {
              .params = bilateral_params},
     .init = bilateral_init,
     .run = bilateral_run,
-    .destroy = bilateral_destroy,
+    .destroy = ob_filter_destroy_pass,
     .init_rgb = bilateral_init_rgb,
 };

@@ -29,13 +29,6 @@ static ob_error bilateral_sep_run(void *state, const ob_filter_inputs *in, const
     return OB_OK;
 }
 
-static void bilateral_sep_destroy(void *state)
-{
-    if (!state) return;
-    ob_compute_pass_destroy(state);
-    free(state);
-}
-
 const ob_filter_impl ob_filter_bilateral_sep = {
     .info = {.name = "bilateral_sep",
              .description = "separable depth bilateral (x then y): the fast approximation of `bilateral`",
@@ -44,6 +37,6 @@ const ob_filter_impl ob_filter_bilateral_sep = {
              .params = bilateral_sep_params},
     .init = bilateral_sep_init,
     .run = bilateral_sep_run,
-    .destroy = bilateral_sep_destroy,
+    .destroy = ob_filter_destroy_pass,
     .init_rgb = bilateral_sep_init_rgb,
 };

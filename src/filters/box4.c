@@ -17,19 +17,8 @@ static ob_error box4_run(void *state, const ob_filter_inputs *in, const float *p
     c.size[0] = in->width;
     c.size[1] = in->height;
     c.sky_value = in->sky; /* read by the RGB variant only (filter_params.h) */
-    ob_compute_pass_use(state, &c, offsetof(ob_filter_constants, weights));
-    glBindTextureUnit(0, in->src);
-    glBindTextureUnit(1, in->linear_depth);
-    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
-    ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
+    ob_filter_run_single(state, &c, offsetof(ob_filter_constants, weights), in);
     return OB_OK;
-}
-
-static void box4_destroy(void *state)
-{
-    if (!state) return;
-    ob_compute_pass_destroy(state);
-    free(state);
 }
 
 const ob_filter_impl ob_filter_box4 = {
@@ -37,6 +26,6 @@ const ob_filter_impl ob_filter_box4 = {
              .reference = "seed 004 §3.3", .param_count = 0, .params = NULL},
     .init = box4_init,
     .run = box4_run,
-    .destroy = box4_destroy,
+    .destroy = ob_filter_destroy_pass,
     .init_rgb = box4_init_rgb,
 };

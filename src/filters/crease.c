@@ -69,20 +69,8 @@ static ob_error crease_run(void *state, const ob_filter_inputs *in, const float 
                              params[P_SIGMA_NORMAL] * OB_DEG_TO_RAD);
     /* One pass: the view positions come from the frame's block at OB_BINDING_FRAME, which the
      * renderer binds for every pass of the frame (and ob_compute_ao_filtered for its own). */
-    ob_compute_pass_use(state, &c, ob_filter_constants_used(&c));
-    glBindTextureUnit(0, in->src);
-    glBindTextureUnit(1, in->linear_depth);
-    glBindTextureUnit(2, in->view_normal);
-    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
-    ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
+    ob_filter_run_single(state, &c, ob_filter_constants_used(&c), in);
     return OB_OK;
-}
-
-static void crease_destroy(void *state)
-{
-    if (!state) return;
-    ob_compute_pass_destroy(state);
-    free(state);
 }
 
 const ob_filter_impl ob_filter_crease = {
@@ -93,6 +81,6 @@ const ob_filter_impl ob_filter_crease = {
              .params = crease_params},
     .init = crease_init,
     .run = crease_run,
-    .destroy = crease_destroy,
+    .destroy = ob_filter_destroy_pass,
     .init_rgb = crease_init_rgb,
 };

@@ -58,8 +58,13 @@ void ob_crease_constants_init(ob_filter_constants *c, const ob_filter_inputs *in
  * in->scratch, a barrier, then along y into in->dst. Binds AO at texture unit 0, linear depth at
  * 1, view normals at 2 and the output image at 0. */
 void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, const ob_filter_inputs *in);
+/* The one dispatch of a single-pass filter: the first `used` bytes of c uploaded, AO at texture
+ * unit 0, linear depth at 1, view normals at 2, in->dst as image 0. */
+void ob_filter_run_single(ob_compute_pass *pass, const ob_filter_constants *c, size_t used, const ob_filter_inputs *in);
 /* A filter's compute pass from its shader, R32F or (rgb) RGBA16F; NULL + ob_set_error. */
 void *ob_filter_make_pass(const char *shader, bool rgb);
+/* Frees what ob_filter_make_pass made (NULL is a no-op): every filter's destroy. */
+void ob_filter_destroy_pass(void *state);
 /* Bytes of c worth uploading: the block up to the last weight in use. */
 size_t ob_filter_constants_used(const ob_filter_constants *c);
 

@@ -30,13 +30,6 @@ static ob_error gaussian_run(void *state, const ob_filter_inputs *in, const floa
     return OB_OK;
 }
 
-static void gaussian_destroy(void *state)
-{
-    if (!state) return;
-    ob_compute_pass_destroy(state);
-    free(state);
-}
-
 const ob_filter_impl ob_filter_gaussian = {
     .info = {.name = "gaussian",
              .description = "separable Gaussian blur that ignores geometry (bleeds across edges), the baseline",
@@ -45,6 +38,6 @@ const ob_filter_impl ob_filter_gaussian = {
              .params = gaussian_params},
     .init = gaussian_init,
     .run = gaussian_run,
-    .destroy = gaussian_destroy,
+    .destroy = ob_filter_destroy_pass,
     .init_rgb = gaussian_init_rgb,
 };

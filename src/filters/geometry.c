@@ -41,21 +41,14 @@ static ob_error geometry_run(void *state, const ob_filter_inputs *in, const floa
     return OB_OK;
 }
 
-static void geometry_destroy(void *state)
-{
-    if (!state) return;
-    ob_compute_pass_destroy(state);
-    free(state);
-}
-
 const ob_filter_impl ob_filter_geometry = {
     .info = {.name = "geometry",
-             .description = "separable depth + normal bilateral (geometry-aware), 11x11: the default",
+             .description = "separable depth + normal bilateral (geometry-aware), 11x11 (brightens creases: see crease)",
              .reference = "seed 003 §3.5, §4.3, §6.2; seed 000 eq. 4.6-4.7",
              .param_count = P_COUNT,
              .params = geometry_params},
     .init = geometry_init,
     .run = geometry_run,
-    .destroy = geometry_destroy,
+    .destroy = ob_filter_destroy_pass,
     .init_rgb = geometry_init_rgb,
 };

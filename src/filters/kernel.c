@@ -71,6 +71,23 @@ void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, cons
     ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
 }
 
+void ob_filter_run_single(ob_compute_pass *pass, const ob_filter_constants *c, size_t used, const ob_filter_inputs *in)
+{
+    ob_compute_pass_use(pass, c, used);
+    glBindTextureUnit(0, in->src);
+    glBindTextureUnit(1, in->linear_depth);
+    glBindTextureUnit(2, in->view_normal);
+    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
+    ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
+}
+
+void ob_filter_destroy_pass(void *state)
+{
+    if (!state) return;
+    ob_compute_pass_destroy(state);
+    free(state);
+}
+
 void *ob_filter_make_pass(const char *shader, bool rgb)
 {
     ob_compute_pass *p = calloc(1, sizeof *p);

@@ -12,7 +12,7 @@
 #include "view_gui.h"
 
 /* The passes the renderer can time, in frame order: the CSV's columns. */
-static const char *const pass_order[] = {"shadow", "gbuffer", "lighting", "downsample", "edges", "ao",
+static const char *const pass_order[] = {"shadow", "gbuffer", "lighting", "downsample", "edges", "depth_mips", "ao",
                                          "filter", "upsample", "compose", "luminance", "bloom", "tonemap"};
 enum { PASS_ORDER_COUNT = sizeof pass_order / sizeof pass_order[0] };
 

@@ -181,14 +181,13 @@ static void make_synth(synth *g)
     g->proj_info[2] = g->proj[2][0];
     g->proj_info[3] = g->proj[2][1];
     const vec3 lo = {-0.5f, 0.0f, -0.6f}, hi = {0.4f, 0.7f, 0.2f};
+    mat4 inv; /* view -> world, for the rays */
+    glm_mat4_inv(view, inv);
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             /* The ray through the pixel centre, in view space, as common.glsl reconstructs it. */
             float ndc_x = ((float)x + 0.5f) / W * 2.0f - 1.0f, ndc_y = ((float)y + 0.5f) / H * 2.0f - 1.0f;
             vec3 dv = {(ndc_x + g->proj_info[2]) * g->proj_info[0], (ndc_y + g->proj_info[3]) * g->proj_info[1], -1.0f};
-            /* To world: the view matrix is a rotation + translation. */
-            mat4 inv;
-            glm_mat4_inv(view, inv);
             vec3 dw;
             glm_mat4_mulv3(inv, dv, 0.0f, dw);
             float best = 1e30f;

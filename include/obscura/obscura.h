@@ -409,7 +409,7 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind);
 ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst_size);
 
 typedef struct ob_pass_timing {
-    const char *name; /* "shadow", "gbuffer", "lighting", "downsample", "edges", "ao", "filter",
+    const char *name; /* "shadow", "gbuffer", "lighting", "downsample", "edges", "depth_mips", "ao", "filter",
                          "upsample", "compose", "luminance", "bloom", "tonemap" */
     double ms;        /* GPU time between GL_TIMESTAMP queries around the pass */
 } ob_pass_timing;

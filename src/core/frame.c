@@ -221,7 +221,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         mip_levels = r->depth_mips.levels;
     }
     if (plan->rgb || (plan->impl->writes & OB_WRITES_BOUNCE) || plan->bent) {
-        err = ob_renderer_rgb_targets(r, t);
+        err = ob_renderer_rgb_targets(r, t, plan->rgb || (plan->impl->writes & OB_WRITES_BOUNCE), plan->bent);
         if (err != OB_OK) return err;
     }
     const uint32_t reads = plan->reads;

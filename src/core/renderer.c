@@ -244,22 +244,29 @@ void *ob_renderer_filter_state(ob_renderer *r, int index, bool rgb, ob_error *er
 }
 
 /* The RGBA16F chains of directional methods, at this AO resolution and at full resolution. */
-ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t)
+/* An RGBA16F target made the first time it is needed (0 until then, and again after a resize). */
+static void need(GLuint *tex, int w, int h)
 {
-    if (!t->rgb_ready) {
-        int w = t->grid.width, h = t->grid.height;
-        t->raw_rgb = ob_make_texture_2d(GL_RGBA16F, w, h);
-        t->filtered_rgb = ob_make_texture_2d(GL_RGBA16F, w, h);
-        t->scratch_rgb = ob_make_texture_2d(GL_RGBA16F, w, h);
-        t->bounce_raw = ob_make_texture_2d(GL_RGBA16F, w, h);
-        t->bounce_filtered = ob_make_texture_2d(GL_RGBA16F, w, h);
-        t->bent_raw = ob_make_texture_2d(GL_RGBA16F, w, h);
-        t->bent_filtered = ob_make_texture_2d(GL_RGBA16F, w, h);
-        t->rgb_ready = true;
+    if (!*tex) *tex = ob_make_texture_2d(GL_RGBA16F, w, h);
+}
+
+ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t, bool directional, bool bent)
+{
+    int w = t->grid.width, h = t->grid.height;
+    need(&t->scratch_rgb, w, h); /* both chains filter through it */
+    if (directional) {
+        need(&t->raw_rgb, w, h);
+        need(&t->filtered_rgb, w, h);
+        need(&t->bounce_raw, w, h);
+        need(&t->bounce_filtered, w, h);
+        need(&r->ao_rgb, r->width, r->height);
+        need(&r->bounce, r->width, r->height);
     }
-    if (!r->ao_rgb) r->ao_rgb = ob_make_texture_2d(GL_RGBA16F, r->width, r->height);
-    if (!r->bounce) r->bounce = ob_make_texture_2d(GL_RGBA16F, r->width, r->height);
-    if (!r->bent) r->bent = ob_make_texture_2d(GL_RGBA16F, r->width, r->height);
+    if (bent) {
+        need(&t->bent_raw, w, h);
+        need(&t->bent_filtered, w, h);
+        need(&r->bent, r->width, r->height);
+    }
     if (!r->upsample_rgb_ready) {
         if (ob_upsample_init_rgb(&r->upsample_rgb) != OB_OK) return ob_peek_error(NULL);
         r->upsample_rgb_ready = true;

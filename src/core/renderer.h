@@ -23,7 +23,7 @@ typedef struct ao_targets {
     GLuint raw_rgb, filtered_rgb, scratch_rgb, bounce_raw, bounce_filtered;
     /* Methods that write a bent normal (OB_WRITES_BENT_NORMAL): RGBA16F, made with the above. */
     GLuint bent_raw, bent_filtered;
-    bool ready, rgb_ready;
+    bool ready;
 } ao_targets;
 
 enum { OB_AO_SCALES = 3 }; /* k = 1, 2, 4 */
@@ -77,7 +77,8 @@ struct ob_renderer {
 void *ob_renderer_method_state(ob_renderer *r, int index, ob_error *err);
 void *ob_renderer_filter_state(ob_renderer *r, int index, bool rgb, ob_error *err);
 ao_targets *ob_renderer_targets(ob_renderer *r, int scale_index);
-ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t);
+/* The RGBA16F chains, each made on first use: a directional method's M and bounce, a bent normal. */
+ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t, bool directional, bool bent);
 
 /* frame.c: the per-frame block from the camera, the AO grid, the lights and the settings, as a
  * pure function (no GL): lights as lighting.glsl reads them (colour x intensity, unit directions,

@@ -242,8 +242,11 @@ static int sample_theta(const synth *g, float ax, float ay, const vec3 p, const 
     view_position(g, (float)qx + 0.5f, (float)qy + 0.5f, sd, s);
     glm_vec3_sub(s, (float *)p, w);
     if (glm_vec3_dot(w, w) <= 0.0f) return NONE;
-    float rise = atan2f(glm_vec3_dot(w, (float *)n) * inv_len_n, glm_vec3_dot(w, (float *)t));
-    *theta = tangent - fmaxf(rise, 0.0f);
+    /* The rise above the tangent in [0, π]; on or below the tangent's plane (y <= 0) none: a
+     * sample exactly on P's plane behind the tangent would otherwise get atan2(+0, x < 0) = π. */
+    float y = glm_vec3_dot(w, (float *)n) * inv_len_n;
+    float rise = y > 0.0f ? atan2f(y, glm_vec3_dot(w, (float *)t)) : 0.0f;
+    *theta = tangent - rise;
     return glm_vec3_norm(w) >= radius ? BEYOND : INSIDE;
 }
 

@@ -54,7 +54,8 @@ static const ob_param_info gtao_params[P_COUNT] = {
 #define MIP_OFFSET 3.3f
 
 typedef struct gtao_state {
-    ob_method_kit kit;
+    ob_method_kit kit;      /* the full-resolution program (shaders/gtao.glsl as it is) */
+    GLuint mips_program;    /* the same shader with OB_MARCH_DEPTH_MIPS, made on first use */
 } gtao_state;
 
 /* Settings -> constants, a pure function: the falloff as weight = clamp(r mul + add, 0, 1), 1
@@ -104,12 +105,26 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
     int max_mip = in->depth_mips ? in->depth_mip_levels - 1 : 0;
     fill_constants(&c, params, in->frame->frame_index, max_mip);
     c.bent_normals = c.bent_normals && out->bent_normal ? 1 : 0;
+    /* The MIP chain's level is a per-sample choice; as a runtime branch it cost the
+     * full-resolution baseline too (shaders/slice_march.glsl), so it is a program of its own. */
+    if (c.depth_mips && !s->mips_program) {
+        s->mips_program = ob_make_compute_program("gtao.glsl", "#define OB_MARCH_DEPTH_MIPS 1\n");
+        if (!s->mips_program) return ob_peek_error(NULL);
+    }
     ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
+    if (c.depth_mips) glUseProgram(s->mips_program);
     if (c.bent_normals) glBindImageTexture(1, out->bent_normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     /* Without the chain the sampler still needs a texture: the depth itself (never read then). */
     glBindTextureUnit(3, in->depth_mips ? in->depth_mips : in->linear_depth);
     ob_dispatch_2d(in->width, in->height, OB_GTAO_GROUP_X, OB_GTAO_GROUP_Y);
     return OB_OK;
+}
+
+static void gtao_destroy(void *p)
+{
+    gtao_state *s = p;
+    if (s->mips_program) glDeleteProgram(s->mips_program);
+    s->mips_program = 0;
 }
 
 static int gtao_count_samples(const float *params) { return 2 * (int)params[P_SLICES] * (int)params[P_STEPS]; }
@@ -156,6 +171,7 @@ const ob_method_impl ob_method_gtao = {
     .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS,
     .writes = OB_WRITES_VISIBILITY | OB_WRITES_BENT_NORMAL,
     .run = gtao_run,
+    .destroy = gtao_destroy,
     .active_reads = gtao_active_reads,
     .active_writes = gtao_active_writes,
     .set_samples = gtao_set_samples,

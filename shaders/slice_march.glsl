@@ -1,0 +1,154 @@
+/* The slice set-up and the depth-buffer march of the slice methods, gtao.glsl and vbao.glsl
+ * (Jimenez, Wu, Pesce & Jarabo 2016, §4-5; Therrien, Levesque & Gilet 2023, §3 build on the same
+ * slices). A slice is the plane through the eye, the pixel's surface point P and a screen
+ * direction d(φ); both methods march the depth buffer along d on both sides of P and differ only
+ * in what they make of each sample (a horizon angle or a set of sectors).
+ *
+ * Include after common.glsl (ob_view_position) and frame_params.h. Define OB_MARCH_DEPTH_MIPS
+ * before including it for the variant whose far steps read the depth MIP chain: the level is a
+ * per-lane choice, and llvmpipe runs both sides of a branch its lanes disagree on, so the
+ * full-resolution baseline is its own program instead of a runtime branch per sample. */
+#ifndef OB_SLICE_MARCH_GLSL
+#define OB_SLICE_MARCH_GLSL
+
+#include "noise.glsl"
+
+const float OB_PI = 3.14159265358979;
+const float OB_HALF_PI = 1.57079632679490;
+
+/* 4x4 ordered-dither ranks: every value 0..15 once per tile (the same ranks as hbao.glsl). */
+const float ob_slice_bayer4[16] = float[16](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0,
+                                            3.0, 11.0, 1.0, 9.0, 15.0, 7.0, 13.0, 5.0);
+
+/* Per-pixel jitters in [0, 1) of the slice angles (x) and of the step distances (y).
+ *   texture4: the slice jitter is the angle of the 4x4 rotation tile (16 shuffled angles) and the
+ *     step jitter the 4x4 Bayer rank; the two are unrelated, and a 4x4 window averages all 16 of
+ *     each exactly (seed 004 §3.3);
+ *   ign: interleaved gradient noise of the pixel and of the transposed pixel (see hbao.glsl).
+ * `offsets` moves both along an R2 sequence with the frame index when temporal noise is on. */
+vec2 ob_slice_jitters(ivec2 pix, int noise, sampler2D noise_tile, vec2 offsets)
+{
+    vec2 j;
+    if (noise == OB_NOISE_IGN) {
+        j = vec2(ob_interleaved_gradient_noise(vec2(pix)), ob_interleaved_gradient_noise(vec2(pix.yx)));
+    } else {
+        vec2 r = texelFetch(noise_tile, pix % 4, 0).xy;
+        ivec2 t = pix % 4;
+        j = vec2(fract(atan(r.y, r.x) / (2.0 * OB_PI) + 1.0), (ob_slice_bayer4[t.y * 4 + t.x] + 0.5) / 16.0);
+    }
+    return fract(j + offsets);
+}
+
+/* atan2 to about 2e-4 rad (a minimax polynomial on [0, 1] after folding the octants), for the
+ * per-slice angles: the GLSL built-in costs several times as much on llvmpipe. y = 0 gives
+ * exactly 0 for x > 0. */
+float ob_fast_atan2(float y, float x)
+{
+    float ax = abs(x), ay = abs(y);
+    float hi = max(ax, ay);
+    if (hi <= 0.0) return 0.0;
+    float a = min(ax, ay) / hi;
+    float a2 = a * a;
+    float r = ((-0.0464964749 * a2 + 0.15931422) * a2 - 0.327622764) * a2 * a + a;
+    if (ay > ax) r = OB_HALF_PI - r;
+    if (x < 0.0) r = OB_PI - r;
+    return y < 0.0 ? -r : r;
+}
+
+/* One slice through P (view position p, unit view vector v toward the eye, unit normal n). */
+struct ob_slice {
+    vec2 dir;        /* the screen direction, unit, in AO pixels */
+    vec3 axis;       /* the slice plane's unit normal */
+    vec3 o;          /* unit, in the slice, perpendicular to v, on dir's side */
+    vec3 n_slice;    /* n / |n_φ|: dot(w, n_slice) is an in-slice vector's height across the tangent */
+    float len_n;     /* |n_φ|: the length of n projected onto the slice (eq. 5's weight) */
+    float cos_n;     /* the projected normal's angle n(φ) from v toward o, and its cosine and sine */
+    float sin_n;
+    float ang_n;
+    float radius_px; /* R along dir at P's depth, in AO pixels */
+    vec3 t_pos;      /* the unit tangent of P's surface in the slice on dir's side (θ = π/2 + n) */
+    vec3 t_neg;      /*   and on the opposite side (θ = -(π/2 - n)) */
+};
+
+/* The slice along screen direction dir through P at linear depth d. to_view turns a screen
+ * offset in AO pixels into a view offset per unit depth. False when the normal lies (almost)
+ * across the slice: the slice then carries no weight (|n_φ| ~ 0). */
+bool ob_slice_setup(vec2 dir, vec3 p, vec3 v, vec3 n, float d, vec2 to_view, float radius, out ob_slice s)
+{
+    s.dir = dir;
+    /* The slice's normal is P x (the view offset of a step along dir): exact for any pixel aspect
+     * and an off-centre frustum. */
+    vec3 dv = vec3(dir * to_view, 0.0);
+    s.axis = normalize(cross(v, dv));
+    s.o = cross(s.axis, v);
+    /* n(φ) and |n_φ| (eq. 5): the normal projected onto the slice. */
+    vec3 pn = n - s.axis * dot(n, s.axis);
+    s.len_n = length(pn);
+    float inv_len_n = 1.0 / max(s.len_n, 1e-4);
+    s.n_slice = n * inv_len_n;
+    s.cos_n = dot(pn, v) * inv_len_n;
+    s.sin_n = dot(pn, s.o) * inv_len_n;
+    s.ang_n = ob_fast_atan2(s.sin_n, s.cos_n);
+    s.radius_px = radius / (d * length(dir * to_view));
+    /* The surface falls away on the side the normal leans to: its tangent lies at π/2 + n from v
+     * on dir's side and at π/2 - n on the other, cos(π/2 ± n) v ± sin(π/2 ± n) o. */
+    s.t_pos = -s.sin_n * v + s.cos_n * s.o;
+    s.t_neg = s.sin_n * v - s.cos_n * s.o;
+    return s.len_n >= 1e-4;
+}
+
+/* Step j (0-based, of `steps`) on one side: uniform strata of [1.5 px, R's projection], shifted
+ * together by the jitter, at least 1.5 px out so the first step never reads P's own texel.
+ * (XeGTAO squares them toward the centre; with the definition's hard cut at R, the horizon of a
+ * crease is where the wall leaves the sphere of radius R, at the far end of the search, and on
+ * the training views squared steps read more too-open bias: docs/methods.md.) */
+float ob_slice_step_px(int j, float jitter, int steps, float radius_px)
+{
+    return 1.5 + (float(j) + jitter) / float(steps) * max(radius_px - 1.5, 0.0);
+}
+
+#ifdef OB_MARCH_DEPTH_MIPS
+/* Depth at texel q of MIP `level` and the centre of the full-resolution pixel it came from. The
+ * chain picks one child per level, SAO's rotated grid (shaders/depth_mips.glsl: texel p of level
+ * L is texel 2p + (p.y & 1, p.x & 1) of level L - 1), so following the same picks back down finds
+ * the one pixel whose depth a coarse texel holds, and the sample is reconstructed where that
+ * surface point really is: exact on planes, as at level 0. (Where the pick was sky and a
+ * sibling's depth stood in, the centre is a pixel off.) Beyond a level's last texel (odd sizes)
+ * the chain holds nothing: clamp, as the pass does (GL's level size, max(1, size >> L)). */
+float ob_march_depth(sampler2D depth, ivec2 q, int level, ivec2 size, out vec2 centre)
+{
+    ivec2 ql = min(q >> level, max(size >> level, ivec2(1)) - 1);
+    float sd = texelFetch(depth, ql, level).r;
+    ivec2 c = ql;
+    for (int l = level; l > 0; --l) c = 2 * c + ivec2(c.y & 1, c.x & 1);
+    centre = vec2(c) + 0.5;
+    return sd;
+}
+#endif
+
+/* The sample at AO-grid position `at`, dist_px from P: its offset w from p in view space, and
+ * whether there is a surface there (false off the screen and on sky, w = 0 then). Without
+ * OB_MARCH_DEPTH_MIPS every step reads `depth` at full resolution; with it, a step reads level
+ * floor(log2(dist_px x mip_scale)) of the chain, at most max_mip (as the position of the highest
+ * set bit: no log2 per sample; below 1 findMSB gives -1, clamped to 0). Off-screen samples read
+ * the clamped edge and are discarded by a select, not a branch, for the reason above. */
+bool ob_march_fetch(sampler2D depth, vec2 at, float dist_px, vec3 p, float mip_scale, int max_mip, out vec3 w)
+{
+    ivec2 size = ivec2(frame.ao_size);
+    ivec2 q = ivec2(floor(at));
+    bool on_screen = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
+    q = clamp(q, ivec2(0), size - 1);
+#ifdef OB_MARCH_DEPTH_MIPS
+    int level = clamp(findMSB(int(dist_px * mip_scale)), 0, max_mip);
+    vec2 qc;
+    float sd = ob_march_depth(depth, q, level, size, qc);
+#else
+    vec2 qc = vec2(q) + 0.5;
+    float sd = texelFetch(depth, q, 0).r;
+#endif
+    bool hit = on_screen && sd > 0.0;
+    w = hit ? ob_view_position(qc, sd, frame.ao_inv_size, frame.ao_proj_info) - p : vec3(0.0);
+    return hit;
+}
+
+#endif

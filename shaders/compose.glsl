@@ -4,6 +4,7 @@
  * SSDO (cmp.directional): the RGB modulation factor M darkens direct and ambient light alike (seed 003
  * §4.2: M is the ratio of the direct term with and without visibility, eq. 4.2), and the bounce,
  * stored as what a white receiver reflects, is added times the albedo (cmp.add_bounce; seed 003 §3.3).
+ * vbgi: a scalar visibility for the ambient like any AO method, and its bounce added the same way.
  * Ambient: a constant, a sky/ground hemisphere by the world normal, or the environment map's
  * diffuse irradiance from 9 spherical harmonics (Ramamoorthi & Hanrahan 2001, eq. 13), so that a
  * constant environment of radiance L gives exactly the constant ambient L. */
@@ -80,6 +81,9 @@ void main()
     } else {
         vec3 vis = cmp.multibounce != 0 ? ob_multibounce(ao, albedo) : vec3(ao);
         color = (cmp.ao_all_light != 0 ? direct * vis : direct) + ambient * albedo * vis;
+        /* vbgi: a bounce beside a scalar visibility. The ambient's occlusion is not the direct
+         * light's (shadows are), so the direct light stays as it is. */
+        if (cmp.add_bounce != 0) color += texelFetch(bounce_map, pix, 0).rgb * albedo;
     }
     imageStore(hdr_out, pix, vec4(color, 1.0));
 }

@@ -54,64 +54,25 @@ vec3 slice_bent(float h0, float h1, float n, vec3 v, vec3 o)
 /* Bisections of the last gap in which the surface leaves the sphere of radius R (see main). */
 const int REFINE_STEPS = 2;
 
-/* The rise of a sample above the tangent, as k = 1 - cos(rise) = 2 sin²(rise / 2): 0 for none,
- * up to 2 for a sample straight up the far side. In the slice's coordinates the sample is at
- * x = dot(w, t) along the tangent and y = dot(w, n) / |n_φ| across it, toward the normal (the
- * normal's part across the slice is perpendicular to every in-slice direction). A sample on P's
- * plane gives y = 0, no rise, also where snapping to the texel centre moved it off the slice, so
- * open planes read exactly 1 (the sample's own angle from V would sit above this slice's tangent
- * there). The rise is the angle of (x, y) in [0, π], past the slice's zenith too, which occluders
- * on the side the normal leans away from reach, and k grows monotonically with it over that
- * range: the march keeps the largest k and main takes one asin per side, no angle per sample.
- * 1 - x / r directly would cancel for small rises (1e-7 of cos is 3e-4 rad); for x > 0 it is
- * y² / (r (r + x)). Below the tangent (y <= 0) nothing rises. */
-float rise_key(vec3 w, vec3 t, vec3 n_slice)
-{
-    float x = dot(w, t), y = dot(w, n_slice);
-    float r = sqrt(x * x + y * y);
-    float k = x > 0.0 ? y * y / (r * (r + x)) : 1.0 - x / r;
-    return y > 0.0 ? k : 0.0;
-}
-
 /* One horizon-search step on one side of slice s, at AO-grid position `at`, dist_px from P;
- * t is that side's tangent. `rise` is the largest weighted rise_key so far (0 = none);
- * inside_px the last step within R; [gap_lo, gap_hi] the first gap in which the surface leaves
- * the sphere of radius R while standing above the horizon so far (gap_hi 0: none yet), for the
- * refinement in main. eq. 6-7 with AO_R's range: a sample counts by its weight, faded in cosine
- * as XeGTAO fades its horizon cosines (falloff 0: weight 0 or 1, exact). Selects, not branches:
- * llvmpipe runs both sides of a branch its lanes disagree on. */
-void horizon_step(ob_slice s, vec2 at, float dist_px, vec3 p, vec3 t, inout float rise, inout float inside_px,
-                  inout float gap_lo, inout float gap_hi)
+ * t is that side's tangent. `rise` is the largest weighted ob_rise_key so far (0 = none).
+ * eq. 6-7 with AO_R's range: a sample counts by its weight, faded in cosine as XeGTAO fades its
+ * horizon cosines (falloff 0: weight 0 or 1, exact). `refine`: a bisection step of the gap, which
+ * counts only while the gap is open. Selects, not branches: llvmpipe runs both sides of a branch
+ * its lanes disagree on. */
+void horizon_step(ob_slice s, vec2 at, float dist_px, vec3 p, vec3 t, bool refine, inout float rise, inout ob_gap gap)
 {
     vec3 w;
+    ivec2 texel;
     /* Where R projects to under 1.5 px, the first step is already past it: no search. */
-    bool hit = ob_march_fetch(depth_mips, at, dist_px, p, gtao.mip_scale, gtao.max_mip, w) && dist_px <= s.radius_px;
+    bool hit = ob_march_fetch(depth_mips, at, dist_px, p, gtao.mip_scale, gtao.max_mip, w, texel) &&
+               (refine ? ob_gap_open(gap) : dist_px <= s.radius_px);
     float w_len = length(vec3(w.xy, w.z * (1.0 + gtao.thin)));
     float weight = hit ? clamp(w_len * gtao.falloff_mul + gtao.falloff_add, 0.0, 1.0) : 0.0;
-    float k = rise_key(w, t, s.n_slice);
-    /* Beyond R: only where the surface out there stands above the horizon so far can the part of
-     * it inside R raise the horizon (not on an open floor, say). */
-    bool opens_gap = hit && weight <= 0.0 && gap_hi == 0.0 && k > rise;
-    gap_lo = opens_gap ? inside_px : gap_lo;
-    gap_hi = opens_gap ? dist_px : gap_hi;
-    inside_px = weight > 0.0 ? dist_px : inside_px;
+    float k = ob_rise_key(w, t, s.n_slice);
+    if (refine) ob_gap_halve(gap, weight > 0.0);
+    else ob_gap_note(gap, weight > 0.0, hit && weight <= 0.0 && k > rise, dist_px);
     rise = max(rise, weight * k);
-}
-
-/* One bisection of [gap_lo, gap_hi] (nothing when gap_hi is 0): the half in which the surface
- * leaves the sphere of radius R is kept, and a midpoint inside R raises the horizon. */
-void horizon_refine(ob_slice s, vec2 centre, float sgn, vec3 p, vec3 t, inout float rise, inout float gap_lo,
-                    inout float gap_hi)
-{
-    float mid = 0.5 * (gap_lo + gap_hi);
-    vec3 w;
-    bool hit = ob_march_fetch(depth_mips, centre + sgn * s.dir * mid, mid, p, gtao.mip_scale, gtao.max_mip, w);
-    float w_len = length(vec3(w.xy, w.z * (1.0 + gtao.thin)));
-    float weight = hit && gap_hi > 0.0 ? clamp(w_len * gtao.falloff_mul + gtao.falloff_add, 0.0, 1.0) : 0.0;
-    rise = max(rise, weight * rise_key(w, t, s.n_slice));
-    bool inside = weight > 0.0;
-    gap_lo = inside ? mid : gap_lo;
-    gap_hi = inside || gap_hi == 0.0 ? gap_hi : mid;
 }
 
 void main()
@@ -152,26 +113,24 @@ void main()
 
         /* Both sides in one loop, the same distance on each: side 0 along +dir (θ > 0), side 1
          * along -dir (θ < 0). */
-        vec2 rise = vec2(0.0), inside_px = vec2(0.0), gap_lo = vec2(0.0), gap_hi = vec2(0.0);
+        vec2 rise = vec2(0.0);
+        ob_gap gap_pos = ob_gap_none(), gap_neg = ob_gap_none();
         for (int j = 0; j < steps; ++j) {
             float dist_px = ob_slice_step_px(j, jit.y, steps, s.radius_px);
             vec2 off = s.dir * dist_px;
-            horizon_step(s, centre + off, dist_px, p, s.t_pos, rise.x, inside_px.x, gap_lo.x, gap_hi.x);
-            horizon_step(s, centre - off, dist_px, p, s.t_neg, rise.y, inside_px.y, gap_lo.y, gap_hi.y);
+            horizon_step(s, centre + off, dist_px, p, s.t_pos, false, rise.x, gap_pos);
+            horizon_step(s, centre - off, dist_px, p, s.t_neg, false, rise.y, gap_neg);
         }
-        /* The surface left the sphere of radius R between gap_lo and gap_hi. On a wall that
-         * climbs away from P (every crease) the horizon within R is exactly where it leaves, so
-         * sparse steps always stop short of it and read too little occlusion. Bisect that gap a
-         * few times (after the march, so SIMD lanes stay in step): each halving halves the
-         * shortfall, for one fetch. */
+        /* Bisect where the surface leaves the sphere of radius R (ob_gap in slice_march.glsl). */
         for (int b = 0; b < REFINE_STEPS; ++b) {
-            horizon_refine(s, centre, 1.0, p, s.t_pos, rise.x, gap_lo.x, gap_hi.x);
-            horizon_refine(s, centre, -1.0, p, s.t_neg, rise.y, gap_lo.y, gap_hi.y);
+            float mid_pos = ob_gap_mid(gap_pos), mid_neg = ob_gap_mid(gap_neg);
+            horizon_step(s, centre + s.dir * mid_pos, mid_pos, p, s.t_pos, true, rise.x, gap_pos);
+            horizon_step(s, centre - s.dir * mid_neg, mid_neg, p, s.t_neg, true, rise.y, gap_neg);
         }
         /* h: each side's horizon angle from V toward its side, the tangent's angle (π/2 ± n)
          * less the highest rise (rise_key inverted); a horizon on one side cannot pass V. eq. 10 with θ signed: the
          * horizon of side 1 is at -h.y, that of side 0 at h.x. */
-        vec2 h = max(vec2(OB_HALF_PI + s.ang_n, OB_HALF_PI - s.ang_n) - 2.0 * asin(sqrt(min(0.5 * rise, vec2(1.0)))),
+        vec2 h = max(vec2(OB_HALF_PI + s.ang_n, OB_HALF_PI - s.ang_n) - vec2(ob_rise_angle(rise.x), ob_rise_angle(rise.y)),
                      vec2(0.0));
         float h0 = -h.y, h1 = h.x;
         float a = 0.25 * (-cos(2.0 * h0 - s.ang_n) + s.cos_n + 2.0 * h0 * s.sin_n) +

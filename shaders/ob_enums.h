@@ -43,4 +43,11 @@
 #define OB_DIRECTIONS_MODE_UNIFORM 0
 #define OB_DIRECTIONS_MODE_COSINE 1
 
+/* Which sectors of a visibility bitmask a sample's angle interval sets (vbao.c's coverage
+ * options): every sector it touches, those whose centre it covers, or only those it covers
+ * whole. */
+#define OB_SECTOR_COVERAGE_TOUCH 0
+#define OB_SECTOR_COVERAGE_HALF 1
+#define OB_SECTOR_COVERAGE_ALL 2
+
 #endif

@@ -126,13 +126,15 @@ float ob_march_depth(sampler2D depth, ivec2 q, int level, ivec2 size, out vec2 c
 }
 #endif
 
-/* The sample at AO-grid position `at`, dist_px from P: its offset w from p in view space, and
- * whether there is a surface there (false off the screen and on sky, w = 0 then). Without
+/* The sample at AO-grid position `at`, dist_px from P: its offset w from p in view space, the
+ * AO-grid texel whose surface point that is (for its normal or radiance), and whether there is a
+ * surface there (false off the screen and on sky, w = 0 then). Without
  * OB_MARCH_DEPTH_MIPS every step reads `depth` at full resolution; with it, a step reads level
  * floor(log2(dist_px x mip_scale)) of the chain, at most max_mip (as the position of the highest
  * set bit: no log2 per sample; below 1 findMSB gives -1, clamped to 0). Off-screen samples read
  * the clamped edge and are discarded by a select, not a branch, for the reason above. */
-bool ob_march_fetch(sampler2D depth, vec2 at, float dist_px, vec3 p, float mip_scale, int max_mip, out vec3 w)
+bool ob_march_fetch(sampler2D depth, vec2 at, float dist_px, vec3 p, float mip_scale, int max_mip, out vec3 w,
+                    out ivec2 texel)
 {
     ivec2 size = ivec2(frame.ao_size);
     ivec2 q = ivec2(floor(at));
@@ -147,8 +149,66 @@ bool ob_march_fetch(sampler2D depth, vec2 at, float dist_px, vec3 p, float mip_s
     float sd = texelFetch(depth, q, 0).r;
 #endif
     bool hit = on_screen && sd > 0.0;
+    texel = ivec2(qc);
     w = hit ? ob_view_position(qc, sd, frame.ao_inv_size, frame.ao_proj_info) - p : vec3(0.0);
     return hit;
+}
+
+/* The rise of a sample above a side's tangent t, as k = 1 - cos(rise) = 2 sin²(rise / 2): 0 for
+ * none, up to 2 for a sample straight up the far side. In the slice's coordinates the sample is
+ * at x = dot(w, t) along the tangent and y = dot(w, n) / |n_φ| across it, toward the normal (the
+ * normal's part across the slice is perpendicular to every in-slice direction). A sample on P's
+ * plane gives y = 0, no rise, also where snapping to the texel centre moved it off the slice, so
+ * open planes read exactly open (the sample's own angle from V would sit above this slice's
+ * tangent there). The rise is the angle of (x, y) in [0, π], past the slice's zenith too, which
+ * occluders on the side the normal leans away from reach, and k grows monotonically with it.
+ * 1 - x / r directly would cancel for small rises (1e-7 of cos is 3e-4 rad); for x > 0 it is
+ * y² / (r (r + x)). Below the tangent (y <= 0) nothing rises. ob_rise_angle inverts it. */
+float ob_rise_key(vec3 w, vec3 t, vec3 n_slice)
+{
+    float x = dot(w, t), y = dot(w, n_slice);
+    float r = sqrt(x * x + y * y);
+    float k = x > 0.0 ? y * y / (r * (r + x)) : 1.0 - x / r;
+    return y > 0.0 ? k : 0.0;
+}
+
+float ob_rise_angle(float key) { return 2.0 * asin(sqrt(clamp(0.5 * key, 0.0, 1.0))); }
+
+/* Where the surface leaves the sphere of radius R. On a wall that climbs away from P (every
+ * crease) the occluder within R reaches exactly up to where the wall leaves the sphere, so
+ * sparse steps always stop short of it and read too little occlusion. The march notes the first
+ * gap between the last step inside R and a step beyond it whose surface stands higher than
+ * anything found so far (not on an open floor, say); after the march a few bisections of that
+ * gap (ob_gap_mid, ob_gap_halve) each halve the shortfall for one fetch. After the march, so
+ * SIMD lanes stay in step; selects, not branches, as everywhere in the march. */
+struct ob_gap {
+    float inside_px; /* the last step within R (0 = P itself) */
+    float lo, hi;    /* the gap; hi = 0: none yet */
+};
+
+ob_gap ob_gap_none() { return ob_gap(0.0, 0.0, 0.0); }
+
+/* After a step at dist_px: `inside` = a surface within R there, `beyond_higher` = a surface at or
+ * beyond R that stands higher than the horizon so far. */
+void ob_gap_note(inout ob_gap g, bool inside, bool beyond_higher, float dist_px)
+{
+    bool opens = beyond_higher && g.hi == 0.0;
+    g.lo = opens ? g.inside_px : g.lo;
+    g.hi = opens ? dist_px : g.hi;
+    g.inside_px = inside ? dist_px : g.inside_px;
+}
+
+/* The next bisection's distance; a step there counts only where ob_gap_open(g). */
+float ob_gap_mid(ob_gap g) { return 0.5 * (g.lo + g.hi); }
+bool ob_gap_open(ob_gap g) { return g.hi > 0.0; }
+
+/* Keep the half in which the surface leaves the sphere: [mid, hi] when mid was inside R. */
+void ob_gap_halve(inout ob_gap g, bool inside)
+{
+    float mid = ob_gap_mid(g);
+    bool open = ob_gap_open(g);
+    g.lo = open && inside ? mid : g.lo;
+    g.hi = open && !inside ? mid : g.hi;
 }
 
 #endif

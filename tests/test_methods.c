@@ -203,7 +203,7 @@ static void test_registry_entry(int index)
     const ob_method_info *info = ob_method_at(index);
     CHECK(m && info && !strcmp(m->info.name, info->name), "entry %d: impl and info agree", index);
     if (!m || !info) return;
-    CHECK(info->directional == ((m->writes & OB_WRITES_VISIBILITY_RGB) != 0),
+    CHECK(info->directional == ((m->writes & (OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE)) != 0),
           "%s: directional follows the declared outputs", info->name);
     CHECK((m->writes & (OB_WRITES_VISIBILITY | OB_WRITES_VISIBILITY_RGB)) != 0,
           "%s: writes a visibility (R or RGB)", info->name);

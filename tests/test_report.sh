@@ -53,10 +53,11 @@ for v in r["views"]:
         for k in ("rmse", "bias", "ssim", "ao_ms"):
             assert isinstance(m[k], (int, float)) and math.isfinite(m[k]), (m["method"], k, m[k])
         assert 0 <= m["rmse"] <= 1 and -1 <= m["bias"] <= 1 and m["ao_ms"] >= 0
-    # Directional methods (SSDO) are also compared as radiance against the one-bounce reference.
+    # Directional methods (SSDO's M, vbgi's bounce) are also compared as radiance against the
+    # one-bounce reference.
     listed = {m["name"]: m for m in json.loads(subprocess.check_output([sys.argv[2], "list", "--json"]))["methods"]}
     for m in v["methods"]:
-        if m["method"].startswith("ssdo"):
+        if m["method"].startswith("ssdo") or m["method"] == "vbgi":
             assert "radiance" in m and math.isfinite(m["radiance"]["rmse"]) and m["radiance"]["rmse"] >= 0, m
         else:
             assert "radiance" not in m, m

@@ -259,7 +259,7 @@ typedef struct ob_method_info {
     const char *name;
     const char *description;
     const char *reference; /* seed / paper section */
-    bool directional;      /* writes RGB modulation and a bounce (SSDO): compare its radiance too */
+    bool directional;      /* writes RGB modulation (SSDO) or a bounce (vbgi): compare its radiance too */
     int param_count;
     const ob_param_info *params;
 } ob_method_info;
@@ -430,7 +430,7 @@ int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max);
  *   samples   samples each pixel took / the most any pixel could take that frame (the method's
  *             count, under adaptive sampling its base x 3; the CLI divides by the image's largest
  *             count instead), grey; 0 for sky
- *   bounce    directional methods' one-bounce light, clamped and sRGB-encoded; black otherwise
+ *   bounce    the one-bounce light of methods that write one (SSDO, vbgi), clamped and sRGB-encoded; black otherwise
  *   bent_normals  the method's bent normal (renormalised) as b * 0.5 + 0.5; black when it wrote none */
 typedef enum ob_view {
     OB_VIEW_FINAL = 0,

@@ -240,6 +240,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
                                .bounce = plan->impl->writes & OB_WRITES_BOUNCE ? t->bounce_raw : 0,
                                .bent_normal = plan->bent ? t->bent_raw : 0};
     r->last_rgb = plan->rgb;
+    r->last_bounce = plan->bounce;
     r->last_bent = plan->bent;
     ob_timer_begin(&r->timers, "ao");
     err = run_method(r, plan, &in, &out);
@@ -257,9 +258,13 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
          * sky is 1 in M and 0 in the bounce. The barrier orders the shared scratch target. */
         err = run_filter(filter, fstate, t, t->raw_rgb, g->k > 1 ? t->filtered_rgb : r->ao_rgb, t->scratch_rgb, true,
                          1.0f, s);
+    }
+    if (err == OB_OK && plan->bounce) {
+        /* A bounce beside a scalar visibility (vbgi) takes the filter's RGB variant. */
+        void *bstate = plan->rgb ? fstate : ob_renderer_filter_state(r, s->filter, true, &err);
         glMemoryBarrier(barrier);
-        if (err == OB_OK && plan->bounce)
-            err = run_filter(filter, fstate, t, t->bounce_raw, g->k > 1 ? t->bounce_filtered : r->bounce,
+        if (err == OB_OK)
+            err = run_filter(filter, bstate, t, t->bounce_raw, g->k > 1 ? t->bounce_filtered : r->bounce,
                              t->scratch_rgb, true, 0.0f, s);
     }
     if (err == OB_OK && plan->bent) {
@@ -284,10 +289,10 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         } else {
             ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
                                 t->filtered_rgb, r->ao_rgb, 1.0f);
-            if (plan->bounce)
-                ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth,
-                                    t->normal, t->bounce_filtered, r->bounce, 0.0f);
         }
+        if (plan->bounce)
+            ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
+                                t->bounce_filtered, r->bounce, 0.0f);
         glMemoryBarrier(barrier);
     }
     if (plan->rgb && !plan->bounce) {

@@ -31,7 +31,11 @@ static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_vi
     case OB_VIEW_DEPTH: in->source = r->gbuffer.linear_depth; break;
     case OB_VIEW_SHADOW:
     case OB_VIEW_RADIANCE: in->source = r->direct; break;
-    case OB_VIEW_BOUNCE: in->source = r->last_rgb ? r->bounce : r->gbuffer.linear_depth; break; /* black if not */
+    case OB_VIEW_BOUNCE:
+        /* The view pass shows black without one (directional = 0). */
+        in->source = r->last_bounce ? r->bounce : r->gbuffer.linear_depth;
+        in->directional = r->last_bounce;
+        break;
     case OB_VIEW_BENT_NORMALS:
         /* The view pass shows black without one (directional = 0, as for the bounce). */
         in->source = r->last_bent ? r->bent : r->gbuffer.linear_depth;

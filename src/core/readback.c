@@ -134,7 +134,7 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
         }
         break;
     case OB_IMAGE_BOUNCE_F32:
-        if (r->last_rgb) return read_rgb(r->bounce, r->width, r->height, dst, 3);
+        if (r->last_bounce) return read_rgb(r->bounce, r->width, r->height, dst, 3);
         memset(dst, 0, need);
         break;
     case OB_IMAGE_BENT_NORMAL_F32:

@@ -64,7 +64,8 @@ struct ob_renderer {
     int last_method;           /* what the last frame ran, for the sample-count view */
     float last_params[OB_MAX_PARAMS];
     bool last_adaptive;
-    bool last_rgb;             /* the last frame's method wrote RGB M (and maybe a bounce) */
+    bool last_rgb;             /* the last frame's method wrote RGB M */
+    bool last_bounce;          /* the last frame's method wrote a bounce (SSDO's beside M, vbgi's beside visibility) */
     bool last_bent;            /* the last frame's method wrote a bent normal */
     bool has_frame;            /* the targets hold a whole frame (ob_present) */
     float last_far;            /* the last frame's far plane (the depth view's scale) */

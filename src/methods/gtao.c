@@ -45,14 +45,6 @@ static const ob_param_info gtao_params[P_COUNT] = {
                         false},
 };
 
-/* The R2 sequence's steps (Roberts 2018, the plastic number's powers): the best-spread 2D
- * low-discrepancy offsets for successive frames. */
-#define R2_A1 0.7548776662466927f
-#define R2_A2 0.5698402909980532f
-/* A step reads full-resolution depth until it is 2^3.3 ≈ 10 px out: the coarser level's texel is
- * then well under a tenth of the step (XeGTAO's DepthMIPSamplingOffset, same reasoning). */
-#define MIP_OFFSET 3.3f
-
 typedef struct gtao_state {
     ob_method_kit kit;      /* the full-resolution program (shaders/gtao.glsl as it is) */
     GLuint mips_program;    /* the same shader with OB_MARCH_DEPTH_MIPS, made on first use */
@@ -78,10 +70,10 @@ static void fill_constants(ob_gtao_constants *c, const float *params, uint32_t f
     c->steps = (int)params[P_STEPS];
     c->noise = (int)params[P_NOISE];
     c->depth_mips = params[P_DEPTH_MIPS] != 0.0f && max_mip > 0 ? 1 : 0;
-    bool temporal = params[P_TEMPORAL] != 0.0f;
-    c->slice_offset = temporal ? fmodf((float)(frame_index % 4096u) * R2_A1, 1.0f) : 0.0f;
-    c->step_offset = temporal ? fmodf((float)(frame_index % 4096u) * R2_A2, 1.0f) : 0.0f;
-    c->mip_scale = exp2f(-MIP_OFFSET);
+    ob_slice_frame sf = ob_slice_frame_make(frame_index, params[P_TEMPORAL] != 0.0f);
+    c->slice_offset = sf.slice_offset;
+    c->step_offset = sf.step_offset;
+    c->mip_scale = sf.mip_scale;
     c->max_mip = c->depth_mips ? max_mip : 0; /* level 0 only: unit 3 holds the depth itself */
     c->bent_normals = params[P_BENT_NORMALS] != 0.0f ? 1 : 0;
 }
@@ -105,12 +97,7 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
     int max_mip = in->depth_mips ? in->depth_mip_levels - 1 : 0;
     fill_constants(&c, params, in->frame->frame_index, max_mip);
     c.bent_normals = c.bent_normals && out->bent_normal ? 1 : 0;
-    /* The MIP chain's level is a per-sample choice; as a runtime branch it cost the
-     * full-resolution baseline too (shaders/slice_march.glsl), so it is a program of its own. */
-    if (c.depth_mips && !s->mips_program) {
-        s->mips_program = ob_make_compute_program("gtao.glsl", "#define OB_MARCH_DEPTH_MIPS 1\n");
-        if (!s->mips_program) return ob_peek_error(NULL);
-    }
+    if (c.depth_mips && !ob_slice_mips_program(&s->mips_program, "gtao.glsl")) return ob_peek_error(NULL);
     ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
     if (c.depth_mips) glUseProgram(s->mips_program);
     if (c.bent_normals) glBindImageTexture(1, out->bent_normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -129,34 +116,11 @@ static void gtao_destroy(void *p)
 
 static int gtao_count_samples(const float *params) { return 2 * (int)params[P_SLICES] * (int)params[P_STEPS]; }
 
-/* N taps per pixel -> slices x steps x 2 sides. Seed 000's quality levels (§3.2.3) get fixed
- * splits: 12 = 2 x 3, 24 = 2 x 6, 36 = 3 x 6, 64 = 4 x 8. Steps come first: too few steps bias the
- * horizon toward open (24 taps on cornell:front: 2 x 6 bias +0.014, 3 x 4 +0.019), while too few
- * slices only add noise that the 4x4 filter window averages. Other counts split N / 2 near
- * slices = sqrt(N / 2) / 1.4. */
+/* Seed 000's quality levels as slices x steps: ob_slice_set_samples. */
 static ob_error gtao_set_samples(float *params, uint32_t *params_set, int samples)
 {
-    const int most = 2 * OB_GTAO_MAX_SLICES * OB_GTAO_MAX_STEPS;
-    if (samples < 2 || samples > most)
-        return ob_set_error(OB_ERR_OUT_OF_RANGE, "gtao: samples must be 2..%d (2 x slices x steps), got %d", most, samples);
-    static const struct { int samples, slices, steps; } presets[] = {{12, 2, 3}, {24, 2, 6}, {36, 3, 6}, {64, 4, 8}};
-    int slices = 0, steps = 0;
-    for (size_t i = 0; i < sizeof presets / sizeof presets[0]; ++i)
-        if (presets[i].samples == samples) {
-            slices = presets[i].slices;
-            steps = presets[i].steps;
-        }
-    if (slices == 0) {
-        int half = samples / 2;
-        slices = (int)lroundf(sqrtf((float)half) / 1.4f);
-        slices = slices < 1 ? 1 : slices > OB_GTAO_MAX_SLICES ? OB_GTAO_MAX_SLICES : slices;
-        steps = (int)lroundf((float)half / (float)slices);
-        steps = steps < 1 ? 1 : steps > OB_GTAO_MAX_STEPS ? OB_GTAO_MAX_STEPS : steps;
-    }
-    params[P_SLICES] = (float)slices;
-    params[P_STEPS] = (float)steps;
-    if (params_set) *params_set |= (1u << P_SLICES) | (1u << P_STEPS);
-    return OB_OK;
+    return ob_slice_set_samples("gtao", params, params_set, samples, P_SLICES, P_STEPS, OB_GTAO_MAX_SLICES,
+                                OB_GTAO_MAX_STEPS);
 }
 
 const ob_method_impl ob_method_gtao = {

@@ -141,4 +141,25 @@ extern const char *const ob_sampling_options[];  /* random, halton */
 extern const char *const ob_direction_options[]; /* uniform, cosine */
 extern const char *const ob_noise_options[];     /* texture4, ign */
 
+/* ---- the slice methods (slices.c): gtao, vbao and vbgi march the same slices ----------------
+ * (shaders/slice_march.glsl); what their C sides share. */
+/* N taps per pixel -> slices x steps x 2 sides, written to params[p_slices] and params[p_steps]
+ * (the bits of both set in *params_set). Seed 000's quality levels (§3.2.3) get fixed splits:
+ * 12 = 2 x 3, 24 = 2 x 6, 36 = 3 x 6, 64 = 4 x 8. Steps come first: too few steps bias the
+ * horizon toward open (24 taps on cornell:front: 2 x 6 bias +0.014, 3 x 4 +0.019), while too few
+ * slices only add noise that the 4x4 filter window averages. Other counts split N / 2 near
+ * slices = sqrt(N / 2) / 1.4. OB_ERR_OUT_OF_RANGE (naming `method`) outside 2..2 x max x max. */
+ob_error ob_slice_set_samples(const char *method, float *params, uint32_t *params_set, int samples, int p_slices,
+                              int p_steps, int max_slices, int max_steps);
+/* The per-frame jitter offsets (an R2 sequence over the frame index when temporal, else 0) and
+ * the MIP level scale of the depth march. */
+typedef struct ob_slice_frame {
+    float slice_offset, step_offset;
+    float mip_scale;
+} ob_slice_frame;
+ob_slice_frame ob_slice_frame_make(uint32_t frame_index, bool temporal);
+/* The method's shader with OB_MARCH_DEPTH_MIPS, made on first use into *program (0 = not yet);
+ * after ob_method_kit_use, glUseProgram of it selects the MIP variant. False with the error set. */
+bool ob_slice_mips_program(GLuint *program, const char *shader);
+
 #endif

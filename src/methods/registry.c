@@ -13,7 +13,9 @@
     X(alchemy)        \
     X(ssdo)           \
     X(ssdo_merged)    \
-    X(gtao)
+    X(gtao)           \
+    X(vbao)           \
+    X(vbgi)
 
 #define OB_X_EXTERN(name) extern const ob_method_impl ob_method_##name;
 OB_METHODS(OB_X_EXTERN)
@@ -38,7 +40,7 @@ static void fill_infos(void)
 {
     for (int i = 0; i < METHOD_COUNT; ++i) {
         infos[i] = methods[i]->info;
-        infos[i].directional = (methods[i]->writes & OB_WRITES_VISIBILITY_RGB) != 0;
+        infos[i].directional = (methods[i]->writes & (OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE)) != 0;
     }
 }
 

@@ -17,7 +17,7 @@ void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_
     memset(&k, 0, sizeof k);
     k.ao_all_light = in->ao_all_light ? 1 : 0;
     k.directional = in->directional ? 1 : 0;
-    k.add_bounce = in->directional && in->bounce ? 1 : 0;
+    k.add_bounce = in->bounce ? 1 : 0;
     k.multibounce = in->multibounce ? 1 : 0;
     k.bent_normal = in->bent_normal ? 1 : 0;
     ob_compute_pass_use(&c->pass, &k, sizeof k);

@@ -1,0 +1,85 @@
+/* The visibility bitmask of a slice (Therrien, Levesque & Gilet 2023, §3.1-3.2): 32 sectors
+ * uniform in angle over the half circle above P's tangent, θ' = θ - n(φ) in [-π/2, π/2] around
+ * the projected normal; bit i covers the fraction [i, i + 1] / 32 of it, from the tangent on the
+ * side opposite dir (0) to the tangent on dir's side (1). Pure functions of their arguments, so
+ * tests/test_bitmask.c runs them through shaders/bitmask_probe.glsl against a C copy, bit for
+ * bit. Used by visibility_bitmask.glsl (vbao, vbgi); include after slice_march.glsl (ob_fast_atan2). */
+#ifndef OB_BITMASK_GLSL
+#define OB_BITMASK_GLSL
+
+#include "ob_enums.h" /* OB_SECTOR_COVERAGE_* */
+
+const int OB_SECTORS = 32;
+const float OB_BITMASK_PI = 3.14159265358979;
+
+/* The rise of in-slice offset w above a side's tangent t, in [0, π] (see ob_rise_key in
+ * slice_march.glsl for the coordinates); 0 on or below the tangent. A sample on P's own plane
+ * rises by rounding alone (|y| ~ 1e-7 |w|), and the `touch` rule would turn that into a whole
+ * sector: rises under OB_RISE_EPSILON (1e-4 rad, 0.006°, a 500th of a sector) count as none. */
+const float OB_RISE_EPSILON = 1e-4;
+
+float ob_rise_angle_of(vec3 w, vec3 t, vec3 n_slice)
+{
+    float x = dot(w, t), y = dot(w, n_slice);
+    float rise = y > 0.0 ? ob_fast_atan2(y, x) : 0.0;
+    return rise > OB_RISE_EPSILON ? rise : 0.0;
+}
+
+/* The sectors [lo, hi] (fractions of the half circle) sets under `coverage`. An empty interval
+ * sets nothing. All three rules are worked out and one selected: the choice is uniform, but
+ * llvmpipe runs both sides of any branch inside the divergent march. */
+uint ob_sector_bits(float lo, float hi, int coverage)
+{
+    float a = lo * float(OB_SECTORS), b = hi * float(OB_SECTORS);
+    vec3 start = vec3(floor(a), ceil(a - 0.5), ceil(a)); /* touch, half (centre inside), all */
+    vec3 end = vec3(ceil(b), floor(b + 0.5), floor(b));
+    int c = clamp(coverage, OB_SECTOR_COVERAGE_TOUCH, OB_SECTOR_COVERAGE_ALL);
+    int s0 = int(clamp(start[c], 0.0, float(OB_SECTORS))), e0 = int(clamp(end[c], 0.0, float(OB_SECTORS)));
+    int count = hi > lo ? e0 - s0 : 0;
+    return count > 0 ? (0xFFFFFFFFu >> uint(OB_SECTORS - count)) << uint(s0) : 0u;
+}
+
+/* The sectors a sample sets, from the rises of its front and back above its side's tangent
+ * (§3.2: the back is the front pushed away from the eye by the thickness). Side + (`positive`,
+ * along dir) has its tangent at 1 and rises toward V, side - has it at 0; a sample on one side
+ * cannot occlude the other side of V, at u0 = (π/2 - n) / π. */
+uint ob_sample_bits(float rise_front, float rise_back, float ang_n, bool positive, int coverage)
+{
+    float u0 = (0.5 * OB_BITMASK_PI - ang_n) / OB_BITMASK_PI;
+    vec2 r = vec2(rise_front, rise_back) / OB_BITMASK_PI;
+    vec2 u = positive ? clamp(1.0 - r, u0, 1.0) : clamp(r, 0.0, u0);
+    return ob_sector_bits(min(u.x, u.y), max(u.x, u.y), coverage);
+}
+
+/* ∫_0^θ cos(θ' - n) |sin θ'| dθ' with the sign of θ (Jimenez et al. 2016 eq. 10's â made odd), so
+ * that the cosine weight of [θa, θb] is S(θb) - S(θa) on either side of V. */
+float ob_sector_s(float theta, float ang_n, float cos_n, float sin_n)
+{
+    float a = 0.25 * (-cos(2.0 * theta - ang_n) + cos_n + 2.0 * theta * sin_n);
+    return theta < 0.0 ? -a : a;
+}
+
+/* The cosine weight of `count` sectors from sector `first` on. */
+float ob_run_measure(int first, int count, float ang_n, float cos_n, float sin_n)
+{
+    const float width = OB_BITMASK_PI / float(OB_SECTORS);
+    float t0 = ang_n - 0.5 * OB_BITMASK_PI + float(first) * width;
+    return ob_sector_s(t0 + float(count) * width, ang_n, cos_n, sin_n) - ob_sector_s(t0, ang_n, cos_n, sin_n);
+}
+
+/* The cosine weight of a set of sectors, run by run (a mask has few runs). */
+float ob_bits_measure(uint bits, float ang_n, float cos_n, float sin_n)
+{
+    float m = 0.0;
+    for (int i = 0; i < OB_SECTORS / 2 && bits != 0u; ++i) {
+        int a = findLSB(bits);
+        uint rest = bits >> uint(a);
+        int len = rest == 0xFFFFFFFFu ? OB_SECTORS : findLSB(~rest);
+        m += ob_run_measure(a, len, ang_n, cos_n, sin_n);
+        uint run = len >= OB_SECTORS ? 0xFFFFFFFFu : ((1u << uint(len)) - 1u) << uint(a);
+        bits &= ~run;
+    }
+    return m;
+}
+
+#endif

@@ -1,0 +1,164 @@
+/* Visibility-bitmask AO and one-bounce indirect light (Therrien, Levesque & Gilet 2023, "Screen
+ * Space Indirect Lighting with Visibility Bitmask", §3), the body of vbao.glsl and vbgi.glsl
+ * (vbgi.glsl defines OB_VBGI). Built on gtao's slices (shaders/slice_march.glsl: the same slice
+ * set-up, steps, jitter and depth march).
+ *
+ * A horizon method keeps, per side of a slice, the highest angle seen and takes everything below
+ * it as occluded: every occluder is infinitely thick. Here the half circle of directions above
+ * P's tangent in the slice, θ' = θ - n(φ) in [-π/2, π/2] around the projected normal, is cut into
+ * 32 sectors, one bit each (§3.1). Each sample within R is a front point (the depth buffer) and a
+ * back point pushed away from the eye along its view ray by a thickness t (§3.2); the angles of
+ * the two bound an interval, and the sectors it covers are set. Light passes through the sectors
+ * no sample set, behind thin objects too.
+ *
+ * Visibility per slice is the unset part of the mask, weighted
+ *   uniform (the paper's, §3.1):   1 - popcount(mask) / 32, the mean over slices; or
+ *   cosine (AO_R's weighting):     the integral of cos(θ - n) |sin θ| over the unset sectors, with
+ *                                  |n_φ| per slice and the open hemisphere's quadrature as the
+ *                                  denominator (gtao.glsl, Jimenez et al. 2016 eq. 3, 5, 10):
+ *                                  a run of sectors [θa, θb] weighs S(θb) - S(θa), S(θ) = sign(θ) â(θ, n)
+ *                                  with â eq. 10's closed form.
+ *
+ * vbgi (§3.3): each sample adds its direct radiance L_s times the cosine-weighted measure of the
+ * sectors it is the first to set (the newly occluded directions, through which P sees it), so that
+ * the sum over slices estimates (1/π) ∫ L(ω) cos θ dω over the directions whose first hit within R
+ * is a sample: the one-bounce term of ob_reference_bounce for a white receiver. The measure holds
+ * the receiver's cosine; the sender's is the paper's heuristic (vb.emitter_cosine), otherwise a
+ * sender facing away from P sends nothing (P would see its unlit back).
+ *
+ * AO is visibility: 1 = open. Sky (depth 0) writes 1 (and no bounce). */
+#include "vbao_params.h"
+#include "common.glsl"
+#include "slice_march.glsl"
+#include "bitmask.glsl"
+
+layout(local_size_x = OB_VB_GROUP_X, local_size_y = OB_VB_GROUP_Y) in;
+
+layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
+layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
+layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
+layout(binding = 3) uniform sampler2D depth_mips;   /* the MIP chain (OB_MARCH_DEPTH_MIPS), else linear_depth */
+layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+#ifdef OB_VBGI
+layout(binding = 4) uniform sampler2D radiance;     /* full-resolution RGBA16F direct radiance */
+layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
+#endif
+
+/* Bisections of the gap in which the surface leaves the sphere of radius R (ob_gap). */
+const int REFINE_STEPS = 2;
+
+/* One sample on one side of slice s (positive: along +dir), at AO-grid position `at`, dist_px
+ * from P. `refine`: a bisection step of the gap, counting only while it is open. Updates the mask,
+ * the highest front rise within R (for the gap), and vbgi's bounce. */
+void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, bool refine, inout uint mask,
+                  inout float rise, inout ob_gap gap, inout vec3 bounce)
+{
+    vec3 w;
+    ivec2 texel;
+    bool hit = ob_march_fetch(depth_mips, at, dist_px, p, vb.mip_scale, vb.max_mip, w, texel) &&
+               (refine ? ob_gap_open(gap) : dist_px <= s.radius_px);
+    float w_len = length(w);
+    bool inside = hit && w_len < vb.radius;
+    vec3 t = positive ? s.t_pos : s.t_neg;
+    /* §3.2: the back of the sample, its front pushed away from the eye along its view ray. */
+    vec3 sv = p + w;
+    float thick = vb.thickness + vb.thickness_slope * max(-sv.z, 0.0);
+    vec3 wb = w + sv * (thick * inversesqrt(max(dot(sv, sv), 1e-20)));
+    float rise_front = ob_rise_angle_of(w, t, s.n_slice), rise_back = ob_rise_angle_of(wb, t, s.n_slice);
+    uint bits = inside ? ob_sample_bits(rise_front, rise_back, s.ang_n, positive, vb.coverage) : 0u;
+#ifdef OB_VBGI
+    /* The sender's direct radiance through the directions it is the first to occlude. Their
+     * cosine measure is the interval's exact one (two cosines, ob_run_measure) times the share of its
+     * sectors still unset: exact when none or all of them were set before, and no loop over the
+     * runs of the new bits per sample (llvmpipe runs such a loop as long as its slowest lane). */
+    uint fresh = bits & ~mask;
+    int count = bitCount(bits);
+    int first = count > 0 ? findLSB(bits) : 0;
+    float measure = ob_run_measure(first, count, s.ang_n, s.cos_n, s.sin_n);
+    float share = count > 0 ? float(bitCount(fresh)) / float(count) : 0.0;
+    vec3 n_s = texelFetch(view_normal, texel, 0).xyz;
+    float facing = -dot(n_s, w) / max(w_len, 1e-20);
+    float emit = vb.emitter_cosine != 0 ? max(facing, 0.0) : (facing > 0.0 ? 1.0 : 0.0);
+    ivec2 full = clamp(texel * frame.ao_k + frame.ao_o, ivec2(0), textureSize(radiance, 0) - 1);
+    bounce += texelFetch(radiance, full, 0).rgb * (emit * share * measure);
+#endif
+    mask |= bits;
+    if (refine) ob_gap_halve(gap, inside);
+    else ob_gap_note(gap, inside, hit && !inside && rise_front > rise, dist_px);
+    rise = inside ? max(rise, rise_front) : rise;
+}
+
+void main()
+{
+    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(frame.ao_size);
+    if (any(greaterThanEqual(pix, size))) return;
+    float d = texelFetch(linear_depth, pix, 0).r;
+    if (d <= 0.0) {
+        imageStore(ao_out, pix, vec4(1.0));
+#ifdef OB_VBGI
+        imageStore(bounce_out, pix, vec4(0.0, 0.0, 0.0, 1.0));
+#endif
+        return;
+    }
+    vec2 centre = vec2(pix) + 0.5;
+    vec3 p = ob_view_position(centre, d, frame.ao_inv_size, frame.ao_proj_info);
+    vec3 v = -normalize(p);
+    vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
+    /* Silhouette normals facing away from the eye: tilted back, as in gtao.glsl. */
+    float nv = dot(n, v);
+    if (nv < 0.02) n = normalize(n + (0.02 - nv) * v);
+
+    vec2 to_view = frame.ao_proj_info.xy * frame.ao_inv_size * 2.0;
+    vec2 jit = ob_slice_jitters(pix, vb.noise, noise_tile, vec2(vb.slice_offset, vb.step_offset));
+    int slices = vb.slices, steps = vb.steps;
+    bool cosine = vb.weighting == OB_DIRECTIONS_MODE_COSINE;
+
+    float visible = 0.0, total = 0.0, cos_total = 0.0;
+    vec3 bounce = vec3(0.0);
+    float phi0 = jit.x * OB_PI / float(slices), dphi = OB_PI / float(slices);
+    vec2 dir = vec2(cos(phi0), sin(phi0));
+    vec2 turn = vec2(cos(dphi), sin(dphi));
+    for (int k = 0; k < slices; ++k, dir = vec2(dir.x * turn.x - dir.y * turn.y, dir.x * turn.y + dir.y * turn.x)) {
+        ob_slice s;
+        bool weighty = ob_slice_setup(dir, p, v, n, d, to_view, vb.radius, s);
+        /* A slice across the normal weighs nothing in the cosine quadrature; the uniform one
+         * counts it open, as the paper does. */
+        if (!weighty) {
+            visible += cosine ? 0.0 : 1.0;
+            total += cosine ? 0.0 : 1.0;
+            continue;
+        }
+        uint mask = 0u;
+        vec2 rise = vec2(0.0);
+        ob_gap gap_pos = ob_gap_none(), gap_neg = ob_gap_none();
+        vec3 slice_bounce = vec3(0.0);
+        for (int j = 0; j < steps; ++j) {
+            float dist_px = ob_slice_step_px(j, jit.y, steps, s.radius_px);
+            vec2 off = s.dir * dist_px;
+            bitmask_step(s, centre + off, dist_px, p, true, false, mask, rise.x, gap_pos, slice_bounce);
+            bitmask_step(s, centre - off, dist_px, p, false, false, mask, rise.y, gap_neg, slice_bounce);
+        }
+        for (int b = 0; b < REFINE_STEPS; ++b) {
+            float mid_pos = ob_gap_mid(gap_pos), mid_neg = ob_gap_mid(gap_neg);
+            bitmask_step(s, centre + s.dir * mid_pos, mid_pos, p, true, true, mask, rise.x, gap_pos, slice_bounce);
+            bitmask_step(s, centre - s.dir * mid_neg, mid_neg, p, false, true, mask, rise.y, gap_neg, slice_bounce);
+        }
+        /* The open half circle's cosine measure: â(n + π/2) + â(n - π/2) = cos n + n sin n. */
+        float open = s.cos_n + s.ang_n * s.sin_n;
+        if (cosine) {
+            visible += s.len_n * (open - ob_bits_measure(mask, s.ang_n, s.cos_n, s.sin_n));
+            total += s.len_n * open;
+        } else {
+            visible += 1.0 - float(bitCount(mask)) / float(OB_SECTORS);
+            total += 1.0;
+        }
+        cos_total += s.len_n * open;
+        bounce += s.len_n * slice_bounce;
+    }
+    float ao = total > 0.0 ? clamp(visible / total, 0.0, 1.0) : 1.0;
+    imageStore(ao_out, pix, vec4(ao));
+#ifdef OB_VBGI
+    imageStore(bounce_out, pix, vec4(cos_total > 0.0 ? bounce / cos_total : vec3(0.0), 1.0));
+#endif
+}

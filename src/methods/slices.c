@@ -1,0 +1,60 @@
+/* What the slice methods (gtao, vbao, vbgi) share on the CPU: the split of a sample count into
+ * slices x steps, the per-frame jitter offsets and the depth-MIP program variant. Their shaders
+ * share shaders/slice_march.glsl. */
+#include <math.h>
+
+#include "core/error.h"
+#include "methods/method.h"
+
+/* The R2 sequence's steps (Roberts 2018, the plastic number's powers): the best-spread 2D
+ * low-discrepancy offsets for successive frames. */
+#define R2_A1 0.7548776662466927f
+#define R2_A2 0.5698402909980532f
+/* A step reads full-resolution depth until it is 2^3.3 ≈ 10 px out: the coarser level's texel is
+ * then well under a tenth of the step (XeGTAO's DepthMIPSamplingOffset, same reasoning). */
+#define MIP_OFFSET 3.3f
+
+ob_error ob_slice_set_samples(const char *method, float *params, uint32_t *params_set, int samples, int p_slices,
+                              int p_steps, int max_slices, int max_steps)
+{
+    if (!params) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s: params is NULL", method);
+    const int most = 2 * max_slices * max_steps;
+    if (samples < 2 || samples > most)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "%s: samples must be 2..%d (2 x slices x steps), got %d", method, most,
+                            samples);
+    static const struct { int samples, slices, steps; } presets[] = {{12, 2, 3}, {24, 2, 6}, {36, 3, 6}, {64, 4, 8}};
+    int slices = 0, steps = 0;
+    for (size_t i = 0; i < sizeof presets / sizeof presets[0]; ++i)
+        if (presets[i].samples == samples) {
+            slices = presets[i].slices;
+            steps = presets[i].steps;
+        }
+    if (slices == 0) {
+        int half = samples / 2;
+        slices = (int)lroundf(sqrtf((float)half) / 1.4f);
+        slices = slices < 1 ? 1 : slices > max_slices ? max_slices : slices;
+        steps = (int)lroundf((float)half / (float)slices);
+        steps = steps < 1 ? 1 : steps > max_steps ? max_steps : steps;
+    }
+    params[p_slices] = (float)slices;
+    params[p_steps] = (float)steps;
+    if (params_set) *params_set |= (1u << p_slices) | (1u << p_steps);
+    return OB_OK;
+}
+
+ob_slice_frame ob_slice_frame_make(uint32_t frame_index, bool temporal)
+{
+    ob_slice_frame f = {0};
+    f.slice_offset = temporal ? fmodf((float)(frame_index % 4096u) * R2_A1, 1.0f) : 0.0f;
+    f.step_offset = temporal ? fmodf((float)(frame_index % 4096u) * R2_A2, 1.0f) : 0.0f;
+    f.mip_scale = exp2f(-MIP_OFFSET);
+    return f;
+}
+
+/* The MIP chain's level is a per-sample choice; as a runtime branch it cost the full-resolution
+ * baseline too (shaders/slice_march.glsl), so it is a program of its own. */
+bool ob_slice_mips_program(GLuint *program, const char *shader)
+{
+    if (!*program) *program = ob_make_compute_program(shader, "#define OB_MARCH_DEPTH_MIPS 1\n");
+    return *program != 0;
+}

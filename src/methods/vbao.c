@@ -1,0 +1,202 @@
+/* `vbao` and `vbgi`: visibility-bitmask ambient occlusion and one indirect bounce (Therrien,
+ * Levesque & Gilet 2023, "Screen Space Indirect Lighting with Visibility Bitmask", §3). gtao's
+ * slices (shaders/slice_march.glsl), with a 32-sector bitmask per slice in place of two horizon
+ * angles and a thickness per sample, so light passes behind thin occluders. vbgi gathers the
+ * direct radiance of the samples through the sectors each is the first to occlude, and is
+ * composed like SSDO: (direct + ambient x albedo) x visibility + bounce x albedo. One shader body
+ * (shaders/visibility_bitmask.glsl), entered through shaders/vbao.glsl and shaders/vbgi.glsl. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "core/error.h"
+#include "methods/method.h"
+#include "vbao_params.h"
+
+enum {
+    P_RADIUS,
+    P_THICKNESS,
+    P_THICKNESS_SLOPE,
+    P_WEIGHTING,
+    P_COVERAGE,
+    P_SLICES,
+    P_STEPS,
+    P_NOISE,
+    P_TEMPORAL,
+    P_DEPTH_MIPS,
+    P_EMITTER_COSINE, /* vbgi only: the last entry, so vbao's table is the prefix */
+    P_COUNT
+};
+
+static const char *const coverage_options[] = {"touch", "half", "all"};
+
+/* The defaults and the views that chose them: docs/methods.md, "vbao". */
+static const ob_param_info vb_params[P_COUNT] = {
+    [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
+                  "R of AO_R: a sample counts when its front is within R; default: the scene's suggested radius", true},
+    [P_THICKNESS] = {"thickness", OB_PARAM_FLOAT, 0.0f, 100.0f, 0.75f, "x radius",
+                     "every sample's thickness behind its front surface, as a multiple of R (constant in world units)",
+                     false},
+    [P_THICKNESS_SLOPE] = {"thickness_slope", OB_PARAM_FLOAT, 0.0f, 10.0f, 0.0f, "x depth",
+                           "thickness added per unit of the sample's linear depth (0 = constant thickness)", false},
+    [P_WEIGHTING] = {"weighting", OB_PARAM_ENUM, 0.0f, 1.0f, 1.0f, "",
+                     "sectors weighted uniformly in angle (the paper's) or by the cosine (AO_R's)", false,
+                     ob_direction_options},
+    [P_COVERAGE] = {"coverage", OB_PARAM_ENUM, 0.0f, 2.0f, 0.0f, "",
+                    "which sectors a sample's angle interval sets: every one it touches, those whose centre it "
+                    "covers, or those it covers whole",
+                    false, coverage_options},
+    /* gtao's split (ob_slice_set_samples): 3 slices x 6 steps x 2 sides = 36 taps. */
+    [P_SLICES] = {"slices", OB_PARAM_INT, 1.0f, (float)OB_VB_MAX_SLICES, 3.0f, "count",
+                  "screen directions N_slices over [0, π), each marched on both sides", false},
+    [P_STEPS] = {"steps", OB_PARAM_INT, 1.0f, (float)OB_VB_MAX_STEPS, 6.0f, "count", "steps on each side of a slice",
+                 false},
+    [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "",
+                 "per-pixel slice and step jitter: 4x4 tile (a 4x4 filter averages it) or interleaved gradient noise",
+                 false, ob_noise_options},
+    [P_TEMPORAL] = {"temporal", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
+                    "move the jitters along an R2 sequence with the frame index (for temporal accumulation)", false},
+    [P_DEPTH_MIPS] = {"depth_mips", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
+                      "far steps read the prefiltered depth MIP chain instead of full resolution", false},
+    [P_EMITTER_COSINE] = {"emitter_cosine", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
+                          "a sender's radiance times its cosine toward P (the paper's); off: its radiance where it "
+                          "faces P (the solid-angle form of the one-bounce integral)",
+                          false},
+};
+
+typedef struct vb_state {
+    ob_method_kit kit;   /* the full-resolution program */
+    GLuint mips_program; /* the OB_MARCH_DEPTH_MIPS variant, made on first use */
+    const char *shader;
+    bool gi;
+} vb_state;
+
+/* Settings -> constants, a pure function. */
+static void fill_constants(ob_vb_constants *c, const float *params, bool gi, uint32_t frame_index, int max_mip)
+{
+    const float r = params[P_RADIUS];
+    c->radius = r;
+    c->thickness = params[P_THICKNESS] * r;
+    c->thickness_slope = params[P_THICKNESS_SLOPE];
+    c->weighting = (int)params[P_WEIGHTING];
+    c->coverage = (int)params[P_COVERAGE];
+    c->slices = (int)params[P_SLICES];
+    c->steps = (int)params[P_STEPS];
+    c->noise = (int)params[P_NOISE];
+    ob_slice_frame sf = ob_slice_frame_make(frame_index, params[P_TEMPORAL] != 0.0f);
+    c->slice_offset = sf.slice_offset;
+    c->step_offset = sf.step_offset;
+    c->mip_scale = sf.mip_scale;
+    c->max_mip = params[P_DEPTH_MIPS] != 0.0f ? max_mip : 0;
+    c->emitter_cosine = gi && params[P_EMITTER_COSINE] != 0.0f ? 1 : 0;
+}
+
+static ob_error vbao_init(void *p)
+{
+    vb_state *s = p;
+    s->shader = "vbao.glsl";
+    return OB_OK;
+}
+
+static ob_error vbgi_init(void *p)
+{
+    vb_state *s = p;
+    s->shader = "vbgi.glsl";
+    s->gi = true;
+    return OB_OK;
+}
+
+static void vb_destroy(void *p)
+{
+    vb_state *s = p;
+    if (s->mips_program) glDeleteProgram(s->mips_program);
+    s->mips_program = 0;
+}
+
+static uint32_t vb_active_reads(const float *params, uint32_t reads)
+{
+    return params[P_DEPTH_MIPS] != 0.0f ? reads : reads & ~(uint32_t)OB_READS_DEPTH_MIPS;
+}
+
+static uint32_t vbao_active_reads(const float *params)
+{
+    return vb_active_reads(params, OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS);
+}
+
+static uint32_t vbgi_active_reads(const float *params)
+{
+    return vb_active_reads(params, OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS);
+}
+
+static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
+{
+    vb_state *s = p;
+    if (s->gi && (!in->radiance || !out->bounce))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "vbgi needs the renderer's direct light (ob_render_frame)");
+    ob_vb_constants c = {0};
+    int max_mip = in->depth_mips ? in->depth_mip_levels - 1 : 0;
+    fill_constants(&c, params, s->gi, in->frame->frame_index, max_mip);
+    bool mips = c.max_mip > 0;
+    if (mips && !ob_slice_mips_program(&s->mips_program, s->shader)) return ob_peek_error(NULL);
+    ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
+    if (mips) glUseProgram(s->mips_program);
+    /* Without the chain the sampler still needs a texture: the depth itself (level 0 only). */
+    glBindTextureUnit(3, in->depth_mips ? in->depth_mips : in->linear_depth);
+    if (s->gi) {
+        glBindTextureUnit(4, in->radiance);
+        glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    }
+    ob_dispatch_2d(in->width, in->height, OB_VB_GROUP_X, OB_VB_GROUP_Y);
+    return OB_OK;
+}
+
+static int vb_count_samples(const float *params) { return 2 * (int)params[P_SLICES] * (int)params[P_STEPS]; }
+
+static ob_error vbao_set_samples(float *params, uint32_t *params_set, int samples)
+{
+    return ob_slice_set_samples("vbao", params, params_set, samples, P_SLICES, P_STEPS, OB_VB_MAX_SLICES,
+                                OB_VB_MAX_STEPS);
+}
+
+static ob_error vbgi_set_samples(float *params, uint32_t *params_set, int samples)
+{
+    return ob_slice_set_samples("vbgi", params, params_set, samples, P_SLICES, P_STEPS, OB_VB_MAX_SLICES,
+                                OB_VB_MAX_STEPS);
+}
+
+const ob_method_impl ob_method_vbao = {
+    .info = {.name = "vbao",
+             .description = "visibility-bitmask AO: gtao's slices with 32 sectors and a thickness per sample",
+             .reference = "Therrien et al. 2023 §3.1-3.2",
+             .param_count = P_EMITTER_COSINE,
+             .params = vb_params},
+    .shader = "vbao.glsl",
+    .constants_size = sizeof(ob_vb_constants),
+    .state_size = sizeof(vb_state),
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS,
+    .writes = OB_WRITES_VISIBILITY,
+    .init = vbao_init,
+    .run = vb_run,
+    .destroy = vb_destroy,
+    .active_reads = vbao_active_reads,
+    .set_samples = vbao_set_samples,
+    .count_samples = vb_count_samples,
+};
+
+const ob_method_impl ob_method_vbgi = {
+    .info = {.name = "vbgi",
+             .description = "visibility-bitmask AO + one indirect bounce gathered in the same march",
+             .reference = "Therrien et al. 2023 §3.1-3.3",
+             .param_count = P_COUNT,
+             .params = vb_params},
+    .shader = "vbgi.glsl",
+    .constants_size = sizeof(ob_vb_constants),
+    .state_size = sizeof(vb_state),
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS,
+    .writes = OB_WRITES_VISIBILITY | OB_WRITES_BOUNCE,
+    .init = vbgi_init,
+    .run = vb_run,
+    .destroy = vb_destroy,
+    .active_reads = vbgi_active_reads,
+    .set_samples = vbgi_set_samples,
+    .count_samples = vb_count_samples,
+};

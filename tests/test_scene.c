@@ -154,13 +154,13 @@ static bool bounds_sane(const ob_scene_stats *st)
 
 static void test_builtins(void)
 {
-    CHECK(ob_builtin_scene_count() == 3, "3 built-in scenes, got %d", ob_builtin_scene_count());
+    CHECK(ob_builtin_scene_count() == 5, "5 built-in scenes, got %d", ob_builtin_scene_count());
     for (int i = 0; i < ob_builtin_scene_count(); ++i) {
         CHECK(ob_builtin_scene_name(i) && ob_builtin_scene_description(i) &&
                   ob_builtin_scene_description(i)[0],
               "built-in %d has a name and a description", i);
     }
-    CHECK(ob_builtin_scene_name(3) == NULL, "built-in name out of range is NULL");
+    CHECK(ob_builtin_scene_name(5) == NULL, "built-in name out of range is NULL");
 
     const struct {
         const char *name;
@@ -176,6 +176,10 @@ static void test_builtins(void)
         /* sphere 48 x 24 without the degenerate pole halves: 48 * 46; plane 20 x 20 quads */
         {"sphere-on-plane", 2208u + 800u, {-5.0f, 0.0f, -5.0f}, {5.0f, 2.0f, 5.0f}, 0.5f,
          "contact"},
+        /* floor 16 x 16 quads; two closed boxes of 6 quads, the thick one's top at 1.15 m */
+        {"slab", 512u + 2u * 12u, {-4.0f, 0.0f, -4.0f}, {4.0f, 1.15f, 4.0f}, 0.5f, "front"},
+        /* floor 8 x 8 quads, wall 4 x 8 */
+        {"bleed", 128u + 64u, {0.0f, 0.0f, -2.0f}, {4.0f, 2.0f, 2.0f}, 0.5f, "side"},
     };
     for (size_t k = 0; k < sizeof expect / sizeof expect[0]; ++k) {
         ob_scene *s = load(expect[k].name, NULL, OB_UP_DEFAULT);

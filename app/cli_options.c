@@ -224,7 +224,7 @@ static const struct {
     {"--ao-scale", 0},             {"--ao-scales", CLI_TAKES_LISTS}, {"--adaptive", 0},
     {"--light", 0},                {"--env", 0},         {"--ambient", 0},
     {"--ambient-color", 0},        {"--ao-light", 0},    {"--shadow", 0},
-    {"--multibounce", 0},
+    {"--multibounce", 0},          {"--settings", 0},
     {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
 
@@ -277,6 +277,8 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         return parse_ao_scales(c, !strcmp(a, "--ao-scales"), a, v);
     } else if (!strcmp(a, "--quality") || !strcmp(a, "--samples")) {
         return parse_samples(c, !strcmp(a, "--quality"), a, v);
+    } else if (!strcmp(a, "--settings")) {
+        c->settings_path = v;
     } else if (!strcmp(a, "--set")) {
         if (c->set_count >= CLI_MAX_SETS) return cli_fail(EXIT_USAGE, "--set: more than %d", CLI_MAX_SETS);
         c->sets[c->set_count++] = v;
@@ -326,6 +328,15 @@ int cli_common_finish(cli_common *c)
     if (c->has_eye && c->eye[0] == c->target[0] && c->eye[1] == c->target[1] && c->eye[2] == c->target[2])
         return cli_fail(EXIT_USAGE, "--eye and --target are the same point");
     if (c->ambient_mode == OB_AMBIENT_ENVIRONMENT && !c->env) return cli_fail(EXIT_USAGE, "--ambient env needs --env FILE.hdr");
+    if (c->settings_path) {
+        int code = cli_tuned_load(c->settings_path, c->tuned, CLI_MAX_TUNED_FILES, &c->tuned_count);
+        if (code != EXIT_OK) return code;
+        /* One method's file names the method when no --method does. */
+        if (c->method_count == 0 && c->tuned_count == 1 && !takes(c, CLI_TAKES_LISTS)) {
+            c->methods[0] = c->tuned[0].method;
+            c->method_count = 1;
+        }
+    }
     if (c->method_count == 0) {
         if (c->default_method) {
             c->methods[0] = ob_find_method(c->default_method);
@@ -403,6 +414,10 @@ void cli_common_usage(FILE *f, const cli_common *c)
     }
     fputs("  --set M.P=V           set a parameter of method or filter M, validated (repeatable; after\n"
           "                        --quality), e.g. ssao.radius=0.5 or geometry.radius=7\n"
+          "  --settings FILE|DIR   tuned parameters (obscura tune --out): one method's FILE.json or a\n"
+          "                        directory of them; lists show each tuned method at its defaults\n"
+          "                        and tuned ('hbao · tuned'), single runs use it tuned (a lone FILE\n"
+          "                        also picks the method); --set still wins\n"
           "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off)\n"
           "  --light SPEC          replaces the scene's lights (repeatable, up to 8), e.g.\n"
           "                        'directional dir=0.3,1,0.2 color=1,0.9,0.8 intensity=2',\n"
@@ -479,6 +494,7 @@ void cli_config_label(const cli_common *c, const cli_config *cfg, const char *se
         if (cfg->samples.quality) append(out, n, "%squality %s", sep, cfg->samples.quality);
         else append(out, n, "%ssamples %s", sep, count);
     }
+    if (cfg->tuned) append(out, n, "%s%s", sep, "tuned");
 }
 
 /* The label as a file name: letters, digits, '-' and '_' ("hbao_filter-none_ao-0_5"). */
@@ -494,6 +510,7 @@ static void make_stem(const cli_common *c, const cli_config *cfg, char *out, siz
         append(raw, sizeof raw, "%s%s", "_", cfg->samples.quality ? "quality-" : "samples-");
         append(raw, sizeof raw, "%s%s", cfg->samples.quality ? cfg->samples.quality : count, "");
     }
+    if (cfg->tuned) append(raw, sizeof raw, "%s%s", "_", "tuned");
     size_t k = 0;
     for (const char *p = raw; *p && k + 1 < n; ++p) {
         char ch = *p;
@@ -544,6 +561,10 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
             return cli_fail_from_library();
         }
     }
+    if (cfg->tuned) {
+        int code = cli_tuned_apply(cfg->tuned, s);
+        if (code != EXIT_OK) return code;
+    }
     for (int k = 0; k < c->set_count; ++k) {
         set_target t = set_target_of(c->sets[k]);
         if (set_applies(&t, cfg) && ob_settings_set(s, c->sets[k]) != OB_OK) return cli_fail_from_library();
@@ -591,6 +612,20 @@ static int check_sets(const cli_common *c, cli_config *configs, int count)
     return EXIT_OK;
 }
 
+/* The --settings entry for a method, or NULL. */
+const cli_tuned *cli_common_tuned(const cli_common *c, int method)
+{
+    for (int i = 0; i < c->tuned_count; ++i)
+        if (c->tuned[i].method == method) return &c->tuned[i];
+    return NULL;
+}
+
+/* Rows per combination: with lists, a tuned method runs at its defaults and tuned. */
+static int runs_of(const cli_common *c, int method)
+{
+    return takes(c, CLI_TAKES_LISTS) && cli_common_tuned(c, method) ? 2 : 1;
+}
+
 int cli_common_configs(const cli_common *c, cli_config **configs, int *count)
 {
     *configs = NULL;
@@ -598,7 +633,7 @@ int cli_common_configs(const cli_common *c, cli_config **configs, int *count)
     int total = 0;
     for (int m = 0; m < c->method_count; ++m) {
         bool counted = c->sample_count > 0 && takes_samples(c->methods[m], c->samples[0].count);
-        total += c->filter_count * c->ao_count * (counted ? c->sample_count : 1);
+        total += c->filter_count * c->ao_count * (counted ? c->sample_count : 1) * runs_of(c, c->methods[m]);
     }
     if (total > CLI_MAX_CONFIGS)
         return cli_fail(EXIT_USAGE, "%d combinations of the lists (methods x filters x ao scales x samples), more than %d",
@@ -611,11 +646,17 @@ int cli_common_configs(const cli_common *c, cli_config **configs, int *count)
         bool counted = c->sample_count > 0 && takes_samples(c->methods[m], c->samples[0].count);
         for (int f = 0; f < c->filter_count; ++f)
             for (int a = 0; a < c->ao_count; ++a)
-                for (int q = 0; q < (counted ? c->sample_count : 1); ++q) {
-                    cli_config *cfg = &out[n++];
-                    *cfg = (cli_config){.method = c->methods[m], .filter = c->filters[f], .ao_divisor = c->ao_divisors[a],
-                                        .samples = counted ? c->samples[q] : (cli_samples){0, NULL}};
-                }
+                for (int q = 0; q < (counted ? c->sample_count : 1); ++q)
+                    for (int t = 0; t < runs_of(c, c->methods[m]); ++t) {
+                        /* With lists, run 0 is the defaults and run 1 the tuned settings; without,
+                         * the one run is tuned when a file tunes the method. */
+                        const cli_tuned *tuned = cli_common_tuned(c, c->methods[m]);
+                        cli_config *cfg = &out[n++];
+                        *cfg = (cli_config){.method = c->methods[m], .filter = c->filters[f],
+                                            .ao_divisor = c->ao_divisors[a],
+                                            .samples = counted ? c->samples[q] : (cli_samples){0, NULL},
+                                            .tuned = takes(c, CLI_TAKES_LISTS) && t == 0 ? NULL : tuned};
+                    }
     }
     /* Whom each --set is for before any is applied: a misdirected one gets its own message. */
     code = check_sets(c, out, n);

@@ -24,6 +24,7 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "settings_file.h"
 
 enum {
     CLI_MAX_LIST = 32,      /* elements of one comma list (the method registry has fewer) */
@@ -93,6 +94,11 @@ typedef struct cli_common {
 
     const char *sets[CLI_MAX_SETS];           /* --set, in order */
     int set_count;
+    /* --settings FILE|DIR: tuned parameters per method (obscura tune). Commands with lists run each
+     * tuned method twice, at its defaults and tuned; the others run it tuned. --set still wins. */
+    const char *settings_path;
+    cli_tuned tuned[CLI_MAX_TUNED_FILES];
+    int tuned_count;
     bool adaptive;
 
     /* lighting, shadows, tone mapping */
@@ -116,6 +122,7 @@ typedef struct cli_config {
     int method, filter;         /* registry indices */
     int ao_divisor;             /* 1, 2 or 4 */
     cli_samples samples;        /* count 0: the method's own (it takes none, or none was asked for) */
+    const cli_tuned *tuned;     /* --settings for this method, applied; NULL = its defaults */
     ob_settings settings;
     char label[CLI_MAX_LABEL];  /* "hbao · filter none · ao 0.5": the method, then each list that has
                                    more than one element, so a run with single values shows the method */
@@ -144,6 +151,8 @@ int cli_common_configs(const cli_common *c, cli_config **configs, int *count);
 /* The settings of one combination (method, filter, ao_divisor and samples filled in) into
  * cfg->settings, with its label and stem. 0 or an exit code. */
 int cli_common_apply(const cli_common *c, cli_config *cfg);
+/* The --settings entry for a method, or NULL. */
+const cli_tuned *cli_common_tuned(const cli_common *c, int method);
 /* cfg's label with another separator (the sheet's font has only ASCII: ", "). */
 void cli_config_label(const cli_common *c, const cli_config *cfg, const char *sep, char *out, size_t n);
 

@@ -116,6 +116,9 @@ static int list_human(void)
 {
     printf("methods (--method NAME, --set NAME.PARAM=VALUE):\n");
     print_tables(ob_method_count(), ob_method_at);
+    printf("\n  every method:\n    %-14s %-5s default %-8g range [%g, %g] %-9s %s\n", "radius_scale", "float", 1.0,
+           (double)OB_RADIUS_SCALE_MIN, (double)OB_RADIUS_SCALE_MAX, "x radius",
+           "occluder radius = scale x R: a wider search, graded at the same R");
     printf("\nfilters (--filter NAME, --set NAME.PARAM=VALUE):\n");
     print_tables(ob_filter_count(), ob_filter_at);
     printf("\nbuilt-in scenes (--scene NAME):\n");

@@ -50,13 +50,17 @@ int setup_settings(viewer *v)
      * (method, filter, AO scale, quality, lights, shadows, ambient, HDR, and the --set that name
      * the starting method or filter). */
     cli_config cfg = {.method = c->methods[0], .filter = c->filters[0], .ao_divisor = c->ao_divisors[0],
-                      .samples = c->sample_count > 0 ? c->samples[0] : (cli_samples){0, NULL}};
+                      .samples = c->sample_count > 0 ? c->samples[0] : (cli_samples){0, NULL},
+                      .tuned = cli_common_tuned(c, c->methods[0])};
     int code = cli_common_apply(c, &cfg);
     if (code != 0) return code;
     v->s = cfg.settings;
     for (int m = 0; m < ob_method_count() && m < MAX_METHODS; ++m) {
         ob_settings tmp;
         ob_settings_init(&tmp, ob_method_at(m)->name);
+        /* --settings: a tuned method starts from its tuned values when picked. */
+        const cli_tuned *t = cli_common_tuned(c, m);
+        if (t && (code = cli_tuned_apply(t, &tmp)) != 0) return code;
         memcpy(v->method_params[m], tmp.params, sizeof tmp.params);
     }
     /* Scenes are static: the maps only change with the lights or the shadow settings, not with

@@ -97,6 +97,11 @@ static void test_registry_and_settings(void)
     CHECK(ob_settings_set(&s, "ssao.radius=0.25") == OB_OK, "set radius");
     CHECK_NEAR(ob_settings_get(&s, "radius"), 0.25, 0.0, "radius value");
     CHECK(s.params_set != 0, "radius marked as set");
+    CHECK(ob_settings_get(&s, "radius_scale") == 1.0f, "radius_scale defaults to 1");
+    CHECK(ob_settings_set(&s, "ssao.radius_scale=1.5") == OB_OK && s.radius_scale == 1.5f, "set radius_scale");
+    CHECK(ob_settings_set(&s, "ssao.radius_scale=8") == OB_ERR_OUT_OF_RANGE, "radius_scale 8 is out of range");
+    CHECK(ob_settings_set(&s, "ssao.radius_scale=x") == OB_ERR_INVALID_ARGUMENT, "radius_scale x is not a number");
+    CHECK(s.radius_scale == 1.5f, "a refused radius_scale leaves the value");
     CHECK(ob_settings_set(&s, "samples=32") == OB_OK, "set samples without prefix");
     CHECK_NEAR(ob_settings_get(&s, "samples"), 32, 0.0, "samples value");
 

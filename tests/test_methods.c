@@ -185,6 +185,31 @@ static void test_determinism(ob_renderer *r, const char *m)
     free(b);
 }
 
+/* radius_scale widens the search and nothing else: scale 2 at the scene's radius is the same
+ * frame as the radius set to twice it, for every method with a radius. */
+static void test_radius_scale(ob_renderer *r, const char *m, float scene_radius)
+{
+    ob_settings a, b;
+    settings_for(&a, m, NULL);
+    char twice[32];
+    snprintf(twice, sizeof twice, "%g", 2.0 * scene_radius);
+    settings_for(&b, m, twice);
+    if (isnan(ob_settings_get(&b, "radius"))) return; /* no radius parameter (none) */
+    CHECK(ob_settings_set(&a, "radius_scale=2") == OB_OK && ob_settings_get(&a, "radius_scale") == 2.0f,
+          "%s: radius_scale=2", m);
+    float *x = render(r, &corner_cam, &a, OB_IMAGE_AO_RAW_F32);
+    float *y = render(r, &corner_cam, &b, OB_IMAGE_AO_RAW_F32);
+    ob_settings c;
+    settings_for(&c, m, NULL);
+    float *z = render(r, &corner_cam, &c, OB_IMAGE_AO_RAW_F32);
+    size_t bytes = ob_image_size(r, OB_IMAGE_AO_RAW_F32);
+    CHECK(memcmp(x, y, bytes) == 0, "%s: radius_scale 2 differs from radius %s", m, twice);
+    CHECK(memcmp(x, z, bytes) != 0, "%s: radius_scale 2 changed nothing", m);
+    free(x);
+    free(y);
+    free(z);
+}
+
 /* A method takes a sample count when the kit can map one onto its parameters. */
 static bool takes_samples(int index)
 {
@@ -230,6 +255,7 @@ int main(void)
         test_registry_entry(i);
         test_determinism(rc, m);
         if (!strcmp(m, "none")) continue;
+        test_radius_scale(rc, m, ob_query_scene_ao_radius(corner));
         test_corner(rc, m);
         test_edges(rb, m);
         /* Only methods with a sample count can be asked to converge with it. */

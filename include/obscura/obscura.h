@@ -303,6 +303,10 @@ typedef struct ob_settings {
     int method;                   /* registry index */
     float params[OB_MAX_PARAMS];  /* in the method's parameter-table order */
     uint32_t params_set;          /* bit i: params[i] was set explicitly */
+    /* Every method's "radius_scale" (OB_RADIUS_SCALE_MIN..MAX; 0 = 1): its radius parameters (those
+     * that follow the scene's radius R) are scale x R, or scale x the value set, so a method whose
+     * own definition wants a wider search can have one while the frame is still graded at R. */
+    float radius_scale;
     int filter;                   /* filter registry index (default "crease") */
     float filter_params[OB_MAX_PARAMS];
     uint32_t filter_params_set;   /* bit i: filter_params[i] was set explicitly */
@@ -325,14 +329,19 @@ typedef struct ob_settings {
     float background[3];          /* linear RGB of pixels with no geometry */
 } ob_settings;
 
+/* The range of ob_settings.radius_scale ("METHOD.radius_scale=V" in ob_settings_set). */
+#define OB_RADIUS_SCALE_MIN 0.25f
+#define OB_RADIUS_SCALE_MAX 4.0f
+
 /* Defaults for a method (by name; NULL = "ssao"). Errors: OB_ERR_UNKNOWN_METHOD. */
 ob_error ob_settings_init(ob_settings *settings, const char *method);
 /* Set "method.param=value", "filter.param=value" (the current filter) or "param=value" (the
- * current method) from text, validated against the table. Errors: OB_ERR_UNKNOWN_METHOD (an
+ * current method) from text, validated against the table; "method.radius_scale=value" for every
+ * method (ob_settings.radius_scale). Errors: OB_ERR_UNKNOWN_METHOD (an
  * unknown prefix), OB_ERR_UNKNOWN_PARAM, OB_ERR_OUT_OF_RANGE, OB_ERR_INVALID_ARGUMENT
  * (malformed, NaN, not an integer, a parameter of a method or filter not in use). */
 ob_error ob_settings_set(ob_settings *settings, const char *assignment);
-/* The value of a parameter of the current method by name, or NaN if unknown. */
+/* The value of a parameter of the current method by name ("radius_scale" too), or NaN if unknown. */
 float ob_settings_get(const ob_settings *settings, const char *param);
 /* Pick the filter (its parameters reset to their defaults). Errors: OB_ERR_UNKNOWN_METHOD. */
 ob_error ob_settings_set_filter(ob_settings *settings, const char *filter);

@@ -142,10 +142,14 @@ static ob_error plan_method(ob_renderer *r, const ob_settings *s, method_plan *p
     p->index = s->method;
     p->impl = ob_method_impl_at(s->method);
     const ob_method_info *m = &p->impl->info;
+    /* radius_scale (0 in a zero-filled ob_settings = 1) widens or narrows the search, not R. */
+    float scale = s->radius_scale > 0.0f ? s->radius_scale : 1.0f;
     for (int i = 0; i < m->param_count; ++i) {
         p->params[i] = s->params[i];
         if (m->params[i].follows_scene_radius && !(s->params_set & (1u << i)) && r->scene_radius > 0.0f)
             p->params[i] = r->scene_radius;
+        if (m->params[i].follows_scene_radius)
+            p->params[i] = fminf(fmaxf(p->params[i] * scale, m->params[i].min), m->params[i].max);
     }
     p->reads = ob_method_active_reads(p->impl, p->params);
     p->writes = ob_method_active_writes(p->impl, p->params);

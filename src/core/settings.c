@@ -35,6 +35,7 @@ ob_error ob_settings_init(ob_settings *s, const char *method)
      * to 0.25 and raised most methods' error). */
     s->filter = -1;
     s->ao_divisor = 1;
+    s->radius_scale = 1.0f;
     ob_error err = ob_settings_set_filter(s, "crease");
     if (err != OB_OK) return err;
     /* light_count 0 = the scene's lights (sidecar, glTF or default). */
@@ -151,6 +152,16 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
         key = dot + 1;
         key_len -= mlen + 1;
     }
+    if (values == s->params && key_len == strlen("radius_scale") && !strncmp(key, "radius_scale", key_len)) {
+        /* Every method's: validated like a table entry of its own. */
+        static const ob_param_info scale = {"radius_scale", OB_PARAM_FLOAT, OB_RADIUS_SCALE_MIN, OB_RADIUS_SCALE_MAX,
+                                            1.0f, "x radius", "occluder radius = scale x R", false, NULL};
+        float value = 0.0f;
+        ob_error err = parse_value(m, &scale, eq + 1, &value);
+        if (err != OB_OK) return err;
+        s->radius_scale = value;
+        return OB_OK;
+    }
     int pi = find_param(m, key, key_len);
     if (pi < 0) {
         char list[512] = "";
@@ -173,6 +184,7 @@ float ob_settings_get(const ob_settings *s, const char *param)
 {
     const ob_method_info *m = s ? ob_method_at(s->method) : NULL;
     if (!m || !param) return NAN;
+    if (!strcmp(param, "radius_scale")) return s->radius_scale > 0.0f ? s->radius_scale : 1.0f;
     int pi = find_param(m, param, strlen(param));
     return pi < 0 ? NAN : s->params[pi];
 }

@@ -1,0 +1,144 @@
+/* Tuned settings files (settings_file.h). */
+#include "settings_file.h"
+
+#include <cjson/cJSON.h>
+#include <dirent.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+static char *read_text(const char *path, size_t limit)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    char *buf = malloc(limit + 1);
+    size_t n = buf ? fread(buf, 1, limit + 1, f) : 0;
+    fclose(f);
+    if (!buf || n > limit) {
+        free(buf);
+        return NULL;
+    }
+    buf[n] = '\0';
+    return buf;
+}
+
+/* One file into *t: the method, and each parameter as an assignment checked on fresh settings. */
+static int load_file(const char *path, cli_tuned *t)
+{
+    memset(t, 0, sizeof *t);
+    snprintf(t->path, sizeof t->path, "%s", path);
+    /* A settings file is a few hundred bytes; 1 MiB is far beyond any real one. */
+    char *text = read_text(path, 1u << 20);
+    if (!text) return cli_fail(EXIT_USAGE, "--settings %s: cannot read it (%s)", path, errno ? strerror(errno) : "too large");
+    cJSON *root = cJSON_Parse(text);
+    free(text);
+    int code = EXIT_OK;
+    const cJSON *method = root ? cJSON_GetObjectItemCaseSensitive(root, "method") : NULL;
+    const cJSON *params = root ? cJSON_GetObjectItemCaseSensitive(root, "params") : NULL;
+    if (!root || !cJSON_IsObject(root)) {
+        code = cli_fail(EXIT_USAGE, "--settings %s: not a JSON object", path);
+    } else if (!cJSON_IsString(method) || (t->method = ob_find_method(method->valuestring)) < 0) {
+        code = cli_fail(EXIT_USAGE, "--settings %s: \"method\" must name a method (see obscura list), got %s", path,
+                        cJSON_IsString(method) ? method->valuestring : "no string");
+    } else if (!cJSON_IsObject(params)) {
+        code = cli_fail(EXIT_USAGE, "--settings %s: \"params\" must be an object of parameter values", path);
+    }
+    ob_settings check;
+    if (code == EXIT_OK) ob_settings_init(&check, method->valuestring);
+    const cJSON *p = NULL;
+    if (code == EXIT_OK) cJSON_ArrayForEach(p, params)
+    {
+        if (t->count >= CLI_MAX_TUNED_PARAMS) {
+            code = cli_fail(EXIT_USAGE, "--settings %s: more than %d parameters", path, CLI_MAX_TUNED_PARAMS);
+            break;
+        }
+        char value[64];
+        if (cJSON_IsNumber(p)) snprintf(value, sizeof value, "%.9g", p->valuedouble);
+        else if (cJSON_IsString(p)) snprintf(value, sizeof value, "%s", p->valuestring);
+        else if (cJSON_IsBool(p)) snprintf(value, sizeof value, "%s", cJSON_IsTrue(p) ? "on" : "off");
+        else {
+            code = cli_fail(EXIT_USAGE, "--settings %s: %s.%s must be a number, an option name or on/off", path,
+                            method->valuestring, p->string);
+            break;
+        }
+        char *a = t->assignments[t->count];
+        snprintf(a, sizeof t->assignments[0], "%s.%s=%s", method->valuestring, p->string, value);
+        if (ob_settings_set(&check, a) != OB_OK) {
+            const char *msg = NULL;
+            ob_get_error(&msg);
+            code = cli_fail(EXIT_USAGE, "--settings %s: %s", path, msg ? msg : a);
+            break;
+        }
+        ++t->count;
+    }
+    cJSON_Delete(root);
+    return code;
+}
+
+static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+int cli_tuned_load(const char *path, cli_tuned *out, int max, int *count)
+{
+    *count = 0;
+    struct stat st;
+    if (stat(path, &st) != 0) return cli_fail(EXIT_USAGE, "--settings %s: %s", path, strerror(errno));
+    if (!S_ISDIR(st.st_mode)) {
+        int code = load_file(path, &out[0]);
+        if (code == EXIT_OK) *count = 1;
+        return code;
+    }
+    DIR *d = opendir(path);
+    if (!d) return cli_fail(EXIT_USAGE, "--settings %s: %s", path, strerror(errno));
+    char *names[CLI_MAX_TUNED_FILES];
+    int n = 0, code = EXIT_OK;
+    for (struct dirent *e; (e = readdir(d)) != NULL;) {
+        size_t len = strlen(e->d_name);
+        if (len <= 5 || strcmp(e->d_name + len - 5, ".json") != 0) continue;
+        if (n >= max || n >= CLI_MAX_TUNED_FILES) {
+            code = cli_fail(EXIT_USAGE, "--settings %s: more than %d settings files", path, max);
+            break;
+        }
+        names[n++] = strdup(e->d_name);
+    }
+    closedir(d);
+    qsort(names, (size_t)n, sizeof names[0], by_name);
+    if (code == EXIT_OK && n == 0) code = cli_fail(EXIT_USAGE, "--settings %s: no *.json settings in the directory", path);
+    for (int i = 0; i < n && code == EXIT_OK; ++i) {
+        char file[1024];
+        snprintf(file, sizeof file, "%s/%s", path, names[i]);
+        code = load_file(file, &out[i]);
+        for (int j = 0; j < i && code == EXIT_OK; ++j)
+            if (out[j].method == out[i].method)
+                code = cli_fail(EXIT_USAGE, "--settings %s: %s and %s both tune %s", path, out[j].path, out[i].path,
+                                ob_method_at(out[i].method)->name);
+    }
+    for (int i = 0; i < n; ++i) free(names[i]);
+    if (code == EXIT_OK) *count = n;
+    return code;
+}
+
+int cli_tuned_apply(const cli_tuned *t, ob_settings *s)
+{
+    for (int i = 0; i < t->count; ++i)
+        if (ob_settings_set(s, t->assignments[i]) != OB_OK) return cli_fail_from_library();
+    return EXIT_OK;
+}
+
+bool cli_write_file_atomic(const char *path, const char *text)
+{
+    char tmp[1100];
+    snprintf(tmp, sizeof tmp, "%s.tmp-%ld", path, (long)getpid());
+    FILE *f = fopen(tmp, "wb");
+    if (!f) return false;
+    size_t n = strlen(text);
+    bool ok = fwrite(text, 1, n, f) == n;
+    ok = fclose(f) == 0 && ok;
+    if (ok && rename(tmp, path) == 0) return true;
+    remove(tmp);
+    return false;
+}

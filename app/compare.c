@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "cli_options.h"
+#include "reference_cache.h"
 
 enum { MAX_VIEWS = 16, FRAMES = 5 };
 
@@ -148,11 +149,6 @@ static void safe_name(char *out, size_t n, const char *in)
     out[k] = '\0';
 }
 
-static bool make_dir(const char *path)
-{
-    return mkdir(path, 0777) == 0 || errno == EEXIST;
-}
-
 /* What this run wrote into the report: removed again when a later step fails, so that a failed
  * run leaves no partial report (directories only when this run made them and they are empty). */
 typedef struct outputs {
@@ -212,14 +208,6 @@ static void outputs_finish(outputs *out, bool failed)
     *out = (outputs){0};
 }
 
-static uint64_t fnv1a(const void *data, size_t n, uint64_t h)
-{
-    const unsigned char *p = data;
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
-
-
 /* Visibility (bottom row first) as an 8-bit grey PNG (top row first). */
 static ob_error write_grey(const char *path, const float *v, int w, int h)
 {
@@ -236,16 +224,6 @@ static ob_error write_grey(const char *path, const float *v, int w, int h)
     return e;
 }
 
-static const char *cache_dir(char *buf, size_t n)
-{
-    const char *xdg = getenv("XDG_CACHE_HOME");
-    const char *home = getenv("HOME");
-    if (xdg && *xdg) snprintf(buf, n, "%s/obscura", xdg);
-    else if (home && *home) snprintf(buf, n, "%s/.cache/obscura", home);
-    else return NULL;
-    return buf;
-}
-
 /* ---- one view ------------------------------------------------------------------------------ */
 
 typedef struct view_result {
@@ -256,90 +234,6 @@ typedef struct view_result {
     method_result *methods; /* one per configuration */
     int method_count;
 } view_result;
-
-/* The reference AO for this view: from the cache, or ray-traced and cached. */
-static int reference_for(const compare_opts *o, const ob_scene *scene, const ob_camera *cam, const char *view_key,
-                         const float *depth, const float *normals, const float proj_info[4], const float inv_view[16],
-                         float radius, float *ref, view_result *vr)
-{
-    int w = o->common.width, h = o->common.height;
-    size_t px = (size_t)w * (size_t)h;
-    char dir[512], path[700];
-    uint64_t key = fnv1a(view_key, strlen(view_key), 1469598103934665603ull);
-    key = fnv1a(cam, sizeof *cam, key);
-    key = fnv1a(&radius, sizeof radius, key);
-    key = fnv1a(&o->spp, sizeof o->spp, key);
-    key = fnv1a(&w, sizeof w, key);
-    key = fnv1a(&h, sizeof h, key);
-    const char *cdir = cache_dir(dir, sizeof dir);
-    if (cdir) snprintf(path, sizeof path, "%s/reference-%016llx.pfm", cdir, (unsigned long long)key);
-    if (cdir && !o->no_cache) {
-        int cw = 0, ch = 0, cc = 0;
-        float *cached = NULL;
-        if (access(path, R_OK) == 0 && ob_read_pfm(path, &cw, &ch, &cc, &cached) == OB_OK && cw == w && ch == h &&
-            cc == 3) {
-            /* Channels: AO, standard error, unused. */
-            double se = 0.0;
-            size_t n = 0;
-            for (size_t i = 0; i < px; ++i) {
-                ref[i] = cached[3 * i];
-                if (depth[i] > 0.0f) se += cached[3 * i + 1], ++n;
-            }
-            free(cached);
-            vr->ref_cached = true;
-            vr->ref_stderr_mean = n ? se / (double)n : 0.0;
-            return EXIT_OK;
-        }
-        free(cached);
-    }
-    float *pos = malloc(px * 3 * sizeof(float)), *nrm = malloc(px * 3 * sizeof(float));
-    float *se = malloc(px * sizeof(float));
-    if (!pos || !nrm || !se) {
-        free(pos);
-        free(nrm);
-        free(se);
-        return cli_fail(EXIT_RUNTIME, "out of memory for the reference");
-    }
-    int code = EXIT_OK;
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
-    if (ob_reference_points(depth, normals, w, h, proj_info, inv_view, pos, nrm) != OB_OK ||
-        ob_reference_ao(scene, pos, nrm, px, &(ob_reference_desc){.spp = o->spp, .radius = radius, .progress = true},
-                        ref, se) != OB_OK) {
-        code = cli_fail_from_library();
-    }
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    vr->ref_seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-    if (code == EXIT_OK) {
-        double sum = 0.0;
-        size_t n = 0;
-        for (size_t i = 0; i < px; ++i)
-            if (depth[i] > 0.0f) sum += se[i], ++n;
-        vr->ref_stderr_mean = n ? sum / (double)n : 0.0;
-        /* Cache: a failure to cache is not a failure of the report. */
-        if (cdir && (make_dir(dir) || true)) {
-            char parent[520];
-            snprintf(parent, sizeof parent, "%s", dir);
-            char *slash = strrchr(parent, '/');
-            if (slash) {
-                *slash = '\0';
-                make_dir(parent);
-            }
-            make_dir(dir);
-            for (size_t i = 0; i < px; ++i) {
-                pos[3 * i] = ref[i];
-                pos[3 * i + 1] = se[i];
-                pos[3 * i + 2] = 0.0f;
-            }
-            if (ob_write_pfm(path, w, h, 3, pos) != OB_OK && o->common.verbose)
-                fprintf(stderr, "obscura: note: could not cache the reference in %s\n", path);
-        }
-    }
-    free(pos);
-    free(nrm);
-    free(se);
-    return code;
-}
 
 /* A --scene: loaded, with its camera, before anything is written. */
 typedef struct view_input {
@@ -422,14 +316,16 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     glm_mat4_inv(view, inv_view);
     glm_perspective(glm_rad(cm.fov_y_deg), (float)w / (float)h, 1.0f, 2.0f, proj);
     const float proj_info[4] = {1.0f / proj[0][0], 1.0f / proj[1][1], proj[2][0], proj[2][1]};
-    /* --sidecar and --up change the geometry the reference sees: they are part of its key (and
-     * absent from it without them, so that existing caches still hit). */
     char key[900] = "";
-    int key_len = snprintf(key, sizeof key, "%s|%s|v1", in->name, cam.name);
-    if ((c->sidecar || c->up != OB_UP_DEFAULT) && key_len > 0 && (size_t)key_len < sizeof key)
-        snprintf(key + key_len, sizeof key - (size_t)key_len, "|sidecar=%s|up=%d", c->sidecar ? c->sidecar : "",
-                 (int)c->up);
-    code = reference_for(o, scene, &cm, key, depth, normals, proj_info, (const float *)inv_view, vr->radius, ref, vr);
+    cli_reference_key(c, in->name, cam.name, key, sizeof key);
+    const cli_view_frame frame = {.width = w, .height = h, .depth = depth, .normals = normals, .cam = cm,
+                                  .proj_info = {proj_info[0], proj_info[1], proj_info[2], proj_info[3]}};
+    memcpy((float *)frame.inv_view, inv_view, sizeof frame.inv_view);
+    cli_reference_info info;
+    code = cli_reference_ao(scene, &frame, key, vr->radius, o->spp, o->no_cache, c->verbose, ref, &info);
+    vr->ref_cached = info.cached;
+    vr->ref_seconds = info.seconds;
+    vr->ref_stderr_mean = info.stderr_mean;
     if (code != EXIT_OK) goto done;
     char path[900] = "";
     snprintf(path, sizeof path, "%s/reference_ao.png", dir);

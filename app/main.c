@@ -17,6 +17,8 @@ static void usage(FILE *f)
           "  sheet    a labelled contact sheet: final image and AO map of each method, with timings\n"
           "  compare  every method against the ray-traced ground truth: HTML report + results.json\n"
           "  bench    GPU time per pass of every method over samples and radius (seed 000 tables)\n"
+          "  tune     one method's parameters against the ground truth on training views, checked on\n"
+          "           validation views; writes a settings file for --settings\n"
           "  view     interactive viewer: camera, presets, live parameters, profiler, test mode\n"
           "\n"
           "Run `obscura <command> --help` for a command's options.\n"
@@ -47,6 +49,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "compare")) return cmd_compare(argc - 1, argv + 1);
     if (!strcmp(cmd, "bench")) return cmd_bench(argc - 1, argv + 1);
     if (!strcmp(cmd, "view")) return cmd_view(argc - 1, argv + 1);
-    fprintf(stderr, "obscura: unknown command '%s' (commands: render, list, sheet, compare, bench, view; see obscura --help)\n", cmd);
+    if (!strcmp(cmd, "tune")) return cmd_tune(argc - 1, argv + 1);
+    fprintf(stderr, "obscura: unknown command '%s' (commands: render, list, sheet, compare, bench, view, tune; see obscura --help)\n", cmd);
     return EXIT_USAGE;
 }

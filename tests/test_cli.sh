@@ -72,6 +72,42 @@ expect 3 "bad.json" -- "${R[@]}" --scene corner --sidecar "$dir/bad.json"
 expect 3 "missing.json" -- "${R[@]}" --scene /usr/share/glmark2/models/bunny.obj --sidecar "$dir/missing.json"
 expect 4 "cannot write" -- render --scene corner --size 32x24 --out /nonexistent-dir/x.png
 expect 4 "cannot write" -- render --scene corner --size 32x24 --out "$dir/out.png" --ao-out /nonexistent-dir/ao.pfm
+# tune: a bad argument is one line, exit 2 and no file; a failing run leaves an existing --out as
+# it was; a real run (one pass of 3 steps at 48x36) writes settings that --settings loads.
+T=(tune --size 48x36 --method hbao --out "$dir/tuned.json")
+expect 2 "no training view" -- "${T[@]}" --params hbao.intensity
+expect 2 "leaves the registry" -- "${T[@]}" --params hbao.intensity=0:99 --train corner:diagonal
+expect 2 "also a training view" -- "${T[@]}" --params hbao.intensity --train corner:diagonal --validate corner:diagonal
+expect 2 "has no parameter 'nosuch'" -- "${T[@]}" --params hbao.nosuch --train corner:diagonal
+expect 2 "tune searches numeric and enum" -- tune --method gtao --params gtao.bent_normals --train corner:diagonal --out "$dir/tuned.json"
+expect 2 "every option is tried" -- "${T[@]}" --params hbao.noise=0:1 --train corner:diagonal
+[ ! -e "$dir/tuned.json" ] && ok || bad "a refused tune left tuned.json"
+echo keep >"$dir/keep.json"
+"$OBSCURA" tune --size 48x36 --method hbao --params hbao.nosuch --train corner:diagonal --out "$dir/keep.json" 2>/dev/null
+[ "$(cat "$dir/keep.json")" = keep ] && ok || bad "a failing tune replaced an existing --out"
+if XDG_CACHE_HOME="$dir/cache" "$OBSCURA" tune --size 48x36 --method hbao --params hbao.radius_scale,hbao.noise \
+    --train corner:diagonal --validate sphere-on-plane:front --passes 1 --steps 3 --out "$dir/tuned.json" \
+    >"$dir/tune.out" 2>"$dir/tune.err" && python3 - "$dir/tuned.json" <<'PY'
+import json, sys
+t = json.load(open(sys.argv[1]))
+assert t["method"] == "hbao", t
+assert 0.25 <= t["params"]["radius_scale"] <= 4 and t["params"]["noise"] in ("texture4", "ign"), t["params"]
+h = t["tuned"]
+# The start is a candidate: tuning never makes the training error worse.
+assert h["training"][0]["rmse_tuned"] <= h["training"][0]["rmse_default"] + 1e-9, h
+assert h["validation"][0]["view"] == "sphere-on-plane:front" and h["evaluations"] > 2, h
+PY
+then ok; else bad "tune: $(cat "$dir/tune.err" | tail -2)"; fi
+grep -q "mean RMSE" "$dir/tune.out" && ok || bad "tune prints no table"
+"$OBSCURA" render --size 48x36 --scene corner --settings "$dir/tuned.json" --out "$dir/tuned.png" 2>"$dir/stderr" &&
+    [ -s "$dir/tuned.png" ] && ok || bad "render --settings: $(cat "$dir/stderr")"
+rm -f "$dir/tuned.png"
+echo '{"method": "hbao", "params": {"intensity": 99}}' >"$dir/bad_settings.json"
+expect 2 "bad_settings.json: hbao.intensity = 99 is out of range" -- "${R[@]}" --settings "$dir/bad_settings.json"
+echo '{"method": "nosuch", "params": {}}' >"$dir/bad_settings.json"
+expect 2 "must name a method" -- "${R[@]}" --settings "$dir/bad_settings.json"
+expect 2 "cannot read it|No such file" -- "${R[@]}" --settings "$dir/missing_settings.json"
+
 # No EGL vendor at all: the context error names what was tried, with its own exit code.
 __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent expect 5 "no GPU context" -- "${R[@]}" --scene corner
 

@@ -497,6 +497,9 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
             /* JSON has no infinity: identical images report psnr null. */
             if (isfinite(m->m.psnr)) cJSON_AddNumberToObject(e, "psnr", m->m.psnr);
             else cJSON_AddNullToObject(e, "psnr");
+            /* XeGTAO's measure: PSNR of the sRGB-encoded AO. */
+            if (isfinite(m->m.psnr_srgb)) cJSON_AddNumberToObject(e, "psnr_srgb", m->m.psnr_srgb);
+            else cJSON_AddNullToObject(e, "psnr_srgb");
             cJSON_AddNumberToObject(e, "ssim", m->m.ssim);
             cJSON_AddNumberToObject(e, "pixels", (double)m->m.count);
             if (m->directional) {
@@ -620,15 +623,20 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
         fprintf(f, "</h2>\n<p class=\"note\">R = %g; reference: %.1f s%s, mean standard error %.4f</p>\n",
                 (double)vr->radius, vr->ref_seconds, vr->ref_cached ? " (cached)" : "", vr->ref_stderr_mean);
         fputs("<table class=\"sortable\"><thead><tr><th>method</th><th>RMSE</th><th>bias</th><th>MAE</th><th>SSIM</th>"
-              "<th>PSNR dB</th><th>AO ms</th><th>frame ms</th></tr></thead><tbody>\n",
+              "<th>PSNR dB</th><th>sRGB PSNR dB</th><th>AO ms</th><th>frame ms</th></tr></thead><tbody>\n",
               f);
         for (int k = 0; k < vr->method_count; ++k) {
             const method_result *m = &vr->methods[k];
             fputs("<tr><td>", f);
             html_escape(f, m->label);
-            fprintf(f, "</td><td>%.4f</td><td>%+.4f</td><td>%.4f</td><td>%.3f</td><td>%s%.2f</td><td>%.2f</td><td>%.1f</td></tr>\n",
-                    m->m.rmse, m->m.bias, m->m.mae, m->m.ssim, isfinite(m->m.psnr) ? "" : "&infin;",
-                    isfinite(m->m.psnr) ? m->m.psnr : 0.0, m->ao_ms, m->frame_ms);
+            fprintf(f, "</td><td>%.4f</td><td>%+.4f</td><td>%.4f</td><td>%.3f</td>", m->m.rmse, m->m.bias, m->m.mae,
+                    m->m.ssim);
+            const double psnrs[2] = {m->m.psnr, m->m.psnr_srgb};
+            for (int q = 0; q < 2; ++q) {
+                if (isfinite(psnrs[q])) fprintf(f, "<td>%.2f</td>", psnrs[q]);
+                else fputs("<td>&infin;</td>", f);
+            }
+            fprintf(f, "<td>%.2f</td><td>%.1f</td></tr>\n", m->ao_ms, m->frame_ms);
         }
         fputs("</tbody></table>\n", f);
         if (vr->has_bounce) {

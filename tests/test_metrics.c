@@ -70,6 +70,40 @@ static void test_one_pixel_off(void)
     CHECK_NEAR(m.mae, 0.0625, 1e-12, "half-mask mae");
 }
 
+static void test_psnr_srgb(void)
+{
+    /* IEC 61966-2-1 values worked by hand: sRGB(0.25) = 0.537099, sRGB(0.75) = 0.880825. The 4x4
+     * image with one pixel 0.25 -> 0.75: MSE = (0.880825 - 0.537099)^2 / 16, 21.3169 dB, where the
+     * linear PSNR is 18.0618 dB. */
+    float ref[16] = {0.0f}, test[16] = {0.0f};
+    for (int i = 0; i < 16; ++i) ref[i] = test[i] = 0.25f;
+    test[5] = 0.75f;
+    ob_metrics m;
+    CHECK(ob_compare_images(test, ref, NULL, 4, 4, 1, &m) == OB_OK, "srgb compare");
+    CHECK_NEAR(m.psnr_srgb, 21.31694, 1e-4, "srgb psnr");
+    CHECK_NEAR(m.psnr, 18.06180, 1e-4, "linear psnr unchanged");
+
+    /* The linear segment below 0.0031308: 0.002 encodes to 12.92 x 0.002 = 0.02584, so against 0 the
+     * MSE is 0.02584^2 and the PSNR 31.754 dB (the power branch would give 0.0242, 32.33 dB). */
+    const float dark[1] = {0.002f}, black[1] = {0.0f};
+    CHECK(ob_compare_images(dark, black, NULL, 1, 1, 1, &m) == OB_OK, "dark compare");
+    CHECK_NEAR(m.psnr_srgb, -20.0 * log10(12.92 * (double)0.002f), 1e-9, "linear-segment psnr");
+    CHECK_NEAR(m.psnr_srgb, 31.754, 1e-3, "linear-segment psnr in dB");
+
+    /* Values are clamped to [0, 1] before encoding: 1.5 against 1 is no sRGB error, while the linear
+     * PSNR still sees 0.5; -0.5 against 0 likewise. */
+    const float over[2] = {1.5f, -0.5f}, top[2] = {1.0f, 0.0f};
+    CHECK(ob_compare_images(over, top, NULL, 2, 1, 1, &m) == OB_OK, "clamp compare");
+    CHECK(isinf(m.psnr_srgb) && m.psnr_srgb > 0.0, "clamped srgb psnr %g", m.psnr_srgb);
+    CHECK_NEAR(m.psnr, 20.0 * log10(2.0), 1e-9, "unclamped linear psnr");
+
+    /* Identical images: +inf; a NaN: NaN. */
+    CHECK(ob_compare_images(ref, ref, NULL, 4, 4, 1, &m) == OB_OK && isinf(m.psnr_srgb), "identical srgb psnr");
+    const float nan_px[1] = {NAN};
+    CHECK(ob_compare_images(nan_px, black, NULL, 1, 1, 1, &m) == OB_OK && isnan(m.psnr_srgb), "NaN srgb psnr %g",
+          m.psnr_srgb);
+}
+
 static void test_channels(void)
 {
     /* 2x2x3 with one value off by 0.3: the means run over all 12 values, count is 4 pixels. */
@@ -287,6 +321,7 @@ int main(void)
 {
     test_identical();
     test_one_pixel_off();
+    test_psnr_srgb();
     test_channels();
     test_ssim_closed_forms();
     test_ssim_against_direct();

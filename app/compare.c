@@ -676,10 +676,12 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
         }
         fputs("</section>\n", f);
     }
-    /* Sort a table by a column: numbers numerically, text alphabetically; click again to reverse. */
+    /* Sort a table by a column: numbers numerically, text alphabetically; click again to reverse.
+     * The column is the header cell's index in its own row (forEach's index counts every table's). */
     fputs("<script>\n"
-          "document.querySelectorAll('table.sortable th').forEach(function (th, col) {\n"
+          "document.querySelectorAll('table.sortable th').forEach(function (th) {\n"
           "  th.addEventListener('click', function () {\n"
+          "    var col = th.cellIndex;\n"
           "    var body = th.closest('table').tBodies[0];\n"
           "    var rows = Array.prototype.slice.call(body.rows);\n"
           "    var dir = th.dataset.dir === 'asc' ? -1 : 1;\n"

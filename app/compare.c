@@ -5,6 +5,7 @@
  *   report/results.json                  every number
  *   report/VIEW/reference_ao.png         AO_R from the Embree reference (DESIGN.md)
  *   report/VIEW/METHOD_final.png, _ao.png, _error.png
+ *   report/VIEW/mask_NAME.png            where each metric mask lies (ob_metric_masks)
  *   report/VIEW/chart.svg                quality (RMSE) against GPU time, made with gnuplot
  *
  * The reference is cached by (scene, camera, size, radius, spp) under $XDG_CACHE_HOME/obscura
@@ -45,6 +46,7 @@ typedef struct method_result {
     ob_metrics m;
     bool directional;
     ob_metrics rgb; /* directional methods: HDR radiance against the one-bounce reference */
+    ob_metrics in_mask[OB_MASK_COUNT]; /* the AO inside each metric mask; count 0 = the mask is empty */
     double ao_ms, frame_ms;
 } method_result;
 
@@ -224,6 +226,31 @@ static ob_error write_grey(const char *path, const float *v, int w, int h)
     return e;
 }
 
+/* A metric mask (bottom row first) as an RGB PNG (top row first): white in the mask, over the
+ * reference AO dimmed to a third so the scene stays readable, and sky dark blue so that it is not
+ * taken for deep occlusion. rgb: w x h x 3 bytes of scratch. */
+static ob_error write_mask(const char *path, const float *depth, const float *ref, const uint8_t *mask, int w, int h,
+                           uint8_t *rgb)
+{
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            size_t src = (size_t)(h - 1 - y) * (size_t)w + (size_t)x;
+            uint8_t *p = rgb + ((size_t)y * (size_t)w + (size_t)x) * 3;
+            if (mask[src]) {
+                p[0] = p[1] = p[2] = 255;
+            } else if (!(depth[src] > 0.0f)) {
+                p[0] = 20;
+                p[1] = 28;
+                p[2] = 64;
+            } else {
+                float a = ref[src];
+                a = a < 0.0f ? 0.0f : a > 1.0f ? 1.0f : a;
+                p[0] = p[1] = p[2] = (uint8_t)lrintf(a * 85.0f);
+            }
+        }
+    return ob_write_png(path, w, h, 3, rgb);
+}
+
 /* ---- one view ------------------------------------------------------------------------------ */
 
 typedef struct view_result {
@@ -231,6 +258,8 @@ typedef struct view_result {
     float radius;
     double ref_seconds, ref_stderr_mean, bounce_seconds;
     bool ref_cached, has_bounce;
+    ob_metric_mask_desc mask_desc;      /* as used: every default resolved */
+    size_t mask_pixels[OB_MASK_COUNT];
     method_result *methods; /* one per configuration */
     int method_count;
 } view_result;
@@ -267,7 +296,7 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     const ob_camera cam = in->cam;
     int code = EXIT_OK;
     float *depth = NULL, *normals = NULL, *ref = NULL, *ao = NULL, *ref_rgb = NULL, *test_rgb = NULL;
-    uint8_t *rgba = NULL, *mask = NULL, *heat = NULL;
+    uint8_t *rgba = NULL, *mask = NULL, *heat = NULL, *masks = NULL;
     snprintf(vr->scene, sizeof vr->scene, "%s", ob_query_scene_name(scene));
     snprintf(vr->camera, sizeof vr->camera, "%s", cam.name);
     char safe_scene[128], safe_cam[64];
@@ -288,7 +317,8 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     rgba = malloc(px * 4);
     mask = malloc(px);
     heat = malloc(px * 3);
-    if (!depth || !normals || !ref || !ao || !rgba || !mask || !heat) {
+    masks = malloc(px * OB_MASK_COUNT);
+    if (!depth || !normals || !ref || !ao || !rgba || !mask || !heat || !masks) {
         code = cli_fail(EXIT_RUNTIME, "out of memory");
         goto done;
     }
@@ -336,6 +366,28 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     if (write_grey(path, ref, w, h) != OB_OK) {
         code = cli_fail_library_as(EXIT_OUTPUT);
         goto done;
+    }
+
+    /* Where the error matters (issue 15): the metric masks from the same depth and reference,
+     * each measured again below and drawn for the report. */
+    vr->mask_desc = ob_metric_mask_defaults(NULL, w);
+    if (ob_metric_masks(depth, ref, w, h, vr->radius, &vr->mask_desc, masks) != OB_OK) {
+        code = cli_fail_from_library();
+        goto done;
+    }
+    for (int m = 0; m < OB_MASK_COUNT; ++m) {
+        const uint8_t *plane = masks + (size_t)m * px;
+        vr->mask_pixels[m] = 0;
+        for (size_t i = 0; i < px; ++i) vr->mask_pixels[m] += plane[i] != 0;
+        snprintf(path, sizeof path, "%s/mask_%s.png", dir, ob_metric_mask_name((ob_metric_mask)m));
+        if (!track_file(out, path)) {
+            code = cli_fail(EXIT_RUNTIME, "out of memory");
+            goto done;
+        }
+        if (write_mask(path, depth, ref, plane, w, h, heat) != OB_OK) {
+            code = cli_fail_library_as(EXIT_OUTPUT);
+            goto done;
+        }
     }
 
     /* The one-bounce reference, for directional methods only: their composed radiance (direct x M
@@ -408,6 +460,14 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
             code = cli_fail_from_library();
             goto done;
         }
+        for (int m = 0; m < OB_MASK_COUNT; ++m) {
+            mr->in_mask[m] = (ob_metrics){0};
+            if (vr->mask_pixels[m] > 0 &&
+                ob_compare_images(ao, ref, masks + (size_t)m * px, w, h, 1, &mr->in_mask[m]) != OB_OK) {
+                code = cli_fail_from_library();
+                goto done;
+            }
+        }
         mr->directional = mi->directional;
         if (mi->directional &&
             (ob_read_image(r, OB_IMAGE_HDR_F32, test_rgb, px * 3 * sizeof(float)) != OB_OK ||
@@ -450,10 +510,19 @@ done:
     free(rgba);
     free(mask);
     free(heat);
+    free(masks);
     return code;
 }
 
 /* ---- outputs ------------------------------------------------------------------------------- */
+
+/* A float setting as the decimal it was written as (0.1, not 0.10000000149011612). */
+static double json_float(float v)
+{
+    char text[32];
+    snprintf(text, sizeof text, "%.7g", (double)v);
+    return strtod(text, NULL);
+}
 
 static int write_json(const compare_opts *o, ob_context *ctx, const view_result *views, int count, outputs *out)
 {
@@ -480,6 +549,23 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
         cJSON_AddBoolToObject(jr, "cached", vr->ref_cached);
         cJSON_AddNumberToObject(jr, "mean_standard_error", vr->ref_stderr_mean);
         if (vr->has_bounce) cJSON_AddNumberToObject(jr, "bounce_seconds", vr->bounce_seconds);
+        const ob_metric_mask_desc *md = &vr->mask_desc;
+        cJSON *js = cJSON_AddObjectToObject(j, "mask_settings");
+        cJSON_AddNumberToObject(js, "occluded_below", json_float(md->occluded_below));
+        cJSON_AddNumberToObject(js, "edge_relative", json_float(md->edge_relative));
+        cJSON_AddNumberToObject(js, "edge_band_px", md->edge_band);
+        cJSON_AddNumberToObject(js, "thin_reach_px", md->thin_reach);
+        cJSON_AddNumberToObject(js, "thin_depth", json_float(vr->radius));
+        cJSON_AddNumberToObject(js, "border_fraction", json_float(md->border_fraction));
+        cJSON *jmask = cJSON_AddObjectToObject(j, "masks");
+        for (int q = 0; q < OB_MASK_COUNT; ++q) {
+            const char *name = ob_metric_mask_name((ob_metric_mask)q);
+            cJSON *e = cJSON_AddObjectToObject(jmask, name);
+            cJSON_AddNumberToObject(e, "pixels", (double)vr->mask_pixels[q]);
+            char image[300];
+            snprintf(image, sizeof image, "%s/mask_%s.png", vr->dir, name);
+            cJSON_AddStringToObject(e, "image", image);
+        }
         cJSON *jm = cJSON_AddArrayToObject(j, "methods");
         for (int k = 0; k < vr->method_count; ++k) {
             const method_result *m = &vr->methods[k];
@@ -497,8 +583,25 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
             /* JSON has no infinity: identical images report psnr null. */
             if (isfinite(m->m.psnr)) cJSON_AddNumberToObject(e, "psnr", m->m.psnr);
             else cJSON_AddNullToObject(e, "psnr");
+            /* XeGTAO's measure: PSNR of the sRGB-encoded AO. */
+            if (isfinite(m->m.psnr_srgb)) cJSON_AddNumberToObject(e, "psnr_srgb", m->m.psnr_srgb);
+            else cJSON_AddNullToObject(e, "psnr_srgb");
             cJSON_AddNumberToObject(e, "ssim", m->m.ssim);
             cJSON_AddNumberToObject(e, "pixels", (double)m->m.count);
+            /* The error inside each metric mask; an empty mask has no error to report (null). */
+            cJSON *jin = cJSON_AddObjectToObject(e, "masks");
+            for (int q = 0; q < OB_MASK_COUNT; ++q) {
+                cJSON *x = cJSON_AddObjectToObject(jin, ob_metric_mask_name((ob_metric_mask)q));
+                const ob_metrics *mm = &m->in_mask[q];
+                if (mm->count > 0) {
+                    cJSON_AddNumberToObject(x, "rmse", mm->rmse);
+                    cJSON_AddNumberToObject(x, "bias", mm->bias);
+                } else {
+                    cJSON_AddNullToObject(x, "rmse");
+                    cJSON_AddNullToObject(x, "bias");
+                }
+                cJSON_AddNumberToObject(x, "pixels", (double)mm->count);
+            }
             if (m->directional) {
                 cJSON *rgb = cJSON_AddObjectToObject(e, "radiance");
                 cJSON_AddNumberToObject(rgb, "rmse", m->rgb.rmse);
@@ -590,6 +693,46 @@ static void embed_file(FILE *out, const char *path)
     fclose(f);
 }
 
+/* The error where it matters: RMSE and bias inside each metric mask, and the masks themselves. */
+static void write_mask_table(FILE *f, const view_result *vr, int w, int h)
+{
+    const ob_metric_mask_desc *md = &vr->mask_desc;
+    const size_t *n = vr->mask_pixels;
+    fprintf(f,
+            "<p class=\"note\">Error where it matters, in pixels of geometry: <b>occluded</b> (reference &lt; %g) %zu; "
+            "<b>silhouette</b> (within %d px of a depth step over %g%% or sky) %zu; <b>thin</b> (background over "
+            "R = %g farther on both sides within %d px) %zu; <b>border</b> (outer %g%% of each side) %zu. "
+            "n/a: the mask is empty. Mask images: white = in the mask, over the reference dimmed; sky dark blue.</p>\n",
+            (double)md->occluded_below, n[OB_MASK_OCCLUDED], md->edge_band, 100.0 * (double)md->edge_relative,
+            n[OB_MASK_SILHOUETTE], (double)vr->radius, md->thin_reach, n[OB_MASK_THIN],
+            100.0 * (double)md->border_fraction, n[OB_MASK_BORDER]);
+    fputs("<table class=\"sortable masks\"><thead><tr><th>method</th>", f);
+    for (int q = 0; q < OB_MASK_COUNT; ++q) {
+        const char *name = ob_metric_mask_name((ob_metric_mask)q);
+        fprintf(f, "<th>%s RMSE</th><th>%s bias</th>", name, name);
+    }
+    fputs("</tr></thead><tbody>\n", f);
+    for (int k = 0; k < vr->method_count; ++k) {
+        const method_result *m = &vr->methods[k];
+        fputs("<tr><td>", f);
+        html_escape(f, m->label);
+        fputs("</td>", f);
+        for (int q = 0; q < OB_MASK_COUNT; ++q) {
+            if (m->in_mask[q].count > 0) fprintf(f, "<td>%.4f</td><td>%+.4f</td>", m->in_mask[q].rmse, m->in_mask[q].bias);
+            else fputs("<td>n/a</td><td>n/a</td>", f);
+        }
+        fputs("</tr>\n", f);
+    }
+    fputs("</tbody></table>\n<div class=\"grid\">", f);
+    for (int q = 0; q < OB_MASK_COUNT; ++q) {
+        const char *name = ob_metric_mask_name((ob_metric_mask)q);
+        fprintf(f, "<div class=\"cell\"><img src=\"%s/mask_%s.png\" width=\"%d\" height=\"%d\" alt=\"%s mask\">"
+                   "%s mask, %zu px</div>",
+                vr->dir, name, w, h, name, name, n[q]);
+    }
+    fputs("</div>\n", f);
+}
+
 static int write_html(const compare_opts *o, ob_context *ctx, const view_result *views, int count, outputs *out)
 {
     char path[700], tmp[720];
@@ -620,15 +763,20 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
         fprintf(f, "</h2>\n<p class=\"note\">R = %g; reference: %.1f s%s, mean standard error %.4f</p>\n",
                 (double)vr->radius, vr->ref_seconds, vr->ref_cached ? " (cached)" : "", vr->ref_stderr_mean);
         fputs("<table class=\"sortable\"><thead><tr><th>method</th><th>RMSE</th><th>bias</th><th>MAE</th><th>SSIM</th>"
-              "<th>PSNR dB</th><th>AO ms</th><th>frame ms</th></tr></thead><tbody>\n",
+              "<th>PSNR dB</th><th>sRGB PSNR dB</th><th>AO ms</th><th>frame ms</th></tr></thead><tbody>\n",
               f);
         for (int k = 0; k < vr->method_count; ++k) {
             const method_result *m = &vr->methods[k];
             fputs("<tr><td>", f);
             html_escape(f, m->label);
-            fprintf(f, "</td><td>%.4f</td><td>%+.4f</td><td>%.4f</td><td>%.3f</td><td>%s%.2f</td><td>%.2f</td><td>%.1f</td></tr>\n",
-                    m->m.rmse, m->m.bias, m->m.mae, m->m.ssim, isfinite(m->m.psnr) ? "" : "&infin;",
-                    isfinite(m->m.psnr) ? m->m.psnr : 0.0, m->ao_ms, m->frame_ms);
+            fprintf(f, "</td><td>%.4f</td><td>%+.4f</td><td>%.4f</td><td>%.3f</td>", m->m.rmse, m->m.bias, m->m.mae,
+                    m->m.ssim);
+            const double psnrs[2] = {m->m.psnr, m->m.psnr_srgb};
+            for (int q = 0; q < 2; ++q) {
+                if (isfinite(psnrs[q])) fprintf(f, "<td>%.2f</td>", psnrs[q]);
+                else fputs("<td>&infin;</td>", f);
+            }
+            fprintf(f, "<td>%.2f</td><td>%.1f</td></tr>\n", m->ao_ms, m->frame_ms);
         }
         fputs("</tbody></table>\n", f);
         if (vr->has_bounce) {
@@ -646,6 +794,7 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
             }
             fputs("</tbody></table>\n", f);
         }
+        write_mask_table(f, vr, o->common.width, o->common.height);
         fputs("<div class=\"chart\">", f);
         char svg[700];
         snprintf(svg, sizeof svg, "%s/%s/chart.svg", o->report, vr->dir);
@@ -668,10 +817,12 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
         }
         fputs("</section>\n", f);
     }
-    /* Sort a table by a column: numbers numerically, text alphabetically; click again to reverse. */
+    /* Sort a table by a column: numbers numerically, text alphabetically; click again to reverse.
+     * The column is the header cell's index in its own row (forEach's index counts every table's). */
     fputs("<script>\n"
-          "document.querySelectorAll('table.sortable th').forEach(function (th, col) {\n"
+          "document.querySelectorAll('table.sortable th').forEach(function (th) {\n"
           "  th.addEventListener('click', function () {\n"
+          "    var col = th.cellIndex;\n"
           "    var body = th.closest('table').tBodies[0];\n"
           "    var rows = Array.prototype.slice.call(body.rows);\n"
           "    var dir = th.dataset.dir === 'asc' ? -1 : 1;\n"

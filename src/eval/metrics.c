@@ -1,5 +1,9 @@
-/* Image-comparison metrics: RMSE, MAE, bias, PSNR and SSIM of a method's visibility against the
- * ray-traced reference, and a signed error heatmap for the report.
+/* Image-comparison metrics: RMSE, MAE, bias, PSNR (linear and sRGB-encoded) and SSIM of a method's
+ * visibility against the ray-traced reference, and a signed error heatmap for the report.
+ *
+ * sRGB PSNR: XeGTAO reports its error against 512-spp ray tracing as PSNR of the sRGB-encoded AO
+ * (about 21.4 dB for its High preset), so we report it too, to set our numbers beside theirs. The
+ * transfer is IEC 61966-2-1's: 12.92 v below 0.0031308, 1.055 v^(1/2.4) - 0.055 above.
  *
  * SSIM: Z. Wang, A. C. Bovik, H. R. Sheikh, E. P. Simoncelli, "Image Quality Assessment: From
  * Error Visibility to Structural Similarity", IEEE TIP 13(4), 2004. Eq. 13 gives the local index,
@@ -22,6 +26,20 @@
 #define SSIM_K1 0.01
 #define SSIM_K2 0.03
 #define SSIM_L 1.0 /* dynamic range of visibility */
+
+/* IEC 61966-2-1 encoding of a value clamped to [0, 1], as an sRGB image would store it. NaN stays
+ * NaN (neither comparison holds), so a broken pass still shows as NaN metrics. */
+static double srgb_encode(double v)
+{
+    v = v < 0.0 ? 0.0 : v > 1.0 ? 1.0 : v;
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+}
+
+/* Peak 1; MSE = 0 gives +inf, which is what identical images deserve. */
+static double psnr_of(double mse)
+{
+    return mse > 0.0 ? 10.0 * log10(1.0 / mse) : (mse == 0.0 ? INFINITY : NAN);
+}
 
 /* Five windowed sums per pixel: E[x], E[y], E[x^2], E[y^2], E[xy]. */
 enum { MOM_X = 0, MOM_Y, MOM_XX, MOM_YY, MOM_XY, MOM_COUNT };
@@ -136,7 +154,7 @@ ob_error ob_compare_images(const float *test, const float *reference, const uint
     /* Pixel errors in double: a 4K image has 25M values, and float sums would lose the small
      * errors that separate good methods. */
     size_t count = 0;
-    double sum = 0.0, sum_abs = 0.0, sum_sq = 0.0;
+    double sum = 0.0, sum_abs = 0.0, sum_sq = 0.0, sum_sq_srgb = 0.0;
     for (size_t p = 0; p < pixels; ++p) {
         if (mask && !mask[p]) continue;
         ++count;
@@ -146,6 +164,8 @@ ob_error ob_compare_images(const float *test, const float *reference, const uint
             sum += d;
             sum_abs += fabs(d);
             sum_sq += d * d;
+            double e = srgb_encode((double)test[i]) - srgb_encode((double)reference[i]);
+            sum_sq_srgb += e * e;
         }
     }
     if (count == 0) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compare_images: no pixel in the mask");
@@ -165,8 +185,9 @@ ob_error ob_compare_images(const float *test, const float *reference, const uint
     out->rmse = sqrt(mse);
     out->mae = sum_abs / values;
     out->bias = sum / values;
-    /* Peak 1: visibility's range. MSE = 0 gives +inf, which is what identical images deserve. */
-    out->psnr = mse > 0.0 ? 10.0 * log10(1.0 / mse) : (mse == 0.0 ? INFINITY : NAN);
+    /* Peak 1: visibility's range (and the sRGB-encoded range). */
+    out->psnr = psnr_of(mse);
+    out->psnr_srgb = psnr_of(sum_sq_srgb / values);
     /* Every channel averages over the same windows, so one mean over all of them is the mean of
      * the per-channel means. */
     out->ssim = ssim_sum / values;

@@ -915,6 +915,60 @@ static void test_sidecar_ground(void)
     unlink(obj);
 }
 
+/* The named scenes that scripts/install-deps.sh makes or finds (skipped when absent): each loads
+ * with its sidecar's radius and cameras, and the scanned object and the engine stand on a ground. */
+static void test_new_named_scenes(void)
+{
+    static const struct {
+        const char *name, *model;
+        float radius;
+        const char *cameras[3];
+        bool ground;
+    } scenes[] = {
+        {"oa_shine", "data/oa_shine.pk3", 16.0f, {"spawn1", "spawn7", "intermission"}, false},
+        {"armadillo", "data/armadillo.off", 10.0f, {"front", "feet", "back"}, true},
+        {"engine", "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", 20.0f,
+         {"overview", "fins", "contact"}, true},
+    };
+    for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; ++k) {
+        char model[4096] = "";
+        if (scenes[k].model[0] == '/') snprintf(model, sizeof model, "%s", scenes[k].model);
+        else snprintf(model, sizeof model, "%s/%s", ob_data_dir(), scenes[k].model);
+        if (!file_exists(model)) {
+            printf("skip: %s absent (scripts/install-deps.sh)\n", model);
+            continue;
+        }
+        ob_scene *s = load(scenes[k].name, NULL, OB_UP_DEFAULT);
+        CHECK(s != NULL, "%s loads: %s", scenes[k].name, last_message());
+        if (!s) continue;
+        print_stats(scenes[k].name, s);
+        ob_scene_stats st = ob_query_scene_stats(s);
+        CHECK(st.triangles > 1000u && bounds_sane(&st), "%s: %u triangles, sane bounds", scenes[k].name,
+              st.triangles);
+        CHECK(ob_query_scene_ao_radius(s) == scenes[k].radius, "%s: radius %g", scenes[k].name,
+              (double)ob_query_scene_ao_radius(s));
+        for (int c = 0; c < 3; ++c) {
+            CHECK(ob_find_camera(s, scenes[k].cameras[c], NULL) == OB_OK, "%s: camera %s", scenes[k].name,
+                  scenes[k].cameras[c]);
+        }
+        const ob_mesh *last = &s->meshes[s->mesh_count - 1];
+        bool ground = strcmp(s->materials[last->material].name, "ground") == 0;
+        CHECK(ground == scenes[k].ground, "%s: ground %s", scenes[k].name, ground ? "present" : "absent");
+        if (ground) {
+            /* It touches the model: its height is the lowest of the model's other vertices. */
+            float y = last->positions[1], lowest = 1e30f;
+            for (int m = 0; m + 1 < s->mesh_count; ++m) {
+                for (uint32_t v = 0; v < s->meshes[m].vertex_count; ++v) {
+                    lowest = fminf(lowest, s->meshes[m].positions[3u * v + 1u]);
+                }
+            }
+            CHECK(y == lowest, "%s: ground at %g, model's lowest point %g", scenes[k].name, (double)y,
+                  (double)lowest);
+        }
+        ob_destroy_scene(s);
+    }
+}
+
 /* OpenArena's oa_dm1 through the named scene: a Quake 3 map in a .pk3, which Assimp 5.2.5's
  * Q3BSP importer hands over with unwritten indices and clockwise triangles (import.c repairs
  * both). The .pk3 is made by scripts/install-deps.sh, so it may be absent. */
@@ -1057,6 +1111,7 @@ int main(void)
     test_fzk_haus();
     test_oa_dm1();
     test_sidecar_ground();
+    test_new_named_scenes();
     test_tessellate();
     rmdir(tmpdir);
     return check_finish("scene");

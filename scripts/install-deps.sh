@@ -19,29 +19,83 @@ packages=(
     chromium
     # scenes the demo and the tests use
     glmark2-data          # /usr/share/glmark2/models/bunny.obj (Stanford bunny)
-    assimp-testmodels     # /usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc
+    assimp-testmodels     # IFC/AC14-FZK-Haus.ifc, glTF2/2CylinderEngine-glTF-Binary (engine)
     python3-tinyobjloader # /usr/share/doc/python3-tinyobjloader/examples/cornell_box.obj
-    openarena-081-maps    # oa_dm1 inside pak1-maps.pk3, repacked alone into data/oa_dm1.pk3
+    openarena-081-maps    # oa_dm1 and oa_shine inside pak1-maps.pk3, each repacked alone into data/
+    # (CGAL's armadillo comes from libcgal-demo's .deb, downloaded but not installed: see below)
 )
 
+# Data made from the packages' files, in the repository's data/ (git-ignored; a link works),
+# written as the caller, not with sudo. Each step runs only when its file is missing, on both
+# exits below, so a second run costs a few file tests.
+data_dir="$(cd "$(dirname "$0")/.." && pwd)/data"
+
 # Assimp's Q3BSP importer reads only the first map of a .pk3, and pak1-maps.pk3 holds 50 maps:
-# copy oa_dm1's BSP alone into data/oa_dm1.pk3 (git-ignored) for scenes/oa_dm1.obscura.json.
-# Only the BSP: the package has no textures, and the map's lightmaps are inside the BSP. Run on
-# both exits below, and only when the file is missing; written as the caller, not with sudo.
+# copy each map's BSP alone into data/MAP.pk3 for scenes/MAP.obscura.json (oa_dm1, an indoor
+# gothic level; oa_shine, an angular tech level of stairs and floating platforms). Only the BSP:
+# the package has no textures, and the maps' lightmaps are inside the BSP.
 oa_pk3_src=/usr/share/games/openarena/baseoa/pak1-maps.pk3
-oa_pk3="$(cd "$(dirname "$0")/.." && pwd)/data/oa_dm1.pk3"
-repack_oa_dm1() {
-    if [ -f "$oa_pk3" ] || [ ! -f "$oa_pk3_src" ]; then return 0; fi
-    echo "install-deps: repacking oa_dm1 into $oa_pk3"
-    mkdir -p "$(dirname "$oa_pk3")"
-    python3 - "$oa_pk3_src" "$oa_pk3" <<'PY'
+oa_maps=(oa_dm1 oa_shine)
+repack_oa_maps() {
+    local want=()
+    for m in "${oa_maps[@]}"; do [ -f "$data_dir/$m.pk3" ] || want+=("$m"); done
+    if [ ${#want[@]} -eq 0 ] || [ ! -f "$oa_pk3_src" ]; then return 0; fi
+    echo "install-deps: repacking ${want[*]} into $data_dir"
+    mkdir -p "$data_dir"
+    python3 - "$oa_pk3_src" "$data_dir" "${want[@]}" <<'PY'
 import os, sys, zipfile
-src, dst = sys.argv[1], sys.argv[2]
-with zipfile.ZipFile(src) as z, zipfile.ZipFile(dst + ".part", "w", zipfile.ZIP_DEFLATED) as o:
-    o.writestr("maps/oa_dm1.bsp", z.read("maps/oa_dm1.bsp"))
-os.replace(dst + ".part", dst)  # never leave a half-written pk3 that the next run would keep
+src, out = sys.argv[1], sys.argv[2]
+with zipfile.ZipFile(src) as z:
+    for name in sys.argv[3:]:
+        dst = os.path.join(out, name + ".pk3")
+        with zipfile.ZipFile(dst + ".part", "w", zipfile.ZIP_DEFLATED) as o:
+            o.writestr(f"maps/{name}.bsp", z.read(f"maps/{name}.bsp"))
+        os.replace(dst + ".part", dst)  # never leave a half-written pk3 that the next run would keep
 PY
 }
+
+# CGAL's sample meshes ship only inside libcgal-demo, as /usr/share/doc/libcgal-dev/data.tar.gz,
+# and installing it would pull libcgal-dev and Boost's headers (21 packages) for one 1.6 MB
+# file, into a path that dpkg's path-exclude may skip. So its .deb is downloaded (24 MB, not
+# installed) and the mesh unpacked into data/: the Stanford armadillo scan
+# (scenes/armadillo.obscura.json). An installed libcgal-demo's tarball is used as it is.
+cgal_meshes=(armadillo)
+cgal_tarball=/usr/share/doc/libcgal-dev/data.tar.gz
+unpack_cgal_meshes() {
+    local want=()
+    for m in "${cgal_meshes[@]}"; do [ -f "$data_dir/$m.off" ] || want+=("$m"); done
+    if [ ${#want[@]} -eq 0 ]; then return 0; fi
+    echo "install-deps: unpacking ${want[*]} from CGAL's data (libcgal-demo) into $data_dir"
+    mkdir -p "$data_dir"
+    local tmp tarball=$cgal_tarball
+    tmp=$(mktemp -d)
+    if [ ! -f "$tarball" ]; then
+        if ! (cd "$tmp" && apt-get download -qq libcgal-demo >"$tmp/log" 2>&1); then
+            $sudo apt-get update -qq >/dev/null 2>&1 || true # lists missing or stale
+            if ! (cd "$tmp" && apt-get download -qq libcgal-demo >"$tmp/log" 2>&1); then
+                echo "install-deps: cannot download the Debian package libcgal-demo:" \
+                     "$(grep -m1 '^E:' "$tmp/log" || tail -n1 "$tmp/log")" >&2
+                rm -rf "$tmp"
+                exit 1
+            fi
+        fi
+        dpkg-deb --fsys-tarfile "$tmp"/libcgal-demo_*.deb | tar -xf - -C "$tmp" ."$cgal_tarball"
+        tarball=$tmp$cgal_tarball
+    fi
+    for m in "${want[@]}"; do
+        tar -xzOf "$tarball" "data/meshes/$m.off" >"$data_dir/$m.off.part"
+        mv "$data_dir/$m.off.part" "$data_dir/$m.off"
+    done
+    rm -rf "$tmp"
+}
+
+make_data() {
+    repack_oa_maps
+    unpack_cgal_meshes
+}
+
+sudo=""
+if [ "$(id -u)" -ne 0 ] && command -v sudo >/dev/null 2>&1; then sudo="sudo"; fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -58,22 +112,29 @@ if [ ${#missing[@]} -eq 0 ] && [ ! -f "$cornell" ]; then reinstall_cornell=1; fi
 
 if [ ${#missing[@]} -eq 0 ] && [ $reinstall_cornell -eq 0 ]; then
     echo "install-deps: all ${#packages[@]} packages present, nothing to install"
-    repack_oa_dm1
+    make_data
     exit 0
 fi
 
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then
-    if command -v sudo >/dev/null 2>&1; then sudo="sudo"; else
-        echo "install-deps: need root or sudo to install: ${missing[*]}" >&2
-        exit 1
-    fi
+if [ "$(id -u)" -ne 0 ] && [ -z "$sudo" ]; then
+    echo "install-deps: need root or sudo to install: ${missing[*]}" >&2
+    exit 1
 fi
 
 export DEBIAN_FRONTEND=noninteractive
 echo "install-deps: updating the package lists"
 $sudo apt-get update -qq
 if [ ${#missing[@]} -gt 0 ]; then
+    # One line naming every package the apt sources lack, not apt's screenful.
+    unknown=()
+    for p in "${missing[@]}"; do
+        apt-cache show "$p" >/dev/null 2>&1 || unknown+=("$p")
+    done
+    if [ ${#unknown[@]} -gt 0 ]; then
+        echo "install-deps: not in the apt sources (Debian 12 'bookworm' main expected):" \
+             "${unknown[*]}" >&2
+        exit 1
+    fi
     echo "install-deps: installing ${missing[*]}"
     $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
@@ -86,5 +147,5 @@ if [ ! -f "$cornell" ]; then
     $sudo cp "$tmp"/x/usr/share/doc/python3-tinyobjloader/examples/cornell_box.* "$(dirname "$cornell")"/
     rm -rf "$tmp"
 fi
-repack_oa_dm1
+make_data
 echo "install-deps: done"

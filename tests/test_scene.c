@@ -820,6 +820,155 @@ static void test_gltf_lights(void)
     unlink(path);
 }
 
+/* The sidecar's "ground": a square under the model, at its lowest point by default, 4 x its
+ * larger horizontal extent, +Y normals and counter-clockwise from above; the bounds grow to hold
+ * it, the default camera and the radius stay the model's. */
+static void test_sidecar_ground(void)
+{
+    char obj[512], json[512];
+    tmp_path(obj, sizeof obj, "tri.obj");
+    /* Bounds x 0..2, y 1..2, z 0..1: floating a unit over y = 0. */
+    write_text(obj, "v 0 1 0\nv 2 1 0\nv 0 2 1\nf 1 2 3\n");
+    tmp_path(json, sizeof json, "ground.obscura.json");
+
+    ob_scene *bare = load(obj, NULL, OB_UP_DEFAULT);
+    CHECK(bare != NULL, "tri.obj loads: %s", last_message());
+    if (!bare) return;
+    ob_camera bare_cam = ob_query_camera(bare, 0);
+
+    write_text(json, "{\"ground\": {\"_comment\": \"defaults\"}}");
+    ob_scene *s = load(obj, json, OB_UP_DEFAULT);
+    CHECK(s != NULL, "ground {}: %s", last_message());
+    if (s) {
+        CHECK(s->mesh_count == bare->mesh_count + 1, "ground: one mesh more (%d, %d)", s->mesh_count,
+              bare->mesh_count);
+        const ob_mesh *g = &s->meshes[s->mesh_count - 1];
+        CHECK(g->vertex_count == 4u && g->index_count == 6u, "ground: a quad, %u vertices %u indices",
+              g->vertex_count, g->index_count);
+        float lo[3] = {1e9f, 1e9f, 1e9f}, hi[3] = {-1e9f, -1e9f, -1e9f};
+        for (uint32_t v = 0; v < g->vertex_count; ++v) {
+            for (int i = 0; i < 3; ++i) {
+                lo[i] = fminf(lo[i], g->positions[3u * v + (uint32_t)i]);
+                hi[i] = fmaxf(hi[i], g->positions[3u * v + (uint32_t)i]);
+            }
+            CHECK(near(g->normals[3u * v + 1u], 1.0f, 0.0f), "ground normal +Y");
+        }
+        /* 8 = 4 x 2 (x extent), centred on (1, 0.5), at y = 1. */
+        CHECK(near(lo[0], -3.0f, 1e-6f) && near(hi[0], 5.0f, 1e-6f) && near(lo[2], -3.5f, 1e-6f) &&
+                  near(hi[2], 4.5f, 1e-6f) && near(lo[1], 1.0f, 0.0f) && near(hi[1], 1.0f, 0.0f),
+              "ground square x [%g, %g] y [%g, %g] z [%g, %g]", (double)lo[0], (double)hi[0],
+              (double)lo[1], (double)hi[1], (double)lo[2], (double)hi[2]);
+        ob_scene_stats st = ob_query_scene_stats(s);
+        const float blo[3] = {-3.0f, 1.0f, -3.5f}, bhi[3] = {5.0f, 2.0f, 4.5f};
+        check_bounds("ground bounds", &st, blo, bhi, 1e-6f);
+        ob_material_info m = ob_query_scene_material(s, g->material);
+        CHECK(strcmp(m.name, "ground") == 0 && near(m.diffuse[0], 0.8f, 1e-6f), "ground material %s %g",
+              m.name, (double)m.diffuse[0]);
+        ob_camera cam = ob_query_camera(s, 0);
+        CHECK(near(cam.eye[0], bare_cam.eye[0], 0.0f) && near(cam.eye[2], bare_cam.eye[2], 0.0f),
+              "the default camera still frames the model alone");
+        CHECK(ob_query_scene_ao_radius(s) == ob_query_scene_ao_radius(bare), "radius from the model");
+        check_mesh_sanity(s);
+        ob_destroy_scene(s);
+    }
+
+    write_text(json, "{\"ground\": {\"y\": -0.5, \"size\": 3, \"color\": [0.2, 0.3, 0.4]},"
+                     " \"cameras\": [{\"name\": \"default\", \"eye\": [0, 1, 9], \"target\": [0, 1, 0]}]}");
+    s = load(obj, json, OB_UP_DEFAULT);
+    CHECK(s != NULL, "ground with y, size, color: %s", last_message());
+    if (s) {
+        ob_scene_stats st = ob_query_scene_stats(s);
+        const float blo[3] = {-0.5f, -0.5f, -1.0f}, bhi[3] = {2.5f, 2.0f, 2.0f};
+        check_bounds("ground y -0.5 size 3", &st, blo, bhi, 1e-6f);
+        ob_material_info m = ob_query_scene_material(s, s->meshes[s->mesh_count - 1].material);
+        CHECK(near(m.diffuse[0], 0.2f, 1e-6f) && near(m.diffuse[1], 0.3f, 1e-6f) && near(m.diffuse[2], 0.4f, 1e-6f),
+              "ground colour");
+        CHECK(near(ob_query_camera(s, 0).eye[2], 9.0f, 0.0f), "the sidecar's \"default\" camera kept");
+        check_mesh_sanity(s);
+        ob_destroy_scene(s);
+    }
+
+    /* On a built-in too, and refused when malformed, with nothing applied. */
+    write_text(json, "{\"ground\": {\"y\": -1}}");
+    s = load("corner", json, OB_UP_DEFAULT);
+    CHECK(s && ob_query_scene_stats(s).bounds_min[1] == -1.0f, "ground under a built-in: %s", last_message());
+    ob_destroy_scene(s);
+    const char *bad[] = {
+        "{\"ground\": true}",
+        "{\"ground\": {\"size\": 0}}",
+        "{\"ground\": {\"size\": -2}}",
+        "{\"ground\": {\"height\": 1}}",
+        "{\"ground\": {\"color\": [2, 0, 0]}}",
+        "{\"ground\": {\"color\": [0.5, 0.5]}}",
+        "{\"ground\": {\"y\": 1, \"y\": 2}}",
+        "{\"ground\": {\"y\": \"low\"}}",
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; ++k) {
+        write_text(json, bad[k]);
+        s = load(obj, json, OB_UP_DEFAULT);
+        CHECK(!s && ob_get_error(NULL) == OB_ERR_SIDECAR, "bad ground %s: %s", bad[k], last_message());
+        if (k == 3) printf("  %s -> %s\n", bad[k], last_message());
+        ob_destroy_scene(s);
+    }
+    ob_destroy_scene(bare);
+    unlink(json);
+    unlink(obj);
+}
+
+/* The named scenes that scripts/install-deps.sh makes or finds (skipped when absent): each loads
+ * with its sidecar's radius and cameras, and the scanned object and the engine stand on a ground. */
+static void test_new_named_scenes(void)
+{
+    static const struct {
+        const char *name, *model;
+        float radius;
+        const char *cameras[3];
+        bool ground;
+    } scenes[] = {
+        {"oa_shine", "data/oa_shine.pk3", 16.0f, {"spawn1", "spawn7", "intermission"}, false},
+        {"armadillo", "data/armadillo.off", 10.0f, {"front", "feet", "back"}, true},
+        {"engine", "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", 20.0f,
+         {"overview", "fins", "contact"}, true},
+    };
+    for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; ++k) {
+        char model[4096] = "";
+        if (scenes[k].model[0] == '/') snprintf(model, sizeof model, "%s", scenes[k].model);
+        else snprintf(model, sizeof model, "%s/%s", ob_data_dir(), scenes[k].model);
+        if (!file_exists(model)) {
+            printf("skip: %s absent (scripts/install-deps.sh)\n", model);
+            continue;
+        }
+        ob_scene *s = load(scenes[k].name, NULL, OB_UP_DEFAULT);
+        CHECK(s != NULL, "%s loads: %s", scenes[k].name, last_message());
+        if (!s) continue;
+        print_stats(scenes[k].name, s);
+        ob_scene_stats st = ob_query_scene_stats(s);
+        CHECK(st.triangles > 1000u && bounds_sane(&st), "%s: %u triangles, sane bounds", scenes[k].name,
+              st.triangles);
+        CHECK(ob_query_scene_ao_radius(s) == scenes[k].radius, "%s: radius %g", scenes[k].name,
+              (double)ob_query_scene_ao_radius(s));
+        for (int c = 0; c < 3; ++c) {
+            CHECK(ob_find_camera(s, scenes[k].cameras[c], NULL) == OB_OK, "%s: camera %s", scenes[k].name,
+                  scenes[k].cameras[c]);
+        }
+        const ob_mesh *last = &s->meshes[s->mesh_count - 1];
+        bool ground = strcmp(s->materials[last->material].name, "ground") == 0;
+        CHECK(ground == scenes[k].ground, "%s: ground %s", scenes[k].name, ground ? "present" : "absent");
+        if (ground) {
+            /* It touches the model: its height is the lowest of the model's other vertices. */
+            float y = last->positions[1], lowest = 1e30f;
+            for (int m = 0; m + 1 < s->mesh_count; ++m) {
+                for (uint32_t v = 0; v < s->meshes[m].vertex_count; ++v) {
+                    lowest = fminf(lowest, s->meshes[m].positions[3u * v + 1u]);
+                }
+            }
+            CHECK(y == lowest, "%s: ground at %g, model's lowest point %g", scenes[k].name, (double)y,
+                  (double)lowest);
+        }
+        ob_destroy_scene(s);
+    }
+}
+
 /* OpenArena's oa_dm1 through the named scene: a Quake 3 map in a .pk3, which Assimp 5.2.5's
  * Q3BSP importer hands over with unwritten indices and clockwise triangles (import.c repairs
  * both). The .pk3 is made by scripts/install-deps.sh, so it may be absent. */
@@ -961,6 +1110,8 @@ int main(void)
     test_bunny();
     test_fzk_haus();
     test_oa_dm1();
+    test_sidecar_ground();
+    test_new_named_scenes();
     test_tessellate();
     rmdir(tmpdir);
     return check_finish("scene");

@@ -52,7 +52,7 @@ void ob_scene_finish(ob_scene *s);
 /* Builders: return NULL with the error set (ob_peek_error) on failure. */
 ob_scene *ob_scene_builtin(const char *name); /* NULL + OB_ERR_UNKNOWN_SCENE if not built in */
 ob_scene *ob_scene_import(const char *path, ob_up_axis up); /* assimp */
-/* Apply a sidecar JSON (cameras, lights, ao_radius, up) to a loaded scene. */
+/* Apply a sidecar JSON (cameras, lights, ao_radius, ground) to a loaded scene. */
 ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path);
 
 /* The default framing camera for bounds, looking from the front-above-right. */

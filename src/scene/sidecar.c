@@ -34,7 +34,16 @@
  *         "range": 10,           point and spot: > 0, smooth cut-off distance; default none
  *         "cone": [20, 30]       spot: inner and outer half-angles in degrees, 0 <= inner <= outer < 90
  *       }
- *     ]
+ *     ],
+ *     "ground": {                a square floor added under the model (a scanned object has none,
+ *                                and without one there is no contact occlusion to grade); the
+ *                                default camera keeps framing the model alone
+ *       "y": 0,                  height of the plane; default the model's lowest point, so the
+ *                                model stands on it
+ *       "size": 10,              side of the square, > 0, centred under the model's bounds;
+ *                                default 4 x the model's larger horizontal extent
+ *       "color": [r, g, b]       linear RGB albedo in [0, 1], default [0.8, 0.8, 0.8]
+ *     }
  *   }
  *
  * Validation is strict because a silently ignored typo ("camera" for "cameras") would render the
@@ -66,6 +75,11 @@ typedef struct sidecar {
     int camera_count;
     ob_light lights[OB_MAX_LIGHTS];
     int light_count;
+    bool ground;          /* "ground" given */
+    bool ground_has_y;    /* else the model's lowest point */
+    float ground_y;
+    float ground_size;    /* 0 = 4 x the larger horizontal extent */
+    float ground_color[3];
 } sidecar;
 
 /* Record "path: message" as OB_ERR_SIDECAR. */
@@ -280,6 +294,83 @@ static ob_error parse_light(const char *path, int index, const cJSON *obj, ob_li
     return OB_OK;
 }
 
+static ob_error parse_ground(const char *path, const cJSON *obj, sidecar *sc)
+{
+    if (!cJSON_IsObject(obj)) {
+        return fail(path, "ground: expected an object, got %s", json_type_name(obj));
+    }
+    sc->ground = true;
+    sc->ground_color[0] = sc->ground_color[1] = sc->ground_color[2] = 0.8f;
+    for (const cJSON *it = obj->child; it; it = it->next) {
+        const char *key = it->string;
+        char field[96] = "";
+        snprintf(field, sizeof field, "ground.%s", key);
+        if (is_comment_key(key)) continue;
+        if (seen_before(obj, it)) return fail(path, "%s: duplicate key", field);
+        ob_error err = OB_OK;
+        if (strcmp(key, "y") == 0) {
+            err = read_number(path, field, it, &sc->ground_y);
+            sc->ground_has_y = true;
+        } else if (strcmp(key, "size") == 0) {
+            err = read_number(path, field, it, &sc->ground_size);
+            if (err == OB_OK && !(sc->ground_size > 0.0f)) {
+                return fail(path, "%s: must be > 0, got %g", field, (double)sc->ground_size);
+            }
+        } else if (strcmp(key, "color") == 0) {
+            err = read_vec3(path, field, it, sc->ground_color);
+            for (int i = 0; i < 3 && err == OB_OK; ++i) {
+                if (!(sc->ground_color[i] >= 0.0f && sc->ground_color[i] <= 1.0f)) {
+                    return fail(path, "%s: an albedo is in [0, 1]", field);
+                }
+            }
+        } else {
+            return fail(path, "%s: unknown key (expected y, size, color)", field);
+        }
+        if (err != OB_OK) return err;
+    }
+    return OB_OK;
+}
+
+/* The sidecar's ground: one quad (two triangles, counter-clockwise seen from +Y) in its own
+ * material, and the bounds grown to hold it. The default camera is left framing the model. */
+static ob_error add_ground(ob_scene *s, const sidecar *sc, const char *path)
+{
+    float ex = s->bounds_max[0] - s->bounds_min[0], ez = s->bounds_max[2] - s->bounds_min[2];
+    float size = sc->ground_size > 0.0f ? sc->ground_size : 4.0f * (ex > ez ? ex : ez);
+    if (!(size > 0.0f) || !isfinite(size)) {
+        return fail(path, "ground: the model has no horizontal extent; give a \"size\"");
+    }
+    float y = sc->ground_has_y ? sc->ground_y : s->bounds_min[1];
+    float cx = 0.5f * (s->bounds_min[0] + s->bounds_max[0]);
+    float cz = 0.5f * (s->bounds_min[2] + s->bounds_max[2]);
+    float h = 0.5f * size;
+    int mat = ob_scene_add_material(s, "ground", sc->ground_color[0], sc->ground_color[1],
+                                    sc->ground_color[2]);
+    if (mat < 0) return OB_ERR_OUT_OF_MEMORY;
+    ob_mesh *m = ob_scene_add_mesh(s, 4u, 6u, false);
+    if (!m) {
+        --s->material_count; /* leave the scene as it was */
+        return OB_ERR_OUT_OF_MEMORY;
+    }
+    const float corners[4][2] = {{cx - h, cz - h}, {cx + h, cz - h}, {cx + h, cz + h}, {cx - h, cz + h}};
+    for (uint32_t v = 0; v < 4u; ++v) {
+        m->positions[3u * v + 0u] = corners[v][0];
+        m->positions[3u * v + 1u] = y;
+        m->positions[3u * v + 2u] = corners[v][1];
+        m->normals[3u * v + 1u] = 1.0f;
+    }
+    /* (x0, z0) -> (x0, z1) -> (x1, z1) turns counter-clockwise about +Y. */
+    const uint32_t idx[6] = {0u, 3u, 2u, 0u, 2u, 1u};
+    memcpy(m->indices, idx, sizeof idx);
+    m->material = mat;
+    const float lo[3] = {cx - h, y, cz - h}, hi[3] = {cx + h, y, cz + h};
+    for (int i = 0; i < 3; ++i) {
+        if (lo[i] < s->bounds_min[i]) s->bounds_min[i] = lo[i];
+        if (hi[i] > s->bounds_max[i]) s->bounds_max[i] = hi[i];
+    }
+    return OB_OK;
+}
+
 /* Read the whole file as a NUL-terminated string (malloc'd). */
 static ob_error read_text(const char *path, char **out)
 {
@@ -416,9 +507,11 @@ static ob_error parse_file(const char *path, sidecar *sc)
                 err = parse_light(path, i, cJSON_GetArrayItem(it, i), &sc->lights[i]);
                 if (err == OB_OK) sc->light_count = i + 1;
             }
+        } else if (strcmp(key, "ground") == 0) {
+            err = parse_ground(path, it, sc);
         } else {
             err = fail(path, "%s: unknown key (expected model, up, ao_radius, cameras, lights, "
-                             "or _comment)", key);
+                             "ground, or _comment)", key);
         }
     }
     cJSON_Delete(root);
@@ -467,6 +560,13 @@ ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path)
                    OB_MAX_CAMERAS);
         free(sc);
         return err;
+    }
+    if (sc->ground) {
+        err = add_ground(s, sc, json_path);
+        if (err != OB_OK) {
+            free(sc);
+            return err;
+        }
     }
     for (int i = 0; i < sc->camera_count; ++i) ob_scene_add_camera(s, &sc->cameras[i]);
     if (sc->ao_radius > 0.0f) s->ao_radius = sc->ao_radius;

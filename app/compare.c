@@ -35,6 +35,7 @@ typedef struct compare_opts {
     int spp;
     float radius;                 /* 0 = the scene's suggested radius */
     bool no_cache;
+    double budget_ms;             /* --budget-ms: the equal-time shoot-out; 0 = none */
 } compare_opts;
 
 /* One row of a view's table: one combination of the lists. */
@@ -48,6 +49,9 @@ typedef struct method_result {
     ob_metrics rgb; /* directional methods: HDR radiance against the one-bounce reference */
     ob_metrics in_mask[OB_MASK_COUNT]; /* the AO inside each metric mask; count 0 = the mask is empty */
     double ao_ms, frame_ms;
+    double chain_ms;              /* what the AO costs the frame: the AO pass, its depth MIPs, edges, filter and
+                                     upsampling (medians of the per-frame sums) */
+    bool pareto;                  /* no other row of the view is both as fast and more accurate */
 } method_result;
 
 static void compare_usage(FILE *f, const cli_common *defaults)
@@ -67,6 +71,10 @@ static void compare_usage(FILE *f, const cli_common *defaults)
           "                        (default: each scene's suggested radius; a --set M.radius=... wins\n"
           "                        for method M, the reference keeps R)\n"
           "  --no-cache            recompute the reference even if a cached one exists\n"
+          "  --budget-ms T         the equal-time shoot-out: every method at every --quality preset and\n"
+          "                        --ao-scale (all of them unless the lists are given), and per view the\n"
+          "                        best RMSE each method reaches within T ms of AO (pass + filter +\n"
+          "                        upsampling); the chart marks the error/time Pareto front\n"
           "\n"
           "The one-bounce reference of the directional methods takes the lights of --light and a\n"
           "constant ambient (--ambient-color), so --ambient hemisphere|env is not taken here.\n",
@@ -94,7 +102,8 @@ static int parse(int argc, char **argv, compare_opts *o)
         int taken = cli_common_option(&o->common, argc, argv, &i);
         if (taken == CLI_TAKEN) continue;
         if (taken != CLI_NOT_MINE) return taken;
-        if (strcmp(a, "--scene") && strcmp(a, "--report") && strcmp(a, "--spp") && strcmp(a, "--radius"))
+        if (strcmp(a, "--scene") && strcmp(a, "--report") && strcmp(a, "--spp") && strcmp(a, "--radius") &&
+            strcmp(a, "--budget-ms"))
             return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura compare --help)", a);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura compare --help)", a);
         const char *v = argv[++i];
@@ -108,10 +117,26 @@ static int parse(int argc, char **argv, compare_opts *o)
             long n = strtol(v, &end, 10);
             if (end == v || *end || n < 2 || n > 1 << 20) return cli_fail(EXIT_USAGE, "--spp: expected 2..1048576, got '%s'", v);
             o->spp = (int)n;
+        } else if (!strcmp(a, "--budget-ms")) {
+            float b = 0.0f;
+            if (!cli_parse_float(v, &b) || !(b > 0.0f) || !isfinite(b))
+                return cli_fail(EXIT_USAGE, "--budget-ms: expected a positive number of milliseconds, got '%s'", v);
+            o->budget_ms = b;
         } else {
             if (!cli_parse_float(v, &o->radius) || !(o->radius > 0.0f))
                 return cli_fail(EXIT_USAGE, "--radius: expected a positive number, got '%s'", v);
         }
+    }
+    if (o->budget_ms > 0.0) {
+        /* The shoot-out sweeps every preset and AO scale unless the lists say otherwise. */
+        cli_common *c = &o->common;
+        char q_opt[] = "--quality", q_val[] = "low,medium,high,ultra", s_opt[] = "--ao-scales", s_val[] = "1,0.5,0.25";
+        char *q_argv[] = {q_opt, q_val}, *s_argv[] = {s_opt, s_val};
+        int k = 0, code = EXIT_OK;
+        if (c->by_quality_count == 0 && c->by_number_count == 0 && (code = cli_common_option(c, 2, q_argv, &k)) != CLI_TAKEN)
+            return code;
+        k = 0;
+        if (c->ao_count == 0 && (code = cli_common_option(c, 2, s_argv, &k)) != CLI_TAKEN) return code;
     }
     if (!o->report) return cli_fail(EXIT_USAGE, "--report DIR is required (see obscura compare --help)");
     if (o->view_count == 0) return cli_fail(EXIT_USAGE, "--scene is required (see obscura compare --help)");
@@ -439,7 +464,7 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
         for (int p = 0; p < mi->param_count; ++p)
             if (!strcmp(mi->params[p].name, "radius")) radius_given = (s.params_set >> p) & 1u;
         if (!radius_given && !isnan(ob_settings_get(&s, "radius"))) ob_settings_set(&s, radius_set);
-        double ao_ms[FRAMES], frame_ms[FRAMES];
+        double ao_ms[FRAMES], frame_ms[FRAMES], chain_ms[FRAMES];
         for (int f = 0; f < FRAMES; ++f) {
             if (ob_render_frame(r, &cam, &s) != OB_OK) {
                 code = cli_fail_from_library();
@@ -447,13 +472,17 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
             }
             ob_pass_timing t[16];
             int tn = ob_query_timings(r, t, 16);
-            ao_ms[f] = frame_ms[f] = 0.0;
+            ao_ms[f] = frame_ms[f] = chain_ms[f] = 0.0;
             for (int p = 0; p < tn; ++p) {
                 if (!strcmp(t[p].name, "ao")) ao_ms[f] = t[p].ms;
+                static const char *const chain[] = {"ao", "depth_mips", "edges", "filter", "upsample"};
+                for (size_t q = 0; q < sizeof chain / sizeof chain[0]; ++q)
+                    if (!strcmp(t[p].name, chain[q])) chain_ms[f] += t[p].ms;
                 frame_ms[f] += t[p].ms;
             }
         }
         mr->ao_ms = cli_median(ao_ms, FRAMES);
+        mr->chain_ms = cli_median(chain_ms, FRAMES);
         mr->frame_ms = cli_median(frame_ms, FRAMES);
         ob_read_image(r, OB_IMAGE_AO_F32, ao, px * sizeof(float));
         if (ob_compare_images(ao, ref, mask, w, h, 1, &mr->m) != OB_OK) {
@@ -522,6 +551,48 @@ static double json_float(float v)
     char text[32];
     snprintf(text, sizeof text, "%.7g", (double)v);
     return strtod(text, NULL);
+}
+
+/* The rows on the error/time Pareto front: no other row is at most as slow (AO chain ms) and
+ * strictly more accurate, or as accurate and strictly faster. */
+static void mark_pareto(view_result *vr)
+{
+    for (int k = 0; k < vr->method_count; ++k) {
+        method_result *a = &vr->methods[k];
+        a->pareto = true;
+        for (int j = 0; j < vr->method_count && a->pareto; ++j) {
+            const method_result *b = &vr->methods[j];
+            if (j == k) continue;
+            bool dominates = b->chain_ms <= a->chain_ms && b->m.rmse <= a->m.rmse &&
+                             (b->chain_ms < a->chain_ms || b->m.rmse < a->m.rmse);
+            if (dominates) a->pareto = false;
+        }
+    }
+}
+
+/* The shoot-out's answer for one method: its most accurate row within the budget (-1 = none),
+ * and its fastest row (for "over budget by"). */
+static void best_within(const view_result *vr, const char *method, double budget, int *best, int *fastest)
+{
+    *best = *fastest = -1;
+    for (int k = 0; k < vr->method_count; ++k) {
+        const method_result *m = &vr->methods[k];
+        if (strcmp(m->name, method)) continue;
+        if (*fastest < 0 || m->chain_ms < vr->methods[*fastest].chain_ms) *fastest = k;
+        if (m->chain_ms <= budget && (*best < 0 || m->m.rmse < vr->methods[*best].m.rmse)) *best = k;
+    }
+}
+
+/* Each method once, in the order of its first row. */
+static int method_names(const view_result *vr, const char **names, int max)
+{
+    int n = 0;
+    for (int k = 0; k < vr->method_count; ++k) {
+        bool seen = false;
+        for (int j = 0; j < n; ++j) seen = seen || !strcmp(names[j], vr->methods[k].name);
+        if (!seen && n < max) names[n++] = vr->methods[k].name;
+    }
+    return n;
 }
 
 static int write_json(const compare_opts *o, ob_context *ctx, const view_result *views, int count, outputs *out)
@@ -609,8 +680,31 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
                 cJSON_AddNumberToObject(rgb, "ssim", m->rgb.ssim);
             }
             cJSON_AddNumberToObject(e, "ao_ms", m->ao_ms);
+            cJSON_AddNumberToObject(e, "chain_ms", m->chain_ms);
+            cJSON_AddBoolToObject(e, "pareto", m->pareto);
             cJSON_AddNumberToObject(e, "frame_ms", m->frame_ms);
             cJSON_AddItemToArray(jm, e);
+        }
+        if (o->budget_ms > 0.0) {
+            cJSON *so = cJSON_AddObjectToObject(j, "shootout");
+            cJSON_AddNumberToObject(so, "budget_ms", o->budget_ms);
+            cJSON *arr = cJSON_AddArrayToObject(so, "methods");
+            const char *names[CLI_MAX_CONFIGS];
+            int n = method_names(vr, names, CLI_MAX_CONFIGS);
+            for (int q = 0; q < n; ++q) {
+                int best = -1, fastest = -1;
+                best_within(vr, names[q], o->budget_ms, &best, &fastest);
+                cJSON *e = cJSON_CreateObject();
+                cJSON_AddStringToObject(e, "method", names[q]);
+                cJSON_AddBoolToObject(e, "within_budget", best >= 0);
+                if (best >= 0) {
+                    cJSON_AddStringToObject(e, "label", vr->methods[best].label);
+                    cJSON_AddNumberToObject(e, "rmse", vr->methods[best].m.rmse);
+                    cJSON_AddNumberToObject(e, "chain_ms", vr->methods[best].chain_ms);
+                }
+                cJSON_AddNumberToObject(e, "fastest_ms", vr->methods[fastest].chain_ms);
+                cJSON_AddItemToArray(arr, e);
+            }
         }
         cJSON_AddItemToArray(jv, j);
     }
@@ -639,9 +733,24 @@ static int write_chart(const compare_opts *o, const view_result *vr, outputs *ou
         return cli_fail(EXIT_RUNTIME, "out of memory");
     FILE *f = fopen(data, "w");
     if (!f) return cli_fail(EXIT_OUTPUT, "cannot write %s: %s", data, strerror(errno));
-    /* Labels in double quotes: gnuplot reads "hbao · filter none" as one column. */
+    /* Labels in double quotes: gnuplot reads "hbao · filter none" as one column. The second
+     * block is the Pareto front in order of time, drawn as a line. */
+    /* Past 16 rows the labels would cover each other: only the front's are written. */
     for (int k = 0; k < vr->method_count; ++k)
-        fprintf(f, "%.6f %.6f \"%s\"\n", vr->methods[k].ao_ms, vr->methods[k].m.rmse, vr->methods[k].label);
+        fprintf(f, "%.6f %.6f \"%s\"\n", vr->methods[k].chain_ms, vr->methods[k].m.rmse,
+                vr->method_count <= 16 || vr->methods[k].pareto ? vr->methods[k].label : "");
+    fputs("\n\n", f);
+    double last = -1.0;
+    for (;;) {
+        int next = -1;
+        for (int k = 0; k < vr->method_count; ++k) {
+            const method_result *m = &vr->methods[k];
+            if (m->pareto && m->chain_ms > last && (next < 0 || m->chain_ms < vr->methods[next].chain_ms)) next = k;
+        }
+        if (next < 0) break;
+        last = vr->methods[next].chain_ms;
+        fprintf(f, "%.6f %.6f\n", vr->methods[next].chain_ms, vr->methods[next].m.rmse);
+    }
     fclose(f);
     f = fopen(script, "w");
     if (!f) return cli_fail(EXIT_OUTPUT, "cannot write %s: %s", script, strerror(errno));
@@ -649,13 +758,14 @@ static int write_chart(const compare_opts *o, const view_result *vr, outputs *ou
             "set encoding utf8\n"
             "set terminal svg size 560,360 font 'sans,11' background rgb 'white' noenhanced\n"
             "set output '%s.tmp'\n"
-            "set xlabel 'AO pass, ms (GPU timestamps)'\n"
+            "set xlabel 'AO ms: pass + depth MIPs + filter + upsampling (GPU timestamps)'\n"
             "set ylabel 'RMSE against the reference'\n"
             "set grid\n"
             "unset key\n"
             "set offsets graph 0.05, graph 0.15, graph 0.1, graph 0.1\n"
-            "plot '%s' using 1:2 with points pt 7 ps 1.2 lc rgb '#3060a0', "
-            "'' using 1:2:3 with labels offset 0.8,0.6 left font 'sans,10'\n",
+            "plot '%s' index 0 using 1:2 with points pt 7 ps 1.2 lc rgb '#3060a0', "
+            "'' index 0 using 1:2:3 with labels offset 0.8,0.6 left font 'sans,10', "
+            "'' index 1 using 1:2 with lines lw 1.5 lc rgb '#c05020' title 'Pareto front'\n",
             svg_path, data);
     fclose(f);
     char cmd[1600];
@@ -671,6 +781,47 @@ static int write_chart(const compare_opts *o, const view_result *vr, outputs *ou
     remove(script);
     remove(data);
     return EXIT_OK;
+}
+
+/* The equal-time shoot-out: each method's most accurate row within the budget, best first. */
+static void write_shootout_table(FILE *f, const view_result *vr, double budget)
+{
+    const char *names[CLI_MAX_CONFIGS];
+    int n = method_names(vr, names, CLI_MAX_CONFIGS);
+    int order[CLI_MAX_CONFIGS], best[CLI_MAX_CONFIGS], fastest[CLI_MAX_CONFIGS];
+    for (int q = 0; q < n; ++q) {
+        order[q] = q;
+        best_within(vr, names[q], budget, &best[q], &fastest[q]);
+    }
+    /* Within the budget by RMSE, then the rest by how fast they can go. */
+    for (int a = 1; a < n; ++a)
+        for (int b = a; b > 0; --b) {
+            int x = order[b - 1], y = order[b];
+            double kx = best[x] >= 0 ? vr->methods[best[x]].m.rmse : 10.0 + vr->methods[fastest[x]].chain_ms;
+            double ky = best[y] >= 0 ? vr->methods[best[y]].m.rmse : 10.0 + vr->methods[fastest[y]].chain_ms;
+            if (ky < kx) {
+                order[b - 1] = y;
+                order[b] = x;
+            }
+        }
+    fprintf(f, "<p class=\"note\">Equal-time shoot-out: the most accurate row of each method whose AO (pass + depth "
+               "MIPs + filter + upsampling) took at most %.2f ms.</p>\n<table><thead><tr><th>method</th><th>best row "
+               "within budget</th><th>RMSE</th><th>AO ms</th></tr></thead><tbody>\n",
+            budget);
+    for (int i = 0; i < n; ++i) {
+        int q = order[i];
+        fputs("<tr><td>", f);
+        html_escape(f, names[q]);
+        fputs("</td><td>", f);
+        if (best[q] >= 0) {
+            html_escape(f, vr->methods[best[q]].label);
+            fprintf(f, "</td><td>%.4f</td><td>%.2f</td></tr>\n", vr->methods[best[q]].m.rmse, vr->methods[best[q]].chain_ms);
+        } else {
+            fprintf(f, "over budget (fastest %.2f ms)</td><td>&ndash;</td><td>&ndash;</td></tr>\n",
+                    vr->methods[fastest[q]].chain_ms);
+        }
+    }
+    fputs("</tbody></table>\n", f);
 }
 
 static void embed_file(FILE *out, const char *path)
@@ -794,6 +945,7 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
             }
             fputs("</tbody></table>\n", f);
         }
+        if (o->budget_ms > 0.0) write_shootout_table(f, vr, o->budget_ms);
         write_mask_table(f, vr, o->common.width, o->common.height);
         fputs("<div class=\"chart\">", f);
         char svg[700];
@@ -886,6 +1038,7 @@ int cmd_compare(int argc, char **argv)
     if ((code = make_report_dir(&out, o.report)) != EXIT_OK) goto cleanup;
     for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) {
         code = run_view(&o, r, &inputs[v], configs, count, &out, &views[v]);
+        if (code == EXIT_OK) mark_pareto(&views[v]);
         if (code == EXIT_OK) code = write_chart(&o, &views[v], &out);
         if (code == EXIT_OK) ++done;
     }

@@ -247,5 +247,31 @@ else
     grep -q 'class="sortable"' "$dir/dom.html" && ok || bad "the DOM has no sortable table"
 fi
 
+# The equal-time shoot-out: every listed preset x scale per method; the best row within the budget
+# is within it and is the most accurate such row; the Pareto rows are undominated.
+if "$OBSCURA" compare --scene corner:diagonal --size 64x48 --methods gtao,hbao --quality low,high --ao-scales 1,0.5 \
+    --budget-ms 1000 --report "$dir/shoot" >/dev/null 2>"$dir/shoot.err" && python3 - "$dir/shoot/results.json" <<'PY'
+import json, sys
+v = json.load(open(sys.argv[1]))["views"][0]
+rows = v["methods"]
+assert len(rows) == 8, len(rows)
+so = v["shootout"]
+assert so["budget_ms"] == 1000 and [m["method"] for m in so["methods"]] == ["gtao", "hbao"], so
+for m in so["methods"]:
+    assert m["within_budget"], m
+    fits = [r for r in rows if r["method"] == m["method"] and r["chain_ms"] <= 1000]
+    assert m["chain_ms"] <= 1000 and m["rmse"] == min(r["rmse"] for r in fits), (m, fits)
+front = [r for r in rows if r["pareto"]]
+assert front, rows
+for a in front:
+    for b in rows:
+        assert not (b["chain_ms"] <= a["chain_ms"] and b["rmse"] < a["rmse"]), (a, b)
+for a in rows:
+    assert a["chain_ms"] >= a["ao_ms"] - 1e-9, a
+PY
+then ok; else bad "compare --budget-ms: $(tail -2 "$dir/shoot.err")"; fi
+"$OBSCURA" compare --scene corner:diagonal --size 64x48 --budget-ms -3 --report "$dir/shoot_bad" 2>"$dir/shoot.err"
+[ $? -eq 2 ] && grep -q "budget-ms" "$dir/shoot.err" && [ ! -e "$dir/shoot_bad" ] && ok || bad "--budget-ms -3: $(cat "$dir/shoot.err")"
+
 echo "test_report: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -418,7 +418,8 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "                        directory of them; lists show each tuned method at its defaults\n"
           "                        and tuned ('hbao · tuned'), single runs use it tuned (a lone FILE\n"
           "                        also picks the method); --set still wins\n"
-          "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off)\n"
+          "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off; ssao and\n"
+          "                        crytek take them, other methods say so and skip the pass)\n"
           "  --light SPEC          replaces the scene's lights (repeatable, up to 8), e.g.\n"
           "                        'directional dir=0.3,1,0.2 color=1,0.9,0.8 intensity=2',\n"
           "                        'point pos=0,2,0 intensity=8 range=10',\n"
@@ -528,6 +529,21 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
         ob_settings_set_ao_divisor(s, cfg->ao_divisor) != OB_OK)
         return cli_fail_from_library();
     s->adaptive = c->adaptive;
+    if (c->adaptive && !ob_method_at(cfg->method)->adapts) {
+        /* Once per method and run: lists repeat a method in many rows. */
+        static bool told[64];
+        if (cfg->method < 64 && !told[cfg->method]) {
+            char which[256] = "";
+            for (int m = 0; m < ob_method_count(); ++m)
+                if (ob_method_at(m)->adapts)
+                    snprintf(which + strlen(which), sizeof which - strlen(which), "%s%s", which[0] ? ", " : "",
+                             ob_method_at(m)->name);
+            fprintf(stderr, "obscura: note: --adaptive: %s has no adaptive sample count (%s have); it runs its fixed "
+                            "count and no edge pass\n",
+                    ob_method_at(cfg->method)->name, which);
+        }
+        if (cfg->method < 64) told[cfg->method] = true;
+    }
     for (int i = 0; i < c->light_count; ++i)
         if (ob_parse_light(c->lights[i], &s->lights[i]) != OB_OK) return cli_fail_from_library();
     s->light_count = c->light_count;

@@ -260,6 +260,8 @@ typedef struct ob_method_info {
     const char *description;
     const char *reference; /* seed / paper section */
     bool directional;      /* writes RGB modulation (SSDO) or a bounce (vbgi): compare its radiance too */
+    bool adapts;           /* takes per-pixel sample counts (ob_settings.adaptive); for the others the
+                              renderer skips the edge pass and the setting does nothing */
     int param_count;
     const ob_param_info *params;
 } ob_method_info;

@@ -205,7 +205,10 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         ob_downsample_run(&r->downsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal);
         glMemoryBarrier(barrier);
     }
-    if (s->adaptive) {
+    /* Per-pixel sample counts only for a method that takes them: for the others the edge pass
+     * would cost time and change nothing. */
+    const bool adaptive = s->adaptive && plan->impl->adapts;
+    if (adaptive) {
         ob_timer_begin(&r->timers, "edges");
         ob_edges_run(&r->edges, g, t->depth, t->normal, t->multiplier);
         glMemoryBarrier(barrier);
@@ -234,7 +237,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
                              .view_normal = t->normal,
                              .width = g->width,
                              .height = g->height,
-                             .sample_multiplier = s->adaptive ? t->multiplier : 0,
+                             .sample_multiplier = adaptive ? t->multiplier : 0,
                              .radiance = reads & OB_READS_RADIANCE ? r->direct : 0,
                              .albedo = reads & OB_READS_ALBEDO ? r->gbuffer.albedo : 0,
                              .depth_mips = mips,

@@ -31,8 +31,8 @@ const char *const ob_sampling_options[] = {"random", "halton"};
 const char *const ob_direction_options[] = {"uniform", "cosine"};
 const char *const ob_noise_options[] = {"texture4", "ign"};
 
-/* The public descriptions: each entry's info with `directional` derived from what it writes, so
- * a method declares its outputs once. Filled on first use. */
+/* The public descriptions: each entry's info with `directional` derived from what it writes and
+ * `adapts` copied, so a method declares each once. Filled on first use. */
 static ob_method_info infos[METHOD_COUNT];
 static pthread_once_t infos_once = PTHREAD_ONCE_INIT;
 
@@ -41,6 +41,7 @@ static void fill_infos(void)
     for (int i = 0; i < METHOD_COUNT; ++i) {
         infos[i] = methods[i]->info;
         infos[i].directional = (methods[i]->writes & (OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE)) != 0;
+        infos[i].adapts = methods[i]->adapts;
     }
 }
 

@@ -30,6 +30,10 @@
 #define OB_VIEW_MODE_SAMPLES 6
 #define OB_VIEW_MODE_BOUNCE 7
 #define OB_VIEW_MODE_BENT_NORMALS 8
+#define OB_VIEW_MODE_LUMINANCE 9
+/* The luminance view's range in stops (obscura.h OB_LUMINANCE_LOG2_*). */
+#define OB_VIEW_LUMINANCE_LOG2_LO (-8)
+#define OB_VIEW_LUMINANCE_LOG2_HI 4
 
 /* Per-pixel noise of the methods' "noise" enum parameter (registry.c's ob_noise_options order):
  * a tiled 4x4 texture, or Jimenez's interleaved gradient noise. */

@@ -12,6 +12,17 @@ layout(binding = 0) uniform sampler2D source;     /* the view's texture; samples
 layout(binding = 1) uniform sampler2D multiplier; /* samples under adaptive sampling: per block */
 layout(binding = 0, rgba8) uniform writeonly image2D display;
 
+/* The luminance view's ramp (seed 003 Fig. 6.16c): t in [0, 1] through dark blue, blue, cyan,
+ * green, yellow and red, evenly; tests/test_present.c has the same ramp in C. */
+vec3 luminance_ramp(float t)
+{
+    const vec3 stops[6] = vec3[6](vec3(0.0, 0.0, 0.3), vec3(0.0, 0.0, 1.0), vec3(0.0, 1.0, 1.0), vec3(0.0, 1.0, 0.0),
+                                  vec3(1.0, 1.0, 0.0), vec3(1.0, 0.0, 0.0));
+    float x = clamp(t, 0.0, 1.0) * 5.0;
+    int i = min(int(x), 4);
+    return mix(stops[i], stops[i + 1], x - float(i));
+}
+
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
@@ -30,6 +41,25 @@ void main()
     case OB_VIEW_MODE_BENT_NORMALS:
         c = directional && dot(s.xyz, s.xyz) > 1e-8 ? normalize(s.xyz) * 0.5 + 0.5 : vec3(0.0);
         break;
+    case OB_VIEW_MODE_LUMINANCE: {
+        const float lo = float(OB_VIEW_LUMINANCE_LOG2_LO), hi = float(OB_VIEW_LUMINANCE_LOG2_HI);
+        /* The legend: the bottom rows (row 0 is the bottom, GL's first) show the ramp across the
+         * width, with a tick per stop, the one at luminance 1 twice as tall. */
+        int bar = max(6, vw.size.y / 20);
+        if (pix.y < bar) {
+            float stops = hi - lo;
+            float at = (float(pix.x) + 0.5) / float(vw.size.x) * stops; /* stops above lo */
+            int nearest = int(floor(at + 0.5));
+            bool on_tick = abs(at - float(nearest)) * float(vw.size.x) / stops < 0.5;
+            int tall = nearest == int(-lo) ? bar : bar / 2;
+            c = on_tick && pix.y < tall ? vec3(0.0) : luminance_ramp(at / stops);
+            break;
+        }
+        float y = dot(s.rgb, vec3(0.2126, 0.7152, 0.0722));
+        float l = y > 0.0 ? log2(y) : -1e30;
+        c = y <= 0.0 ? vec3(0.0) : l > hi ? vec3(1.0) : luminance_ramp((l - lo) / (hi - lo));
+        break;
+    }
     case OB_VIEW_MODE_SAMPLES: {
         /* As the renderer's read_sample_counts: the block of AO pixel pix / k. */
         float count = float(vw.sample_count);

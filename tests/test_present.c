@@ -100,6 +100,36 @@ static float srgb(float c)
     return c <= 0.0031308f ? 12.92f * c : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
 }
 
+/* shaders/view.glsl's luminance ramp and legend, in C. */
+static void luminance_ramp(float t, float rgb[3])
+{
+    static const float stops[6][3] = {{0, 0, 0.3f}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}};
+    float x = (t < 0.0f ? 0.0f : t > 1.0f ? 1.0f : t) * 5.0f;
+    int i = (int)x < 4 ? (int)x : 4;
+    for (int c = 0; c < 3; ++c) rgb[c] = stops[i][c] + (stops[i + 1][c] - stops[i][c]) * (x - (float)i);
+}
+
+static void luminance_pixel(const float *hdr, int x, int y, float rgb[3])
+{
+    const float lo = (float)OB_LUMINANCE_LOG2_LO, hi = (float)OB_LUMINANCE_LOG2_HI;
+    int bar = H / 20 > 6 ? H / 20 : 6;
+    if (y < bar) {
+        float stops = hi - lo;
+        float at = ((float)x + 0.5f) / (float)W * stops;
+        int nearest = (int)floorf(at + 0.5f);
+        bool on_tick = fabsf(at - (float)nearest) * (float)W / stops < 0.5f;
+        int tall = nearest == (int)-lo ? bar : bar / 2;
+        if (on_tick && y < tall) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+        else luminance_ramp(at / stops, rgb);
+        return;
+    }
+    const float *p = &hdr[3 * ((size_t)y * W + (size_t)x)];
+    float lum = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+    if (lum <= 0.0f) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    else if (log2f(lum) > hi) rgb[0] = rgb[1] = rgb[2] = 1.0f;
+    else luminance_ramp((log2f(lum) - lo) / (hi - lo), rgb);
+}
+
 /* The expected RGBA bytes of a view (bottom row first) from ob_read_image. far and max_samples are
  * the GPU's scales (the CLI's are the image's maxima). */
 static uint8_t *expected_view(ob_renderer *r, ob_view view, float far_z, float max_samples)
@@ -108,14 +138,21 @@ static uint8_t *expected_view(ob_renderer *r, ob_view view, float far_z, float m
         [OB_VIEW_AO] = OB_IMAGE_AO_RGB_F32,     [OB_VIEW_NORMALS] = OB_IMAGE_NORMAL_F32,
         [OB_VIEW_DEPTH] = OB_IMAGE_DEPTH_F32,   [OB_VIEW_SHADOW] = OB_IMAGE_SHADOW_F32,
         [OB_VIEW_RADIANCE] = OB_IMAGE_RADIANCE_F32, [OB_VIEW_SAMPLES] = OB_IMAGE_SAMPLES_F32,
-        [OB_VIEW_BOUNCE] = OB_IMAGE_BOUNCE_F32, [OB_VIEW_BENT_NORMALS] = OB_IMAGE_BENT_NORMAL_F32};
+        [OB_VIEW_BOUNCE] = OB_IMAGE_BOUNCE_F32, [OB_VIEW_BENT_NORMALS] = OB_IMAGE_BENT_NORMAL_F32,
+        [OB_VIEW_LUMINANCE] = OB_IMAGE_HDR_F32};
     ob_image_kind kind = kinds[view];
     size_t px = (size_t)W * (size_t)H;
     float *buf = malloc(ob_image_size(r, kind));
     uint8_t *out = malloc(px * 4);
     CHECK(ob_read_image(r, kind, buf, ob_image_size(r, kind)) == OB_OK, "read %s", ob_view_name(view));
     int channels = ob_image_size(r, kind) == px * 3 * sizeof(float) ? 3 : 1;
-    for (size_t i = 0; i < px; ++i) {
+    for (size_t i = 0; i < px && view == OB_VIEW_LUMINANCE; ++i) {
+        float rgb[3];
+        luminance_pixel(buf, (int)(i % W), (int)(i / W), rgb);
+        for (int c = 0; c < 3; ++c) out[4 * i + (size_t)c] = to_byte(rgb[c]);
+        out[4 * i + 3] = 255;
+    }
+    for (size_t i = 0; i < px && view != OB_VIEW_LUMINANCE; ++i) {
         /* Bent normals: renormalised (filtering averages them), black where there is none. */
         float len = 0.0f;
         for (int c = 0; c < 3 && view == OB_VIEW_BENT_NORMALS; ++c) len += buf[i * 3 + (size_t)c] * buf[i * 3 + (size_t)c];
@@ -148,8 +185,8 @@ static int max_byte_diff(const uint8_t *a, const uint8_t *b, size_t n)
 /* ---- tests ---------------------------------------------------------------------------------- */
 static void test_view_names(void)
 {
-    const char *names[OB_VIEW_COUNT] = {"final",    "ao",      "normals", "depth", "shadow",
-                                        "radiance", "samples", "bounce",  "bent_normals"};
+    const char *names[OB_VIEW_COUNT] = {"final",    "ao",      "normals", "depth",        "shadow",
+                                        "radiance", "samples", "bounce",  "bent_normals", "luminance"};
     for (int v = 0; v < OB_VIEW_COUNT; ++v) {
         CHECK(!strcmp(ob_view_name((ob_view)v), names[v]), "view %d is '%s'", v, ob_view_name((ob_view)v));
         int back = -1;

@@ -442,7 +442,11 @@ int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max);
  *             count, under adaptive sampling its base x 3; the CLI divides by the image's largest
  *             count instead), grey; 0 for sky
  *   bounce    the one-bounce light of methods that write one (SSDO, vbgi), clamped and sRGB-encoded; black otherwise
- *   bent_normals  the method's bent normal (renormalised) as b * 0.5 + 0.5; black when it wrote none */
+ *   bent_normals  the method's bent normal (renormalised) as b * 0.5 + 0.5; black when it wrote none
+ *   luminance the composed HDR radiance's luminance before tone mapping in false colour (seed 003
+ *             Fig. 6.16c): log2 over [OB_LUMINANCE_LOG2_LO, OB_LUMINANCE_LOG2_HI] through dark blue,
+ *             blue, cyan, green, yellow and red, white above the top, black at 0; the scale itself
+ *             along the bottom edge with a tick per stop (taller at 1) */
 typedef enum ob_view {
     OB_VIEW_FINAL = 0,
     OB_VIEW_AO,
@@ -453,11 +457,17 @@ typedef enum ob_view {
     OB_VIEW_SAMPLES,
     OB_VIEW_BOUNCE,
     OB_VIEW_BENT_NORMALS,
+    OB_VIEW_LUMINANCE,
     OB_VIEW_COUNT
 } ob_view;
 
-/* "final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce", "bent_normals" (the
- * CLI's --view names); "" if out of range. */
+/* The luminance view's range in stops: 1/256 to 16 (radiance 1 is the display's white before
+ * tone mapping), shaders/view.glsl. */
+#define OB_LUMINANCE_LOG2_LO (-8)
+#define OB_LUMINANCE_LOG2_HI 4
+
+/* "final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce", "bent_normals",
+ * "luminance" (the CLI's --view names); "" if out of range. */
 const char *ob_view_name(ob_view view);
 
 /* Draw the last frame (OB_VIEW_FINAL) or one of its debug views into `framebuffer` (0 = the

@@ -41,6 +41,7 @@ static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_vi
         in->source = r->last_bent ? r->bent : r->gbuffer.linear_depth;
         in->directional = r->last_bent;
         break;
+    case OB_VIEW_LUMINANCE: in->source = r->radiance; break;
     case OB_VIEW_SAMPLES: {
         /* The counts of read_sample_counts, over the most a pixel could take (multiplier <= 3). */
         in->source = r->gbuffer.linear_depth;

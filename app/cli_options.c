@@ -529,7 +529,8 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
         ob_settings_set_ao_divisor(s, cfg->ao_divisor) != OB_OK)
         return cli_fail_from_library();
     s->adaptive = c->adaptive;
-    if (c->adaptive && !ob_method_at(cfg->method)->adapts) {
+    /* none takes no samples at all: nothing to say (bench's baseline frames are none). */
+    if (c->adaptive && !ob_method_at(cfg->method)->adapts && strcmp(ob_method_at(cfg->method)->name, "none") != 0) {
         /* Once per method and run: lists repeat a method in many rows. */
         static bool told[64];
         if (cfg->method < 64 && !told[cfg->method]) {

@@ -224,7 +224,7 @@ static const struct {
     {"--ao-scale", 0},             {"--ao-scales", CLI_TAKES_LISTS}, {"--adaptive", 0},
     {"--light", 0},                {"--env", 0},         {"--ambient", 0},
     {"--ambient-color", 0},        {"--ao-light", 0},    {"--shadow", 0},
-    {"--multibounce", 0},          {"--settings", 0},
+    {"--multibounce", 0},          {"--settings", 0},    {"--textures", 0},
     {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
 
@@ -305,6 +305,10 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         if (!strcmp(v, "ambient")) c->ao_all_light = false;
         else if (!strcmp(v, "all")) c->ao_all_light = true;
         else return cli_fail(EXIT_USAGE, "--ao-light: expected ambient or all, got '%s'", v);
+    } else if (!strcmp(a, "--textures")) {
+        bool on = true;
+        if (!cli_parse_on_off(v, &on)) return cli_fail(EXIT_USAGE, "--textures: expected on or off, got '%s'", v);
+        c->textures_off = !on;
     } else if (!strcmp(a, "--multibounce")) {
         if (!cli_parse_on_off(v, &c->multibounce))
             return cli_fail(EXIT_USAGE, "--multibounce: expected on or off, got '%s'", v);
@@ -430,6 +434,8 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "  --ao-light ambient|all  AO darkens the ambient term (default) or all light\n"
           "  --multibounce on|off  AO through Jimenez et al. 2016's multi-bounce fit with the albedo\n"
           "                        (bright surfaces lift their occlusion; default off)\n"
+          "  --textures on|off     the models' diffuse textures (default on); off draws each material in\n"
+          "                        its diffuse colour, which shows the AO alone (seed 004 §3.6)\n"
           "  --shadow none|hard|pcf|vsm  shadow maps for the lights (default pcf)\n"
           "  --shadow-size N       shadow map resolution (default 2048)\n"
           "  --shadow-bias B       constant bias in map texels; --shadow-slope-bias S slope-scaled\n"
@@ -552,6 +558,7 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
     if (c->given & CLI_GIVEN_AMBIENT_COLOR) memcpy(s->ambient, c->ambient_color, sizeof s->ambient);
     s->ao_all_light = c->ao_all_light;
     s->multibounce = c->multibounce;
+    s->textures_off = c->textures_off;
     ob_shadow_settings *sh = &s->shadow;
     if (c->given & CLI_GIVEN_SHADOW) sh->method = c->shadow;
     if (c->given & CLI_GIVEN_SHADOW_SIZE) sh->size = c->shadow_size;

@@ -107,7 +107,7 @@ typedef struct cli_common {
     const char *env;
     ob_ambient_mode ambient_mode;
     float ambient_color[3];
-    bool ao_all_light, hdr_off, multibounce;
+    bool ao_all_light, hdr_off, multibounce, textures_off;
     ob_shadow_method shadow;
     int shadow_size, pcf_radius;
     float shadow_bias, slope_bias, vsm_blur, vsm_bleed, exposure, key, white, bloom, bloom_threshold;

@@ -154,6 +154,8 @@ static void panel_lights(viewer *v)
     }
     gui_checkbox("AO darkens all light", &v->s.ao_all_light);
     gui_checkbox("multi-bounce AO (Jimenez 2016)", &v->s.multibounce);
+    bool textures = !v->s.textures_off;
+    if (gui_checkbox("textures", &textures)) v->s.textures_off = !textures;
 }
 
 static void panel_hdr(viewer *v)

@@ -227,6 +227,61 @@ static void test_multibounce(ob_renderer *r)
     free(depth);
 }
 
+/* Textures on and off (ob_settings.textures_off): Khronos' BoxTextured, whose one material has a
+ * 211 x 211 diffuse texture. On, the albedo varies over the box; off, every box pixel is the
+ * material's diffuse colour alone. */
+static void test_textures(ob_context *ctx)
+{
+    const char *path = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+    if (access(path, R_OK) != 0) {
+        printf("  skip: %s not installed\n", path);
+        return;
+    }
+    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = path});
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
+    CHECK(scene && r && ob_renderer_set_scene(r, scene) == OB_OK, "BoxTextured");
+    if (!scene || !r) return;
+    ob_camera cam;
+    CHECK(ob_find_camera(scene, "default", &cam) == OB_OK, "default camera");
+    const ob_material_info m = ob_query_scene_material(scene, 0);
+    CHECK(m.has_texture, "BoxTextured has a texture");
+    size_t px = (size_t)W * H;
+    float *albedo = malloc(px * 3 * sizeof(float)), *depth = malloc(px * sizeof(float));
+    double spread[2] = {0.0, 0.0}, off_diff = 0.0;
+    int geometry = 0;
+    for (int off = 0; off < 2; ++off) {
+        ob_settings s;
+        ob_settings_init(&s, "none");
+        s.textures_off = off != 0;
+        CHECK(ob_render_frame(r, &cam, &s) == OB_OK, "frame");
+        ob_read_image(r, OB_IMAGE_ALBEDO_F32, albedo, px * 3 * sizeof(float));
+        ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, px * sizeof(float));
+        float lo = 1e9f, hi = -1e9f;
+        geometry = 0;
+        for (size_t i = 0; i < px; ++i) {
+            if (depth[i] <= 0.0f) continue;
+            ++geometry;
+            float g = albedo[3 * i + 1];
+            lo = g < lo ? g : lo;
+            hi = g > hi ? g : hi;
+            if (off)
+                for (int c = 0; c < 3; ++c) off_diff = fmax(off_diff, fabs((double)albedo[3 * i + (size_t)c] - m.diffuse[c]));
+        }
+        spread[off] = (double)(hi - lo);
+    }
+    printf("  textures: albedo (green) spread over the box on %.3f, off %.6f; off differs from Kd by at most %.2g "
+           "(%d box pixels)\n",
+           spread[0], spread[1], off_diff, geometry);
+    CHECK(geometry > 500, "the box fills part of the frame (%d pixels)", geometry);
+    CHECK(spread[0] > 0.2, "textures on: the albedo varies over the box (%.3f)", spread[0]);
+    CHECK(spread[1] < 1e-3 && off_diff < 2e-3, "textures off: the material's colour alone (spread %.2g, off Kd %.2g)",
+          spread[1], off_diff);
+    free(albedo);
+    free(depth);
+    ob_destroy_renderer(r);
+    ob_destroy_scene(scene);
+}
+
 int main(void)
 {
     ob_context *ctx = check_context();
@@ -241,6 +296,7 @@ int main(void)
         test_hdr(r);
         test_multibounce(r);
     }
+    test_textures(ctx);
     ob_destroy_renderer(r);
     ob_destroy_scene(scene);
     ob_destroy_context(ctx);

@@ -328,6 +328,9 @@ typedef struct ob_settings {
      * a, b, c linear in the albedo, so light bouncing between nearby bright surfaces lifts the
      * occlusion (white walls lose about half of their darkening, black ones none). */
     bool multibounce;
+    /* Draw every material in its diffuse colour alone, its texture ignored (seed 004 §3.6, §4.1:
+     * the AO is easier to judge on untextured surfaces). false = textures on. */
+    bool textures_off;
     float background[3];          /* linear RGB of pixels with no geometry */
 } ob_settings;
 

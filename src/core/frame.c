@@ -191,7 +191,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
                                      &s->shadow, &r->timers);
     if (err != OB_OK) return err;
     ob_timer_begin(&r->timers, "gbuffer");
-    ob_gbuffer_run(&r->gbuffer, f->view, f->proj);
+    ob_gbuffer_run(&r->gbuffer, f->view, f->proj, !s->textures_off);
     glMemoryBarrier(barrier | GL_FRAMEBUFFER_BARRIER_BIT);
     ob_timer_begin(&r->timers, "lighting");
     ob_lighting_setup(&r->lighting);

@@ -153,7 +153,7 @@ ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene)
     return OB_OK;
 }
 
-void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj)
+void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj, bool textures)
 {
     ob_gbuffer_constants c;
     memset(&c, 0, sizeof c);
@@ -189,9 +189,9 @@ void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj)
             c.diffuse[0] = mi >= 0 ? g->diffuse[mi][0] : 0.8f;
             c.diffuse[1] = mi >= 0 ? g->diffuse[mi][1] : 0.8f;
             c.diffuse[2] = mi >= 0 ? g->diffuse[mi][2] : 0.8f;
-            c.textured = mi >= 0 && g->textures[mi] ? 1 : 0;
+            c.textured = textures && mi >= 0 && g->textures[mi] ? 1 : 0;
             glNamedBufferSubData(g->ubo, 0, sizeof c, &c);
-            glBindTextureUnit(0, mi >= 0 ? g->textures[mi] : 0);
+            glBindTextureUnit(0, c.textured ? g->textures[mi] : 0);
             last_material = m->material;
         }
         glBindVertexArray(m->vao);

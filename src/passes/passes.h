@@ -36,7 +36,8 @@ ob_error ob_gbuffer_init(ob_gbuffer *g, int width, int height);
  * error g is unchanged). The program and the scene stay. Errors: OB_ERR_GL. */
 ob_error ob_gbuffer_resize(ob_gbuffer *g, int width, int height);
 ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene);
-void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj);
+/* textures false: every material's diffuse colour alone (ob_settings.textures_off). */
+void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj, bool textures);
 void ob_gbuffer_destroy(ob_gbuffer *g);
 
 /* ---- subsampling: downsample.c, upsample.c, edges.c (shaders of the same names) ----------- */

@@ -225,6 +225,7 @@ static const struct {
     {"--light", 0},                {"--env", 0},         {"--ambient", 0},
     {"--ambient-color", 0},        {"--ao-light", 0},    {"--shadow", 0},
     {"--multibounce", 0},          {"--settings", 0},    {"--textures", 0},
+    {"--vsm-bits", 0},
     {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
 
@@ -305,6 +306,10 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         if (!strcmp(v, "ambient")) c->ao_all_light = false;
         else if (!strcmp(v, "all")) c->ao_all_light = true;
         else return cli_fail(EXIT_USAGE, "--ao-light: expected ambient or all, got '%s'", v);
+    } else if (!strcmp(a, "--vsm-bits")) {
+        if (strcmp(v, "16") && strcmp(v, "32")) return cli_fail(EXIT_USAGE, "--vsm-bits: expected 16 or 32, got '%s'", v);
+        c->vsm_bits = atoi(v);
+        c->given |= CLI_GIVEN_VSM_BITS;
     } else if (!strcmp(a, "--textures")) {
         bool on = true;
         if (!cli_parse_on_off(v, &on)) return cli_fail(EXIT_USAGE, "--textures: expected on or off, got '%s'", v);
@@ -440,7 +445,8 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "  --shadow-size N       shadow map resolution (default 2048)\n"
           "  --shadow-bias B       constant bias in map texels; --shadow-slope-bias S slope-scaled\n"
           "  --pcf-radius R        PCF kernel taps each side (1 = 3x3); --vsm-blur SIGMA (texels);\n"
-          "                        --vsm-bleed T (light-bleeding reduction, 0..1)\n"
+          "                        --vsm-bleed T (light-bleeding reduction, 0..1); --vsm-bits 16|32\n"
+          "                        (the moments' precision, default 32; seed 003 Fig. 6.5)\n"
           "  --hdr on|off          tone mapping (Reinhard, auto key, bloom) or a plain clamp (default on)\n"
           "  --exposure E          linear scale before tone mapping (default 1)\n"
           "  --key A               Reinhard key (0.045..0.9); default automatic from the log-average\n"
@@ -567,6 +573,7 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
     if (c->given & CLI_GIVEN_PCF_RADIUS) sh->pcf_radius = c->pcf_radius;
     if (c->given & CLI_GIVEN_VSM_BLUR) sh->vsm_blur = c->vsm_blur;
     if (c->given & CLI_GIVEN_VSM_BLEED) sh->vsm_bleed = c->vsm_bleed;
+    if (c->given & CLI_GIVEN_VSM_BITS) sh->vsm_bits = c->vsm_bits;
     ob_hdr_settings *hdr = &s->hdr;
     hdr->enabled = !c->hdr_off;
     if (c->given & CLI_GIVEN_EXPOSURE) hdr->exposure = c->exposure;

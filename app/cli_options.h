@@ -60,6 +60,7 @@ enum {
     CLI_GIVEN_BLOOM = 1u << 10,
     CLI_GIVEN_BLOOM_THRESHOLD = 1u << 11,
     CLI_GIVEN_AMBIENT_COLOR = 1u << 12,
+    CLI_GIVEN_VSM_BITS = 1u << 13,
 };
 
 /* A sample count per pixel and the --quality preset that named it (NULL for --samples N). */
@@ -109,7 +110,7 @@ typedef struct cli_common {
     float ambient_color[3];
     bool ao_all_light, hdr_off, multibounce, textures_off;
     ob_shadow_method shadow;
-    int shadow_size, pcf_radius;
+    int shadow_size, pcf_radius, vsm_bits;
     float shadow_bias, slope_bias, vsm_blur, vsm_bleed, exposure, key, white, bloom, bloom_threshold;
     unsigned given;                           /* CLI_GIVEN_* */
 

@@ -143,6 +143,8 @@ static void panel_lights(viewer *v)
     if (v->s.shadow.method == OB_SHADOW_VSM) {
         gui_slider_float("vsm blur (texels)", &v->s.shadow.vsm_blur, 0.0f, 16.0f, "%.2f", false);
         gui_slider_float("vsm bleed", &v->s.shadow.vsm_bleed, 0.0f, 0.99f, "%.2f", false);
+        bool half = v->s.shadow.vsm_bits == 16;
+        if (gui_checkbox("16-bit vsm moments (seed 003 Fig. 6.5)", &half)) v->s.shadow.vsm_bits = half ? 16 : 32;
     }
     static const char *const ambients[] = {"constant", "hemisphere", "environment"};
     int am = (int)v->s.ambient_mode;

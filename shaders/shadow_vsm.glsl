@@ -6,9 +6,10 @@
  *   OB_SHADOW_VSM_MOMENTS: the x pass, depth layer -> moments, blurred along x -> scratch
  *   otherwise:             the y pass, scratch -> blurred along y -> the moments layer
  * Reading the depth once in the x pass saves a full-size dispatch and a texture's worth of
- * traffic against a separate "depth -> moments" pass. Stored as RG32F: seed 003 §6.1 found 16-bit
- * floats too imprecise (light leaks near contacts, speckles from tiny variances). Taps past the
- * border repeat the edge texel, so the normalised weights always sum to 1. */
+ * traffic against a separate "depth -> moments" pass. Stored as RG32F by default: seed 003 §6.1
+ * found 16-bit floats too imprecise (light leaks near contacts, speckles from tiny variances);
+ * OB_SHADOW_VSM_FORMAT rg16f stores them in 16 bits to measure that (docs/lighting.md). Taps past
+ * the border repeat the edge texel, so the normalised weights always sum to 1. */
 #define OB_SHADOW_VSM_PASS 1
 #include "shadow_params.h"
 
@@ -19,7 +20,10 @@ layout(binding = 0) uniform sampler2DArray depth_in; /* the depth maps, comparis
 #else
 layout(binding = 0) uniform sampler2D moments_in;    /* the x pass's output */
 #endif
-layout(binding = 0, rg32f) uniform writeonly image2D moments_out;
+#ifndef OB_SHADOW_VSM_FORMAT
+#define OB_SHADOW_VSM_FORMAT rg32f
+#endif
+layout(binding = 0, OB_SHADOW_VSM_FORMAT) uniform writeonly image2D moments_out;
 
 /* Each invocation filters a run of OB_SHADOW_VSM_RUN texels along the axis from one window of
  * RUN + 2 radius fetches: (RUN + 2r) / RUN fetches per texel instead of 2r + 1. On llvmpipe the

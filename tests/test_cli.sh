@@ -51,6 +51,7 @@ expect 2 "unknown filter 'nosuch'" -- "${R[@]}" --filter nosuch
 expect 2 "ao-scale" -- "${R[@]}" --ao-scale 0.3
 expect 2 "adaptive" -- "${R[@]}" --adaptive maybe
 expect 2 "textures: expected on or off" -- "${R[@]}" --textures maybe
+expect 2 "vsm-bits: expected 16 or 32" -- "${R[@]}" --shadow vsm --vsm-bits 8
 expect 2 "view" -- "${R[@]}" --view bogus
 expect 2 "out of range" -- "${R[@]}" --set geometry.radius=99
 expect 2 "but the filter is geometry" -- "${R[@]}" --set gaussian.sigma=1

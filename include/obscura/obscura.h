@@ -165,6 +165,8 @@ typedef struct ob_shadow_settings {
     int pcf_radius;       /* PCF: taps each side of the kernel (1 = 3x3 bilinear comparisons) */
     float vsm_blur;       /* VSM: Gaussian sigma of the moment blur, in map texels */
     float vsm_bleed;      /* VSM: light-bleeding reduction threshold in [0, 1) */
+    int vsm_bits;         /* VSM: bits per stored moment, 16 (RG16F) or 32 (RG32F; 0 = 32): seed 003
+                             §6.1 / Fig. 6.5's precision comparison, docs/lighting.md */
     /* Keep the maps from the last frame while the lights, these settings and the scene are
      * unchanged: the scene is static, so the maps do not depend on the camera (the viewer sets
      * this; a frame that reuses them has no "shadow" timing). false: render them every frame, as

@@ -231,12 +231,13 @@ typedef struct ob_shadow_maps {
     GLuint depth_program;    /* orthographic maps: hardware depth */
     GLuint distance_program; /* spot and point maps: distance to the light / far */
     GLuint ubo, fbo;
-    ob_compute_pass vsm_x, vsm_y; /* VSM: depth -> moments blurred along x; then along y */
+    ob_compute_pass vsm_x, vsm_y; /* VSM: depth -> moments blurred along x; then along y (RG32F) */
+    ob_compute_pass vsm_x16, vsm_y16; /* the same writing RG16F (vsm_bits 16), made on first use */
     GLuint maps_2d;   /* DEPTH_COMPONENT32F 2D array: a layer per directional or spot map */
     GLuint maps_cube; /* DEPTH_COMPONENT32F cube-map array: a cube per point-light map */
-    GLuint moments;   /* RG32F 2D array (VSM only): blurred (z, z^2) per directional or spot map */
-    GLuint scratch;   /* RG32F 2D (VSM only): the blur's intermediate */
-    int size, layers_2d, cubes, moment_layers; /* what is allocated */
+    GLuint moments;   /* RG32F or RG16F 2D array (VSM only): blurred (z, z^2) per directional or spot map */
+    GLuint scratch;   /* the same format, 2D (VSM only): the blur's intermediate */
+    int size, layers_2d, cubes, moment_layers, moment_bits; /* what is allocated */
     ob_shadow_method method; /* of the last ob_shadows_render; NONE = no maps this frame */
     int light_map[OB_MAX_LIGHTS]; /* map index of each light, -1 = unshadowed */
     float matrix[OB_MAX_SHADOW_MAPS][16]; /* -> ob_lighting_constants.shadow_matrix */

@@ -84,6 +84,8 @@ void ob_shadows_destroy(ob_shadow_maps *s)
     if (s->distance_program) glDeleteProgram(s->distance_program);
     ob_compute_pass_destroy(&s->vsm_x);
     ob_compute_pass_destroy(&s->vsm_y);
+    ob_compute_pass_destroy(&s->vsm_x16);
+    ob_compute_pass_destroy(&s->vsm_y16);
     if (s->ubo) glDeleteBuffers(1, &s->ubo);
     if (s->fbo) glDeleteFramebuffers(1, &s->fbo);
     delete_texture(&s->maps_2d);
@@ -116,6 +118,8 @@ static ob_error check_settings(const ob_shadow_settings *st, int max_size)
     if (st->method == OB_SHADOW_VSM && !in_range(st->vsm_blur, 0.0f, OB_SHADOW_VSM_MAX_RADIUS / 2.0f))
         return ob_set_error(OB_ERR_OUT_OF_RANGE, "shadow vsm_blur %g outside 0..%g", (double)st->vsm_blur,
                             OB_SHADOW_VSM_MAX_RADIUS / 2.0);
+    if (st->method == OB_SHADOW_VSM && st->vsm_bits != 0 && st->vsm_bits != 16 && st->vsm_bits != 32)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "shadow vsm_bits %d: must be 16 or 32", st->vsm_bits);
     if (st->method == OB_SHADOW_VSM && !in_range(st->vsm_bleed, 0.0f, 0.99f))
         return ob_set_error(OB_ERR_OUT_OF_RANGE, "shadow vsm_bleed %g outside 0..0.99", (double)st->vsm_bleed);
     return OB_OK;
@@ -139,14 +143,16 @@ static GLuint make_depth_array(GLenum target, int size, int layers)
     return tex;
 }
 
-static GLuint make_moments(GLenum target, int size, int layers)
+static GLenum moment_format(int bits) { return bits == 16 ? GL_RG16F : GL_RG32F; }
+
+static GLuint make_moments(GLenum target, int size, int layers, int bits)
 {
     GLuint tex = 0;
     glCreateTextures(target, 1, &tex);
     if (target == GL_TEXTURE_2D_ARRAY)
-        glTextureStorage3D(tex, 1, GL_RG32F, size, size, layers);
+        glTextureStorage3D(tex, 1, moment_format(bits), size, size, layers);
     else
-        glTextureStorage2D(tex, 1, GL_RG32F, size, size);
+        glTextureStorage2D(tex, 1, moment_format(bits), size, size);
     /* Bilinear: the lookup filters the moments once more for free (seed 003 §2.1: VSM may be
      * filtered "with arbitrary size kernel"). The border (1, 1) is a lit depth with no variance. */
     const float border[4] = {1.0f, 1.0f, 0.0f, 0.0f};
@@ -158,7 +164,7 @@ static GLuint make_moments(GLenum target, int size, int layers)
     return tex;
 }
 
-static ob_error allocate(ob_shadow_maps *s, int size, int layers_2d, int cubes, int moment_layers)
+static ob_error allocate(ob_shadow_maps *s, int size, int layers_2d, int cubes, int moment_layers, int bits)
 {
     if (size != s->size || layers_2d != s->layers_2d) {
         delete_texture(&s->maps_2d);
@@ -168,14 +174,15 @@ static ob_error allocate(ob_shadow_maps *s, int size, int layers_2d, int cubes, 
         delete_texture(&s->maps_cube);
         if (cubes > 0) s->maps_cube = make_depth_array(GL_TEXTURE_CUBE_MAP_ARRAY, size, 6 * cubes);
     }
-    if (size != s->size || moment_layers != s->moment_layers) {
+    if (size != s->size || moment_layers != s->moment_layers || bits != s->moment_bits) {
         delete_texture(&s->moments);
         delete_texture(&s->scratch);
         if (moment_layers > 0) {
-            s->moments = make_moments(GL_TEXTURE_2D_ARRAY, size, moment_layers);
-            s->scratch = make_moments(GL_TEXTURE_2D, size, 1);
+            s->moments = make_moments(GL_TEXTURE_2D_ARRAY, size, moment_layers, bits);
+            s->scratch = make_moments(GL_TEXTURE_2D, size, 1, bits);
         }
     }
+    s->moment_bits = bits;
     s->size = size;
     s->layers_2d = layers_2d;
     s->cubes = cubes;
@@ -188,7 +195,7 @@ static ob_error allocate(ob_shadow_maps *s, int size, int layers_2d, int cubes, 
         delete_texture(&s->maps_cube);
         delete_texture(&s->moments);
         delete_texture(&s->scratch);
-        s->size = s->layers_2d = s->cubes = s->moment_layers = 0;
+        s->size = s->layers_2d = s->cubes = s->moment_layers = s->moment_bits = 0;
         return ob_set_error(OB_ERR_OUT_OF_MEMORY, "no GPU memory for %d + %d cube shadow maps of %d^2", layers_2d,
                             cubes, size);
     }
@@ -380,6 +387,9 @@ static int vsm_weights(float sigma, float weights[][4])
 
 static void blur_moments(ob_shadow_maps *s, float sigma)
 {
+    const bool half = s->moment_bits == 16;
+    ob_compute_pass *pass_x = half ? &s->vsm_x16 : &s->vsm_x, *pass_y = half ? &s->vsm_y16 : &s->vsm_y;
+    const GLenum format = moment_format(s->moment_bits);
     ob_shadow_vsm_constants c;
     memset(&c, 0, sizeof c);
     int radius = vsm_weights(sigma, c.weights);
@@ -392,17 +402,17 @@ static void blur_moments(ob_shadow_maps *s, float sigma)
         /* x: depth -> moments, blurred along x, into the scratch texture. */
         c.axis[0] = 1;
         c.axis[1] = 0;
-        ob_compute_pass_use(&s->vsm_x, &c, sizeof c);
+        ob_compute_pass_use(pass_x, &c, sizeof c);
         glBindTextureUnit(0, s->maps_2d);
-        glBindImageTexture(0, s->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+        glBindImageTexture(0, s->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
         ob_dispatch_2d(runs, s->size, OB_SHADOW_GROUP_X, OB_SHADOW_GROUP_Y);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         /* y: scratch -> the moments layer (bound as a plain 2D image). */
         c.axis[0] = 0;
         c.axis[1] = 1;
-        ob_compute_pass_use(&s->vsm_y, &c, sizeof c);
+        ob_compute_pass_use(pass_y, &c, sizeof c);
         glBindTextureUnit(0, s->scratch);
-        glBindImageTexture(0, s->moments, 0, GL_FALSE, layer, GL_WRITE_ONLY, GL_RG32F);
+        glBindImageTexture(0, s->moments, 0, GL_FALSE, layer, GL_WRITE_ONLY, format);
         ob_dispatch_2d(runs, s->size, OB_SHADOW_GROUP_X, OB_SHADOW_GROUP_Y);
         /* The next layer's x pass overwrites the scratch this pass reads, and the lighting pass
          * samples the moments. */
@@ -438,7 +448,8 @@ static bool same_inputs(const ob_shadow_maps *s, const ob_gbuffer *g, const ob_l
     const ob_shadow_settings *k = &s->key_settings;
     if (!s->key_valid || s->key_count != count || s->key_scene != g->scene_generation) return false;
     if (k->method != st->method || k->size != st->size || k->bias != st->bias || k->slope_bias != st->slope_bias ||
-        k->pcf_radius != st->pcf_radius || k->vsm_blur != st->vsm_blur || k->vsm_bleed != st->vsm_bleed)
+        k->pcf_radius != st->pcf_radius || k->vsm_blur != st->vsm_blur || k->vsm_bleed != st->vsm_bleed ||
+        k->vsm_bits != st->vsm_bits)
         return false;
     for (int i = 0; i < 3; ++i)
         if (s->key_bounds[i] != bmin[i] || s->key_bounds[3 + i] != bmax[i]) return false;
@@ -473,7 +484,18 @@ ob_error ob_shadows_render(ob_shadow_maps *s, const ob_gbuffer *g, const ob_ligh
     glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &max_cube);
     ob_error err = check_settings(settings, cubes > 0 && max_cube < max_size ? max_cube : max_size);
     if (err != OB_OK) return err;
-    err = allocate(s, settings->size, layers_2d, cubes, settings->method == OB_SHADOW_VSM ? layers_2d : 0);
+    int bits = settings->vsm_bits == 16 ? 16 : 32;
+    if (settings->method == OB_SHADOW_VSM && bits == 16 && !s->vsm_x16.program) {
+        /* The 16-bit moments' passes, on first use: most frames never ask for them. */
+        err = ob_compute_pass_init(&s->vsm_x16, "shadow_vsm.glsl",
+                                   "#define OB_SHADOW_VSM_MOMENTS 1\n#define OB_SHADOW_VSM_FORMAT rg16f\n",
+                                   sizeof(ob_shadow_vsm_constants));
+        if (err == OB_OK)
+            err = ob_compute_pass_init(&s->vsm_y16, "shadow_vsm.glsl", "#define OB_SHADOW_VSM_FORMAT rg16f\n",
+                                       sizeof(ob_shadow_vsm_constants));
+        if (err != OB_OK) return err;
+    }
+    err = allocate(s, settings->size, layers_2d, cubes, settings->method == OB_SHADOW_VSM ? layers_2d : 0, bits);
     if (err != OB_OK) return err;
 
     if (timers) ob_timer_begin(timers, "shadow");

@@ -37,6 +37,7 @@ layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vector
 layout(binding = 3) uniform sampler2D depth_mips;   /* R32F MIP chain of linear depth (level 0 = linear_depth)
                                                        in the OB_MARCH_DEPTH_MIPS program; otherwise
                                                        linear_depth itself */
+layout(binding = 5) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
 layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 layout(binding = 1, rgba16f) uniform writeonly image2D bent_out; /* view-space bent normal (bent_normals = 1) */
 
@@ -98,7 +99,7 @@ void main()
     /* A screen offset (dx, dy) px at P's depth is the view offset (dx, dy) * to_view * d. */
     vec2 to_view = frame.ao_proj_info.xy * frame.ao_inv_size * 2.0;
     vec2 jit = ob_slice_jitters(pix, gtao.noise, noise_tile, vec2(gtao.slice_offset, gtao.step_offset));
-    int slices = gtao.slices, steps = gtao.steps;
+    int slices = ob_slice_count(pix, gtao.slices, gtao.adaptive, gtao.adaptive_base, multiplier), steps = gtao.steps;
 
     float visibility = 0.0, open_sky = 0.0;
     vec3 bent = vec3(0.0); /* Σ |n_φ| (b(φ) - b_open(φ)), see the end */

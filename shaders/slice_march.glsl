@@ -55,6 +55,13 @@ float ob_fast_atan2(float y, float x)
     return y < 0.0 ? -r : r;
 }
 
+/* Adaptive sample counts (seed 003 §4.1): the slices of a pixel, base x its OB_EDGE_BLOCK^2 block's
+ * multiplier (1, 2 or 3, more at depth and normal edges) when adaptive, else the fixed count. */
+int ob_slice_count(ivec2 pix, int fixed_slices, int adaptive, int base, sampler2D multiplier)
+{
+    return adaptive != 0 ? base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r) : fixed_slices;
+}
+
 /* One slice through P (view position p, unit view vector v toward the eye, unit normal n). */
 struct ob_slice {
     vec2 dir;        /* the screen direction, unit, in AO pixels */

@@ -38,6 +38,7 @@ layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
 layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
 layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
 layout(binding = 3) uniform sampler2D depth_mips;   /* the MIP chain (OB_MARCH_DEPTH_MIPS), else linear_depth */
+layout(binding = 5) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
 layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 #ifdef OB_VBGI
 layout(binding = 4) uniform sampler2D radiance;     /* full-resolution RGBA16F direct radiance */
@@ -111,7 +112,7 @@ void main()
 
     vec2 to_view = frame.ao_proj_info.xy * frame.ao_inv_size * 2.0;
     vec2 jit = ob_slice_jitters(pix, vb.noise, noise_tile, vec2(vb.slice_offset, vb.step_offset));
-    int slices = vb.slices, steps = vb.steps;
+    int slices = ob_slice_count(pix, vb.slices, vb.adaptive, vb.adaptive_base, multiplier), steps = vb.steps;
     bool cosine = vb.weighting == OB_DIRECTIONS_MODE_COSINE;
 
     float visible = 0.0, total = 0.0, cos_total = 0.0;

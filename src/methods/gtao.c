@@ -98,6 +98,11 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
     fill_constants(&c, params, in->frame->frame_index, max_mip);
     c.bent_normals = c.bent_normals && out->bent_normal ? 1 : 0;
     if (c.depth_mips && !ob_slice_mips_program(&s->mips_program, "gtao.glsl")) return ob_peek_error(NULL);
+    /* Adaptive sample counts: the slices scale with the edge pass's multiplier (unit 5). */
+    int adaptive = 0, base = 1;
+    ob_slice_adaptive(&s->kit, in, c.slices, &adaptive, &base);
+    c.adaptive = adaptive;
+    c.adaptive_base = base;
     ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
     if (c.depth_mips) glUseProgram(s->mips_program);
     if (c.bent_normals) glBindImageTexture(1, out->bent_normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -140,4 +145,5 @@ const ob_method_impl ob_method_gtao = {
     .active_writes = gtao_active_writes,
     .set_samples = gtao_set_samples,
     .count_samples = gtao_count_samples,
+    .adapts = true,
 };

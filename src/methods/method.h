@@ -161,5 +161,9 @@ ob_slice_frame ob_slice_frame_make(uint32_t frame_index, bool temporal);
 /* The method's shader with OB_MARCH_DEPTH_MIPS, made on first use into *program (0 = not yet);
  * after ob_method_kit_use, glUseProgram of it selects the MIP variant. False with the error set. */
 bool ob_slice_mips_program(GLuint *program, const char *shader);
+/* Adaptive slices (seed 003 §4.1): *adaptive and the slices at multiplier 1, (slices + 1) / 3 as
+ * ob_adaptive_base rounds taps, at least 1; the multiplier bound to unit 5 (the noise tile when
+ * off, so the sampler is always valid). */
+void ob_slice_adaptive(const ob_method_kit *kit, const ob_ao_inputs *in, int slices, int *adaptive, int *base);
 
 #endif

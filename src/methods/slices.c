@@ -58,3 +58,10 @@ bool ob_slice_mips_program(GLuint *program, const char *shader)
     if (!*program) *program = ob_make_compute_program(shader, "#define OB_MARCH_DEPTH_MIPS 1\n");
     return *program != 0;
 }
+
+void ob_slice_adaptive(const ob_method_kit *kit, const ob_ao_inputs *in, int slices, int *adaptive, int *base)
+{
+    *adaptive = in->sample_multiplier != 0 ? 1 : 0;
+    *base = (slices + 1) / 3 > 1 ? (slices + 1) / 3 : 1;
+    glBindTextureUnit(5, in->sample_multiplier ? in->sample_multiplier : kit->noise);
+}

@@ -137,6 +137,11 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
     fill_constants(&c, params, s->gi, in->frame->frame_index, max_mip);
     bool mips = c.max_mip > 0;
     if (mips && !ob_slice_mips_program(&s->mips_program, s->shader)) return ob_peek_error(NULL);
+    /* Adaptive sample counts: the slices scale with the edge pass's multiplier (unit 5). */
+    int adaptive = 0, base = 1;
+    ob_slice_adaptive(&s->kit, in, c.slices, &adaptive, &base);
+    c.adaptive = adaptive;
+    c.adaptive_base = base;
     ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
     if (mips) glUseProgram(s->mips_program);
     /* Without the chain the sampler still needs a texture: the depth itself (level 0 only). */
@@ -180,6 +185,7 @@ const ob_method_impl ob_method_vbao = {
     .active_reads = vbao_active_reads,
     .set_samples = vbao_set_samples,
     .count_samples = vb_count_samples,
+    .adapts = true,
 };
 
 const ob_method_impl ob_method_vbgi = {
@@ -199,4 +205,5 @@ const ob_method_impl ob_method_vbgi = {
     .active_reads = vbgi_active_reads,
     .set_samples = vbgi_set_samples,
     .count_samples = vb_count_samples,
+    .adapts = true,
 };

@@ -20,6 +20,7 @@ layout(local_size_x = OB_ALCHEMY_GROUP_X, local_size_y = OB_ALCHEMY_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
 layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
 layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
+layout(binding = 3) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
 layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 
 void main()
@@ -44,7 +45,9 @@ void main()
     float eps = alchemy.epsilon;
     float turns = alchemy.turns;
     float r_px = r * alchemy.px_per_unit / d;
-    int s = alchemy.samples;
+    /* Adaptive sample counts (seed 003 §4.1): a denser spiral at depth and normal edges. */
+    int s = alchemy.adaptive != 0 ? alchemy.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r)
+                                  : alchemy.samples;
 
     float sum = 0.0;
     for (int i = 0; i < s; ++i) {

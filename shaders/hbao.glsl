@@ -23,6 +23,7 @@ layout(local_size_x = OB_HBAO_GROUP_X, local_size_y = OB_HBAO_GROUP_Y) in;
 layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
 layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
 layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
+layout(binding = 3) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
 layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 
 /* 4x4 ordered-dither (Bayer) ranks: every value 0..15 once per tile. */
@@ -102,7 +103,9 @@ void main()
     int mode = hbao.noise;
     vec2 rot = ob_rotation(pix, mode, noise_tile);
     float jitter = hbao_jitter(pix, mode);
-    int directions = hbao.directions;
+    /* Adaptive sample counts (seed 003 §4.1): more directions at depth and normal edges. */
+    int directions = hbao.adaptive != 0 ? hbao.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r)
+                                        : hbao.directions;
     int steps = hbao.steps;
     /* Step j (0-based) lands at 1 + (j + jitter) * (R_px - 1) / N_s pixels: the N_s steps
      * stratify [1, R_px) and the jitter shifts all of them together. Starting one pixel out

@@ -50,7 +50,11 @@ static ob_error alchemy_run(void *p, const ob_ao_inputs *in, const float *params
     c.px_per_unit = 0.5f * (float)in->height / in->frame->ao_proj_info[1];
     c.samples = (int)params[P_SAMPLES];
     c.noise = (int)params[P_NOISE];
+    /* Adaptive sample counts: the spiral's samples scale with the edge pass's multiplier. */
+    c.adaptive = in->sample_multiplier != 0 ? 1 : 0;
+    c.adaptive_base = ob_adaptive_base(c.samples);
     ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
+    ob_method_kit_bind_multiplier(&s->kit, in);
     ob_dispatch_2d(in->width, in->height, OB_ALCHEMY_GROUP_X, OB_ALCHEMY_GROUP_Y);
     return OB_OK;
 }
@@ -67,4 +71,5 @@ const ob_method_impl ob_method_alchemy = {
     .reads = OB_READS_DEPTH | OB_READS_NORMALS,
     .writes = OB_WRITES_VISIBILITY,
     .run = alchemy_run,
+    .adapts = true,
 };

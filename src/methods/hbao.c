@@ -64,7 +64,11 @@ static ob_error hbao_run(void *p, const ob_ao_inputs *in, const float *params, c
     c->directions = (int)params[P_DIRECTIONS];
     c->steps = (int)params[P_STEPS];
     c->noise = (int)params[P_NOISE];
+    /* Adaptive sample counts: the directions scale with the edge pass's multiplier. */
+    c->adaptive = in->sample_multiplier != 0 ? 1 : 0;
+    c->adaptive_base = (c->directions + 1) / 3 > 1 ? (c->directions + 1) / 3 : 1;
     ob_method_kit_use(&s->kit, c, sizeof *c, in, out, GL_R32F);
+    ob_method_kit_bind_multiplier(&s->kit, in);
     ob_dispatch_2d(in->width, in->height, OB_HBAO_GROUP_X, OB_HBAO_GROUP_Y);
     return OB_OK;
 }
@@ -115,4 +119,5 @@ const ob_method_impl ob_method_hbao = {
     .run = hbao_run,
     .set_samples = hbao_set_samples,
     .count_samples = hbao_count_samples,
+    .adapts = true,
 };

@@ -428,7 +428,7 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "                        and tuned ('hbao · tuned'), single runs use it tuned (a lone FILE\n"
           "                        also picks the method); --set still wins\n"
           "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off; every\n"
-          "                        method but ssdo and ssdo_merged takes them: those say so and skip it)\n"
+          "                        method takes them, see docs/filters.md)\n"
           "  --light SPEC          replaces the scene's lights (repeatable, up to 8), e.g.\n"
           "                        'directional dir=0.3,1,0.2 color=1,0.9,0.8 intensity=2',\n"
           "                        'point pos=0,2,0 intensity=8 range=10',\n"
@@ -541,7 +541,9 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
         ob_settings_set_ao_divisor(s, cfg->ao_divisor) != OB_OK)
         return cli_fail_from_library();
     s->adaptive = c->adaptive;
-    /* none takes no samples at all: nothing to say (bench's baseline frames are none). */
+    /* Every method adapts today; a new one that does not is named here rather than silently
+     * ignoring the option. none takes no samples at all: nothing to say (bench's baseline frames
+     * are none). */
     if (c->adaptive && !ob_method_at(cfg->method)->adapts && strcmp(ob_method_at(cfg->method)->name, "none") != 0) {
         /* Once per method and run: lists repeat a method in many rows. */
         static bool told[64];

@@ -35,6 +35,7 @@ layout(binding = 0) uniform sampler2D linear_depth; /* AO grid, R32F, 0 = no geo
 layout(binding = 1) uniform sampler2D view_normal;  /* AO grid, RGBA16F */
 layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
 layout(binding = 3) uniform sampler2D direct_map;   /* full resolution RGBA16F direct radiance */
+layout(binding = 5) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
 layout(binding = 0, rgba16f) uniform writeonly image2D m_out;
 layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
 
@@ -103,7 +104,11 @@ void main()
 
     float radius = ssdo.radius;
     float bias = ssdo.bias;
-    int count = ssdo.samples;
+    /* Adaptive sample counts (seed 003 §4.1 proposes them for SSDO): the first base x 1, 2 or 3
+     * Halton directions, evenly spread at every prefix; M is a ratio of sums and needs no
+     * rescaling, the bounce's patch area A_s = pi r^2 / N takes this pixel's N. */
+    int count = ssdo.adaptive != 0 ? ssdo.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r)
+                                   : ssdo.samples;
     bool cosine_pdf = stage == OB_SSDO_STAGE_MERGED;
     /* Patches closer than their own radius sqrt(A_s / pi) = r / sqrt(N) would make 1/d^2 blow up. */
     float min_d2 = radius * radius / float(max(count, 1));
@@ -166,7 +171,7 @@ void main()
     }
     if (stage != OB_SSDO_STAGE_DIRECT) {
         /* A_s / pi x strength, from the CPU; the merged variant darkens the bounce by M. */
-        bounce *= ssdo.bounce_scale;
+        bounce *= ssdo.bounce_scale * float(ssdo.samples) / float(max(count, 1));
         if (stage == OB_SSDO_STAGE_MERGED) bounce *= m;
         imageStore(bounce_out, pix, vec4(want_bounce ? bounce : vec3(0.0), 1.0));
     }

@@ -23,8 +23,13 @@ OB_CONSTANTS_BEGIN(ob_ssdo_constants, OB_BINDING_PASS)
     OB_INT noise;           /* OB_NOISE_* rotation */
     OB_INT bounce;          /* 1: gather the bounce (eq. 3.4); 0: write a black one */
     OB_INT stage;           /* OB_SSDO_STAGE_*: which output this dispatch writes */
+    OB_INT adaptive;        /* 1: per-pixel samples, adaptive_base x the edge pass's multiplier (unit 5), the
+                               first of the kernel's 3 x adaptive_base Halton entries */
+    OB_INT adaptive_base;
+    OB_INT pad0;
+    OB_INT pad1;
     OB_VEC4 kernel[OB_SSDO_MAX_SAMPLES]; /* tangent-space unit direction xyz, step length w */
 OB_CONSTANTS_END(ob_ssdo_constants, ssdo)
-OB_CONSTANTS_SIZE(ob_ssdo_constants, 2 * 16 + OB_SSDO_MAX_SAMPLES * 16);
+OB_CONSTANTS_SIZE(ob_ssdo_constants, 3 * 16 + OB_SSDO_MAX_SAMPLES * 16);
 
 #endif

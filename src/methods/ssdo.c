@@ -97,9 +97,14 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     ob_ssdo_constants *c = &s->constants;
     if (!in->radiance || !out->bounce)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ssdo needs the renderer's direct light (ob_render_frame)");
-    int count = (int)params[P_SAMPLES];
+    /* Adaptive sample counts: a kernel of 3 x base Halton entries, of which a pixel takes the
+     * first base x its block's multiplier (the kernel is Halton already, so fixed counts keep it). */
+    ob_sample_plan plan = ob_method_sample_plan(in, (int)params[P_SAMPLES], OB_SAMPLING_MODE_HALTON, OB_SSDO_MAX_SAMPLES);
+    int count = plan.count;
     ob_direction_pdf pdf = s->merged ? OB_DIRECTIONS_COSINE : OB_DIRECTIONS_UNIFORM;
     if (count != s->kernel_count || (int)pdf != s->kernel_pdf) build_kernel(s, count, pdf);
+    c->adaptive = plan.adaptive ? 1 : 0;
+    c->adaptive_base = plan.base;
     bool bounce = params[P_BOUNCE] != 0.0f;
     float radius = params[P_RADIUS];
 
@@ -116,6 +121,7 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     c->stage = s->merged ? OB_SSDO_STAGE_MERGED : OB_SSDO_STAGE_DIRECT;
     ob_method_kit_use(&s->kit, c, used, in, out, GL_RGBA16F);
     glBindTextureUnit(3, in->radiance);
+    glBindTextureUnit(5, in->sample_multiplier ? in->sample_multiplier : s->kit.noise);
     /* The renderer gives every declared output a target, so image 1 is valid with the bounce off
      * too (the merged stage then writes zeros there; nothing reads them). */
     glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -140,6 +146,7 @@ const ob_method_impl ob_method_ssdo = {
     .state_size = sizeof(ssdo_state),
     .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
+    .adapts = true,
     .init = ssdo_init,
     .run = ssdo_run,
     .active_writes = ssdo_active_writes,
@@ -156,6 +163,7 @@ const ob_method_impl ob_method_ssdo_merged = {
     .state_size = sizeof(ssdo_state),
     .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
+    .adapts = true,
     .init = ssdo_merged_init,
     .run = ssdo_run,
     .active_writes = ssdo_active_writes,

@@ -56,6 +56,7 @@ typedef struct viewer {
     ob_settings s;
     float method_params[MAX_METHODS][OB_MAX_PARAMS]; /* each method keeps its own values */
     uint32_t method_set[MAX_METHODS];
+    float method_radius_scale[MAX_METHODS]; /* and its own radius_scale (--settings may tune it) */
     int quality;            /* 0 = the methods' defaults, 1..4 = low..ultra */
     ob_view view;
     /* camera: eye, unit forward and world up; presets from the scene */

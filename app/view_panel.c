@@ -67,11 +67,17 @@ static void panel_method(viewer *v)
         if (param_widget(p, &v->s.params[i], shown)) v->s.params_set |= 1u << i;
         gui_pop_id();
     }
+    /* Every method's radius_scale (occluder radius = scale x R, graded at R; --settings may tune it). */
+    if (info->param_count > 0) {
+        if (v->s.radius_scale <= 0.0f) v->s.radius_scale = 1.0f;
+        gui_slider_float("radius scale (x R)", &v->s.radius_scale, OB_RADIUS_SCALE_MIN, OB_RADIUS_SCALE_MAX, "%.2f", false);
+    }
     if (info->param_count > 0 && gui_button("defaults")) {
         ob_settings fresh;
         if (ob_settings_init(&fresh, info->name) == OB_OK) {
             memcpy(v->s.params, fresh.params, sizeof v->s.params);
             v->s.params_set = 0;
+            v->s.radius_scale = 1.0f;
         }
     }
     gui_separator();

@@ -14,9 +14,11 @@ void select_method(viewer *v, int index)
     index = ((index % n) + n) % n;
     memcpy(v->method_params[v->s.method], v->s.params, sizeof v->s.params);
     v->method_set[v->s.method] = v->s.params_set;
+    v->method_radius_scale[v->s.method] = v->s.radius_scale;
     v->s.method = index;
     memcpy(v->s.params, v->method_params[index], sizeof v->s.params);
     v->s.params_set = v->method_set[index];
+    v->s.radius_scale = v->method_radius_scale[index];
     static const char *const presets[] = {"", "low", "medium", "high", "ultra"};
     if (v->quality > 0) {
         ob_settings_set_samples(&v->s, ob_quality_samples(presets[v->quality]));
@@ -62,6 +64,7 @@ int setup_settings(viewer *v)
         const cli_tuned *t = cli_common_tuned(c, m);
         if (t && (code = cli_tuned_apply(t, &tmp)) != 0) return code;
         memcpy(v->method_params[m], tmp.params, sizeof tmp.params);
+        v->method_radius_scale[m] = tmp.radius_scale;
     }
     /* Scenes are static: the maps only change with the lights or the shadow settings, not with
      * the camera (on llvmpipe FZK-Haus's sun + 2 cube maps cost 500+ ms a frame otherwise). */

@@ -12,10 +12,15 @@
 
 #include "cli.h"
 
-static char *read_text(const char *path, size_t limit)
+/* The whole file, or NULL: *why names the reason (errno's text, or "larger than 1 MiB"). */
+static char *read_text(const char *path, size_t limit, const char **why)
 {
+    *why = "larger than 1 MiB";
     FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
+    if (!f) {
+        *why = strerror(errno);
+        return NULL;
+    }
     char *buf = malloc(limit + 1);
     size_t n = buf ? fread(buf, 1, limit + 1, f) : 0;
     fclose(f);
@@ -33,8 +38,9 @@ static int load_file(const char *path, cli_tuned *t)
     memset(t, 0, sizeof *t);
     snprintf(t->path, sizeof t->path, "%s", path);
     /* A settings file is a few hundred bytes; 1 MiB is far beyond any real one. */
-    char *text = read_text(path, 1u << 20);
-    if (!text) return cli_fail(EXIT_USAGE, "--settings %s: cannot read it (%s)", path, errno ? strerror(errno) : "too large");
+    const char *why = NULL;
+    char *text = read_text(path, 1u << 20, &why);
+    if (!text) return cli_fail(EXIT_USAGE, "--settings %s: cannot read it (%s)", path, why);
     cJSON *root = cJSON_Parse(text);
     free(text);
     int code = EXIT_OK;

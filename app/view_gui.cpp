@@ -79,6 +79,27 @@ bool gui_header(const char *label, bool default_open)
     return ImGui::CollapsingHeader(label, default_open ? ImGuiTreeNodeFlags_DefaultOpen : 0);
 }
 
+void gui_plot_points(const float *xy, int n, int period, float size)
+{
+    ImDrawList *draw = ImGui::GetWindowDrawList();
+    ImVec2 o = ImGui::GetCursorScreenPos();
+    float r = 0.5f * size - 4.0f;
+    ImVec2 c(o.x + 0.5f * size, o.y + 0.5f * size);
+    draw->AddRectFilled(o, ImVec2(o.x + size, o.y + size), IM_COL32(20, 20, 24, 255));
+    draw->AddCircle(c, r, IM_COL32(120, 120, 120, 255), 64);
+    draw->AddLine(ImVec2(c.x - r, c.y), ImVec2(c.x + r, c.y), IM_COL32(60, 60, 60, 255));
+    draw->AddLine(ImVec2(c.x, c.y - r), ImVec2(c.x, c.y + r), IM_COL32(60, 60, 60, 255));
+    /* Groups: the first period bright, later ones darker and shifted in hue. */
+    static const ImU32 colours[4] = {IM_COL32(255, 210, 60, 255), IM_COL32(80, 200, 255, 255),
+                                     IM_COL32(255, 110, 160, 255), IM_COL32(140, 255, 120, 255)};
+    for (int i = 0; i < n; ++i) {
+        int group = period > 0 ? (i / period) % 4 : 0;
+        ImVec2 p(c.x + xy[2 * i] * r, c.y - xy[2 * i + 1] * r);
+        draw->AddCircleFilled(p, 2.5f, colours[group]);
+    }
+    ImGui::Dummy(ImVec2(size, size));
+}
+
 void gui_text(const char *fmt, ...)
 {
     va_list ap;

@@ -31,6 +31,9 @@ bool gui_begin(const char *title, float x, float y, float w, float h);
 bool gui_begin_overlay(const char *id, float x, float y);
 void gui_end(void);
 bool gui_header(const char *label, bool default_open);
+/* A square plot of n points (x, y in [-1, 1], +y up) inside the unit circle, size px wide; point i
+ * takes colour group i / period (period 0: one colour), so a kernel's repeats show. */
+void gui_plot_points(const float *xy, int n, int period, float size);
 void gui_text(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void gui_text_colored(float r, float g, float b, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 void gui_tooltip(const char *text); /* for the last item, when hovered */

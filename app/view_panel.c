@@ -2,6 +2,7 @@
  * filter sections are generated from the registries' parameter tables (as `obscura list` and
  * `--set` are), so a new method or parameter appears here without code; lights, shadows, HDR and
  * the display are the ob_settings fields edited in place. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -46,6 +47,38 @@ static bool param_widget(const ob_param_info *p, float *value, float shown_defau
     }
     gui_tooltip(p->help);
     return changed;
+}
+
+/* The method's sample kernel from above (seed 003 Fig. 4.1/4.2): each entry's xy in the tangent
+ * plane, coloured by which period of the Halton bases 2 x 5 (10 entries) it falls in, so a count
+ * that is not a multiple of 10 shows its unevenly covered last period. */
+static void panel_kernel(viewer *v)
+{
+    enum { MAX_KERNEL = 256 };
+    static float xyzw[4 * MAX_KERNEL], xy[2 * MAX_KERNEL];
+    int n = ob_method_kernel(&v->s, xyzw, MAX_KERNEL);
+    if (n <= 0) {
+        gui_text("%s has no sample kernel:", ob_method_at(v->s.method)->name);
+        gui_text("it marches the depth buffer.");
+        return;
+    }
+    float longest = 0.0f;
+    for (int i = 0; i < n; ++i) {
+        float len = sqrtf(xyzw[4 * i] * xyzw[4 * i] + xyzw[4 * i + 1] * xyzw[4 * i + 1] + xyzw[4 * i + 2] * xyzw[4 * i + 2]);
+        longest = len > longest ? len : longest;
+    }
+    for (int i = 0; i < n; ++i) {
+        xy[2 * i] = longest > 0.0f ? xyzw[4 * i] / longest : 0.0f;
+        xy[2 * i + 1] = longest > 0.0f ? xyzw[4 * i + 1] / longest : 0.0f;
+    }
+    float sampling = ob_settings_get(&v->s, "sampling");
+    bool halton = isnan(sampling) || sampling == 1.0f; /* the SSDOs' kernels are always Halton */
+    gui_plot_points(xy, n, halton ? 10 : 0, 220.0f);
+    if (halton)
+        gui_text("%d Halton: %d x period 10 (2 x 5) + %d", n, n / 10, n % 10);
+    else
+        gui_text("%d random entries (seeded)", n);
+    gui_tooltip("seed 003 Fig. 4.1/4.2: from above, each colour one period of the Halton bases 2 x 5");
 }
 
 static void panel_method(viewer *v)
@@ -235,6 +268,7 @@ void build_gui(viewer *v)
         float panel_w = 380.0f, x = (float)v->fb_width - panel_w - 10.0f;
         if (gui_begin("Obscura", x > 0.0f ? x : 0.0f, 10.0f, panel_w, (float)v->fb_height - 20.0f)) {
             if (gui_header("Method and filter", true)) panel_method(v);
+            if (gui_header("Kernel", false)) panel_kernel(v);
             if (gui_header("Profiler", true)) panel_profiler(v);
             if (gui_header("Camera and display", false)) panel_display(v);
             if (gui_header("Lights and shadows", false)) panel_lights(v);

@@ -415,12 +415,50 @@ static void test_errors(void)
     CHECK(ob_get_error(&msg) == OB_OK && msg && *msg == '\0', "ob_clear_error forgets the message too");
 }
 
+/* ob_method_kernel: the kernel a method's shader gets, for the viewer's kernel view. */
+static void test_method_kernel(void)
+{
+    float k[4 * 64];
+    ob_settings s;
+    CHECK(ob_settings_init(&s, "ssao") == OB_OK && ob_settings_set(&s, "ssao.sampling=halton") == OB_OK &&
+              ob_settings_set(&s, "ssao.samples=20") == OB_OK,
+          "ssao, Halton, 20");
+    int n = ob_method_kernel(&s, k, 64);
+    CHECK(n == 20, "ssao: 20 entries (%d)", n);
+    int outside = 0;
+    for (int i = 0; i < n; ++i) {
+        float len = sqrtf(k[4 * i] * k[4 * i] + k[4 * i + 1] * k[4 * i + 1] + k[4 * i + 2] * k[4 * i + 2]);
+        outside += !(k[4 * i + 2] >= 0.0f && len <= 1.0f + 1e-5f);
+    }
+    CHECK(outside == 0, "ssao: every entry in the unit hemisphere (%d outside)", outside);
+    /* Halton kernels are prefixes of each other (what adaptive counts and the kernel view rely
+     * on); random ones are not (their lengths depend on the count). */
+    float k10[4 * 10];
+    ob_settings_set(&s, "ssao.samples=10");
+    CHECK(ob_method_kernel(&s, k10, 10) == 10 && memcmp(k10, k, sizeof k10) == 0, "Halton: 10 entries = the first 10 of 20");
+    ob_settings_set(&s, "ssao.sampling=random");
+    ob_method_kernel(&s, k10, 10);
+    ob_settings_set(&s, "ssao.samples=20");
+    ob_method_kernel(&s, k, 64);
+    CHECK(memcmp(k10, k, sizeof k10) != 0, "random: 10 entries are not the first 10 of 20");
+    CHECK(ob_method_kernel(&s, k, 5) == 5, "at most max entries");
+    ob_settings_init(&s, "crytek");
+    n = ob_method_kernel(&s, k, 64);
+    int below = 0;
+    for (int i = 0; i < n; ++i) below += k[4 * i + 2] < 0.0f;
+    CHECK(n == 16 && below > 0, "crytek: 16 entries over the whole sphere (%d, %d below)", n, below);
+    ob_settings_init(&s, "gtao");
+    CHECK(ob_method_kernel(&s, k, 64) == 0, "gtao marches: no kernel");
+    CHECK(ob_method_kernel(NULL, k, 64) == -1 && ob_get_error(NULL) == OB_ERR_INVALID_ARGUMENT, "NULL settings");
+}
+
 int main(void)
 {
     test_errors();
     test_frame_constants();
     test_registry_and_settings();
     test_kernel();
+    test_method_kernel();
     test_halton();
     test_files();
     test_shader_log();

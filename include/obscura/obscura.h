@@ -369,6 +369,13 @@ int ob_quality_samples(const char *name);
  * Errors: OB_ERR_OUT_OF_RANGE (beyond the method's table), OB_ERR_INVALID_ARGUMENT (the method
  * takes no sample count, e.g. none — then nothing changes). */
 ob_error ob_settings_set_samples(ob_settings *settings, int samples);
+/* The sample kernel of the settings' method at their (fixed) sample count, as the shader gets it:
+ * xyz per entry in the kernel's frame (+Z = the surface normal for hemisphere kernels; crytek's
+ * fills the sphere), w 0, at most max entries (4 floats each). Returns the entries written: 0 for
+ * a method without a kernel (the slice and horizon methods march instead), -1 with the error set
+ * for NULL arguments. Halton kernels repeat their pattern every 10 entries (bases 2 x 5; 30 with
+ * the length's base 3): the viewer's kernel view shows it (seed 003 Fig. 4.1/4.2). */
+int ob_method_kernel(const ob_settings *settings, float *xyzw, int max);
 
 /* ---- renderer ------------------------------------------------------------------------------- */
 typedef struct ob_renderer_desc {

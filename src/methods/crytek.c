@@ -70,6 +70,13 @@ static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params,
     return OB_OK;
 }
 
+static int crytek_kernel(const float *params, float *xyzw, int max)
+{
+    int count = (int)params[P_SAMPLES] < max ? (int)params[P_SAMPLES] : max;
+    ob_sphere_kernel(xyzw, count, (ob_sampling)(int)params[P_SAMPLING], KERNEL_SEED);
+    return count;
+}
+
 const ob_method_impl ob_method_crytek = {
     .info = {.name = "crytek",
              .description = "Crytek SSAO: sphere samples, depth-only test (flat surfaces read ~0.5 by design)",
@@ -84,4 +91,5 @@ const ob_method_impl ob_method_crytek = {
     .init = crytek_init,
     .run = crytek_run,
     .adapts = true,
+    .kernel = crytek_kernel,
 };

@@ -97,6 +97,10 @@ typedef struct ob_method_impl {
     int (*count_samples)(const float *params);
     /* Honours ob_ao_inputs.sample_multiplier (adaptive sample counts). */
     bool adapts;
+    /* The sample kernel these params give the shader at a fixed count: xyz per entry in the
+     * kernel's own frame (+Z = the normal for hemisphere kernels), w 0; at most max entries; the
+     * count written. NULL for a method without a kernel (ob_method_kernel). */
+    int (*kernel)(const float *params, float *xyzw, int max);
 } ob_method_impl;
 
 /* Samples per pixel of a method with these (resolved) params; 0 for none. */

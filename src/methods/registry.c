@@ -3,6 +3,7 @@
 #include <pthread.h>
 #include <string.h>
 
+#include "core/error.h"
 #include "methods/method.h"
 
 #define OB_METHODS(X) \
@@ -83,4 +84,18 @@ uint32_t ob_method_active_reads(const ob_method_impl *m, const float *params)
 uint32_t ob_method_active_writes(const ob_method_impl *m, const float *params)
 {
     return m->active_writes ? m->active_writes(params) & m->writes : m->writes;
+}
+
+int ob_method_kernel(const ob_settings *s, float *xyzw, int max)
+{
+    if (!s || !xyzw || max < 0) {
+        ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_method_kernel: NULL settings or output, or max < 0");
+        return -1;
+    }
+    const ob_method_impl *m = ob_method_impl_at(s->method);
+    if (!m) {
+        ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_method_kernel: settings are not initialised");
+        return -1;
+    }
+    return m->kernel && max > 0 ? m->kernel(s->params, xyzw, max) : 0;
 }

@@ -70,6 +70,14 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, c
     return OB_OK;
 }
 
+static int ssao_kernel(const float *params, float *xyzw, int max)
+{
+    int count = (int)params[P_SAMPLES] < max ? (int)params[P_SAMPLES] : max;
+    ob_hemisphere_kernel(xyzw, count, (ob_sampling)(int)params[P_SAMPLING], (ob_direction_pdf)(int)params[P_DIRECTIONS],
+                         KERNEL_SEED);
+    return count;
+}
+
 const ob_method_impl ob_method_ssao = {
     .info = {.name = "ssao",
              .description = "normal-oriented hemisphere SSAO with range check (StarCraft II)",
@@ -83,4 +91,5 @@ const ob_method_impl ob_method_ssao = {
     .writes = OB_WRITES_VISIBILITY,
     .run = ssao_run,
     .adapts = true,
+    .kernel = ssao_kernel,
 };

@@ -135,6 +135,25 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     return OB_OK;
 }
 
+/* The Halton 2,5 / 3 kernels as points: pass 1's uniform directions and the merged variant's
+ * cosine-weighted ones (build_kernel stores the same points as direction + length). */
+static int kernel_points(const float *params, float *xyzw, int max, ob_direction_pdf pdf)
+{
+    int count = (int)params[P_SAMPLES] < max ? (int)params[P_SAMPLES] : max;
+    ob_hemisphere_kernel(xyzw, count, OB_SAMPLING_HALTON, pdf, KERNEL_SEED);
+    return count;
+}
+
+static int ssdo_kernel(const float *params, float *xyzw, int max)
+{
+    return kernel_points(params, xyzw, max, OB_DIRECTIONS_UNIFORM);
+}
+
+static int ssdo_merged_kernel(const float *params, float *xyzw, int max)
+{
+    return kernel_points(params, xyzw, max, OB_DIRECTIONS_COSINE);
+}
+
 const ob_method_impl ob_method_ssdo = {
     .info = {.name = "ssdo",
              .description = "screen-space directional occlusion + one bounce, the original two passes",
@@ -147,6 +166,7 @@ const ob_method_impl ob_method_ssdo = {
     .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
     .adapts = true,
+    .kernel = ssdo_kernel,
     .init = ssdo_init,
     .run = ssdo_run,
     .active_writes = ssdo_active_writes,
@@ -164,6 +184,7 @@ const ob_method_impl ob_method_ssdo_merged = {
     .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
     .adapts = true,
+    .kernel = ssdo_merged_kernel,
     .init = ssdo_merged_init,
     .run = ssdo_run,
     .active_writes = ssdo_active_writes,

@@ -87,28 +87,16 @@ void main()
         if (gtao.bent_normals != 0) imageStore(bent_out, pix, vec4(0.0));
         return;
     }
-    vec2 centre = vec2(pix) + 0.5;
-    vec3 p = ob_view_position(centre, d, frame.ao_inv_size, frame.ao_proj_info);
-    vec3 v = -normalize(p);
-    vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
-    /* Interpolated normals at silhouettes can face away from the eye; the integral then has no
-     * visible hemisphere left. Tilt them until they face the eye by a little (as hbao.glsl). */
-    float nv = dot(n, v);
-    if (nv < 0.02) n = normalize(n + (0.02 - nv) * v);
-
-    /* A screen offset (dx, dy) px at P's depth is the view offset (dx, dy) * to_view * d. */
-    vec2 to_view = frame.ao_proj_info.xy * frame.ao_inv_size * 2.0;
+    vec2 centre, to_view;
+    vec3 p, v, n;
+    ob_slice_pixel(pix, d, view_normal, centre, p, v, n, to_view);
     vec2 jit = ob_slice_jitters(pix, gtao.noise, noise_tile, vec2(gtao.slice_offset, gtao.step_offset));
     int slices = ob_slice_count(pix, gtao.slices, gtao.adaptive, gtao.adaptive_base, multiplier), steps = gtao.steps;
 
     float visibility = 0.0, open_sky = 0.0;
     vec3 bent = vec3(0.0); /* Σ |n_φ| (b(φ) - b_open(φ)), see the end */
-    /* Slice k's direction at angle (k + jitter) π / N: the first from the jitter, each next one
-     * turned by π / N (two sines per pixel instead of two per slice). */
-    float phi0 = jit.x * OB_PI / float(slices), dphi = OB_PI / float(slices);
-    vec2 dir = vec2(cos(phi0), sin(phi0));
-    vec2 turn = vec2(cos(dphi), sin(dphi));
-    for (int k = 0; k < slices; ++k, dir = vec2(dir.x * turn.x - dir.y * turn.y, dir.x * turn.y + dir.y * turn.x)) {
+    vec2 dir = ob_slice_first_dir(jit.x, slices), turn = ob_slice_rotation(slices);
+    for (int k = 0; k < slices; ++k, dir = ob_slice_turn(dir, turn)) {
         ob_slice s;
         if (!ob_slice_setup(dir, p, v, n, d, to_view, gtao.radius, s)) continue;
 

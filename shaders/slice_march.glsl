@@ -62,6 +62,40 @@ int ob_slice_count(ivec2 pix, int fixed_slices, int adaptive, int base, sampler2
     return adaptive != 0 ? base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r) : fixed_slices;
 }
 
+/* The pixel's point P at linear depth d > 0: its AO-grid centre, view position p, unit view
+ * vector v toward the eye and unit normal n, and to_view, which turns a screen offset in AO pixels
+ * into a view offset per unit depth. Interpolated normals at silhouettes can face away from the
+ * eye; the integral then has no visible hemisphere left, so they are tilted until they face it by
+ * a little (as hbao.glsl). */
+void ob_slice_pixel(ivec2 pix, float d, sampler2D view_normal, out vec2 centre, out vec3 p, out vec3 v, out vec3 n,
+                    out vec2 to_view)
+{
+    centre = vec2(pix) + 0.5;
+    p = ob_view_position(centre, d, frame.ao_inv_size, frame.ao_proj_info);
+    v = -normalize(p);
+    n = normalize(texelFetch(view_normal, pix, 0).xyz);
+    float nv = dot(n, v);
+    if (nv < 0.02) n = normalize(n + (0.02 - nv) * v);
+    to_view = frame.ao_proj_info.xy * frame.ao_inv_size * 2.0;
+}
+
+/* Slice k's screen direction is at angle (k + jitter) π / N: the first from the jitter, each next
+ * one the last turned by π / N (ob_slice_turn with the (cos, sin) of ob_slice_rotation): four sines
+ * per pixel instead of two per slice. */
+vec2 ob_slice_first_dir(float jitter, int slices)
+{
+    float phi0 = jitter * OB_PI / float(slices);
+    return vec2(cos(phi0), sin(phi0));
+}
+
+vec2 ob_slice_rotation(int slices)
+{
+    float dphi = OB_PI / float(slices);
+    return vec2(cos(dphi), sin(dphi));
+}
+
+vec2 ob_slice_turn(vec2 dir, vec2 rot) { return vec2(dir.x * rot.x - dir.y * rot.y, dir.x * rot.y + dir.y * rot.x); }
+
 /* One slice through P (view position p, unit view vector v toward the eye, unit normal n). */
 struct ob_slice {
     vec2 dir;        /* the screen direction, unit, in AO pixels */

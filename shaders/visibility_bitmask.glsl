@@ -102,25 +102,17 @@ void main()
 #endif
         return;
     }
-    vec2 centre = vec2(pix) + 0.5;
-    vec3 p = ob_view_position(centre, d, frame.ao_inv_size, frame.ao_proj_info);
-    vec3 v = -normalize(p);
-    vec3 n = normalize(texelFetch(view_normal, pix, 0).xyz);
-    /* Silhouette normals facing away from the eye: tilted back, as in gtao.glsl. */
-    float nv = dot(n, v);
-    if (nv < 0.02) n = normalize(n + (0.02 - nv) * v);
-
-    vec2 to_view = frame.ao_proj_info.xy * frame.ao_inv_size * 2.0;
+    vec2 centre, to_view;
+    vec3 p, v, n;
+    ob_slice_pixel(pix, d, view_normal, centre, p, v, n, to_view);
     vec2 jit = ob_slice_jitters(pix, vb.noise, noise_tile, vec2(vb.slice_offset, vb.step_offset));
     int slices = ob_slice_count(pix, vb.slices, vb.adaptive, vb.adaptive_base, multiplier), steps = vb.steps;
     bool cosine = vb.weighting == OB_DIRECTIONS_MODE_COSINE;
 
     float visible = 0.0, total = 0.0, cos_total = 0.0;
     vec3 bounce = vec3(0.0);
-    float phi0 = jit.x * OB_PI / float(slices), dphi = OB_PI / float(slices);
-    vec2 dir = vec2(cos(phi0), sin(phi0));
-    vec2 turn = vec2(cos(dphi), sin(dphi));
-    for (int k = 0; k < slices; ++k, dir = vec2(dir.x * turn.x - dir.y * turn.y, dir.x * turn.y + dir.y * turn.x)) {
+    vec2 dir = ob_slice_first_dir(jit.x, slices), turn = ob_slice_rotation(slices);
+    for (int k = 0; k < slices; ++k, dir = ob_slice_turn(dir, turn)) {
         ob_slice s;
         bool weighty = ob_slice_setup(dir, p, v, n, d, to_view, vb.radius, s);
         /* A slice across the normal weighs nothing in the cosine quadrature; the uniform one

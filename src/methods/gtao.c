@@ -52,7 +52,7 @@ typedef struct gtao_state {
 
 /* Settings -> constants, a pure function: the falloff as weight = clamp(r mul + add, 0, 1), 1
  * up to (1 - f) R and 0 from R on; f = 0 is the step at R. */
-static void fill_constants(ob_gtao_constants *c, const float *params, uint32_t frame_index, int max_mip)
+static void fill_constants(ob_gtao_constants *c, const float *params, const ob_slice_frame *sf)
 {
     const float r = params[P_RADIUS], f = params[P_FALLOFF];
     c->radius = r;
@@ -69,12 +69,11 @@ static void fill_constants(ob_gtao_constants *c, const float *params, uint32_t f
     c->slices = (int)params[P_SLICES];
     c->steps = (int)params[P_STEPS];
     c->noise = (int)params[P_NOISE];
-    c->depth_mips = params[P_DEPTH_MIPS] != 0.0f && max_mip > 0 ? 1 : 0;
-    ob_slice_frame sf = ob_slice_frame_make(frame_index, params[P_TEMPORAL] != 0.0f);
-    c->slice_offset = sf.slice_offset;
-    c->step_offset = sf.step_offset;
-    c->mip_scale = sf.mip_scale;
-    c->max_mip = c->depth_mips ? max_mip : 0; /* level 0 only: unit 3 holds the depth itself */
+    c->depth_mips = params[P_DEPTH_MIPS] != 0.0f && sf->max_mip > 0 ? 1 : 0;
+    c->slice_offset = params[P_TEMPORAL] != 0.0f ? sf->slice_offset : 0.0f;
+    c->step_offset = params[P_TEMPORAL] != 0.0f ? sf->step_offset : 0.0f;
+    c->mip_scale = sf->mip_scale;
+    c->max_mip = c->depth_mips ? sf->max_mip : 0; /* level 0 only: unit 3 holds the depth itself */
     c->bent_normals = params[P_BENT_NORMALS] != 0.0f ? 1 : 0;
 }
 
@@ -94,20 +93,14 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
 {
     gtao_state *s = p;
     ob_gtao_constants c = {0};
-    int max_mip = in->depth_mips ? in->depth_mip_levels - 1 : 0;
-    fill_constants(&c, params, in->frame->frame_index, max_mip);
+    const ob_slice_frame sf = ob_slice_frame_make(in);
+    fill_constants(&c, params, &sf);
     c.bent_normals = c.bent_normals && out->bent_normal ? 1 : 0;
-    if (c.depth_mips && !ob_slice_mips_program(&s->mips_program, "gtao.glsl")) return ob_peek_error(NULL);
-    /* Adaptive sample counts: the slices scale with the edge pass's multiplier (unit 5). */
-    int adaptive = 0, base = 1;
-    ob_slice_adaptive(&s->kit, in, c.slices, &adaptive, &base);
-    c.adaptive = adaptive;
-    c.adaptive_base = base;
-    ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
-    if (c.depth_mips) glUseProgram(s->mips_program);
+    /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
+    ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
+    ob_error err = ob_slice_use(&s->kit, &s->mips_program, "gtao.glsl", c.depth_mips != 0, &c, sizeof c, in, out);
+    if (err != OB_OK) return err;
     if (c.bent_normals) glBindImageTexture(1, out->bent_normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    /* Without the chain the sampler still needs a texture: the depth itself (never read then). */
-    glBindTextureUnit(3, in->depth_mips ? in->depth_mips : in->linear_depth);
     ob_dispatch_2d(in->width, in->height, OB_GTAO_GROUP_X, OB_GTAO_GROUP_Y);
     return OB_OK;
 }
@@ -115,8 +108,7 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
 static void gtao_destroy(void *p)
 {
     gtao_state *s = p;
-    if (s->mips_program) glDeleteProgram(s->mips_program);
-    s->mips_program = 0;
+    ob_slice_release(&s->mips_program);
 }
 
 static int gtao_count_samples(const float *params) { return 2 * (int)params[P_SLICES] * (int)params[P_STEPS]; }

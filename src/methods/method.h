@@ -155,19 +155,25 @@ extern const char *const ob_noise_options[];     /* texture4, ign */
  * slices = sqrt(N / 2) / 1.4. OB_ERR_OUT_OF_RANGE (naming `method`) outside 2..2 x max x max. */
 ob_error ob_slice_set_samples(const char *method, float *params, uint32_t *params_set, int samples, int p_slices,
                               int p_steps, int max_slices, int max_steps);
-/* The per-frame jitter offsets (an R2 sequence over the frame index when temporal, else 0) and
- * the MIP level scale of the depth march. */
+/* What a slice method's constants take from the frame: the jitter offsets (an R2 sequence over
+ * the frame index, for temporal noise), the MIP level scale of the depth march, and the
+ * coarsest MIP level there is (0 without the chain). */
 typedef struct ob_slice_frame {
     float slice_offset, step_offset;
     float mip_scale;
+    int max_mip;
 } ob_slice_frame;
-ob_slice_frame ob_slice_frame_make(uint32_t frame_index, bool temporal);
-/* The method's shader with OB_MARCH_DEPTH_MIPS, made on first use into *program (0 = not yet);
- * after ob_method_kit_use, glUseProgram of it selects the MIP variant. False with the error set. */
-bool ob_slice_mips_program(GLuint *program, const char *shader);
+ob_slice_frame ob_slice_frame_make(const ob_ao_inputs *in);
 /* Adaptive slices (seed 003 §4.1): *adaptive and the slices at multiplier 1, (slices + 1) / 3 as
- * ob_adaptive_base rounds taps, at least 1; the multiplier bound to unit 5 (the noise tile when
- * off, so the sampler is always valid). */
-void ob_slice_adaptive(const ob_method_kit *kit, const ob_ao_inputs *in, int slices, int *adaptive, int *base);
+ * ob_adaptive_base rounds taps, at least 1. Fill them into the constants before ob_slice_use. */
+void ob_slice_adaptive(const ob_ao_inputs *in, int slices, int *adaptive, int *base);
+/* The run of a slice method after its constants are filled: the kit's uploads and bindings, the
+ * OB_MARCH_DEPTH_MIPS variant of `shader` when `mips` (made on first use into *mips_program), the
+ * depth chain on unit 3 (the depth itself without one) and the adaptive multiplier on unit 5 (the
+ * noise tile when off, so every sampler is valid). Dispatch after. Fails with the error set. */
+ob_error ob_slice_use(ob_method_kit *kit, GLuint *mips_program, const char *shader, bool mips, const void *constants,
+                      size_t size, const ob_ao_inputs *in, const ob_ao_outputs *out);
+/* Frees what ob_slice_use made (the MIP program). */
+void ob_slice_release(GLuint *mips_program);
 
 #endif

@@ -42,26 +42,41 @@ ob_error ob_slice_set_samples(const char *method, float *params, uint32_t *param
     return OB_OK;
 }
 
-ob_slice_frame ob_slice_frame_make(uint32_t frame_index, bool temporal)
+ob_slice_frame ob_slice_frame_make(const ob_ao_inputs *in)
 {
     ob_slice_frame f = {0};
-    f.slice_offset = temporal ? fmodf((float)(frame_index % 4096u) * R2_A1, 1.0f) : 0.0f;
-    f.step_offset = temporal ? fmodf((float)(frame_index % 4096u) * R2_A2, 1.0f) : 0.0f;
+    uint32_t frame_index = in->frame->frame_index;
+    f.slice_offset = fmodf((float)(frame_index % 4096u) * R2_A1, 1.0f);
+    f.step_offset = fmodf((float)(frame_index % 4096u) * R2_A2, 1.0f);
     f.mip_scale = exp2f(-MIP_OFFSET);
+    f.max_mip = in->depth_mips ? in->depth_mip_levels - 1 : 0;
     return f;
+}
+
+void ob_slice_adaptive(const ob_ao_inputs *in, int slices, int *adaptive, int *base)
+{
+    *adaptive = in->sample_multiplier != 0 ? 1 : 0;
+    *base = (slices + 1) / 3 > 1 ? (slices + 1) / 3 : 1;
 }
 
 /* The MIP chain's level is a per-sample choice; as a runtime branch it cost the full-resolution
  * baseline too (shaders/slice_march.glsl), so it is a program of its own. */
-bool ob_slice_mips_program(GLuint *program, const char *shader)
+ob_error ob_slice_use(ob_method_kit *kit, GLuint *mips_program, const char *shader, bool mips, const void *constants,
+                      size_t size, const ob_ao_inputs *in, const ob_ao_outputs *out)
 {
-    if (!*program) *program = ob_make_compute_program(shader, "#define OB_MARCH_DEPTH_MIPS 1\n");
-    return *program != 0;
+    if (mips && !*mips_program) {
+        *mips_program = ob_make_compute_program(shader, "#define OB_MARCH_DEPTH_MIPS 1\n");
+        if (!*mips_program) return ob_peek_error(NULL);
+    }
+    ob_method_kit_use(kit, constants, size, in, out, GL_R32F);
+    if (mips) glUseProgram(*mips_program);
+    glBindTextureUnit(3, in->depth_mips ? in->depth_mips : in->linear_depth);
+    glBindTextureUnit(5, in->sample_multiplier ? in->sample_multiplier : kit->noise);
+    return OB_OK;
 }
 
-void ob_slice_adaptive(const ob_method_kit *kit, const ob_ao_inputs *in, int slices, int *adaptive, int *base)
+void ob_slice_release(GLuint *mips_program)
 {
-    *adaptive = in->sample_multiplier != 0 ? 1 : 0;
-    *base = (slices + 1) / 3 > 1 ? (slices + 1) / 3 : 1;
-    glBindTextureUnit(5, in->sample_multiplier ? in->sample_multiplier : kit->noise);
+    if (*mips_program) glDeleteProgram(*mips_program);
+    *mips_program = 0;
 }

@@ -71,7 +71,7 @@ typedef struct vb_state {
 } vb_state;
 
 /* Settings -> constants, a pure function. */
-static void fill_constants(ob_vb_constants *c, const float *params, bool gi, uint32_t frame_index, int max_mip)
+static void fill_constants(ob_vb_constants *c, const float *params, bool gi, const ob_slice_frame *sf)
 {
     const float r = params[P_RADIUS];
     c->radius = r;
@@ -82,11 +82,10 @@ static void fill_constants(ob_vb_constants *c, const float *params, bool gi, uin
     c->slices = (int)params[P_SLICES];
     c->steps = (int)params[P_STEPS];
     c->noise = (int)params[P_NOISE];
-    ob_slice_frame sf = ob_slice_frame_make(frame_index, params[P_TEMPORAL] != 0.0f);
-    c->slice_offset = sf.slice_offset;
-    c->step_offset = sf.step_offset;
-    c->mip_scale = sf.mip_scale;
-    c->max_mip = params[P_DEPTH_MIPS] != 0.0f ? max_mip : 0;
+    c->slice_offset = params[P_TEMPORAL] != 0.0f ? sf->slice_offset : 0.0f;
+    c->step_offset = params[P_TEMPORAL] != 0.0f ? sf->step_offset : 0.0f;
+    c->mip_scale = sf->mip_scale;
+    c->max_mip = params[P_DEPTH_MIPS] != 0.0f ? sf->max_mip : 0;
     c->emitter_cosine = gi && params[P_EMITTER_COSINE] != 0.0f ? 1 : 0;
 }
 
@@ -108,8 +107,7 @@ static ob_error vbgi_init(void *p)
 static void vb_destroy(void *p)
 {
     vb_state *s = p;
-    if (s->mips_program) glDeleteProgram(s->mips_program);
-    s->mips_program = 0;
+    ob_slice_release(&s->mips_program);
 }
 
 static uint32_t vb_active_reads(const float *params, uint32_t reads)
@@ -133,19 +131,12 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
     if (s->gi && (!in->radiance || !out->bounce))
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "vbgi needs the renderer's direct light (ob_render_frame)");
     ob_vb_constants c = {0};
-    int max_mip = in->depth_mips ? in->depth_mip_levels - 1 : 0;
-    fill_constants(&c, params, s->gi, in->frame->frame_index, max_mip);
-    bool mips = c.max_mip > 0;
-    if (mips && !ob_slice_mips_program(&s->mips_program, s->shader)) return ob_peek_error(NULL);
-    /* Adaptive sample counts: the slices scale with the edge pass's multiplier (unit 5). */
-    int adaptive = 0, base = 1;
-    ob_slice_adaptive(&s->kit, in, c.slices, &adaptive, &base);
-    c.adaptive = adaptive;
-    c.adaptive_base = base;
-    ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
-    if (mips) glUseProgram(s->mips_program);
-    /* Without the chain the sampler still needs a texture: the depth itself (level 0 only). */
-    glBindTextureUnit(3, in->depth_mips ? in->depth_mips : in->linear_depth);
+    const ob_slice_frame sf = ob_slice_frame_make(in);
+    fill_constants(&c, params, s->gi, &sf);
+    /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
+    ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
+    ob_error err = ob_slice_use(&s->kit, &s->mips_program, s->shader, c.max_mip > 0, &c, sizeof c, in, out);
+    if (err != OB_OK) return err;
     if (s->gi) {
         glBindTextureUnit(4, in->radiance);
         glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);

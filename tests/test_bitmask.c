@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "corner_wall.h"
 #include "gpu/gpu.h"
 #include "obscura/obscura.h"
 
@@ -143,25 +144,10 @@ static void test_probe(void)
 
 /* ---- the analytic corner -------------------------------------------------------------------- */
 
-static double ao_r_one_wall(double h, double r)
-{
-    double a = h / r;
-    if (a >= 1.0) return 1.0;
-    return 1.0 - (acos(a) - a * sqrt(1.0 - a * a)) / M_PI;
-}
-
 /* Mean vbao against the closed form in bins of h / R beside the wall x = 0 of `corner`; returns the
  * worst bin difference, and the lowest open-floor value in *open_min. */
 static double corner_bins(ob_context *ctx, const char *weighting, const char *coverage, float *open_min)
 {
-    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "corner"});
-    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
-    CHECK(scene && r, "corner scene and renderer");
-    if (!scene || !r) return 1.0;
-    ob_renderer_set_scene(r, scene);
-    /* Looking down at the floor beside the wall x = 0, away from the wall z = 0 (as test_gtao). */
-    const ob_camera cam = {.eye = {1.6f, 2.2f, 2.0f}, .target = {0.35f, 0.0f, 2.0f}, .up = {0, 1, 0},
-                           .fov_y_deg = 60.0f, .near_z = 0.05f, .far_z = 20.0f, .name = "wall"};
     const float radius = 0.5f;
     char weight_set[64], coverage_set[64];
     snprintf(weight_set, sizeof weight_set, "vbao.weighting=%s", weighting);
@@ -174,36 +160,28 @@ static double corner_bins(ob_context *ctx, const char *weighting, const char *co
               ob_settings_set(&s, "vbao.steps=32") == OB_OK && ob_settings_set(&s, weight_set) == OB_OK &&
               ob_settings_set(&s, coverage_set) == OB_OK,
           "settings");
-    CHECK(ob_render_frame(r, &cam, &s) == OB_OK, "frame");
+    /* The frame looks down at the floor beside the wall x = 0, as test_gtao's (corner_wall.h). */
+    corner_wall f;
+    if (!corner_wall_render(ctx, &s, W, H, &f)) {
+        corner_wall_free(&f);
+        return 1.0;
+    }
     size_t n = (size_t)W * H;
-    float *ao = malloc(n * sizeof(float)), *depth = malloc(n * sizeof(float));
-    float *normals = malloc(n * 3 * sizeof(float)), *pos = malloc(n * 3 * sizeof(float)), *wn = malloc(n * 3 * sizeof(float));
-    ob_read_image(r, OB_IMAGE_AO_RAW_F32, ao, n * sizeof(float));
-    ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, n * sizeof(float));
-    ob_read_image(r, OB_IMAGE_NORMAL_F32, normals, n * 3 * sizeof(float));
-    mat4 view, proj, inv_view;
-    glm_lookat((float *)cam.eye, (float *)cam.target, (float *)cam.up, view);
-    glm_perspective(glm_rad(cam.fov_y_deg), (float)W / (float)H, cam.near_z, cam.far_z, proj);
-    glm_mat4_inv(view, inv_view);
-    const float info[4] = {1.0f / proj[0][0], 1.0f / proj[1][1], proj[2][0], proj[2][1]};
-    ob_reference_points(depth, normals, W, H, info, (const float *)inv_view, pos, wn);
     enum { BINS = 10 };
     double sum_ao[BINS] = {0}, sum_ref[BINS] = {0};
     int count[BINS] = {0}, open_count = 0;
     *open_min = 1.0f;
     for (size_t i = 0; i < n; ++i) {
-        const float *p = &pos[3 * i], *nn = &wn[3 * i];
-        bool floor = depth[i] > 0.0f && nn[1] > 0.99f && fabsf(p[1]) < 1e-3f;
-        if (!floor || p[2] < 1.2f || p[2] > 2.8f || p[0] > 4.0f - radius) continue;
-        double h = p[0];
+        double h = 0.0;
+        if (!corner_wall_floor(&f, i, radius, &h)) continue;
         if (h >= radius * 1.02) {
-            *open_min = fminf(*open_min, ao[i]);
+            *open_min = fminf(*open_min, f.ao[i]);
             ++open_count;
             continue;
         }
         int b = (int)(h / radius * BINS);
         if (b < 0 || b >= BINS) continue;
-        sum_ao[b] += ao[i];
+        sum_ao[b] += f.ao[i];
         sum_ref[b] += ao_r_one_wall(h, radius);
         ++count[b];
     }
@@ -221,13 +199,7 @@ static double corner_bins(ob_context *ctx, const char *weighting, const char *co
     }
     CHECK(covered >= 8, "the bins near the wall have pixels (%d of %d)", covered, BINS);
     CHECK(open_count > 500, "open floor pixels (%d)", open_count);
-    free(ao);
-    free(depth);
-    free(normals);
-    free(pos);
-    free(wn);
-    ob_destroy_renderer(r);
-    ob_destroy_scene(scene);
+    corner_wall_free(&f);
     return worst;
 }
 

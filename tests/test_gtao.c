@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "corner_wall.h"
 #include "gpu/gpu.h"
 #include "obscura/obscura.h"
 #include "sampling/sampling.h"
@@ -19,24 +20,9 @@
 
 enum { W = 160, H = 120 };
 
-static double ao_r_one_wall(double h, double r)
-{
-    double a = h / r;
-    if (a >= 1.0) return 1.0;
-    return 1.0 - (acos(a) - a * sqrt(1.0 - a * a)) / M_PI;
-}
-
 /* ---- the analytic corner -------------------------------------------------------------------- */
 static void test_corner(ob_context *ctx)
 {
-    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "corner"});
-    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
-    CHECK(scene && r, "corner scene and renderer");
-    if (!scene || !r) return;
-    ob_renderer_set_scene(r, scene);
-    /* Looking down at the floor beside the wall x = 0, away from the wall z = 0. */
-    const ob_camera cam = {.eye = {1.6f, 2.2f, 2.0f}, .target = {0.35f, 0.0f, 2.0f}, .up = {0, 1, 0},
-                           .fov_y_deg = 60.0f, .near_z = 0.05f, .far_z = 20.0f, .name = "wall"};
     const float radius = 0.5f;
     ob_settings s;
     ob_settings_init(&s, "gtao");
@@ -46,21 +32,14 @@ static void test_corner(ob_context *ctx)
               ob_settings_set(&s, "gtao.steps=32") == OB_OK && ob_settings_set(&s, "gtao.falloff=0") == OB_OK &&
               ob_settings_set(&s, "gtao.bent_normals=on") == OB_OK,
           "settings");
-    CHECK(ob_render_frame(r, &cam, &s) == OB_OK, "frame");
+    corner_wall f;
+    if (!corner_wall_render(ctx, &s, W, H, &f)) {
+        corner_wall_free(&f);
+        return;
+    }
     size_t n = (size_t)W * H;
-    float *ao = malloc(n * sizeof(float)), *depth = malloc(n * sizeof(float));
-    float *normals = malloc(n * 3 * sizeof(float)), *pos = malloc(n * 3 * sizeof(float));
-    float *wn = malloc(n * 3 * sizeof(float)), *bent = malloc(n * 3 * sizeof(float));
-    ob_read_image(r, OB_IMAGE_AO_RAW_F32, ao, n * sizeof(float));
-    ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, n * sizeof(float));
-    ob_read_image(r, OB_IMAGE_NORMAL_F32, normals, n * 3 * sizeof(float));
-    ob_read_image(r, OB_IMAGE_BENT_NORMAL_F32, bent, n * 3 * sizeof(float));
-    mat4 view, proj, inv_view;
-    glm_lookat((float *)cam.eye, (float *)cam.target, (float *)cam.up, view);
-    glm_perspective(glm_rad(cam.fov_y_deg), (float)W / (float)H, cam.near_z, cam.far_z, proj);
-    glm_mat4_inv(view, inv_view);
-    const float info[4] = {1.0f / proj[0][0], 1.0f / proj[1][1], proj[2][0], proj[2][1]};
-    ob_reference_points(depth, normals, W, H, info, (const float *)inv_view, pos, wn);
+    mat4 inv_view;
+    memcpy(inv_view, f.inv_view, sizeof inv_view);
 
     /* Bins of h / R: the mean of gtao against the mean of the closed form over the same pixels. */
     enum { BINS = 10 };
@@ -69,17 +48,14 @@ static void test_corner(ob_context *ctx)
     float open_min = 1.0f;
     double open_bent_worst = 0.0, near_tilt = 0.0;
     for (size_t i = 0; i < n; ++i) {
-        const float *p = &pos[3 * i], *nn = &wn[3 * i];
-        bool floor = depth[i] > 0.0f && nn[1] > 0.99f && fabsf(p[1]) < 1e-3f;
-        /* Far (> R) from the wall z = 0 and from the planes' far edges. */
-        if (!floor || p[2] < 1.2f || p[2] > 2.8f || p[0] > 4.0f - radius) continue;
-        double h = p[0];
+        double h = 0.0;
+        if (!corner_wall_floor(&f, i, radius, &h)) continue;
         /* The bent normal in world space (filter none: as the pass wrote it). */
-        vec3 bv = {bent[3 * i], bent[3 * i + 1], bent[3 * i + 2]}, bw;
+        vec3 bv = {f.bent[3 * i], f.bent[3 * i + 1], f.bent[3 * i + 2]}, bw;
         glm_mat4_mulv3(inv_view, bv, 0.0f, bw);
         glm_vec3_normalize(bw);
         if (h >= radius * 1.02) {
-            open_min = fminf(open_min, ao[i]);
+            open_min = fminf(open_min, f.ao[i]);
             /* Open: the bent normal is the normal (0, 1, 0). */
             open_bent_worst = fmax(open_bent_worst, acos(fmin(1.0, (double)bw[1])));
             ++open_count;
@@ -93,7 +69,7 @@ static void test_corner(ob_context *ctx)
         }
         int b = (int)(h / radius * BINS);
         if (b < 0 || b >= BINS) continue;
-        sum_ao[b] += ao[i];
+        sum_ao[b] += f.ao[i];
         sum_ref[b] += ao_r_one_wall(h, radius);
         ++count[b];
     }
@@ -117,14 +93,7 @@ static void test_corner(ob_context *ctx)
           open_bent_worst * 180.0 / M_PI);
     CHECK(near_count > 50 && near_away == near_count, "beside the wall the bent normal leans away (%d of %d)", near_away,
           near_count);
-    free(ao);
-    free(depth);
-    free(normals);
-    free(pos);
-    free(wn);
-    free(bent);
-    ob_destroy_renderer(r);
-    ob_destroy_scene(scene);
+    corner_wall_free(&f);
 }
 
 /* ---- one test body, two implementations ------------------------------------------------------ */

@@ -73,7 +73,8 @@ static void bench_usage(FILE *f, const cli_common *defaults)
           "  --frames N            measured frames per configuration (default 50)\n"
           "  --warmup N            frames rendered first and not measured (default 5)\n"
           "  --stereo              two eyes (one renderer each), eye offset +-ipd/2 along the\n"
-          "                        camera's right vector, the same symmetric projection per eye;\n"
+          "                        camera's right vector, parallel views with off-axis frusta that\n"
+          "                        converge at the camera's target (ob_stereo_cameras);\n"
           "                        frame = both eyes, against the 11.1 ms (90 Hz) budget; --size is\n"
           "                        per eye (default 1080x1200)\n"
           "  --ipd D               interpupillary distance in world units (default 0.064)\n"
@@ -169,8 +170,8 @@ static int parse(int argc, char **argv, bench_opts *o)
         } else if (!strcmp(a, "--warmup")) {
             if (!parse_int(v, 0, 100000, &o->warmup)) return cli_fail(EXIT_USAGE, "--warmup: expected 0..100000, got '%s'", v);
         } else if (!strcmp(a, "--ipd")) {
-            if (!cli_parse_float(v, &o->ipd) || !(o->ipd >= 0.0f))
-                return cli_fail(EXIT_USAGE, "--ipd: expected a number >= 0, got '%s'", v);
+            if (!cli_parse_float(v, &o->ipd) || !(o->ipd > 0.0f) || !isfinite(o->ipd))
+                return cli_fail(EXIT_USAGE, "--ipd: expected a number > 0, got '%s'", v);
         }
     }
     if (o->stereo && o->scaling) return cli_fail(EXIT_USAGE, "--stereo and --scaling exclude each other");
@@ -253,26 +254,6 @@ static bench_row *new_row(bench_state *st)
     memset(r, 0, sizeof *r);
     r->baseline = -1;
     return r;
-}
-
-/* The two eyes of a camera: eye and target moved by -+ipd/2 along the right vector, so the view
- * directions stay parallel (the per-eye projection is the same symmetric one; a headset's is
- * off-axis, which changes no pass's cost). */
-static void eye_cameras(const ob_camera *c, float ipd, ob_camera out[2])
-{
-    float f[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1], c->target[2] - c->eye[2]};
-    float up[3] = {c->up[0], c->up[1], c->up[2]};
-    if (up[0] == 0.0f && up[1] == 0.0f && up[2] == 0.0f) up[1] = 1.0f;
-    float rt[3] = {f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]};
-    float len = sqrtf(rt[0] * rt[0] + rt[1] * rt[1] + rt[2] * rt[2]);
-    for (int e = 0; e < 2; ++e) {
-        out[e] = *c;
-        float s = (e == 0 ? -0.5f : 0.5f) * ipd / (len > 0.0f ? len : 1.0f);
-        for (int k = 0; k < 3; ++k) {
-            out[e].eye[k] += s * rt[k];
-            out[e].target[k] += s * rt[k];
-        }
-    }
 }
 
 /* Warm-up, then o->frames measured frames on every eye. scratch holds frames x (MAX_PASSES + 1). */
@@ -711,8 +692,10 @@ int cmd_bench(int argc, char **argv)
         for (int ci = 0; ci < cam_count && code == EXIT_OK; ++ci) {
             ob_camera cam = ob_query_camera(scene, cams[ci]);
             ob_camera views[2];
-            if (o.stereo) eye_cameras(&cam, o.ipd, views);
-            else views[0] = cam;
+            if (!o.stereo) views[0] = cam;
+            else if (ob_stereo_cameras(&cam, &(ob_stereo_desc){.ipd = o.ipd, .aspect = (float)c->width / (float)c->height},
+                                       views) != OB_OK)
+                code = cli_fail_from_library();
             const int base = st.count; /* the none rows of this camera, in the order of bases */
             for (int k = -base_count; k < count && code == EXIT_OK; ++k) {
                 const bool is_base = k < 0;

@@ -370,6 +370,8 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     glm_lookat(cm.eye, cm.target, cm.up, view);
     glm_mat4_inv(view, inv_view);
     glm_perspective(glm_rad(cm.fov_y_deg), (float)w / (float)h, 1.0f, 2.0f, proj);
+    proj[2][0] = cm.shift[0]; /* the lens shift, as ob_render_frame */
+    proj[2][1] = cm.shift[1];
     const float proj_info[4] = {1.0f / proj[0][0], 1.0f / proj[1][1], proj[2][0], proj[2][1]};
     char key[900] = "";
     cli_reference_key(c, in->name, cam.name, key, sizeof key);

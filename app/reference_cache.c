@@ -40,6 +40,8 @@ int cli_view_frame_make(ob_renderer *r, const ob_camera *cam, int width, int hei
     glm_lookat(f->cam.eye, f->cam.target, f->cam.up, view);
     glm_mat4_inv(view, inv_view);
     glm_perspective(glm_rad(f->cam.fov_y_deg), (float)width / (float)height, 1.0f, 2.0f, proj);
+    proj[2][0] = f->cam.shift[0]; /* the lens shift, as ob_render_frame */
+    proj[2][1] = f->cam.shift[1];
     f->proj_info[0] = 1.0f / proj[0][0];
     f->proj_info[1] = 1.0f / proj[1][1];
     f->proj_info[2] = proj[2][0];

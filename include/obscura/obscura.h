@@ -129,8 +129,55 @@ typedef struct ob_camera {
     float fov_y_deg;  /* zero = 60 */
     float near_z;     /* zero = derived from the scene bounds */
     float far_z;      /* zero = derived from the scene bounds */
+    /* Lens shift: an off-axis frustum, e.g. one eye of a stereo pair (ob_stereo_cameras). The
+     * frustum's window moves by shift[0] (shift[1]) of its half-width (half-height) to the right
+     * (up) without turning the view: the projection's P20 = shift[0], P21 = shift[1]. The window
+     * keeps its size, so fov_y_deg is still its vertical extent. Zero = symmetric. */
+    float shift[2];
     char name[64];
 } ob_camera;
+
+/* ---- stereo: the two eyes of a headset (seed 000 §5.2) -------------------------------------- */
+
+typedef struct ob_headset {
+    const char *name;        /* "vive" */
+    const char *description;
+    int width, height;       /* pixels per eye */
+    float ipd;               /* default eye separation, metres */
+    float fov_y_deg;         /* each eye's vertical field of view (its frustum's window height) */
+    float shift[2];          /* the left eye's lens shift (ob_camera.shift); the right eye's is
+                                mirrored in x (-shift[0], shift[1]) */
+} ob_headset;
+
+int ob_headset_count(void);
+/* NULL when index is out of range. */
+const ob_headset *ob_headset_at(int index);
+/* By name. Errors: OB_ERR_INVALID_ARGUMENT (NULL, or an unknown name: the message lists the
+ * presets). */
+ob_error ob_find_headset(const char *name, ob_headset *out);
+
+/* Zero means default. */
+typedef struct ob_stereo_desc {
+    float ipd;          /* eye separation in world units; zero = the headset's, else 0.064 */
+    float convergence;  /* parallel-axis stereo: distance of the zero-parallax plane along the view;
+                           zero = |target - eye| of the centre camera */
+    float aspect;       /* width / height of each eye's image: the shift is in units of the window's
+                           half-width; zero = the headset's, else 1 */
+    const char *headset;/* NULL or "": parallel-axis asymmetric frusta from the centre camera's fov;
+                           a preset name: the preset's fov and per-eye frustum (convergence unused) */
+} ob_stereo_desc;
+
+/* The left (eyes_out[0]) and right eye of a centre camera: each moved by -+ipd/2 along the right
+ * vector (forward x up), eye and target alike, so the view directions stay parallel; each frustum
+ * off axis (ob_camera.shift) so that the two windows coincide on the convergence plane (Bourke's
+ * parallel-axis asymmetric-frustum stereo: the left eye's window moves right by
+ * (ipd/2) / (convergence tan(fov_x/2)) of its half-width, the right eye's left by as much; a point
+ * on that plane lands at the same NDC in both eyes), or with the headset's per-eye frustum. The
+ * centre camera's own shift is added to each eye's; near, far and name are kept ("NAME-left",
+ * "NAME-right"). Pure CPU, thread-safe.
+ * Errors: OB_ERR_INVALID_ARGUMENT (NULL centre or eyes_out, an unknown headset, ipd, convergence or
+ * aspect negative or not finite, eye = target, forward parallel to up). */
+ob_error ob_stereo_cameras(const ob_camera *centre, const ob_stereo_desc *desc, ob_camera eyes_out[2]);
 
 #define OB_MAX_LIGHTS 8
 
@@ -682,6 +729,35 @@ ob_metric_mask_desc ob_metric_mask_defaults(const ob_metric_mask_desc *desc, int
  * pixel of scratch). */
 ob_error ob_metric_masks(const float *linear_depth, const float *reference, int width, int height, float radius,
                          const ob_metric_mask_desc *desc, uint8_t *masks_out);
+
+/* ---- stereo consistency (src/eval/stereo.c) ------------------------------------------------- */
+/* One eye's rendered view. */
+typedef struct ob_stereo_view {
+    const float *ao;           /* 1 float per pixel, bottom row first (OB_IMAGE_AO_F32) */
+    const float *linear_depth; /* 1 float per pixel, bottom row first, 0 = sky (OB_IMAGE_DEPTH_F32) */
+    int width, height;
+    ob_camera camera;          /* as rendered: eye, target, up (zero = +Y), fov (zero = 60), shift;
+                                  near and far are not used */
+} ob_stereo_view;
+
+typedef struct ob_stereo_consistency {
+    double mean_abs;  /* mean |AO_right - AO_left reprojected| over the pixels seen by both eyes */
+    double fraction;  /* those pixels / the right eye's geometry pixels */
+    size_t count;     /* those pixels */
+} ob_stereo_consistency;
+
+/* How well the AO of two views of the same scene agree (AO_R is a property of the surface point,
+ * not of the view: seed 000 eq. 2.6-2.7). Every right-eye geometry pixel is taken to the world by
+ * its depth, into the left eye, and the left eye's AO is read there (bilinear); the pixel counts
+ * only when it is seen by both eyes: the left position lies inside the left image, its four taps
+ * are geometry, and the left depth there (bilinear) matches the point's left-eye depth within
+ * depth_tolerance x that depth (else something else is in front: occluded in the left eye).
+ * depth_tolerance: zero = 0.02. Thread-safe; no GL context needed.
+ * Errors: OB_ERR_INVALID_ARGUMENT (NULL argument or image, size < 1, a camera with eye = target or
+ * fov outside (0, 179), depth_tolerance negative or not finite, no pixel seen by both eyes: *out
+ * then has count 0). */
+ob_error ob_metric_stereo_consistency(const ob_stereo_view *left, const ob_stereo_view *right,
+                                      float depth_tolerance, ob_stereo_consistency *out);
 
 #if defined(__GNUC__)
 #pragma GCC visibility pop

@@ -343,7 +343,7 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     if (cam.fov_y_deg <= 0.0f) cam.fov_y_deg = 60.0f;
     if (cam.up[0] == 0.0f && cam.up[1] == 0.0f && cam.up[2] == 0.0f) cam.up[1] = 1.0f;
     if (cam.near_z <= 0.0f || cam.far_z <= cam.near_z) ob_camera_fit_planes(&cam, r->bounds_min, r->bounds_max);
-    if (!(cam.fov_y_deg < 179.0f) || !isfinite(cam.eye[0] + cam.eye[1] + cam.eye[2] + cam.target[0] + cam.target[1] + cam.target[2]))
+    if (!(cam.fov_y_deg < 179.0f) || !isfinite(cam.eye[0] + cam.eye[1] + cam.eye[2] + cam.target[0] + cam.target[1] + cam.target[2] + cam.shift[0] + cam.shift[1]))
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "camera is not finite or its fov is not in (0, 179)");
 
     method_plan plan;
@@ -353,6 +353,8 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     mat4 view, proj;
     glm_lookat(cam.eye, cam.target, cam.up, view);
     glm_perspective(glm_rad(cam.fov_y_deg), (float)r->width / (float)r->height, cam.near_z, cam.far_z, proj);
+    proj[2][0] = cam.shift[0]; /* off-axis frustum (ob_camera.shift): P20, P21 */
+    proj[2][1] = cam.shift[1];
     int si = scale_index(s->ao_divisor);
     ao_targets *t = ob_renderer_targets(r, si);
     r->last_scale = si;

@@ -135,6 +135,11 @@ void reload_shaders(viewer *v)
     }
     ob_destroy_renderer(v->r);
     v->r = fresh;
+    /* The right eye is made again, from the same shaders, by the next stereo frame. */
+    ob_destroy_renderer(v->right);
+    v->right = NULL;
+    v->eye_width = v->fb_width;
+    v->eye_height = v->fb_height;
     profiler_reset(&v->prof);
     say(v, false, "shaders reloaded from %s", dir);
 #else
@@ -143,31 +148,84 @@ void reload_shaders(viewer *v)
 }
 
 /* ---- the frame ----------------------------------------------------------------------------- */
+const char *const view_stereo_names[VIEW_STEREO_COUNT] = {"mono", "mirror", "single"};
+
+/* Each renderer at the eye's size (half the window's width in mirror), the right eye's renderer
+ * made when stereo first needs it. */
+static bool fit_renderers(viewer *v, int w, int h)
+{
+    int ew = v->stereo == VIEW_MIRROR ? (w / 2 > 0 ? w / 2 : 1) : w;
+    const char *msg = "";
+    if (ew != v->eye_width || h != v->eye_height) {
+        if (ob_renderer_resize(v->r, ew, h) != OB_OK || (v->right && ob_renderer_resize(v->right, ew, h) != OB_OK)) {
+            ob_get_error(&msg);
+            say(v, true, "resize to %dx%d failed: %s", ew, h, msg);
+            return false;
+        }
+        v->eye_width = ew;
+        v->eye_height = h;
+        profiler_reset(&v->prof);
+    }
+    if (v->stereo != VIEW_MONO && !v->right) {
+        v->right = ob_make_renderer(v->ctx, &(ob_renderer_desc){.width = ew, .height = h});
+        if (!v->right || ob_renderer_set_scene(v->right, v->scene) != OB_OK ||
+            (v->o.common.env && ob_renderer_set_environment(v->right, v->o.common.env) != OB_OK)) {
+            ob_get_error(&msg);
+            say(v, true, "no renderer for the right eye, back to mono: %s", msg);
+            ob_destroy_renderer(v->right);
+            v->right = NULL;
+            v->stereo = VIEW_MONO;
+            return fit_renderers(v, w, h);
+        }
+    }
+    return true;
+}
+
+/* Both eyes' passes as one list (the stereo frame's cost per pass), and each eye's sum. */
+static int merge_timings(ob_pass_timing *t, int n, const ob_pass_timing *right, int rn, double eye_ms[2])
+{
+    for (int i = 0; i < n; ++i) eye_ms[0] += t[i].ms;
+    for (int i = 0; i < rn; ++i) {
+        eye_ms[1] += right[i].ms;
+        int k = 0;
+        while (k < n && strcmp(t[k].name, right[i].name) != 0) ++k;
+        if (k < n) t[k].ms += right[i].ms;
+        else if (n < MAX_PASSES) t[n++] = right[i];
+    }
+    return n;
+}
+
 static bool frame(viewer *v, double dt)
 {
     int w = 0, h = 0;
     glfwGetFramebufferSize(v->window, &w, &h);
     if (w <= 0 || h <= 0) return true; /* minimised: nothing to draw */
-    if (w != v->fb_width || h != v->fb_height) {
-        if (ob_renderer_resize(v->r, w, h) != OB_OK) {
-            const char *msg = "";
-            ob_get_error(&msg);
-            say(v, true, "resize to %dx%d failed: %s", w, h, msg);
-            return false;
-        }
-        v->fb_width = w;
-        v->fb_height = h;
-        profiler_reset(&v->prof);
-    }
+    v->fb_width = w;
+    v->fb_height = h;
     if (v->events) run_script_events(v);
+    if (!fit_renderers(v, w, h)) return false;
     move_camera(v, dt);
     ob_camera cam = current_camera(v);
-    bool ok = ob_render_frame(v->r, &cam, &v->s) == OB_OK;
-    ob_pass_timing timings[MAX_PASSES];
+    /* Stereo: the eyes of the fly camera (parallel axes, frusta converging at its target). */
+    ob_camera eyes[2] = {cam, cam};
+    bool ok = v->stereo == VIEW_MONO ||
+              ob_stereo_cameras(&cam, &(ob_stereo_desc){.ipd = v->o.ipd, .aspect = (float)v->eye_width / (float)h},
+                                eyes) == OB_OK;
+    ok = ok && ob_render_frame(v->r, &eyes[0], &v->s) == OB_OK;
+    ob_pass_timing timings[MAX_PASSES], right[MAX_PASSES];
     int n = 0;
+    double eye_ms[2] = {0.0, 0.0};
+    if (ok) n = ob_query_timings(v->r, timings, MAX_PASSES);
+    if (ok && v->stereo != VIEW_MONO) {
+        ok = ob_render_frame(v->right, &eyes[1], &v->s) == OB_OK;
+        if (ok) n = merge_timings(timings, n, right, ob_query_timings(v->right, right, MAX_PASSES), eye_ms);
+    }
     if (ok) {
-        n = ob_query_timings(v->r, timings, MAX_PASSES);
-        ok = ob_present(v->r, v->view, 0, 0, 0, w, h) == OB_OK;
+        if (v->stereo == VIEW_MIRROR)
+            ok = ob_present(v->r, v->view, 0, 0, 0, v->eye_width, h) == OB_OK &&
+                 ob_present(v->right, v->view, 0, v->eye_width, 0, v->eye_width, h) == OB_OK;
+        else
+            ok = ob_present(v->r, v->view, 0, 0, 0, w, h) == OB_OK;
     }
     if (!ok) {
         /* A setting the renderer refuses (e.g. the environment ambient with no map): say so and
@@ -187,7 +245,8 @@ static bool frame(viewer *v, double dt)
     glfwSwapBuffers(v->window);
     if (ok) {
         profiler_add(&v->prof, timings, n, v->last_frame_ms);
-        if (v->test) test_step(v, timings, n);
+        if (v->stereo != VIEW_MONO) profiler_add_eyes(&v->prof, eye_ms);
+        if (v->test) test_step(v, timings, n, eye_ms);
     }
     return ok;
 }
@@ -284,6 +343,9 @@ int cmd_view(int argc, char **argv)
         goto close;
     }
     glfwGetFramebufferSize(v->window, &v->fb_width, &v->fb_height);
+    v->stereo = v->o.stereo;
+    v->eye_width = v->fb_width;
+    v->eye_height = v->fb_height;
     v->r = ob_make_renderer(v->ctx, &(ob_renderer_desc){.width = v->fb_width, .height = v->fb_height});
     if (!v->r || ob_renderer_set_scene(v->r, v->scene) != OB_OK) {
         code = cli_fail_from_library();
@@ -300,6 +362,7 @@ int cmd_view(int argc, char **argv)
 close_gui:
     gui_shutdown();
 close:
+    ob_destroy_renderer(v->right);
     ob_destroy_renderer(v->r);
     ob_destroy_context(v->ctx);
     glfwDestroyWindow(v->window);

@@ -15,6 +15,14 @@
 /* Fixed capacities: registry sizes, timed passes, scene presets and --cycles' upper bound. */
 enum { MAX_METHODS = 32, MAX_PASSES = 16, MAX_CAMERAS = 64, MAX_CYCLES = 100 };
 
+/* Stereo display (seed 000 §5.2): mono, both eyes side by side ("Mirror"), or the left eye alone
+ * in the whole window ("SinglePass"); both eyes are rendered in either stereo mode. */
+typedef enum view_stereo { VIEW_MONO = 0, VIEW_MIRROR, VIEW_SINGLE, VIEW_STEREO_COUNT } view_stereo;
+extern const char *const view_stereo_names[VIEW_STEREO_COUNT]; /* "mono", "mirror", "single" */
+
+/* The headset's frame budget: 90 Hz (seed 000 §5.2, the HTC Vive). */
+#define VIEW_VR_BUDGET_MS (1000.0 / 90.0)
+
 /* ---- options (view_options.c) ---------------------------------------------------------------- */
 typedef struct view_opts {
     /* Scene, camera, window size, method, filter, --set, quality, lights, shadows, ambient and
@@ -22,6 +30,8 @@ typedef struct view_opts {
     cli_common common;
     const char *shots, *script, *log, *methods;
     bool vsync, gui, test_mode;
+    view_stereo stereo;
+    float ipd; /* eye separation, world units */
     int cycles;
     float seconds;
 } view_opts;
@@ -41,6 +51,9 @@ typedef struct profiler {
     int count;
     double frame_sum, frame_min, frame_max; /* wall-clock frame time, ms */
     long frames;
+    /* Stereo: each eye's GPU sum of passes (the pass rows above hold both eyes summed). */
+    double eye_current[2], eye_sum[2], stereo_max;
+    long stereo_frames, over_budget;
 } profiler;
 
 /* ---- the viewer ------------------------------------------------------------------------------ */
@@ -51,7 +64,10 @@ typedef struct viewer {
     view_opts o;
     GLFWwindow *window;
     ob_context *ctx;
-    ob_renderer *r;
+    ob_renderer *r;         /* mono, or the left eye */
+    ob_renderer *right;     /* the right eye in stereo (made on the first stereo frame) */
+    view_stereo stereo;
+    int eye_width, eye_height; /* each renderer's size: the window, or half its width in mirror */
     ob_scene *scene;
     ob_settings s;
     float method_params[MAX_METHODS][OB_MAX_PARAMS]; /* each method keeps its own values */
@@ -137,6 +153,8 @@ void script_screenshot(viewer *v);
 void profiler_reset(profiler *p);
 /* Count one frame's pass timings and its wall-clock time. */
 void profiler_add(profiler *p, const ob_pass_timing *t, int n, double frame_ms);
+/* Count one stereo frame's per-eye GPU sums (after profiler_add with both eyes' passes summed). */
+void profiler_add_eyes(profiler *p, const double eye_ms[2]);
 /* The profiler's table in the panel. */
 void panel_profiler(viewer *v);
 
@@ -148,7 +166,7 @@ void build_gui(viewer *v);
 /* Check --methods and the screenshot directory and start the first slot; 0 or the exit code. */
 int test_init(viewer *v);
 /* Count a drawn frame into the current slot and move on when its time is up. */
-void test_step(viewer *v, const ob_pass_timing *timings, int n);
+void test_step(viewer *v, const ob_pass_timing *timings, int n, const double eye_ms[2]);
 /* The summary table and the CSV log, or a failure when the run stopped early. */
 int test_finish(viewer *v);
 /* The test mode's progress line in the overlay. */

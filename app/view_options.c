@@ -1,6 +1,7 @@
 /* obscura view's options: the option table, its checks and the help text (what `obscura view
  * --help` prints is the whole user-facing contract: options, keys and script events). Parsing
  * happens before any window or scene exists, so a usage error costs nothing. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,6 +21,11 @@ static void view_usage(FILE *f, const cli_common *c)
           "  --gui on|off          show the panel at start (default on)\n"
           "  --shots DIR           where screenshots go (default screenshots/; test mode: beside --log)\n"
           "  --script FILE         replay timed input events (see below), then keep running\n"
+          "  --stereo MODE         both eyes of a headset (seed 000 §5.2), each its own renderer:\n"
+          "                        mirror (side by side, each eye half the window) or single (the\n"
+          "                        left eye in the whole window); the profiler shows both eyes'\n"
+          "                        GPU time against the 11.1 ms (90 Hz) budget\n"
+          "  --ipd D               --stereo: eye separation in world units (default 0.064)\n"
           "  --test-mode           cycle every camera preset x every method, then exit:\n"
           "    --seconds S         time per camera x method (default 5)\n"
           "    --cycles N          times through the whole set (default 3)\n"
@@ -39,6 +45,7 @@ static void view_usage(FILE *f, const cli_common *c)
           "  key NAME down|up|press       NAME: A-Z, 0-9, TAB, ESCAPE, SPACE, LEFT_SHIFT, F1-F12\n"
           "  mouse left|right down|up     move X Y (cursor, pixels)    scroll DY\n"
           "  method NAME   filter NAME   set M.P=V   camera NAME|INDEX   view NAME\n"
+          "  stereo mono|mirror|single\n"
           "  resize W H   screenshot FILE.png   quit (as Esc)   close (as the window's close button)\n",
           f);
 }
@@ -46,7 +53,8 @@ static void view_usage(FILE *f, const cli_common *c)
 
 int parse_view_opts(int argc, char **argv, view_opts *o)
 {
-    *o = (view_opts){.vsync = true, .gui = true, .cycles = 3, .seconds = 5.0f};
+    *o = (view_opts){.vsync = true, .gui = true, .cycles = 3, .seconds = 5.0f, .ipd = 0.064f};
+    bool has_ipd = false;
     cli_common *c = &o->common;
     cli_common_init(c, "view", CLI_TAKES_SCENE | CLI_TAKES_CAMERA);
     c->scene = "fzk-haus";
@@ -66,7 +74,7 @@ int parse_view_opts(int argc, char **argv, view_opts *o)
         if (taken == CLI_TAKEN) continue;
         if (taken != CLI_NOT_MINE) return taken;
         static const char *const with_value[] = {"--shots", "--script", "--log", "--methods", "--vsync",
-                                                 "--gui",   "--seconds", "--cycles"};
+                                                 "--gui",   "--seconds", "--cycles", "--stereo", "--ipd"};
         bool known = false;
         for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; ++k) known = known || !strcmp(a, with_value[k]);
         if (!known) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura view --help)", a);
@@ -76,7 +84,15 @@ int parse_view_opts(int argc, char **argv, view_opts *o)
         else if (!strcmp(a, "--script")) o->script = v;
         else if (!strcmp(a, "--log")) o->log = v;
         else if (!strcmp(a, "--methods")) o->methods = v;
-        else if (!strcmp(a, "--vsync")) {
+        else if (!strcmp(a, "--stereo")) {
+            if (!strcmp(v, "mirror")) o->stereo = VIEW_MIRROR;
+            else if (!strcmp(v, "single")) o->stereo = VIEW_SINGLE;
+            else return cli_fail(EXIT_USAGE, "--stereo: expected mirror or single, got '%s'", v);
+        } else if (!strcmp(a, "--ipd")) {
+            if (!cli_parse_float(v, &o->ipd) || !(o->ipd > 0.0f) || !isfinite(o->ipd))
+                return cli_fail(EXIT_USAGE, "--ipd: expected a positive number, got '%s'", v);
+            has_ipd = true;
+        } else if (!strcmp(a, "--vsync")) {
             if (!cli_parse_on_off(v, &o->vsync)) return cli_fail(EXIT_USAGE, "--vsync: expected on or off, got '%s'", v);
         } else if (!strcmp(a, "--gui")) {
             if (!cli_parse_on_off(v, &o->gui)) return cli_fail(EXIT_USAGE, "--gui: expected on or off, got '%s'", v);
@@ -94,6 +110,7 @@ int parse_view_opts(int argc, char **argv, view_opts *o)
     if (code != 0) return code;
     if (c->width < 16 || c->height < 16 || c->width > 16384 || c->height > 16384)
         return cli_fail(EXIT_USAGE, "--size: expected a window of 16..16384 each way, got %dx%d", c->width, c->height);
+    if (has_ipd && o->stereo == VIEW_MONO) return cli_fail(EXIT_USAGE, "--ipd needs --stereo mirror|single");
     if (o->test_mode && !o->log) return cli_fail(EXIT_USAGE, "--test-mode needs --log FILE.csv");
     if (!o->test_mode && (o->log || o->methods))
         return cli_fail(EXIT_USAGE, "--log and --methods belong to --test-mode");

@@ -237,6 +237,15 @@ static void panel_display(viewer *v)
     gui_slider_float("speed", &v->speed, v->scene_size * 0.001f, v->scene_size * 2.0f, "%.3g", true);
     gui_tooltip("world units per second (Shift: 4x)");
     gui_checkbox("lock camera (L)", &v->camera_locked);
+    int st = (int)v->stereo;
+    if (gui_combo("stereo", &st, view_stereo_names, VIEW_STEREO_COUNT)) {
+        v->stereo = (view_stereo)st;
+        profiler_reset(&v->prof);
+    }
+    gui_tooltip("seed 000 §5.2: mono; mirror = both eyes side by side; single = the left eye alone (both are "
+                "rendered, each with its own G-buffer and AO)");
+    if (v->stereo != VIEW_MONO)
+        gui_slider_float("ipd", &v->o.ipd, 0.001f * v->scene_size, 0.2f * v->scene_size, "%.4g", true);
     if (gui_button("screenshot (P)")) {
         save_screenshot(v, NULL);
     }
@@ -258,6 +267,9 @@ void build_gui(viewer *v)
                      ob_view_name(v->view), v->camera_locked ? "  [camera locked]" : "");
             gui_text("camera %.2f %.2f %.2f  fov %.1f", (double)v->eye[0], (double)v->eye[1], (double)v->eye[2],
                      (double)v->fov);
+            if (v->stereo != VIEW_MONO)
+                gui_text("stereo %s, %dx%d per eye, ipd %.3g", view_stereo_names[v->stereo], v->eye_width,
+                         v->eye_height, (double)v->o.ipd);
             if (v->test) test_overlay(v);
             if (v->message[0] && v->clock < v->message_until) {
                 if (v->message_error) gui_text_colored(1.0f, 0.4f, 0.4f, "%s", v->message);
@@ -267,10 +279,11 @@ void build_gui(viewer *v)
         gui_end();
         float panel_w = 380.0f, x = (float)v->fb_width - panel_w - 10.0f;
         if (gui_begin("Obscura", x > 0.0f ? x : 0.0f, 10.0f, panel_w, (float)v->fb_height - 20.0f)) {
-            if (gui_header("Method and filter", true)) panel_method(v);
+            /* Stereo opens with the profiler and the stereo control in view, the method closed. */
+            if (gui_header("Method and filter", v->stereo == VIEW_MONO)) panel_method(v);
             if (gui_header("Kernel", false)) panel_kernel(v);
             if (gui_header("Profiler", true)) panel_profiler(v);
-            if (gui_header("Camera and display", false)) panel_display(v);
+            if (gui_header("Camera and display", v->stereo != VIEW_MONO)) panel_display(v);
             if (gui_header("Lights and shadows", false)) panel_lights(v);
             if (gui_header("HDR", false)) panel_hdr(v);
             if (gui_header("Keys", false))

@@ -13,7 +13,8 @@
 enum { MAX_EVENTS = 4096 }; /* one allocation holds a whole script */
 
 typedef enum event_kind {
-    EV_KEY, EV_MOUSE, EV_MOVE, EV_SCROLL, EV_METHOD, EV_FILTER, EV_SET, EV_CAMERA, EV_VIEW, EV_SCREENSHOT, EV_QUIT, EV_CLOSE, EV_RESIZE
+    EV_KEY, EV_MOUSE, EV_MOVE, EV_SCROLL, EV_METHOD, EV_FILTER, EV_SET, EV_CAMERA, EV_VIEW, EV_SCREENSHOT, EV_QUIT, EV_CLOSE, EV_RESIZE,
+    EV_STEREO
 } event_kind;
 
 typedef struct script_event {
@@ -108,7 +109,7 @@ int load_script(const char *path, script_event **out, int *count)
         } else {
             static const struct { const char *name; event_kind kind; } with_arg[] = {
                 {"method", EV_METHOD}, {"filter", EV_FILTER}, {"set", EV_SET}, {"camera", EV_CAMERA},
-                {"view", EV_VIEW}, {"screenshot", EV_SCREENSHOT}};
+                {"view", EV_VIEW}, {"screenshot", EV_SCREENSHOT}, {"stereo", EV_STEREO}};
             ok = false;
             for (size_t k = 0; k < sizeof with_arg / sizeof with_arg[0]; ++k)
                 if (!strcmp(kind, with_arg[k].name) && fields >= 1) {
@@ -172,6 +173,18 @@ void run_script_events(viewer *v)
                 }
             }
             if (!found) say(v, true, "unknown camera '%s'", e->arg);
+            break;
+        }
+        case EV_STEREO: {
+            int found = -1;
+            for (int i = 0; i < VIEW_STEREO_COUNT; ++i)
+                if (!strcmp(view_stereo_names[i], e->arg)) found = i;
+            if (found < 0) {
+                say(v, true, "unknown stereo mode '%s' (mono, mirror, single)", e->arg);
+            } else {
+                v->stereo = (view_stereo)found;
+                profiler_reset(&v->prof);
+            }
             break;
         }
         case EV_VIEW: {

@@ -57,6 +57,20 @@ expect 2 "out of range" -- "${R[@]}" --set geometry.radius=99
 expect 2 "but the filter is geometry" -- "${R[@]}" --set gaussian.sigma=1
 expect 2 "no parameter 'nosuch'" -- "${R[@]}" --filter bilateral --set bilateral.nosuch=1
 expect 2 "unknown command" -- frobnicate
+# Stereo (seed 000 §5.2): bad modes and values, options that need --stereo or exclude each other.
+expect 2 "stereo: expected mirror or single" -- "${R[@]}" --stereo both
+expect 2 "ipd: expected a positive number" -- "${R[@]}" --stereo mirror --ipd -0.1
+expect 2 "ipd: expected a positive number" -- "${R[@]}" --stereo mirror --ipd abc
+expect 2 "convergence: expected a positive number" -- "${R[@]}" --stereo mirror --convergence 0
+expect 2 "unknown headset 'rift'" -- "${R[@]}" --stereo mirror --headset rift
+expect 2 "need --stereo" -- "${R[@]}" --ipd 0.07
+expect 2 "need --stereo" -- "${R[@]}" --headset vive
+expect 2 "fov and --headset exclude" -- "${R[@]}" --stereo single --headset vive --fov 70
+expect 2 "convergence and --headset exclude" -- "${R[@]}" --stereo mirror --headset vive --convergence 3
+expect 2 "stereo and --scaling exclude" -- bench --stereo --scaling --size 32x24
+expect 2 "ipd: expected a number > 0" -- bench --stereo --ipd 0 --size 32x24
+expect 2 "stereo: expected mirror or single" -- view --stereo left
+expect 2 "ipd needs --stereo" -- view --ipd 0.07
 # render takes one value of each setting: the list spellings of sheet, compare and bench are not its.
 expect 2 "unknown option '--methods'" -- "${R[@]}" --methods ssao,hbao
 expect 2 "unknown option '--filters'" -- "${R[@]}" --filters none,geometry
@@ -216,6 +230,27 @@ for m in tables:
 PY
     then ok; else bad "docs/$kind.md lags the registry"; fi
 done
+# Mirror: both eyes side by side in every output (2W x H), with the stereo frame's ms and the
+# consistency (a small number: gtao's eyes agree to a few hundredths); single: the left eye (W x H).
+if "$OBSCURA" render --scene cornell --size 48x40 --stereo mirror --ipd 0.05 --out "$dir/sm.png" \
+        --ao-out "$dir/sm.pfm" >"$dir/stdout" 2>"$dir/stderr"; then
+    read -r w h c lo hi mean < <("$IMGCHECK" "$dir/sm.png")
+    [ "$w $h" = "96 40" ] && ok || bad "stereo mirror PNG is ${w}x$h, want 96x40"
+    read -r w h c lo hi mean < <("$IMGCHECK" "$dir/sm.pfm")
+    [ "$w $h $c" = "96 40 1" ] && ok || bad "stereo mirror AO PFM is '$w $h $c'"
+    grep -qE "^stereo frame \(mirror, 48x40 per eye.*left [0-9.]+, right [0-9.]+, both [0-9.]+" "$dir/stdout" && ok \
+        || bad "no stereo frame line: $(cat "$dir/stdout")"
+    grep -qE "^stereo consistency \(gtao\): mean .* 0\.0[0-9]+ over [0-9.]+ %" "$dir/stdout" && ok \
+        || bad "no (or a large) consistency: $(cat "$dir/stdout")"
+else
+    bad "render --stereo mirror failed: $(cat "$dir/stderr")"
+fi
+if "$OBSCURA" render --scene cornell --size 48x40 --stereo single --ipd 0.05 --out "$dir/ss.png" >"$dir/stdout" 2>"$dir/stderr"; then
+    read -r w h c lo hi mean < <("$IMGCHECK" "$dir/ss.png")
+    [ "$w $h" = "48 40" ] && ok || bad "stereo single PNG is ${w}x$h, want 48x40"
+else
+    bad "render --stereo single failed: $(cat "$dir/stderr")"
+fi
 "$OBSCURA" list | grep -q "ssao" && ok || bad "list"
 "$OBSCURA" render --help | grep -q -- "--ao-out" && ok || bad "render --help"
 "$OBSCURA" list --help | grep -q -- "--json" && ok || bad "list --help"

@@ -425,6 +425,9 @@ typedef enum ob_image_kind {
                                  it by the albedo), after filter and upsampling, 3 floats, bottom row first */
     OB_IMAGE_BENT_NORMAL_F32, /* the method's view-space bent normal (gtao with bent_normals on), after
                                  filter and upsampling (not renormalised), 3 floats; zeros otherwise */
+    OB_IMAGE_SECOND_DEPTH_F32, /* the second depth layer's linear depth (depth peeling: the nearest surface
+                                 behind the first, 0 = none), when the last frame's method read it
+                                 (layers = 2); zeros otherwise. 1 float per pixel, bottom row first */
 } ob_image_kind;
 
 /* Bytes needed for an image of the renderer's size. */

@@ -473,6 +473,8 @@ typedef enum ob_view {
     OB_VIEW_BOUNCE,
     OB_VIEW_BENT_NORMALS,
     OB_VIEW_LUMINANCE,
+    OB_VIEW_SECOND_DEPTH, /* the second depth layer as the depth view shows the first (black where
+                             none, or when the frame's method did not read it: layers=2) */
     OB_VIEW_COUNT
 } ob_view;
 
@@ -482,7 +484,7 @@ typedef enum ob_view {
 #define OB_LUMINANCE_LOG2_HI 4
 
 /* "final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce", "bent_normals",
- * "luminance" (the CLI's --view names); "" if out of range. */
+ * "luminance", "second_depth" (the CLI's --view names); "" if out of range. */
 const char *ob_view_name(ob_view view);
 
 /* Draw the last frame (OB_VIEW_FINAL) or one of its debug views into `framebuffer` (0 = the

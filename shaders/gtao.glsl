@@ -52,6 +52,35 @@ vec3 slice_bent(float h0, float h1, float n, vec3 v, vec3 o)
     return t1 * v + t0 * o;
 }
 
+/* With a second depth layer (gtao.layers): does the current horizon ray pass behind the object under
+ * a sample? The horizon-based integral takes everything below the highest sample as occluded,
+ * each occluder infinitely thick behind its surface. The second layer bounds the object: on the
+ * sample's view ray it occupies [z1, z2], and a sample between the layers is inside, one behind the
+ * second free (seed 000 §4.4). Apply that to the ray at the current horizon on this side: where it
+ * crosses the sample's view ray (in the slice plane, which holds both) at depth z_h, z1 < z_h <= z2
+ * means the ray runs into the object, so every direction between it and the sample is blocked and
+ * the sample may raise the horizon; z_h > z2 means the ray passes behind the object, the directions
+ * just above it are free, and the sample (a thin or floating occluder) must not raise it. With
+ * z2 = 0 (nothing behind), or a crossing in front of the sample or behind the eye, the height
+ * field's rule stands. In the slice: the horizon line through P at rise ρ (key = 1 - cos ρ) has the
+ * in-slice normal m = -sin ρ t + cos ρ n_slice; the sample's view ray λ F (the eye at the origin)
+ * meets it at λ = (p · m) / (F · m), at linear depth λ z1. z2 here is the sample's back, z1 plus
+ * ob_layer_thickness.
+ * Measured (docs/methods.md, "A second depth layer"): a horizon holds one angle per side, so a
+ * floating or thin occluder that this rule rightly lets the low directions pass under is then not
+ * counted at all, and the cosine weights those low directions least: on every view tried the
+ * result is more open and further from AO_R than the height field. It stays an option (default
+ * off) as the measured answer; vbao's intervals are where a second layer belongs. */
+bool behind_object(vec3 w, vec3 p, vec3 t, vec3 n_slice, float rise, float z2)
+{
+    float c = 1.0 - rise, sn = sqrt(max(rise * (2.0 - rise), 0.0));
+    float pm = -sn * dot(p, t) + c * dot(p, n_slice);
+    float fm = pm - sn * dot(w, t) + c * dot(w, n_slice);
+    float lambda = pm / fm;
+    float z1 = -(p.z + w.z);
+    return lambda > 1.0 && lambda * z1 > z2;
+}
+
 /* Bisections of the last gap in which the surface leaves the sphere of radius R (see main). */
 const int REFINE_STEPS = 2;
 
@@ -71,6 +100,11 @@ void horizon_step(ob_slice s, vec2 at, float dist_px, vec3 p, vec3 t, bool refin
     float w_len = length(vec3(w.xy, w.z * (1.0 + gtao.thin)));
     float weight = hit ? clamp(w_len * gtao.falloff_mul + gtao.falloff_add, 0.0, 1.0) : 0.0;
     float k = ob_rise_key(w, t, s.n_slice);
+    if (gtao.layers != 0) {
+        float z1 = -(p.z + w.z);
+        float t2 = ob_layer_thickness(z1, ob_second_depth(texel), -p.z, gtao.radius, s.radius_px, gtao.steps);
+        k = t2 > 0.0 && behind_object(w, p, t, s.n_slice, rise, z1 + t2) ? 0.0 : k;
+    }
     if (refine) ob_gap_halve(gap, weight > 0.0);
     else ob_gap_note(gap, weight > 0.0, hit && weight <= 0.0 && k > rise, dist_px);
     rise = max(rise, weight * k);

@@ -27,7 +27,7 @@ OB_CONSTANTS_BEGIN(ob_gtao_constants, OB_BINDING_PASS)
     OB_INT bent_normals;      /* 1: also write the bent normal (image 1) */
     OB_INT adaptive;          /* 1: per-pixel slices, adaptive_base x the edge pass's multiplier (unit 5) */
     OB_INT adaptive_base;     /*   the slices at multiplier 1 (seed 003 §4.1) */
-    OB_FLOAT pad0;
+    OB_INT layers;            /* 1: the second depth layer bounds each sample's object (unit 6) */
 OB_CONSTANTS_END(ob_gtao_constants, gtao)
 OB_CONSTANTS_SIZE(ob_gtao_constants, 4 * 16);
 

@@ -195,6 +195,28 @@ bool ob_march_fetch(sampler2D depth, vec2 at, float dist_px, vec3 p, float mip_s
     return hit;
 }
 
+/* The second depth layer (depth peeling, passes/peel.c) behind the surface of AO-grid texel q: the
+ * linear depth of the full-resolution pixel that texel's depth came from (0 = nothing behind). */
+layout(binding = 6) uniform sampler2D second_layer;
+
+float ob_second_depth(ivec2 q)
+{
+    ivec2 full = clamp(q * frame.ao_k + frame.ao_o, ivec2(0), textureSize(second_layer, 0) - 1);
+    return texelFetch(second_layer, full, 0).r;
+}
+
+/* A sample's thickness from the second layer, z2 - z1 along its view ray, but never less than the
+ * world distance between two consecutive steps at the sample's depth z1 (the step in pixels times
+ * the pixel's size there, R / (d radius_px) per unit depth, d = P's depth). The march sees an
+ * object only at its steps: a thin slab seen from below covers the directions between its samples
+ * too, and a sample as thick as the spacing closes those gaps; thinner, the gaps would open to
+ * light that the slab blocks. z2 = 0 (nothing behind): -1, the method's own assumption. */
+float ob_layer_thickness(float z1, float z2, float d, float radius, float radius_px, int steps)
+{
+    float spacing = max(radius_px - 1.5, 0.0) / float(steps) * z1 * radius / (d * max(radius_px, 1e-6));
+    return z2 > 0.0 ? max(z2 - z1, spacing) : -1.0;
+}
+
 /* The rise of a sample above a side's tangent t, as k = 1 - cos(rise) = 2 sin²(rise / 2): 0 for
  * none, up to 2 for a sample straight up the far side. In the slice's coordinates the sample is
  * at x = dot(w, t) along the tangent and y = dot(w, n) / |n_φ| across it, toward the normal (the

@@ -36,6 +36,7 @@ layout(binding = 1) uniform sampler2D view_normal;  /* AO grid, RGBA16F */
 layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
 layout(binding = 3) uniform sampler2D direct_map;   /* full resolution RGBA16F direct radiance */
 layout(binding = 5) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
+layout(binding = 6) uniform sampler2D second_layer; /* full resolution R32F second depth layer (ssdo.layers) */
 layout(binding = 0, rgba16f) uniform writeonly image2D m_out;
 layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
 
@@ -136,7 +137,14 @@ void main()
                      * (seed 004 §3.3's range check) so foreground silhouettes do not occlude. */
                     bool above = dot(scene_p - p, n) > bias;
                     float range = smoothstep(0.0, 1.0, radius / abs(d - scene_d));
-                    occ = above && scene_d <= -s.z - bias ? range : 0.0;
+                    /* Seed 000 around Fig. 4.6: with a second layer a sample behind the first
+                     * surface is inside the object only up to the second; behind that it is free
+                     * (0 = nothing behind the first: the single-layer test). */
+                    float back = 0.0;
+                    if (ssdo.layers != 0)
+                        back = texelFetch(second_layer, min(q * frame.ao_k + frame.ao_o, full_size - 1), 0).r;
+                    bool inside = back <= 0.0 || -s.z <= back;
+                    occ = above && scene_d <= -s.z - bias && inside ? range : 0.0;
                 }
             }
         }

@@ -26,7 +26,7 @@ OB_CONSTANTS_BEGIN(ob_ssdo_constants, OB_BINDING_PASS)
     OB_INT adaptive;        /* 1: per-pixel samples, adaptive_base x the edge pass's multiplier (unit 5), the
                                first of the kernel's 3 x adaptive_base Halton entries */
     OB_INT adaptive_base;
-    OB_INT pad0;
+    OB_INT layers;          /* 1: a sample behind the second depth layer (unit 6) is free */
     OB_INT pad1;
     OB_VEC4 kernel[OB_SSDO_MAX_SAMPLES]; /* tangent-space unit direction xyz, step length w */
 OB_CONSTANTS_END(ob_ssdo_constants, ssdo)

@@ -27,7 +27,7 @@ OB_CONSTANTS_BEGIN(ob_vb_constants, OB_BINDING_PASS)
                                  0 = the radiance itself where the sender faces P */
     OB_INT adaptive;          /* 1: per-pixel slices, adaptive_base x the edge pass's multiplier (unit 5) */
     OB_INT adaptive_base;     /*   the slices at multiplier 1 (seed 003 §4.1) */
-    OB_FLOAT pad0;
+    OB_INT layers;            /* 1: a sample's back is the second depth layer behind it (unit 6) */
 OB_CONSTANTS_END(ob_vb_constants, vb)
 OB_CONSTANTS_SIZE(ob_vb_constants, 4 * 16);
 

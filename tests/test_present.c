@@ -139,7 +139,7 @@ static uint8_t *expected_view(ob_renderer *r, ob_view view, float far_z, float m
         [OB_VIEW_DEPTH] = OB_IMAGE_DEPTH_F32,   [OB_VIEW_SHADOW] = OB_IMAGE_SHADOW_F32,
         [OB_VIEW_RADIANCE] = OB_IMAGE_RADIANCE_F32, [OB_VIEW_SAMPLES] = OB_IMAGE_SAMPLES_F32,
         [OB_VIEW_BOUNCE] = OB_IMAGE_BOUNCE_F32, [OB_VIEW_BENT_NORMALS] = OB_IMAGE_BENT_NORMAL_F32,
-        [OB_VIEW_LUMINANCE] = OB_IMAGE_HDR_F32};
+        [OB_VIEW_LUMINANCE] = OB_IMAGE_HDR_F32, [OB_VIEW_SECOND_DEPTH] = OB_IMAGE_SECOND_DEPTH_F32};
     ob_image_kind kind = kinds[view];
     size_t px = (size_t)W * (size_t)H;
     float *buf = malloc(ob_image_size(r, kind));
@@ -162,7 +162,7 @@ static uint8_t *expected_view(ob_renderer *r, ob_view view, float far_z, float m
             if (view == OB_VIEW_BENT_NORMALS) v = len > 1e-4f ? v / len * 0.5f + 0.5f : 0.0f;
             if (view == OB_VIEW_NORMALS) v = v * 0.5f + 0.5f;
             else if (view == OB_VIEW_RADIANCE || view == OB_VIEW_BOUNCE) v = srgb(v);
-            else if (view == OB_VIEW_DEPTH) v = v > 0.0f ? 1.0f - v / far_z : 0.0f;
+            else if (view == OB_VIEW_DEPTH || view == OB_VIEW_SECOND_DEPTH) v = v > 0.0f ? 1.0f - v / far_z : 0.0f;
             else if (view == OB_VIEW_SAMPLES) v = max_samples > 0.0f ? v / max_samples : 0.0f;
             out[4 * i + (size_t)c] = to_byte(v);
         }
@@ -186,7 +186,8 @@ static int max_byte_diff(const uint8_t *a, const uint8_t *b, size_t n)
 static void test_view_names(void)
 {
     const char *names[OB_VIEW_COUNT] = {"final",    "ao",      "normals", "depth",        "shadow",
-                                        "radiance", "samples", "bounce",  "bent_normals", "luminance"};
+                                        "radiance", "samples", "bounce",  "bent_normals", "luminance",
+                                        "second_depth"};
     for (int v = 0; v < OB_VIEW_COUNT; ++v) {
         CHECK(!strcmp(ob_view_name((ob_view)v), names[v]), "view %d is '%s'", v, ob_view_name((ob_view)v));
         int back = -1;
@@ -334,7 +335,9 @@ static void test_present_views(ob_renderer *r)
     ob_settings g;
     ob_settings_init(&g, "gtao");
     ob_settings_set(&g, "gtao.bent_normals=on");
-    if (frame(r, &g)) check_views(r, &g, "gtao with bent normals", 36.0f);
+    /* and a second depth layer (depth peeling): its view is the depth view of that layer. */
+    ob_settings_set(&g, "gtao.layers=2");
+    if (frame(r, &g)) check_views(r, &g, "gtao with bent normals and two layers", 36.0f);
 }
 
 static void test_resize(ob_context *ctx, const ob_settings *s)

@@ -472,6 +472,9 @@ typedef enum ob_image_kind {
                                  it by the albedo), after filter and upsampling, 3 floats, bottom row first */
     OB_IMAGE_BENT_NORMAL_F32, /* the method's view-space bent normal (gtao with bent_normals on), after
                                  filter and upsampling (not renormalised), 3 floats; zeros otherwise */
+    OB_IMAGE_SECOND_DEPTH_F32, /* the second depth layer's linear depth (depth peeling: the nearest surface
+                                 behind the first, 0 = none), when the last frame's method read it
+                                 (layers = 2); zeros otherwise. 1 float per pixel, bottom row first */
 } ob_image_kind;
 
 /* Bytes needed for an image of the renderer's size. */
@@ -517,6 +520,8 @@ typedef enum ob_view {
     OB_VIEW_BOUNCE,
     OB_VIEW_BENT_NORMALS,
     OB_VIEW_LUMINANCE,
+    OB_VIEW_SECOND_DEPTH, /* the second depth layer as the depth view shows the first (black where
+                             none, or when the frame's method did not read it: layers=2) */
     OB_VIEW_COUNT
 } ob_view;
 
@@ -526,7 +531,7 @@ typedef enum ob_view {
 #define OB_LUMINANCE_LOG2_HI 4
 
 /* "final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce", "bent_normals",
- * "luminance" (the CLI's --view names); "" if out of range. */
+ * "luminance", "second_depth" (the CLI's --view names); "" if out of range. */
 const char *ob_view_name(ob_view view);
 
 /* Draw the last frame (OB_VIEW_FINAL) or one of its debug views into `framebuffer` (0 = the

@@ -213,6 +213,17 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         ob_edges_run(&r->edges, g, t->depth, t->normal, t->multiplier);
         glMemoryBarrier(barrier);
     }
+    if (plan->reads & OB_READS_SECOND_LAYER) {
+        /* Depth peeling after the G-buffer, whose linear depth it peels behind. */
+        ob_timer_begin(&r->timers, "second_layer");
+        if (!r->peel_ready) {
+            if (ob_peel_init(&r->peel) != OB_OK) return ob_peek_error(NULL);
+            r->peel_ready = true;
+        }
+        err = ob_peel_run(&r->peel, &r->gbuffer, f->view, f->proj);
+        if (err != OB_OK) return err;
+        glMemoryBarrier(barrier);
+    }
     GLuint mips = 0;
     int mip_levels = 0;
     if (plan->reads & OB_READS_DEPTH_MIPS) {
@@ -241,7 +252,8 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
                              .radiance = reads & OB_READS_RADIANCE ? r->direct : 0,
                              .albedo = reads & OB_READS_ALBEDO ? r->gbuffer.albedo : 0,
                              .depth_mips = mips,
-                             .depth_mip_levels = mip_levels};
+                             .depth_mip_levels = mip_levels,
+                             .second_depth = reads & OB_READS_SECOND_LAYER ? r->peel.linear_depth : 0};
     /* Every declared output gets a target, also one that these params leave unwritten. */
     const ob_ao_outputs out = {.visibility = plan->rgb ? t->raw_rgb : t->raw,
                                .bounce = plan->impl->writes & OB_WRITES_BOUNCE ? t->bounce_raw : 0,
@@ -249,6 +261,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     r->last_rgb = plan->rgb;
     r->last_bounce = plan->bounce;
     r->last_bent = plan->bent;
+    r->last_second_layer = (reads & OB_READS_SECOND_LAYER) != 0;
     ob_timer_begin(&r->timers, "ao");
     err = run_method(r, plan, &in, &out);
     if (err != OB_OK) return err;

@@ -42,6 +42,12 @@ static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_vi
         in->directional = r->last_bent;
         break;
     case OB_VIEW_LUMINANCE: in->source = r->radiance; break;
+    case OB_VIEW_SECOND_DEPTH: {
+        bool has = r->last_second_layer && r->peel.width == r->width && r->peel.height == r->height;
+        in->source = has ? r->peel.linear_depth : r->gbuffer.linear_depth;
+        in->directional = has;
+        break;
+    }
     case OB_VIEW_SAMPLES: {
         /* The counts of read_sample_counts, over the most a pixel could take (multiplier <= 3). */
         in->source = r->gbuffer.linear_depth;

@@ -84,7 +84,8 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
     case OB_IMAGE_BENT_NORMAL_F32:
     case OB_IMAGE_HDR_F32:
     case OB_IMAGE_ALBEDO_F32: return px * 3 * sizeof(float);
-    case OB_IMAGE_SHADOW_F32: return px * sizeof(float);
+    case OB_IMAGE_SHADOW_F32:
+    case OB_IMAGE_SECOND_DEPTH_F32: return px * sizeof(float);
     }
     return 0;
 }
@@ -151,6 +152,12 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
     case OB_IMAGE_RADIANCE_F32: glGetTextureImage(r->direct, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
     case OB_IMAGE_HDR_F32: glGetTextureImage(r->radiance, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
     case OB_IMAGE_ALBEDO_F32: glGetTextureImage(r->gbuffer.albedo, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_SECOND_DEPTH_F32:
+        if (r->last_second_layer && r->peel.width == r->width && r->peel.height == r->height)
+            glGetTextureImage(r->peel.linear_depth, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst);
+        else
+            memset(dst, 0, need);
+        break;
     case OB_IMAGE_SHADOW_F32: {
         /* The key light's visibility is the direct-light target's alpha. */
         size_t n = (size_t)r->width * (size_t)r->height;

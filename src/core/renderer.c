@@ -61,6 +61,7 @@ void ob_destroy_renderer(ob_renderer *r)
     release_scales(r);
     ob_view_destroy(&r->view);
     if (r->depth_mips_ready) ob_depth_mips_destroy(&r->depth_mips);
+    if (r->peel_ready) ob_peel_destroy(&r->peel);
     ob_gbuffer_destroy(&r->gbuffer);
     ob_compute_pass_destroy(&r->downsample);
     ob_compute_pass_destroy(&r->upsample);

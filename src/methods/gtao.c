@@ -10,7 +10,7 @@
 #include "gtao_params.h"
 #include "methods/method.h"
 
-enum { P_RADIUS, P_FALLOFF, P_THIN, P_SLICES, P_STEPS, P_NOISE, P_TEMPORAL, P_DEPTH_MIPS, P_BENT_NORMALS, P_COUNT };
+enum { P_RADIUS, P_FALLOFF, P_THIN, P_SLICES, P_STEPS, P_NOISE, P_TEMPORAL, P_DEPTH_MIPS, P_BENT_NORMALS, P_LAYERS, P_COUNT };
 
 static const ob_param_info gtao_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -43,6 +43,11 @@ static const ob_param_info gtao_params[P_COUNT] = {
     [P_BENT_NORMALS] = {"bent_normals", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                         "also write the bent normal (the visible cone's mean direction) for compose's ambient lookup",
                         false},
+    /* 1: the definition's height field. 2: a sample raises the horizon only where the current
+     * horizon ray passes through the object under it, not behind its second layer (gtao.glsl);
+     * measured worse than 1 on every view tried (docs/methods.md), so 1 stays the default. */
+    [P_LAYERS] = {"layers", OB_PARAM_INT, 1.0f, 2.0f, 1.0f, "count",
+                  "depth layers: 1 = the depth buffer alone (every occluder as the method assumes), 2 = also the second layer (depth peeling) behind it", false},
 };
 
 typedef struct gtao_state {
@@ -75,12 +80,14 @@ static void fill_constants(ob_gtao_constants *c, const float *params, const ob_s
     c->mip_scale = sf->mip_scale;
     c->max_mip = c->depth_mips ? sf->max_mip : 0; /* level 0 only: unit 3 holds the depth itself */
     c->bent_normals = params[P_BENT_NORMALS] != 0.0f ? 1 : 0;
+    c->layers = params[P_LAYERS] >= 2.0f ? 1 : 0;
 }
 
 /* The depth MIP chain only when asked for: the full-resolution path stays the baseline. */
 static uint32_t gtao_active_reads(const float *params)
 {
-    return OB_READS_DEPTH | OB_READS_NORMALS | (params[P_DEPTH_MIPS] != 0.0f ? OB_READS_DEPTH_MIPS : 0u);
+    return OB_READS_DEPTH | OB_READS_NORMALS | (params[P_DEPTH_MIPS] != 0.0f ? OB_READS_DEPTH_MIPS : 0u) |
+           (params[P_LAYERS] >= 2.0f ? OB_READS_SECOND_LAYER : 0u);
 }
 
 /* The bent normal only when asked for. */
@@ -95,6 +102,7 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
     ob_gtao_constants c = {0};
     const ob_slice_frame sf = ob_slice_frame_make(in);
     fill_constants(&c, params, &sf);
+    c.layers = c.layers && in->second_depth ? 1 : 0; /* ob_compute_ao has no second layer */
     c.bent_normals = c.bent_normals && out->bent_normal ? 1 : 0;
     /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
     ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
@@ -129,7 +137,7 @@ const ob_method_impl ob_method_gtao = {
     .shader = "gtao.glsl",
     .constants_size = sizeof(ob_gtao_constants),
     .state_size = sizeof(gtao_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER,
     .writes = OB_WRITES_VISIBILITY | OB_WRITES_BENT_NORMAL,
     .run = gtao_run,
     .destroy = gtao_destroy,

@@ -18,7 +18,7 @@ enum {
     OB_READS_RADIANCE = 1u << 3,     /* the full-resolution direct radiance (the lighting pass's output):
                                         only inside ob_render_frame, so ob_compute_ao refuses such methods */
     OB_READS_DEPTH_MIPS = 1u << 4,   /* reserved: a prefiltered depth MIP chain */
-    OB_READS_SECOND_LAYER = 1u << 5, /* reserved: a second depth layer (depth peeling) */
+    OB_READS_SECOND_LAYER = 1u << 5, /* a second depth layer (depth peeling, passes/peel.c) */
     OB_READS_HISTORY = 1u << 6,      /* reserved: the previous frame's output, reprojected */
 };
 
@@ -49,6 +49,11 @@ typedef struct ob_ao_inputs {
      * grid's depth), or 0 where the frame has none (ob_compute_ao); a method then reads level 0. */
     GLuint depth_mips;
     int depth_mip_levels;
+    /* OB_READS_SECOND_LAYER: the full-resolution R32F linear depth of the nearest surface behind
+     * the first (0 where none), or 0 where the frame has no second layer (ob_compute_ao): a method
+     * then falls back to its single-layer assumption. AO pixel i reads full pixel k i + o, the
+     * pixel the AO grid's depth came from. */
+    GLuint second_depth;
 } ob_ao_inputs;
 
 /* Where a method writes: textures of the inputs' size. */

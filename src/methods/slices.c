@@ -72,6 +72,9 @@ ob_error ob_slice_use(ob_method_kit *kit, GLuint *mips_program, const char *shad
     if (mips) glUseProgram(*mips_program);
     glBindTextureUnit(3, in->depth_mips ? in->depth_mips : in->linear_depth);
     glBindTextureUnit(5, in->sample_multiplier ? in->sample_multiplier : kit->noise);
+    /* The second depth layer (full resolution); the depth itself keeps the sampler valid when the
+     * frame has none, and the constants then say not to read it. */
+    glBindTextureUnit(6, in->second_depth ? in->second_depth : in->linear_depth);
     return OB_OK;
 }
 

@@ -18,7 +18,7 @@
 #include "sampling/sampling.h"
 #include "ssdo_params.h"
 
-enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_COUNT };
+enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_COUNT };
 
 static const ob_param_info ssdo_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -39,6 +39,10 @@ static const ob_param_info ssdo_params[P_COUNT] = {
      * narrow enough that M still says from which side the light comes. */
     [P_LOBE] = {"lobe", OB_PARAM_FLOAT, 1.0f, 256.0f, 8.0f, "exponent",
                 "lights become cosine lobes max(0, w.l)^k around their direction: k", false},
+    /* 2: seed 000's test around Fig. 4.6: a sample behind the first layer occludes only while it
+     * is in front of the second (inside the object); behind it the sample is free. */
+    [P_LAYERS] = {"layers", OB_PARAM_INT, 1.0f, 2.0f, 1.0f, "count",
+                  "depth layers: 1 = the depth buffer alone (every occluder as the method assumes), 2 = also the second layer (depth peeling) behind it", false},
 };
 
 #define KERNEL_SEED 0x55D0u
@@ -86,6 +90,12 @@ static void build_kernel(ssdo_state *s, int count, ob_direction_pdf pdf)
 }
 
 /* `bounce` off: no bounce to write, filter or upsample. */
+/* The second depth layer only when asked for. */
+static uint32_t ssdo_active_reads(const float *params)
+{
+    return OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | (params[P_LAYERS] >= 2.0f ? OB_READS_SECOND_LAYER : 0u);
+}
+
 static uint32_t ssdo_active_writes(const float *params)
 {
     return OB_WRITES_VISIBILITY_RGB | (params[P_BOUNCE] != 0.0f ? OB_WRITES_BOUNCE : 0u);
@@ -116,12 +126,14 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     c->samples = count;
     c->noise = OB_NOISE_TEXTURE4; /* the 4x4 rotation texture: the filters' windows cancel its tile */
     c->bounce = bounce ? 1 : 0;
+    c->layers = params[P_LAYERS] >= 2.0f && in->second_depth ? 1 : 0;
 
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     c->stage = s->merged ? OB_SSDO_STAGE_MERGED : OB_SSDO_STAGE_DIRECT;
     ob_method_kit_use(&s->kit, c, used, in, out, GL_RGBA16F);
     glBindTextureUnit(3, in->radiance);
     glBindTextureUnit(5, in->sample_multiplier ? in->sample_multiplier : s->kit.noise);
+    glBindTextureUnit(6, in->second_depth ? in->second_depth : in->linear_depth); /* valid when unused */
     /* The renderer gives every declared output a target, so image 1 is valid with the bounce off
      * too (the merged stage then writes zeros there; nothing reads them). */
     glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -163,7 +175,8 @@ const ob_method_impl ob_method_ssdo = {
     .shader = "ssdo.glsl",
     .constants_size = sizeof(ob_ssdo_constants),
     .state_size = sizeof(ssdo_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER,
+    .active_reads = ssdo_active_reads,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
     .adapts = true,
     .kernel = ssdo_kernel,
@@ -181,7 +194,8 @@ const ob_method_impl ob_method_ssdo_merged = {
     .shader = "ssdo.glsl",
     .constants_size = sizeof(ob_ssdo_constants),
     .state_size = sizeof(ssdo_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER,
+    .active_reads = ssdo_active_reads,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
     .adapts = true,
     .kernel = ssdo_merged_kernel,

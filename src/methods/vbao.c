@@ -23,6 +23,7 @@ enum {
     P_NOISE,
     P_TEMPORAL,
     P_DEPTH_MIPS,
+    P_LAYERS,
     P_EMITTER_COSINE, /* vbgi only: the last entry, so vbao's table is the prefix */
     P_COUNT
 };
@@ -57,6 +58,10 @@ static const ob_param_info vb_params[P_COUNT] = {
                     "move the jitters along an R2 sequence with the frame index (for temporal accumulation)", false},
     [P_DEPTH_MIPS] = {"depth_mips", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                       "far steps read the prefiltered depth MIP chain instead of full resolution", false},
+    /* 2: a sample's back is the second layer behind it (its true thickness); where there is none,
+     * the constant thickness above. */
+    [P_LAYERS] = {"layers", OB_PARAM_INT, 1.0f, 2.0f, 1.0f, "count",
+                  "depth layers: 1 = the depth buffer alone (every occluder as the method assumes), 2 = also the second layer (depth peeling) behind it", false},
     [P_EMITTER_COSINE] = {"emitter_cosine", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                           "a sender's radiance times its cosine toward P (the paper's); off: its radiance where it "
                           "faces P (the solid-angle form of the one-bounce integral)",
@@ -77,6 +82,7 @@ static void fill_constants(ob_vb_constants *c, const float *params, bool gi, con
     c->radius = r;
     c->thickness = params[P_THICKNESS] * r;
     c->thickness_slope = params[P_THICKNESS_SLOPE];
+    c->layers = params[P_LAYERS] >= 2.0f ? 1 : 0;
     c->weighting = (int)params[P_WEIGHTING];
     c->coverage = (int)params[P_COVERAGE];
     c->slices = (int)params[P_SLICES];
@@ -112,17 +118,20 @@ static void vb_destroy(void *p)
 
 static uint32_t vb_active_reads(const float *params, uint32_t reads)
 {
-    return params[P_DEPTH_MIPS] != 0.0f ? reads : reads & ~(uint32_t)OB_READS_DEPTH_MIPS;
+    if (params[P_DEPTH_MIPS] == 0.0f) reads &= ~(uint32_t)OB_READS_DEPTH_MIPS;
+    if (params[P_LAYERS] < 2.0f) reads &= ~(uint32_t)OB_READS_SECOND_LAYER;
+    return reads;
 }
 
 static uint32_t vbao_active_reads(const float *params)
 {
-    return vb_active_reads(params, OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS);
+    return vb_active_reads(params, OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER);
 }
 
 static uint32_t vbgi_active_reads(const float *params)
 {
-    return vb_active_reads(params, OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS);
+    return vb_active_reads(params, OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS |
+                                    OB_READS_SECOND_LAYER);
 }
 
 static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
@@ -133,6 +142,7 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
     ob_vb_constants c = {0};
     const ob_slice_frame sf = ob_slice_frame_make(in);
     fill_constants(&c, params, s->gi, &sf);
+    c.layers = c.layers && in->second_depth ? 1 : 0; /* ob_compute_ao has no second layer */
     /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
     ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
     ob_error err = ob_slice_use(&s->kit, &s->mips_program, s->shader, c.max_mip > 0, &c, sizeof c, in, out);
@@ -168,7 +178,7 @@ const ob_method_impl ob_method_vbao = {
     .shader = "vbao.glsl",
     .constants_size = sizeof(ob_vb_constants),
     .state_size = sizeof(vb_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER,
     .writes = OB_WRITES_VISIBILITY,
     .init = vbao_init,
     .run = vb_run,
@@ -188,7 +198,7 @@ const ob_method_impl ob_method_vbgi = {
     .shader = "vbgi.glsl",
     .constants_size = sizeof(ob_vb_constants),
     .state_size = sizeof(vb_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER,
     .writes = OB_WRITES_VISIBILITY | OB_WRITES_BOUNCE,
     .init = vbgi_init,
     .run = vb_run,

@@ -40,6 +40,22 @@ ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene);
 void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj, bool textures);
 void ob_gbuffer_destroy(ob_gbuffer *g);
 
+/* ---- the second depth layer: peel.c, peel.frag.glsl ----------------------------------------- */
+/* Per pixel the nearest surface behind the G-buffer's by more than a small separation, back faces
+ * included (depth peeling): R32F linear depth at the G-buffer's size, 0 = none. */
+typedef struct ob_peel {
+    GLuint program, ubo, fbo;
+    GLuint depth;         /* DEPTH_COMPONENT32F */
+    GLuint linear_depth;  /* R32F, the second layer */
+    int width, height;    /* of the targets; 0 until the first run */
+} ob_peel;
+
+ob_error ob_peel_init(ob_peel *p);
+/* Draw the G-buffer's meshes behind its linear depth (which must be current), with the frame's
+ * view and projection; (re)makes the targets at g's size. Errors: OB_ERR_GL. */
+ob_error ob_peel_run(ob_peel *p, const ob_gbuffer *g, const float *view, const float *proj);
+void ob_peel_destroy(ob_peel *p);
+
 /* ---- subsampling: downsample.c, upsample.c, edges.c (shaders of the same names) ----------- */
 /* The AO resolution: k full pixels per AO pixel (1, 2 or 4); AO pixel i samples full pixel k i + o. */
 typedef struct ob_ao_grid {

@@ -209,6 +209,30 @@ static int parse_number(cli_common *c, size_t k, const char *v)
     return CLI_TAKEN;
 }
 
+/* --guard PX (whole pixels) or F% (a percentage of the larger image dimension, resolved in
+ * cli_common_finish once --size is known). */
+static int parse_guard(cli_common *c, const char *v)
+{
+    size_t len = strlen(v);
+    bool percent = len > 0 && v[len - 1] == '%';
+    char number[ITEM_MAX] = "";
+    if (len == 0 || len >= sizeof number) return cli_fail(EXIT_USAGE, "--guard: expected PX or F%%, got '%s'", v);
+    memcpy(number, v, percent ? len - 1 : len);
+    float x = 0.0f;
+    if (!cli_parse_float(number, &x) || x < 0.0f)
+        return cli_fail(EXIT_USAGE, "--guard: expected pixels >= 0 or a percentage like 10%%, got '%s'", v);
+    if (percent) {
+        if (x > 100.0f) return cli_fail(EXIT_USAGE, "--guard: %s is more than 100%% of the image", v);
+        c->guard_percent = x;
+    } else {
+        if (x != floorf(x)) return cli_fail(EXIT_USAGE, "--guard: expected whole pixels, got '%s'", v);
+        if (x > (float)OB_GUARD_MAX) return cli_fail(EXIT_USAGE, "--guard: %s px is more than %d", v, OB_GUARD_MAX);
+        c->guard_px = (int)x;
+    }
+    c->guard_is_percent = percent;
+    return CLI_TAKEN;
+}
+
 /* ---- the parser ------------------------------------------------------------------------------- */
 
 /* The options with a value, each with what the command must take for it (0 = every command). */
@@ -225,7 +249,7 @@ static const struct {
     {"--light", 0},                {"--env", 0},         {"--ambient", 0},
     {"--ambient-color", 0},        {"--ao-light", 0},    {"--shadow", 0},
     {"--multibounce", 0},          {"--settings", 0},    {"--textures", 0},
-    {"--vsm-bits", 0},
+    {"--vsm-bits", 0},             {"--guard", 0},
     {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
 
@@ -283,6 +307,8 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
     } else if (!strcmp(a, "--set")) {
         if (c->set_count >= CLI_MAX_SETS) return cli_fail(EXIT_USAGE, "--set: more than %d", CLI_MAX_SETS);
         c->sets[c->set_count++] = v;
+    } else if (!strcmp(a, "--guard")) {
+        return parse_guard(c, v);
     } else if (!strcmp(a, "--adaptive")) {
         if (!cli_parse_on_off(v, &c->adaptive)) return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
     } else if (!strcmp(a, "--light")) {
@@ -337,6 +363,13 @@ int cli_common_finish(cli_common *c)
     if (c->has_eye && c->eye[0] == c->target[0] && c->eye[1] == c->target[1] && c->eye[2] == c->target[2])
         return cli_fail(EXIT_USAGE, "--eye and --target are the same point");
     if (c->ambient_mode == OB_AMBIENT_ENVIRONMENT && !c->env) return cli_fail(EXIT_USAGE, "--ambient env needs --env FILE.hdr");
+    if (c->guard_is_percent) {
+        int larger = c->width > c->height ? c->width : c->height;
+        c->guard_px = (int)ceilf(c->guard_percent * 0.01f * (float)larger);
+        if (c->guard_px > OB_GUARD_MAX)
+            return cli_fail(EXIT_USAGE, "--guard %g%%: %d px per side at %dx%d is more than %d", (double)c->guard_percent,
+                            c->guard_px, c->width, c->height, OB_GUARD_MAX);
+    }
     if (c->settings_path) {
         int code = cli_tuned_load(c->settings_path, c->tuned, CLI_MAX_TUNED_FILES, &c->tuned_count);
         if (code != EXIT_OK) return code;
@@ -427,6 +460,11 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "                        directory of them; lists show each tuned method at its defaults\n"
           "                        and tuned ('hbao · tuned'), single runs use it tuned (a lone FILE\n"
           "                        also picks the method); --set still wins\n"
+          "  --guard PX|F%         guard band (seed 000 §3.2.2): render the G-buffer and the AO chain\n"
+          "                        PX pixels (or F% of the larger dimension) beyond each side of the\n"
+          "                        frame, so occluders just outside it darken the border; cropped at\n"
+          "                        compose (default 0 = off; rounded up to a multiple of 4 x the AO\n"
+          "                        divisor; the AO chain costs about (W+2g)(H+2g)/WH)\n"
           "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off; every\n"
           "                        method takes them, see docs/filters.md)\n"
           "  --light SPEC          replaces the scene's lights (repeatable, up to 8), e.g.\n"
@@ -541,6 +579,7 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
         ob_settings_set_ao_divisor(s, cfg->ao_divisor) != OB_OK)
         return cli_fail_from_library();
     s->adaptive = c->adaptive;
+    s->guard = c->guard_px;
     /* Every method adapts today; a new one that does not is named here rather than silently
      * ignoring the option. none takes no samples at all: nothing to say (bench's baseline frames
      * are none). */

@@ -101,6 +101,11 @@ typedef struct cli_common {
     cli_tuned tuned[CLI_MAX_TUNED_FILES];
     int tuned_count;
     bool adaptive;
+    /* --guard PX or F%: the guard band per side (ob_settings.guard), in pixels or as a percentage of
+     * the larger image dimension, resolved against --size by cli_common_finish into guard_px. */
+    int guard_px;
+    float guard_percent;
+    bool guard_is_percent;
 
     /* lighting, shadows, tone mapping */
     const char *lights[OB_MAX_LIGHTS];

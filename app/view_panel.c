@@ -81,6 +81,33 @@ static void panel_kernel(viewer *v)
     gui_tooltip("seed 003 Fig. 4.1/4.2: from above, each colour one period of the Halton bases 2 x 5");
 }
 
+/* The guard band (seed 000 §3.2.2, --guard): the checkbox switches it off and back to the last
+ * width, so the border's darkening can be compared in place; 10 % of the larger side at first. */
+static void panel_guard(viewer *v)
+{
+    static int last = 0;
+    if (v->s.guard > 0) last = v->s.guard;
+    if (last == 0) last = ((v->fb_width > v->fb_height ? v->fb_width : v->fb_height) + 9) / 10;
+    bool on = v->s.guard > 0;
+    if (gui_checkbox("guard band", &on)) {
+        v->s.guard = on ? last : 0;
+        profiler_reset(&v->prof);
+    }
+    gui_tooltip("render the G-buffer and the AO chain beyond each side of the window and crop at compose, so "
+                "occluders just outside the frame darken its border (seed 000 §3.2.2)");
+    int g = v->s.guard;
+    if (gui_slider_int("guard (px per side)", &g, 0, 256, false)) {
+        v->s.guard = g;
+        profiler_reset(&v->prof);
+    }
+    if (v->s.guard > 0) {
+        /* As the renderer rounds it (a multiple of 4 x the AO divisor, renderer.c ob_guard_pixels). */
+        int step = 4 * (v->s.ao_divisor > 1 ? v->s.ao_divisor : 1);
+        int used = (v->s.guard + step - 1) / step * step;
+        gui_text("AO chain at %dx%d (band %d px)", v->fb_width + 2 * used, v->fb_height + 2 * used, used);
+    }
+}
+
 static void panel_method(viewer *v)
 {
     const char *names[MAX_METHODS];
@@ -139,6 +166,7 @@ static void panel_method(viewer *v)
     gui_tooltip("run the method and the filter at this fraction of the size, then joint bilateral upsampling");
     gui_checkbox("adaptive samples", &v->s.adaptive);
     gui_tooltip("an edge pre-pass gives edge pixels 2x or 3x the base count (ssao, crytek)");
+    panel_guard(v);
 }
 
 static void panel_lights(viewer *v)

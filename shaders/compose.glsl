@@ -44,8 +44,11 @@ vec3 ob_environment_radiance(vec3 dir)
 
 void main()
 {
-    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pix, ivec2(frame.size)))) return;
+    /* The inputs carry the guard band (seed 000 §3.2.2) and frame.size is theirs; the output is the
+     * visible frame at their centre, so everything after compose sees only what is shown. */
+    ivec2 out_pix = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(out_pix, ivec2(frame.size) - 2 * cmp.guard))) return;
+    ivec2 pix = out_pix + cmp.guard;
     float d = texelFetch(linear_depth, pix, 0).r;
     int mode = frame.ambient_mode;
     if (d <= 0.0) {
@@ -53,7 +56,7 @@ void main()
         vec3 bg = mode == OB_AMBIENT_MODE_ENVIRONMENT ? ob_environment_radiance(view_dir)
                 : mode == OB_AMBIENT_MODE_HEMISPHERE  ? mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * view_dir.y)
                                                       : frame.background.rgb;
-        imageStore(hdr_out, pix, vec4(bg, 1.0));
+        imageStore(hdr_out, out_pix, vec4(bg, 1.0));
         return;
     }
     vec3 n = normalize(mat3(frame.inv_view) * texelFetch(view_normal, pix, 0).xyz);
@@ -85,5 +88,5 @@ void main()
          * light's (shadows are), so the direct light stays as it is. */
         if (cmp.add_bounce != 0) color += texelFetch(bounce_map, pix, 0).rgb * albedo;
     }
-    imageStore(hdr_out, pix, vec4(color, 1.0));
+    imageStore(hdr_out, out_pix, vec4(color, 1.0));
 }

@@ -13,7 +13,7 @@ OB_CONSTANTS_BEGIN(ob_compose_constants, OB_BINDING_PASS)
     OB_INT add_bounce;   /* 1: add the one-bounce light x albedo (a method that writes a bounce) */
     OB_INT multibounce;  /* 1: visibility through Jimenez et al. 2016's multi-bounce fit with the albedo */
     OB_INT bent_normal;  /* 1: the ambient is looked up along the method's bent normal (unit 7) */
-    OB_FLOAT pad0;
+    OB_INT guard;        /* the guard band, px per side: output pixel p reads the inputs at p + guard (the crop) */
     OB_FLOAT pad1;
     OB_FLOAT pad2;
 OB_CONSTANTS_END(ob_compose_constants, cmp)

@@ -27,7 +27,8 @@ void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pix, vw.size))) return;
-    vec4 s = texelFetch(source, pix, 0);
+    ivec2 src = pix + vw.offset; /* past the guard band, if the source has one */
+    vec4 s = texelFetch(source, src, 0);
     bool directional = vw.directional != 0;
     vec3 c = vec3(0.0);
     switch (vw.view_mode) {
@@ -65,7 +66,7 @@ void main()
     case OB_VIEW_MODE_SAMPLES: {
         /* As the renderer's read_sample_counts: the block of AO pixel pix / k. */
         float count = float(vw.sample_count);
-        if (vw.use_multiplier != 0) count *= texelFetch(multiplier, (pix / vw.ao_k) / OB_EDGE_BLOCK, 0).r;
+        if (vw.use_multiplier != 0) count *= texelFetch(multiplier, (src / vw.ao_k) / OB_EDGE_BLOCK, 0).r;
         c = vec3(s.r > 0.0 ? count * vw.inv_max_samples : 0.0); /* the sky takes no samples */
         break;
     }

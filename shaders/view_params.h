@@ -15,8 +15,8 @@ OB_CONSTANTS_BEGIN(ob_view_constants, OB_BINDING_PASS)
     OB_INT ao_k;              /* samples: full pixels per AO pixel, to find a pixel's block */
     OB_FLOAT far_z;           /* depth: the far plane, view-space units; grey = 1 - depth / far_z */
     OB_FLOAT inv_max_samples; /* samples: 1 / the most a pixel could take, which shows white */
-    OB_FLOAT pad0;
-    OB_IVEC2 size;            /* the source and the display texture, px */
+    OB_INT offset;            /* display pixel p shows source pixel p + offset (the guard band, renderer.h) */
+    OB_IVEC2 size;            /* the display texture, px */
     OB_FLOAT pad1;
     OB_FLOAT pad2;
 OB_CONSTANTS_END(ob_view_constants, vw)

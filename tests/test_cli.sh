@@ -123,6 +123,22 @@ expect 2 "bad_settings.json: hbao.intensity = 99 is out of range" -- "${R[@]}" -
 echo '{"method": "nosuch", "params": {}}' >"$dir/bad_settings.json"
 expect 2 "must name a method" -- "${R[@]}" --settings "$dir/bad_settings.json"
 expect 2 "cannot read it|No such file" -- "${R[@]}" --settings "$dir/missing_settings.json"
+# --guard PX|F%: whole pixels or a percentage; the enlarged size must fit GL_MAX_TEXTURE_SIZE.
+expect 2 "guard: expected pixels >= 0 or a percentage like 10%, got '-4'" -- "${R[@]}" --scene corner --guard -4
+expect 2 "guard: expected pixels >= 0 or a percentage like 10%, got 'wide'" -- "${R[@]}" --scene corner --guard wide
+expect 2 "guard: expected pixels >= 0 or a percentage like 10%, got '%'" -- "${R[@]}" --scene corner --guard %
+expect 2 "guard: expected whole pixels, got '2.5'" -- "${R[@]}" --scene corner --guard 2.5
+expect 2 "guard: 150% is more than 100% of the image" -- "${R[@]}" --scene corner --guard 150%
+expect 2 "guard: 5000 px is more than 4096" -- "${R[@]}" --scene corner --guard 5000
+expect 2 "guard: missing value" -- "${R[@]}" --scene corner --guard
+expect 2 "guard expects whole pixels per side, got 'x'" -- "${R[@]}" --scene corner --set guard=x
+# llvmpipe's limit is 16384: 8200 + 2 x 4096 is over it.
+expect 2 "guard band 4096 px makes 8200x8 into 16392x8200, above GL_MAX_TEXTURE_SIZE 16384" -- "${R[@]}" \
+    --scene corner --gpu sw --guard 4096 --size 8200x8
+"$OBSCURA" render --scene corner --size 48x32 --guard 10% --ao-out "$dir/guard.pfm" --out "$dir/guard.png" 2>"$dir/stderr"
+read -r w h c lo hi mean < <("$IMGCHECK" "$dir/guard.pfm")
+[ "$w $h $c" = "48 32 1" ] && ok || bad "--guard 10%: AO PFM is '$w $h $c' ($(cat "$dir/stderr"))"
+rm -f "$dir/guard.pfm" "$dir/guard.png"
 
 # --adaptive: every method but none takes adaptive counts and runs the edge pass, silently.
 "$OBSCURA" render --scene corner --size 32x24 --method ssao --adaptive on --timings --out "$dir/adapt.png" \

@@ -381,7 +381,19 @@ typedef struct ob_settings {
      * the AO is easier to judge on untextured surfaces). false = textures on. */
     bool textures_off;
     float background[3];          /* linear RGB of pixels with no geometry */
+    /* Guard band (seed 000 §3.2.2), px per side, 0 = off: the G-buffer, the direct light, the AO
+     * method, its filter and the upsampler run on (W + 2g) x (H + 2g) with the projection widened
+     * so that the visible W x H frame is exactly its centre, and compose crops; occluders up to g
+     * pixels beyond the frame's edge then darken its border. Rounded up to a multiple of 4 x
+     * ao_divisor (the AO grid and its 4x4 rotation tile fall on the same visible pixels as without
+     * the band). Everything read back or presented is the visible frame. A change reallocates the
+     * targets at the next ob_render_frame; W + 2g above GL_MAX_TEXTURE_SIZE is OB_ERR_BAD_SIZE
+     * there. Not for ob_compute_ao (see there). "guard=PX" in ob_settings_set. */
+    int guard;
 } ob_settings;
+
+/* The largest ob_settings.guard ob_settings_set takes (the GL's texture size limits it further). */
+#define OB_GUARD_MAX 4096
 
 /* The range of ob_settings.radius_scale ("METHOD.radius_scale=V" in ob_settings_set). */
 #define OB_RADIUS_SCALE_MIN 0.25f
@@ -391,11 +403,12 @@ typedef struct ob_settings {
 ob_error ob_settings_init(ob_settings *settings, const char *method);
 /* Set "method.param=value", "filter.param=value" (the current filter) or "param=value" (the
  * current method) from text, validated against the table; "method.radius_scale=value" for every
- * method (ob_settings.radius_scale). Errors: OB_ERR_UNKNOWN_METHOD (an
+ * method (ob_settings.radius_scale); "guard=PX" the guard band (ob_settings.guard, 0..OB_GUARD_MAX
+ * pixels per side). Errors: OB_ERR_UNKNOWN_METHOD (an
  * unknown prefix), OB_ERR_UNKNOWN_PARAM, OB_ERR_OUT_OF_RANGE, OB_ERR_INVALID_ARGUMENT
  * (malformed, NaN, not an integer, a parameter of a method or filter not in use). */
 ob_error ob_settings_set(ob_settings *settings, const char *assignment);
-/* The value of a parameter of the current method by name ("radius_scale" too), or NaN if unknown. */
+/* The value of a parameter of the current method by name ("radius_scale" and "guard" too), or NaN if unknown. */
 float ob_settings_get(const ob_settings *settings, const char *param);
 /* Pick the filter (its parameters reset to their defaults). Errors: OB_ERR_UNKNOWN_METHOD. */
 ob_error ob_settings_set_filter(ob_settings *settings, const char *filter);
@@ -441,7 +454,8 @@ void ob_destroy_renderer(ob_renderer *r);
  * unlike ob_make_renderer, 0x0 is not "default"), OB_ERR_GL (the GL could not make the targets);
  * on any error the renderer keeps its old size and still works. */
 ob_error ob_renderer_resize(ob_renderer *r, int width, int height);
-/* The renderer's size (0 x 0 for NULL); either pointer may be NULL. */
+/* The renderer's size (0 x 0 for NULL), the visible frame's: a guard band (ob_settings.guard)
+ * does not change it; either pointer may be NULL. */
 void ob_query_renderer_size(const ob_renderer *r, int *width, int *height);
 /* Upload a scene's meshes and textures. The renderer keeps no pointer to the ob_scene. */
 ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene);
@@ -568,8 +582,11 @@ ob_error ob_set_shader_directory(const char *dir);
  * OB_ERR_INVALID_ARGUMENT). linear_depth is R32F positive view depth, normal is RGBA16F/RGBA32F
  * view-space normal, both of the renderer's size; ao_out is an R32F texture of that size (written
  * with image stores, which need the format to match). proj is the column-major projection matrix
- * used to rasterise them; view space is taken as world space (no lights are involved). Errors:
- * OB_ERR_INVALID_ARGUMENT, OB_ERR_SHADER, OB_ERR_GL. */
+ * used to rasterise them; view space is taken as world space (no lights are involved). No guard
+ * band here (ob_settings.guard is ignored; the renderer's own targets drop theirs): a host that wants
+ * one makes the renderer at the enlarged size (W + 2g) x (H + 2g), rasterises its textures at that
+ * size with P00, P20 scaled by W / (W + 2g) and P11, P21 by H / (H + 2g), passes that projection,
+ * and crops the result at (g, g) itself. Errors: OB_ERR_INVALID_ARGUMENT, OB_ERR_SHADER, OB_ERR_GL. */
 ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex,
                        const float proj[16], const ob_settings *settings, uint32_t ao_out_tex);
 /* The same, followed by the settings' filter (ob_settings_set_filter) on the same depth and

@@ -24,6 +24,20 @@ void ob_proj_info(const float *proj, float out[4])
     out[3] = proj[9];
 }
 
+void ob_guard_projection(float *proj, int width, int height, int guard)
+{
+    /* Seed 000 §3.2.2: the enlarged image must hold the visible one at its centre, pixel for pixel.
+     * ndc' = 2 (x + g + 1/2) / (W + 2g) - 1 = (2 (x + 1/2) / W - 1) W / (W + 2g), so ndc scales
+     * about the centre by W / (W + 2g); ndc = (P00 X + P20 Z) / -Z scales with P00 and P20. */
+    if (guard <= 0) return;
+    float sx = (float)width / (float)(width + 2 * guard);
+    float sy = (float)height / (float)(height + 2 * guard);
+    proj[0] *= sx;
+    proj[8] *= sx;
+    proj[5] *= sy;
+    proj[9] *= sy;
+}
+
 /* The projection as seen from the AO grid. AO pixel i sits at full pixel k i + o, so along x
  * ndc_grid = a ndc_full + b with a = W / (k w) and b = a - 1 + (1 - (2o + 1)/k) / w (from
  * ndc_full = 2 (k i + o + 1/2) / W - 1 and ndc_grid = 2 (i + 1/2) / w - 1). Folding that into
@@ -119,6 +133,8 @@ static ob_error check_settings(const ob_settings *s)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "settings are not initialised");
     if (s->ao_divisor != 0 && s->ao_divisor != 1 && s->ao_divisor != 2 && s->ao_divisor != 4)
         return ob_set_error(OB_ERR_OUT_OF_RANGE, "ao divisor %d is not 1, 2 or 4", s->ao_divisor);
+    if (s->guard < 0 || s->guard > OB_GUARD_MAX)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "guard band %d px is outside 0..%d", s->guard, OB_GUARD_MAX);
     return OB_OK;
 }
 
@@ -197,7 +213,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     ob_lighting_setup(&r->lighting);
     ob_shadows_fill(&r->shadows, &r->lighting.constants, &r->frame_constants);
     upload_frame(r); /* after ob_shadows_fill: each light's shadow map index */
-    ob_lighting_run(&r->lighting, r->width, r->height, r->gbuffer.linear_depth, r->gbuffer.normal, r->gbuffer.albedo,
+    ob_lighting_run(&r->lighting, r->inner_width, r->inner_height, r->gbuffer.linear_depth, r->gbuffer.normal, r->gbuffer.albedo,
                     r->direct);
     glMemoryBarrier(barrier);
     if (g->k > 1) {
@@ -332,6 +348,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
                                   .bent_normal = plan->bent ? r->bent : 0,
                                   .width = r->width,
                                   .height = r->height,
+                                  .guard = r->guard,
                                   .ao_all_light = s->ao_all_light,
                                   .multibounce = s->multibounce};
     ob_timer_begin(&r->timers, "compose");
@@ -359,8 +376,11 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     if (!(cam.fov_y_deg < 179.0f) || !isfinite(cam.eye[0] + cam.eye[1] + cam.eye[2] + cam.target[0] + cam.target[1] + cam.target[2] + cam.shift[0] + cam.shift[1]))
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "camera is not finite or its fov is not in (0, 179)");
 
+    /* A new guard band remakes the targets before anything is drawn into them. */
+    ob_error err = ob_renderer_reshape(r, r->width, r->height, ob_guard_pixels(s->guard, s->ao_divisor));
+    if (err != OB_OK) return err;
     method_plan plan;
-    ob_error err = plan_method(r, s, &plan);
+    err = plan_method(r, s, &plan);
     if (err != OB_OK) return err;
 
     mat4 view, proj;
@@ -368,6 +388,7 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     glm_perspective(glm_rad(cam.fov_y_deg), (float)r->width / (float)r->height, cam.near_z, cam.far_z, proj);
     proj[2][0] = cam.shift[0]; /* off-axis frustum (ob_camera.shift): P20, P21 */
     proj[2][1] = cam.shift[1];
+    ob_guard_projection((float *)proj, r->width, r->height, r->guard);
     int si = scale_index(s->ao_divisor);
     ao_targets *t = ob_renderer_targets(r, si);
     r->last_scale = si;
@@ -403,8 +424,12 @@ static ob_error compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t n
     if ((m->reads & (OB_READS_RADIANCE | OB_READS_ALBEDO)) || (m->writes & (OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE)))
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: %s needs the frame's direct light (ob_render_frame)",
                             m->info.name);
+    /* The host's textures are the renderer's size, guard band included if it wants one (obscura.h):
+     * the renderer's own targets drop theirs. */
+    ob_error err = ob_renderer_reshape(r, r->width, r->height, 0);
+    if (err != OB_OK) return err;
     method_plan plan;
-    ob_error err = plan_method(r, s, &plan);
+    err = plan_method(r, s, &plan);
     if (err != OB_OK) return err;
     /* The caller's camera: only the projection is known, so view space is world space. */
     const ob_ao_grid grid = ob_ao_grid_make(r->width, r->height, 1);

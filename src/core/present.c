@@ -23,9 +23,13 @@ static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_vi
     in->width = r->width;
     in->height = r->height;
     in->far_z = r->last_far;
+    in->offset = r->guard; /* every source but final and the composed radiance carries the band */
     in->grid_k = t->grid.k;
     switch (view) {
-    case OB_VIEW_FINAL: in->source = r->final; break;
+    case OB_VIEW_FINAL:
+        in->source = r->final;
+        in->offset = 0;
+        break;
     case OB_VIEW_AO: in->source = r->last_rgb ? r->ao_rgb : r->ao; break;
     case OB_VIEW_NORMALS: in->source = r->gbuffer.normal; break;
     case OB_VIEW_DEPTH: in->source = r->gbuffer.linear_depth; break;
@@ -41,9 +45,13 @@ static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_vi
         in->source = r->last_bent ? r->bent : r->gbuffer.linear_depth;
         in->directional = r->last_bent;
         break;
-    case OB_VIEW_LUMINANCE: in->source = r->radiance; break;
+    case OB_VIEW_LUMINANCE:
+        in->source = r->radiance;
+        in->offset = 0;
+        break;
     case OB_VIEW_SECOND_DEPTH: {
-        bool has = r->last_second_layer && r->peel.width == r->width && r->peel.height == r->height;
+        /* The layer follows the G-buffer's (enlarged) size, so it carries the band too. */
+        bool has = r->last_second_layer && r->peel.width == r->gbuffer.width && r->peel.height == r->gbuffer.height;
         in->source = has ? r->peel.linear_depth : r->gbuffer.linear_depth;
         in->directional = has;
         break;

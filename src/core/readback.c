@@ -7,6 +7,13 @@
 #include "core/error.h"
 #include "core/renderer.h"
 
+/* The visible frame of a target with the guard band (renderer.h): its rows from (guard, guard), the
+ * visible size. Every read-back goes through here, so no caller ever sees the band. */
+static void read_visible(const ob_renderer *r, GLuint tex, GLenum format, GLenum type, size_t bytes, void *dst)
+{
+    glGetTextureSubImage(tex, 0, r->guard, r->guard, 0, r->width, r->height, 1, format, type, (GLsizei)bytes, dst);
+}
+
 /* Per-pixel sample counts of the last frame at full resolution: the method's count, or under
  * adaptive sampling its base x the edge pass's multiplier. */
 static ob_error read_sample_counts(ob_renderer *r, float *dst)
@@ -19,8 +26,8 @@ static ob_error read_sample_counts(ob_renderer *r, float *dst)
     float *mult = NULL;
     float *depth = malloc((size_t)r->width * (size_t)r->height * sizeof(float));
     if (!depth) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading sample counts");
-    glGetTextureImage(r->gbuffer.linear_depth, 0, GL_RED, GL_FLOAT,
-                      (GLsizei)((size_t)r->width * (size_t)r->height * sizeof(float)), depth);
+    read_visible(r, r->gbuffer.linear_depth, GL_RED, GL_FLOAT, (size_t)r->width * (size_t)r->height * sizeof(float),
+                 depth);
     if (r->last_adaptive && m->adapts) {
         mult = malloc((size_t)bw * (size_t)bh * sizeof(float));
         if (!mult) {
@@ -31,7 +38,8 @@ static ob_error read_sample_counts(ob_renderer *r, float *dst)
     }
     for (int y = 0; y < r->height; ++y)
         for (int x = 0; x < r->width; ++x) {
-            int bx = (x / t->grid.k) / OB_EDGE_BLOCK, by = (y / t->grid.k) / OB_EDGE_BLOCK;
+            /* The multiplier's blocks cover the AO grid with the guard band. */
+            int bx = ((x + r->guard) / t->grid.k) / OB_EDGE_BLOCK, by = ((y + r->guard) / t->grid.k) / OB_EDGE_BLOCK;
             size_t i = (size_t)y * (size_t)r->width + (size_t)x;
             float count = (float)samples;
             if (mult) count = (float)ob_adaptive_base(samples) * mult[(size_t)by * (size_t)bw + (size_t)bx];
@@ -42,14 +50,14 @@ static ob_error read_sample_counts(ob_renderer *r, float *dst)
     return OB_OK;
 }
 
-/* An RGBA16F target as 3 floats per pixel, or (channels 1) the average of its three channels:
- * the AO views of a directional method show M's mean. */
-static ob_error read_rgb(GLuint tex, int w, int h, float *dst, int channels)
+/* The w x h pixels from (x0, y0) of an RGBA16F target as 3 floats per pixel, or (channels 1) the
+ * average of its three channels: the AO views of a directional method show M's mean. */
+static ob_error read_rgb(GLuint tex, int x0, int y0, int w, int h, float *dst, int channels)
 {
     size_t n = (size_t)w * (size_t)h;
     float *rgba = malloc(n * 4 * sizeof(float));
     if (!rgba) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading an image");
-    glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
+    glGetTextureSubImage(tex, 0, x0, y0, 0, w, h, 1, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
     for (size_t i = 0; i < n; ++i) {
         if (channels == 1) {
             dst[i] = (rgba[4 * i] + rgba[4 * i + 1] + rgba[4 * i + 2]) / 3.0f;
@@ -70,9 +78,10 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
     switch (kind) {
     case OB_IMAGE_FINAL_RGBA8: return px * 4;
     case OB_IMAGE_AO_RAW_F32: {
+        /* The AO grid of the visible frame: the guard band is a multiple of k (ob_guard_pixels). */
         const ob_ao_grid *g = &r->scales[r->last_scale].grid;
-        return (size_t)(g->width > 0 ? g->width : r->width) * (size_t)(g->height > 0 ? g->height : r->height) *
-               sizeof(float);
+        const ob_ao_grid v = ob_ao_grid_make(r->width, r->height, g->k > 0 ? g->k : 1);
+        return (size_t)v.width * (size_t)v.height * sizeof(float);
     }
     case OB_IMAGE_SAMPLES_F32:
     case OB_IMAGE_AO_F32:
@@ -98,6 +107,7 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     switch (kind) {
     case OB_IMAGE_FINAL_RGBA8: {
+        /* final and radiance are the visible frame already (compose crops). */
         glGetTextureImage(r->final, 0, GL_RGBA, GL_UNSIGNED_BYTE, (GLsizei)need, dst);
         /* GL's rows run bottom to top; image files want top first. */
         size_t row = (size_t)r->width * 4;
@@ -114,32 +124,34 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
         break;
     }
     case OB_IMAGE_AO_F32:
-        if (r->last_rgb) return read_rgb(r->ao_rgb, r->width, r->height, dst, 1);
-        glGetTextureImage(r->ao, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst);
+        if (r->last_rgb) return read_rgb(r->ao_rgb, r->guard, r->guard, r->width, r->height, dst, 1);
+        read_visible(r, r->ao, GL_RED, GL_FLOAT, need, dst);
         break;
-    case OB_IMAGE_AO_RAW_F32:
-        if (!r->scales[r->last_scale].ready) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "no frame rendered yet");
-        if (r->last_rgb) {
-            const ao_targets *t = &r->scales[r->last_scale];
-            return read_rgb(t->raw_rgb, t->grid.width, t->grid.height, dst, 1);
-        }
-        glGetTextureImage(r->scales[r->last_scale].raw, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst);
+    case OB_IMAGE_AO_RAW_F32: {
+        const ao_targets *t = &r->scales[r->last_scale];
+        if (!t->ready) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "no frame rendered yet");
+        /* AO pixel i of the visible grid is pixel i + guard / k of the enlarged one. */
+        const ob_ao_grid v = ob_ao_grid_make(r->width, r->height, t->grid.k);
+        const int o = r->guard / t->grid.k;
+        if (r->last_rgb) return read_rgb(t->raw_rgb, o, o, v.width, v.height, dst, 1);
+        glGetTextureSubImage(t->raw, 0, o, o, 0, v.width, v.height, 1, GL_RED, GL_FLOAT, (GLsizei)need, dst);
         break;
+    }
     case OB_IMAGE_AO_RGB_F32:
-        if (r->last_rgb) return read_rgb(r->ao_rgb, r->width, r->height, dst, 3);
+        if (r->last_rgb) return read_rgb(r->ao_rgb, r->guard, r->guard, r->width, r->height, dst, 3);
         /* An AO method: its visibility in all three channels. */
-        glGetTextureImage(r->ao, 0, GL_RED, GL_FLOAT, (GLsizei)(need / 3), dst);
+        read_visible(r, r->ao, GL_RED, GL_FLOAT, need / 3, dst);
         for (size_t i = need / sizeof(float) / 3; i-- > 0;) {
             float v = ((float *)dst)[i];
             for (int c = 0; c < 3; ++c) ((float *)dst)[3 * i + (size_t)c] = v;
         }
         break;
     case OB_IMAGE_BOUNCE_F32:
-        if (r->last_bounce) return read_rgb(r->bounce, r->width, r->height, dst, 3);
+        if (r->last_bounce) return read_rgb(r->bounce, r->guard, r->guard, r->width, r->height, dst, 3);
         memset(dst, 0, need);
         break;
     case OB_IMAGE_BENT_NORMAL_F32:
-        if (r->last_bent) return read_rgb(r->bent, r->width, r->height, dst, 3);
+        if (r->last_bent) return read_rgb(r->bent, r->guard, r->guard, r->width, r->height, dst, 3);
         memset(dst, 0, need);
         break;
     case OB_IMAGE_SAMPLES_F32: {
@@ -147,14 +159,14 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
         if (e != OB_OK) return e;
         break;
     }
-    case OB_IMAGE_DEPTH_F32: glGetTextureImage(r->gbuffer.linear_depth, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst); break;
-    case OB_IMAGE_NORMAL_F32: glGetTextureImage(r->gbuffer.normal, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
-    case OB_IMAGE_RADIANCE_F32: glGetTextureImage(r->direct, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_DEPTH_F32: read_visible(r, r->gbuffer.linear_depth, GL_RED, GL_FLOAT, need, dst); break;
+    case OB_IMAGE_NORMAL_F32: read_visible(r, r->gbuffer.normal, GL_RGB, GL_FLOAT, need, dst); break;
+    case OB_IMAGE_RADIANCE_F32: read_visible(r, r->direct, GL_RGB, GL_FLOAT, need, dst); break;
     case OB_IMAGE_HDR_F32: glGetTextureImage(r->radiance, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
-    case OB_IMAGE_ALBEDO_F32: glGetTextureImage(r->gbuffer.albedo, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
+    case OB_IMAGE_ALBEDO_F32: read_visible(r, r->gbuffer.albedo, GL_RGB, GL_FLOAT, need, dst); break;
     case OB_IMAGE_SECOND_DEPTH_F32:
-        if (r->last_second_layer && r->peel.width == r->width && r->peel.height == r->height)
-            glGetTextureImage(r->peel.linear_depth, 0, GL_RED, GL_FLOAT, (GLsizei)need, dst);
+        if (r->last_second_layer && r->peel.width == r->gbuffer.width && r->peel.height == r->gbuffer.height)
+            read_visible(r, r->peel.linear_depth, GL_RED, GL_FLOAT, need, dst);
         else
             memset(dst, 0, need);
         break;
@@ -163,7 +175,7 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
         size_t n = (size_t)r->width * (size_t)r->height;
         float *rgba = malloc(n * 4 * sizeof(float));
         if (!rgba) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading the shadow view");
-        glGetTextureImage(r->direct, 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
+        read_visible(r, r->direct, GL_RGBA, GL_FLOAT, n * 4 * sizeof(float), rgba);
         for (size_t i = 0; i < n; ++i) ((float *)dst)[i] = rgba[4 * i + 3];
         free(rgba);
         break;

@@ -26,12 +26,14 @@ static void release_scales(ob_renderer *r)
     }
 }
 
-/* The renderer's own full-resolution targets, in the order ao, final, direct, radiance. */
-static void make_full_targets(GLuint tex[4], int width, int height)
+/* The renderer's own full-resolution targets, in the order ao, final, direct, radiance: ao and
+ * direct at the size with the guard band (the AO chain and SSDO's radiance look into it), final and
+ * radiance at the visible size (compose crops; the HDR passes see only the visible frame). */
+static void make_full_targets(GLuint tex[4], int width, int height, int guard)
 {
-    tex[0] = ob_make_texture_2d(GL_R32F, width, height);
+    tex[0] = ob_make_texture_2d(GL_R32F, width + 2 * guard, height + 2 * guard);
     tex[1] = ob_make_texture_2d(GL_RGBA8, width, height);
-    tex[2] = ob_make_texture_2d(GL_RGBA16F, width, height);
+    tex[2] = ob_make_texture_2d(GL_RGBA16F, width + 2 * guard, height + 2 * guard);
     tex[3] = ob_make_texture_2d(GL_RGBA16F, width, height);
 }
 
@@ -41,6 +43,28 @@ static ob_error check_size(const ob_context *ctx, int width, int height)
         return ob_set_error(OB_ERR_BAD_SIZE, "size %dx%d is outside 1..%d (GL_MAX_TEXTURE_SIZE of %s)", width, height,
                             ctx->max_texture_size, ctx->renderer);
     return OB_OK;
+}
+
+/* A visible size and a guard band whose enlarged size the GL can hold. */
+static ob_error check_guard(const ob_context *ctx, int width, int height, int guard)
+{
+    if (guard < 0 || guard > OB_GUARD_MAX)
+        return ob_set_error(OB_ERR_BAD_SIZE, "guard band %d px is outside 0..%d", guard, OB_GUARD_MAX);
+    int max = ctx->max_texture_size;
+    if (width + 2 * guard > max || height + 2 * guard > max)
+        return ob_set_error(OB_ERR_BAD_SIZE, "guard band %d px makes %dx%d into %dx%d, above GL_MAX_TEXTURE_SIZE %d of %s",
+                            guard, width, height, width + 2 * guard, height + 2 * guard, max, ctx->renderer);
+    return OB_OK;
+}
+
+/* A multiple of 4 k: the AO grid of divisor k then starts on a visible pixel's grid cell (AO pixel i
+ * of the visible frame is i + guard / k of the enlarged one) and the 4x4 rotation tile, indexed by
+ * AO pixel, falls on the same visible pixels as without the band, so away from the border nothing
+ * changes by a single bit. */
+int ob_guard_pixels(int guard, int k)
+{
+    int step = 4 * (k > 1 ? k : 1);
+    return guard > 0 ? (guard + step - 1) / step * step : 0;
 }
 
 void ob_destroy_renderer(ob_renderer *r)
@@ -99,6 +123,8 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
     r->ctx = ctx;
     r->width = d.width;
     r->height = d.height;
+    r->inner_width = d.width;
+    r->inner_height = d.height;
     r->method_states = calloc((size_t)ob_method_count(), sizeof *r->method_states);
     r->filter_states = calloc((size_t)ob_filter_count(), sizeof *r->filter_states);
     r->filter_ready = calloc((size_t)ob_filter_count(), sizeof *r->filter_ready);
@@ -121,7 +147,7 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
     glCreateBuffers(1, &r->frame_ubo);
     glNamedBufferStorage(r->frame_ubo, sizeof(ob_frame_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
     GLuint full[4] = {0, 0, 0, 0};
-    make_full_targets(full, d.width, d.height);
+    make_full_targets(full, d.width, d.height, 0);
     r->ao = full[0];
     r->final = full[1];
     r->direct = full[2];
@@ -135,33 +161,36 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
     return r;
 }
 
-ob_error ob_renderer_resize(ob_renderer *r, int width, int height)
+ob_error ob_renderer_reshape(ob_renderer *r, int width, int height, int guard)
 {
-    if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_renderer_resize: NULL renderer");
     if (check_size(r->ctx, width, height) != OB_OK) return OB_ERR_BAD_SIZE;
-    if (width == r->width && height == r->height) return OB_OK;
+    if (check_guard(r->ctx, width, height, guard) != OB_OK) return OB_ERR_BAD_SIZE;
+    if (width == r->width && height == r->height && guard == r->guard) return OB_OK;
     /* Errors raised before this call are not ours to report. */
     int drained = 0;
     while (drained++ < 64 && glGetError() != GL_NO_ERROR) continue; /* bounded: a lost context repeats */
     /* Everything new is made before anything old is given up, so a failure leaves the renderer
-     * whole at its old size. */
+     * whole at its old size and guard band. */
+    const int inner_w = width + 2 * guard, inner_h = height + 2 * guard;
     GLuint full[4] = {0, 0, 0, 0};
-    make_full_targets(full, width, height);
+    make_full_targets(full, width, height, guard);
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) {
         glDeleteTextures(4, full);
-        return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making %dx%d targets", e, width, height);
+        return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making %dx%d targets (guard band %d px)", e, width, height,
+                            guard);
     }
-    int old_width = r->width, old_height = r->height;
-    ob_error err = ob_gbuffer_resize(&r->gbuffer, width, height);
-    if (err == OB_OK) {
+    const bool inner_changed = inner_w != r->inner_width || inner_h != r->inner_height;
+    const bool visible_changed = width != r->width || height != r->height;
+    ob_error err = inner_changed ? ob_gbuffer_resize(&r->gbuffer, inner_w, inner_h) : OB_OK;
+    if (err == OB_OK && visible_changed) {
         err = ob_hdr_resize(&r->hdr, width, height);
-        if (err != OB_OK) {
+        if (err != OB_OK && inner_changed) {
             const char *msg = NULL;
             ob_peek_error(&msg);
             char keep[1024] = "";
             snprintf(keep, sizeof keep, "%s", msg);
-            ob_gbuffer_resize(&r->gbuffer, old_width, old_height);
+            ob_gbuffer_resize(&r->gbuffer, r->inner_width, r->inner_height);
             ob_set_error(err, "%s", keep);
         }
     }
@@ -184,8 +213,17 @@ ob_error ob_renderer_resize(ob_renderer *r, int width, int height)
     r->last_scale = 0;
     r->width = width;
     r->height = height;
+    r->guard = guard;
+    r->inner_width = inner_w;
+    r->inner_height = inner_h;
     r->has_frame = false;
     return OB_OK;
+}
+
+ob_error ob_renderer_resize(ob_renderer *r, int width, int height)
+{
+    if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_renderer_resize: NULL renderer");
+    return ob_renderer_reshape(r, width, height, r->guard);
 }
 
 void ob_query_renderer_size(const ob_renderer *r, int *width, int *height)
@@ -260,13 +298,13 @@ ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t, bool directional
         need(&t->filtered_rgb, w, h);
         need(&t->bounce_raw, w, h);
         need(&t->bounce_filtered, w, h);
-        need(&r->ao_rgb, r->width, r->height);
-        need(&r->bounce, r->width, r->height);
+        need(&r->ao_rgb, r->inner_width, r->inner_height);
+        need(&r->bounce, r->inner_width, r->inner_height);
     }
     if (bent) {
         need(&t->bent_raw, w, h);
         need(&t->bent_filtered, w, h);
-        need(&r->bent, r->width, r->height);
+        need(&r->bent, r->inner_width, r->inner_height);
     }
     if (!r->upsample_rgb_ready) {
         if (ob_upsample_init_rgb(&r->upsample_rgb) != OB_OK) return ob_peek_error(NULL);
@@ -281,7 +319,7 @@ ao_targets *ob_renderer_targets(ob_renderer *r, int index)
 {
     ao_targets *t = &r->scales[index];
     if (t->ready) return t;
-    t->grid = ob_ao_grid_make(r->width, r->height, 1 << index);
+    t->grid = ob_ao_grid_make(r->inner_width, r->inner_height, 1 << index);
     int w = t->grid.width, h = t->grid.height;
     if (index == 0) {
         t->depth = r->gbuffer.linear_depth;

@@ -30,7 +30,12 @@ enum { OB_AO_SCALES = 3 }; /* k = 1, 2, 4 */
 
 struct ob_renderer {
     ob_context *ctx;
-    int width, height;
+    int width, height;         /* the visible frame: radiance, final, the HDR passes, every read-back */
+    /* The guard band (seed 000 §3.2.2), px per side, and the size every pass before compose works
+     * on, width + 2 guard by height + 2 guard: the G-buffer, ao, direct, the AO chains and their
+     * scales. Visible pixel (x, y) is internal pixel (x + guard, y + guard); compose crops. */
+    int guard;
+    int inner_width, inner_height;
     ob_gbuffer gbuffer;
     ob_compute_pass downsample, upsample, edges;
     ob_compute_pass upsample_rgb;  /* made with the first directional frame */
@@ -77,6 +82,13 @@ struct ob_renderer {
     bool last_second_layer;    /* the last frame peeled a second layer */
 };
 
+/* renderer.c: the targets for a visible size and a guard band (px per side, a multiple of 4), made
+ * anew when either changed; on an error the renderer keeps its old targets and still works. guard
+ * must be a multiple of every AO divisor in use (ob_guard_pixels). */
+ob_error ob_renderer_reshape(ob_renderer *r, int width, int height, int guard);
+/* ob_settings.guard as the renderer uses it for AO divisor k: rounded up to a multiple of 4 k. */
+int ob_guard_pixels(int guard, int k);
+
 /* renderer.c: the lazily made states and targets. NULL / an error when making them failed. */
 void *ob_renderer_method_state(ob_renderer *r, int index, ob_error *err);
 void *ob_renderer_filter_state(ob_renderer *r, int index, bool rgb, ob_error *err);
@@ -98,6 +110,10 @@ typedef struct ob_frame_desc {
     const float (*sh)[3];        /* 9 environment SH coefficients; NULL = zeros */
 } ob_frame_desc;
 void ob_frame_constants_fill(ob_frame_constants *f, const ob_frame_desc *d);
+/* The projection of a guard band: P00 and P20 scaled by width / (width + 2 guard), P11 and P21 by
+ * height / (height + 2 guard), so that ndc scales about the centre and the enlarged image's pixel
+ * (x + guard, y + guard) has the ray of the visible image's (x, y). In place, column-major. */
+void ob_guard_projection(float *proj, int width, int height, int guard);
 /* 1/P00, 1/P11, P20, P21 of a column-major projection. */
 void ob_proj_info(const float *proj, float out[4]);
 

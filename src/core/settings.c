@@ -125,6 +125,21 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "expected METHOD.PARAM=VALUE, got '%s'", assignment);
     const char *key = assignment;
     size_t key_len = (size_t)(eq - assignment);
+    if (key_len == strlen("guard") && !strncmp(key, "guard", key_len)) {
+        /* The frame's, not a method's: no prefix. Whole pixels per side. */
+        const char *v = eq + 1;
+        while (isspace((unsigned char)*v)) ++v;
+        char *end = NULL;
+        errno = 0;
+        long px = strtol(v, &end, 10);
+        if (end == v || *end != '\0' || errno == ERANGE)
+            return ob_set_error(OB_ERR_INVALID_ARGUMENT, "guard expects whole pixels per side, got '%s'", eq + 1);
+        if (px < 0 || px > OB_GUARD_MAX)
+            return ob_set_error(OB_ERR_OUT_OF_RANGE, "guard = %s is out of range [0, %d] (px per side)", eq + 1,
+                                OB_GUARD_MAX);
+        s->guard = (int)px;
+        return OB_OK;
+    }
     const char *dot = memchr(key, '.', key_len);
     if (dot) {
         size_t mlen = (size_t)(dot - key);
@@ -185,6 +200,7 @@ float ob_settings_get(const ob_settings *s, const char *param)
     const ob_method_info *m = s ? ob_method_at(s->method) : NULL;
     if (!m || !param) return NAN;
     if (!strcmp(param, "radius_scale")) return s->radius_scale > 0.0f ? s->radius_scale : 1.0f;
+    if (!strcmp(param, "guard")) return (float)s->guard;
     int pi = find_param(m, param, strlen(param));
     return pi < 0 ? NAN : s->params[pi];
 }

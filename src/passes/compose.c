@@ -20,6 +20,7 @@ void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_
     k.add_bounce = in->bounce ? 1 : 0;
     k.multibounce = in->multibounce ? 1 : 0;
     k.bent_normal = in->bent_normal ? 1 : 0;
+    k.guard = in->guard;
     ob_compute_pass_use(&c->pass, &k, sizeof k);
     glBindTextureUnit(0, in->linear_depth);
     glBindTextureUnit(1, in->normal);

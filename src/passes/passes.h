@@ -162,7 +162,9 @@ typedef struct ob_compose_inputs {
      * radiance off a white receiver) is added times the albedo. */
     bool directional;
     GLuint bounce;        /* 0 = none */
-    int width, height;
+    int width, height;      /* the visible frame: hdr_out's size */
+    int guard;              /* the guard band: the inputs are (width + 2 guard) x (height + 2 guard) and
+                               visible pixel (x, y) reads their (x + guard, y + guard) */
     bool ao_all_light;      /* AO multiplies the direct light too */
     bool multibounce;       /* the visibility goes through the multi-bounce fit (compose.glsl) */
     GLuint bent_normal;     /* RGBA16F view-space bent normal for the ambient lookup; 0 = the normal */
@@ -302,7 +304,9 @@ typedef struct ob_view_inputs {
     GLuint source;        /* the view's texture (see shaders/view.glsl); final for OB_VIEW_FINAL */
     GLuint multiplier;    /* samples under adaptive sampling: the edge pass's per-block multiplier */
     bool directional;     /* the last frame's method wrote RGB M and a bounce */
-    int width, height;    /* of source */
+    int width, height;    /* of the display: the visible frame */
+    int offset;           /* source pixel of display pixel (0, 0), on both axes: the guard band for
+                             sources that carry it, 0 for final and the composed radiance */
     float far_z;          /* depth: the last frame's far plane */
     int samples;          /* samples: the method's count, or the adaptive base with multiplier */
     int grid_k;           /* samples: full pixels per AO pixel */

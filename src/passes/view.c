@@ -87,6 +87,7 @@ static ob_error run_view(ob_view_pass *v, const ob_view_inputs *in)
     k.ao_k = in->grid_k > 0 ? in->grid_k : 1;
     k.far_z = in->far_z > 0.0f ? in->far_z : 1.0f;
     k.inv_max_samples = in->max_samples > 0 ? 1.0f / (float)in->max_samples : 0.0f;
+    k.offset = in->offset;
     k.size[0] = in->width;
     k.size[1] = in->height;
 

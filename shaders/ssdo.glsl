@@ -37,6 +37,9 @@ layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vector
 layout(binding = 3) uniform sampler2D direct_map;   /* full resolution RGBA16F direct radiance */
 layout(binding = 5) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
 layout(binding = 6) uniform sampler2D second_layer; /* full resolution R32F second depth layer (ssdo.layers) */
+layout(binding = 7) uniform sampler2D extra_depth;  /* the extra view (ssdo.extra_view): R32F linear depth, */
+layout(binding = 8) uniform sampler2D extra_normal; /*   RGBA16F normals in its own view space, */
+layout(binding = 9) uniform sampler2D extra_direct; /*   RGBA16F direct radiance */
 layout(binding = 0, rgba16f) uniform writeonly image2D m_out;
 layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
 
@@ -71,6 +74,35 @@ vec3 incoming(vec3 w, vec3 up, mat3 to_world)
     else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) l_in = max(ob_sh_irradiance(frame.sh, to_world * w), vec3(0.0));
     for (int i = 0; i < frame.light_count; ++i) l_in += light_e[i] * pow(max(dot(w, light_dir[i]), 0.0), ssdo.lobe);
     return l_in;
+}
+
+/* Seed 000 §4.4's extra view, for a sample s that this view says is occluded (behind its depth
+ * buffer): the extra camera, turned 90 degrees around the target, sees it too. In front of the
+ * extra view's surface at its pixel (or over its sky), s lies on a ray that camera sees through,
+ * in free space: no occluder. Behind that surface too, it stays occluded, and the sender of its
+ * bounce is whichever view's surface point lies nearer s; the extra view's is the one this view
+ * sees at a grazing angle or not at all. Outside the extra image nothing changes. */
+void extra_test(vec3 s, float bias, inout vec3 scene_p, inout float occ, inout vec3 send_n, inout vec3 send_l)
+{
+    vec4 se = ssdo.extra_from_view * vec4(s, 1.0);
+    vec4 ce = ssdo.extra_proj * se;
+    if (ce.w <= 0.0) return;
+    vec2 uv = ce.xy / ce.w * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return;
+    ivec2 size = textureSize(extra_depth, 0);
+    ivec2 qe = ivec2(uv * vec2(size));
+    float de = texelFetch(extra_depth, qe, 0).r;
+    if (de <= 0.0 || -se.z < de - bias) {
+        occ = 0.0;
+        return;
+    }
+    vec3 pe = ob_view_position(vec2(qe) + 0.5, de, 1.0 / vec2(size), ssdo.extra_proj_info);
+    vec3 pe_here = (ssdo.extra_to_view * vec4(pe, 1.0)).xyz;
+    if (distance(pe_here, s) < distance(scene_p, s)) {
+        scene_p = pe_here;
+        send_n = mat3(ssdo.extra_to_view) * texelFetch(extra_normal, qe, 0).xyz;
+        send_l = texelFetch(extra_direct, qe, 0).rgb;
+    }
 }
 
 void main()
@@ -123,6 +155,9 @@ void main()
         float occ = 0.0;
         ivec2 q = ivec2(0);
         vec3 scene_p = vec3(0.0);
+        /* The sender of a bounce: the occluding surface point, its normal and direct radiance
+         * (this view's unless the extra view's surface lies nearer the sample). */
+        vec3 send_n = vec3(0.0), send_l = vec3(0.0);
         vec3 s = p + dir * (radius * ssdo.kernel[i].w);
         vec4 clip = frame.ao_proj * vec4(s, 1.0);
         if (clip.w > 0.0) {
@@ -145,6 +180,11 @@ void main()
                         back = texelFetch(second_layer, min(q * frame.ao_k + frame.ao_o, full_size - 1), 0).r;
                     bool inside = back <= 0.0 || -s.z <= back;
                     occ = above && scene_d <= -s.z - bias && inside ? range : 0.0;
+                    if (want_bounce && occ > 0.0) {
+                        send_n = texelFetch(view_normal, q, 0).xyz;
+                        send_l = texelFetch(direct_map, min(q * frame.ao_k + frame.ao_o, full_size - 1), 0).rgb;
+                    }
+                    if (ssdo.extra_view != 0 && occ > 0.0) extra_test(s, bias, scene_p, occ, send_n, send_l);
                 }
             }
         }
@@ -159,14 +199,9 @@ void main()
             vec3 v = p - scene_p;
             float len2 = max(dot(v, v), 1e-12);
             vec3 vd = v * inversesqrt(len2);
-            vec3 ns = texelFetch(view_normal, q, 0).xyz;
-            float cos_s = dot(ns, vd);   /* the sender must face P */
-            float cos_r = dot(n, -vd);   /* and P must face the sender */
-            if (cos_s > 0.0 && cos_r > 0.0) {
-                ivec2 fq = clamp(q * frame.ao_k + frame.ao_o, ivec2(0), full_size - 1);
-                vec3 l_s = texelFetch(direct_map, fq, 0).rgb;
-                bounce += l_s * (occ * cos_s * cos_r / max(len2, min_d2));
-            }
+            float cos_s = dot(send_n, vd); /* the sender must face P */
+            float cos_r = dot(n, -vd);     /* and P must face the sender */
+            if (cos_s > 0.0 && cos_r > 0.0) bounce += send_l * (occ * cos_s * cos_r / max(len2, min_d2));
         }
     }
     vec3 m = vec3(1.0);

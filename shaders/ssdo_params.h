@@ -27,9 +27,13 @@ OB_CONSTANTS_BEGIN(ob_ssdo_constants, OB_BINDING_PASS)
                                first of the kernel's 3 x adaptive_base Halton entries */
     OB_INT adaptive_base;
     OB_INT layers;          /* 1: a sample behind the second depth layer (unit 6) is free */
-    OB_INT pad1;
+    OB_INT extra_view;      /* 1: the extra view (units 7-9) tests occluders and sends bounces too */
+    OB_MAT4 extra_from_view; /* this frame's view space -> the extra camera's */
+    OB_MAT4 extra_to_view;   /* and back */
+    OB_MAT4 extra_proj;      /* the extra camera's projection */
+    OB_VEC4 extra_proj_info; /* its 1/P00, 1/P11, P20, P21 (ob_view_position) */
     OB_VEC4 kernel[OB_SSDO_MAX_SAMPLES]; /* tangent-space unit direction xyz, step length w */
 OB_CONSTANTS_END(ob_ssdo_constants, ssdo)
-OB_CONSTANTS_SIZE(ob_ssdo_constants, 3 * 16 + OB_SSDO_MAX_SAMPLES * 16);
+OB_CONSTANTS_SIZE(ob_ssdo_constants, 3 * 16 + 3 * 64 + 16 + OB_SSDO_MAX_SAMPLES * 16);
 
 #endif

@@ -36,6 +36,8 @@ void main()
     case OB_VIEW_MODE_NORMALS: c = s.rgb * 0.5 + 0.5; break;
     case OB_VIEW_MODE_DEPTH: c = vec3(s.r > 0.0 ? 1.0 - s.r / vw.far_z : 0.0); break;
     /* directional here: the frame has a second layer (else black, as the bounce without one). */
+    /* directional here: the frame has an extra view (else black). */
+    case OB_VIEW_MODE_EXTRA: c = directional ? ob_linear_to_srgb(s.rgb) : vec3(0.0); break;
     case OB_VIEW_MODE_SECOND_DEPTH: c = vec3(directional && s.r > 0.0 ? 1.0 - s.r / vw.far_z : 0.0); break;
     case OB_VIEW_MODE_SHADOW: c = vec3(s.a); break; /* the key light's visibility */
     case OB_VIEW_MODE_RADIANCE: c = ob_linear_to_srgb(s.rgb); break;

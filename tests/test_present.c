@@ -139,7 +139,8 @@ static uint8_t *expected_view(ob_renderer *r, ob_view view, float far_z, float m
         [OB_VIEW_DEPTH] = OB_IMAGE_DEPTH_F32,   [OB_VIEW_SHADOW] = OB_IMAGE_SHADOW_F32,
         [OB_VIEW_RADIANCE] = OB_IMAGE_RADIANCE_F32, [OB_VIEW_SAMPLES] = OB_IMAGE_SAMPLES_F32,
         [OB_VIEW_BOUNCE] = OB_IMAGE_BOUNCE_F32, [OB_VIEW_BENT_NORMALS] = OB_IMAGE_BENT_NORMAL_F32,
-        [OB_VIEW_LUMINANCE] = OB_IMAGE_HDR_F32, [OB_VIEW_SECOND_DEPTH] = OB_IMAGE_SECOND_DEPTH_F32};
+        [OB_VIEW_LUMINANCE] = OB_IMAGE_HDR_F32, [OB_VIEW_SECOND_DEPTH] = OB_IMAGE_SECOND_DEPTH_F32,
+        [OB_VIEW_EXTRA] = OB_IMAGE_EXTRA_RADIANCE_F32};
     ob_image_kind kind = kinds[view];
     size_t px = (size_t)W * (size_t)H;
     float *buf = malloc(ob_image_size(r, kind));
@@ -161,7 +162,7 @@ static uint8_t *expected_view(ob_renderer *r, ob_view view, float far_z, float m
             float v = buf[i * (size_t)channels + (size_t)(channels == 3 ? c : 0)];
             if (view == OB_VIEW_BENT_NORMALS) v = len > 1e-4f ? v / len * 0.5f + 0.5f : 0.0f;
             if (view == OB_VIEW_NORMALS) v = v * 0.5f + 0.5f;
-            else if (view == OB_VIEW_RADIANCE || view == OB_VIEW_BOUNCE) v = srgb(v);
+            else if (view == OB_VIEW_RADIANCE || view == OB_VIEW_BOUNCE || view == OB_VIEW_EXTRA) v = srgb(v);
             else if (view == OB_VIEW_DEPTH || view == OB_VIEW_SECOND_DEPTH) v = v > 0.0f ? 1.0f - v / far_z : 0.0f;
             else if (view == OB_VIEW_SAMPLES) v = max_samples > 0.0f ? v / max_samples : 0.0f;
             out[4 * i + (size_t)c] = to_byte(v);
@@ -187,7 +188,7 @@ static void test_view_names(void)
 {
     const char *names[OB_VIEW_COUNT] = {"final",    "ao",      "normals", "depth",        "shadow",
                                         "radiance", "samples", "bounce",  "bent_normals", "luminance",
-                                        "second_depth"};
+                                        "second_depth", "extra"};
     for (int v = 0; v < OB_VIEW_COUNT; ++v) {
         CHECK(!strcmp(ob_view_name((ob_view)v), names[v]), "view %d is '%s'", v, ob_view_name((ob_view)v));
         int back = -1;
@@ -327,6 +328,7 @@ static void test_present_views(ob_renderer *r)
     /* A directional method: AO is M's RGB, and the bounce is there. */
     ob_settings d;
     ob_settings_init(&d, "ssdo");
+    ob_settings_set(&d, "ssdo.extra_view=on"); /* and the extra view's light */
     if (frame(r, &d)) {
         int samples = (int)ob_settings_get(&d, "samples");
         check_views(r, &d, "ssdo", (float)samples);

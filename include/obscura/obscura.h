@@ -489,6 +489,8 @@ typedef enum ob_image_kind {
     OB_IMAGE_SECOND_DEPTH_F32, /* the second depth layer's linear depth (depth peeling: the nearest surface
                                  behind the first, 0 = none), when the last frame's method read it
                                  (layers = 2); zeros otherwise. 1 float per pixel, bottom row first */
+    OB_IMAGE_EXTRA_RADIANCE_F32, /* the extra view's direct light (ssdo with extra_view=on; zeros otherwise),
+                                 linear RGB, 3 floats per pixel, bottom row first */
 } ob_image_kind;
 
 /* Bytes needed for an image of the renderer's size. */
@@ -536,6 +538,9 @@ typedef enum ob_view {
     OB_VIEW_LUMINANCE,
     OB_VIEW_SECOND_DEPTH, /* the second depth layer as the depth view shows the first (black where
                              none, or when the frame's method did not read it: layers=2) */
+    OB_VIEW_EXTRA,        /* the extra view's direct light as radiance shows the main one's (ssdo with
+                             extra_view=on; black otherwise): the camera turned 90 degrees around the
+                             target (seed 000 §4.4) */
     OB_VIEW_COUNT
 } ob_view;
 
@@ -545,7 +550,7 @@ typedef enum ob_view {
 #define OB_LUMINANCE_LOG2_HI 4
 
 /* "final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce", "bent_normals",
- * "luminance", "second_depth" (the CLI's --view names); "" if out of range. */
+ * "luminance", "second_depth", "extra" (the CLI's --view names); "" if out of range. */
 const char *ob_view_name(ob_view view);
 
 /* Draw the last frame (OB_VIEW_FINAL) or one of its debug views into `framebuffer` (0 = the

@@ -121,6 +121,24 @@ void ob_frame_constants_fill(ob_frame_constants *f, const ob_frame_desc *d)
     }
 }
 
+void ob_extra_view_camera(const ob_camera *c, ob_camera *out)
+{
+    *out = *c;
+    float k[3] = {c->up[0], c->up[1], c->up[2]};
+    float len = sqrtf(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]);
+    if (len <= 0.0f) {
+        k[0] = k[2] = 0.0f;
+        k[1] = len = 1.0f;
+    }
+    for (int i = 0; i < 3; ++i) k[i] /= len;
+    /* Rodrigues at 90 degrees: v' = k x v + k (k . v), v = eye - target. */
+    float v[3] = {c->eye[0] - c->target[0], c->eye[1] - c->target[1], c->eye[2] - c->target[2]};
+    float kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    float x[3] = {k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]};
+    for (int i = 0; i < 3; ++i) out->eye[i] = c->target[i] + x[i] + k[i] * kv;
+    out->shift[0] = out->shift[1] = 0.0f;
+}
+
 static void upload_frame(ob_renderer *r)
 {
     glNamedBufferSubData(r->frame_ubo, 0, sizeof r->frame_constants, &r->frame_constants);
@@ -195,6 +213,57 @@ static ob_error run_filter(const ob_filter_impl *filter, void *fstate, const ao_
     return filter->run(fstate, &fin, s->filter_params);
 }
 
+/* The extra view's targets at the G-buffer's size, made on first use and remade with it. */
+static ob_error extra_targets(ob_renderer *r)
+{
+    int w = r->gbuffer.width, h = r->gbuffer.height;
+    if (!r->extra_ready) {
+        if (ob_gbuffer_init(&r->extra_gbuffer, w, h) != OB_OK) {
+            ob_error err = ob_peek_error(NULL);
+            ob_gbuffer_destroy(&r->extra_gbuffer);
+            return err;
+        }
+        glCreateBuffers(1, &r->extra_ubo);
+        glNamedBufferStorage(r->extra_ubo, sizeof(ob_frame_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
+        r->extra_direct = ob_make_texture_2d(GL_RGBA16F, w, h);
+        r->extra_ready = true;
+    } else if (r->extra_gbuffer.width != w || r->extra_gbuffer.height != h) {
+        ob_error err = ob_gbuffer_resize(&r->extra_gbuffer, w, h);
+        if (err != OB_OK) return err;
+        glDeleteTextures(1, &r->extra_direct);
+        r->extra_direct = ob_make_texture_2d(GL_RGBA16F, w, h);
+    }
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making the extra view's targets", e);
+    return OB_OK;
+}
+
+static ob_error run_extra_view(ob_renderer *r, const ob_settings *s, const ob_light *lights, int light_count)
+{
+    ob_error err = extra_targets(r);
+    if (err != OB_OK) return err;
+    const GLbitfield barrier = GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
+    ob_gbuffer_run_from(&r->extra_gbuffer, &r->gbuffer, r->extra_view, r->extra_proj, !s->textures_off);
+    glMemoryBarrier(barrier | GL_FRAMEBUFFER_BARRIER_BIT);
+    const ob_ao_grid grid = ob_ao_grid_make(r->gbuffer.width, r->gbuffer.height, 1);
+    ob_frame_constants_fill(&r->extra_constants,
+                            &(ob_frame_desc){.view = r->extra_view, .proj = r->extra_proj, .grid = &grid,
+                                             .near_z = r->frame_constants.near_z, .far_z = r->frame_constants.far_z,
+                                             .frame_index = r->frame_constants.frame_index, .lights = lights,
+                                             .light_count = light_count, .settings = s,
+                                             .sh = (const float(*)[3])r->environment.sh});
+    ob_lighting_constants keep = r->lighting.constants;
+    ob_shadows_fill(&r->shadows, &r->lighting.constants, &r->extra_constants);
+    glNamedBufferSubData(r->extra_ubo, 0, sizeof r->extra_constants, &r->extra_constants);
+    glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_FRAME, r->extra_ubo);
+    ob_lighting_run(&r->lighting, r->gbuffer.width, r->gbuffer.height, r->extra_gbuffer.linear_depth,
+                    r->extra_gbuffer.normal, r->extra_gbuffer.albedo, r->extra_direct);
+    glMemoryBarrier(barrier);
+    r->lighting.constants = keep;
+    glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_FRAME, r->frame_ubo);
+    return OB_OK;
+}
+
 /* Every pass of the frame, stopping at the first failure; the caller closes the timers. */
 static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_plan *plan, ao_targets *t,
                            const ob_light *lights, int light_count)
@@ -228,6 +297,13 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         ob_timer_begin(&r->timers, "edges");
         ob_edges_run(&r->edges, g, t->depth, t->normal, t->multiplier);
         glMemoryBarrier(barrier);
+    }
+    if (plan->reads & OB_READS_EXTRA_VIEW) {
+        /* Seed 000 §4.4: the extra camera's G-buffer and direct light, with its own per-frame
+         * block (the same lights and shadow maps), then the main block bound again. */
+        ob_timer_begin(&r->timers, "extra_view");
+        err = run_extra_view(r, s, lights, light_count);
+        if (err != OB_OK) return err;
     }
     if (plan->reads & OB_READS_SECOND_LAYER) {
         /* Depth peeling after the G-buffer, whose linear depth it peels behind. */
@@ -269,7 +345,13 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
                              .albedo = reads & OB_READS_ALBEDO ? r->gbuffer.albedo : 0,
                              .depth_mips = mips,
                              .depth_mip_levels = mip_levels,
-                             .second_depth = reads & OB_READS_SECOND_LAYER ? r->peel.linear_depth : 0};
+                             .second_depth = reads & OB_READS_SECOND_LAYER ? r->peel.linear_depth : 0,
+                             .extra_depth = reads & OB_READS_EXTRA_VIEW ? r->extra_gbuffer.linear_depth : 0,
+                             .extra_normal = reads & OB_READS_EXTRA_VIEW ? r->extra_gbuffer.normal : 0,
+                             .extra_radiance = reads & OB_READS_EXTRA_VIEW ? r->extra_direct : 0,
+                             .extra_from_view = r->extra_from_view,
+                             .extra_to_view = r->extra_to_view,
+                             .extra_proj = r->extra_proj};
     /* Every declared output gets a target, also one that these params leave unwritten. */
     const ob_ao_outputs out = {.visibility = plan->rgb ? t->raw_rgb : t->raw,
                                .bounce = plan->impl->writes & OB_WRITES_BOUNCE ? t->bounce_raw : 0,
@@ -278,6 +360,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     r->last_bounce = plan->bounce;
     r->last_bent = plan->bent;
     r->last_second_layer = (reads & OB_READS_SECOND_LAYER) != 0;
+    r->last_extra_view = (reads & OB_READS_EXTRA_VIEW) != 0;
     ob_timer_begin(&r->timers, "ao");
     err = run_method(r, plan, &in, &out);
     if (err != OB_OK) return err;
@@ -389,6 +472,22 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     proj[2][0] = cam.shift[0]; /* off-axis frustum (ob_camera.shift): P20, P21 */
     proj[2][1] = cam.shift[1];
     ob_guard_projection((float *)proj, r->width, r->height, r->guard);
+    if (plan.reads & OB_READS_EXTRA_VIEW) {
+        /* The extra camera: an unshifted frustum of the same fov over the same (enlarged) buffer. */
+        ob_camera extra;
+        ob_extra_view_camera(&cam, &extra);
+        mat4 ev, ep, inv_view, from, to;
+        glm_lookat(extra.eye, extra.target, extra.up, ev);
+        glm_perspective(glm_rad(cam.fov_y_deg), (float)r->gbuffer.width / (float)r->gbuffer.height, cam.near_z,
+                        cam.far_z, ep);
+        glm_mat4_inv(view, inv_view);
+        glm_mat4_mul(ev, inv_view, from);
+        glm_mat4_inv(from, to);
+        memcpy(r->extra_view, ev, sizeof r->extra_view);
+        memcpy(r->extra_proj, ep, sizeof r->extra_proj);
+        memcpy(r->extra_from_view, from, sizeof r->extra_from_view);
+        memcpy(r->extra_to_view, to, sizeof r->extra_to_view);
+    }
     int si = scale_index(s->ao_divisor);
     ao_targets *t = ob_renderer_targets(r, si);
     r->last_scale = si;

@@ -86,6 +86,11 @@ void ob_destroy_renderer(ob_renderer *r)
     ob_view_destroy(&r->view);
     if (r->depth_mips_ready) ob_depth_mips_destroy(&r->depth_mips);
     if (r->peel_ready) ob_peel_destroy(&r->peel);
+    if (r->extra_ready) {
+        ob_gbuffer_destroy(&r->extra_gbuffer);
+        glDeleteTextures(1, &r->extra_direct);
+        glDeleteBuffers(1, &r->extra_ubo);
+    }
     ob_gbuffer_destroy(&r->gbuffer);
     ob_compute_pass_destroy(&r->downsample);
     ob_compute_pass_destroy(&r->upsample);

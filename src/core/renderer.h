@@ -80,6 +80,15 @@ struct ob_renderer {
     ob_peel peel;              /* the second depth layer, for methods that read OB_READS_SECOND_LAYER */
     bool peel_ready;
     bool last_second_layer;    /* the last frame peeled a second layer */
+    /* The extra view (seed 000 §4.4), for methods that read OB_READS_EXTRA_VIEW, made on first use
+     * at the G-buffer's size: its own G-buffer (drawing the main one's meshes), direct light and
+     * per-frame block; the matrices between the two views of the current frame. */
+    ob_gbuffer extra_gbuffer;
+    GLuint extra_direct, extra_ubo;
+    bool extra_ready;
+    bool last_extra_view;      /* the last frame rendered the extra view */
+    ob_frame_constants extra_constants;
+    float extra_view[16], extra_proj[16], extra_from_view[16], extra_to_view[16];
 };
 
 /* renderer.c: the targets for a visible size and a guard band (px per side, a multiple of 4), made
@@ -114,6 +123,9 @@ void ob_frame_constants_fill(ob_frame_constants *f, const ob_frame_desc *d);
  * height / (height + 2 guard), so that ndc scales about the centre and the enlarged image's pixel
  * (x + guard, y + guard) has the ray of the visible image's (x, y). In place, column-major. */
 void ob_guard_projection(float *proj, int width, int height, int guard);
+/* The extra view's camera (seed 000 §4.4): c's eye turned 90 degrees about its up axis (world +Y
+ * when zero) around its target, the same target, up, fov and planes. */
+void ob_extra_view_camera(const ob_camera *c, ob_camera *out);
 /* 1/P00, 1/P11, P20, P21 of a column-major projection. */
 void ob_proj_info(const float *proj, float out[4]);
 

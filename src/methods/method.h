@@ -20,6 +20,7 @@ enum {
     OB_READS_DEPTH_MIPS = 1u << 4,   /* reserved: a prefiltered depth MIP chain */
     OB_READS_SECOND_LAYER = 1u << 5, /* a second depth layer (depth peeling, passes/peel.c) */
     OB_READS_HISTORY = 1u << 6,      /* reserved: the previous frame's output, reprojected */
+    OB_READS_EXTRA_VIEW = 1u << 7,   /* an extra view's G-buffer and direct light (seed 000 §4.4) */
 };
 
 /* What a method writes (ob_method_impl.writes); the renderer makes, filters and upsamples each. */
@@ -54,6 +55,13 @@ typedef struct ob_ao_inputs {
      * then falls back to its single-layer assumption. AO pixel i reads full pixel k i + o, the
      * pixel the AO grid's depth came from. */
     GLuint second_depth;
+    /* OB_READS_EXTRA_VIEW: a second camera's G-buffer, turned 90 degrees about the up axis around
+     * the main camera's target (seed 000 §4.4), at the G-buffer's size: its linear depth, view
+     * normal (in ITS view space) and direct radiance; 0 where the frame has none (ob_compute_ao).
+     * extra_from_view takes this frame's view space to the extra camera's, extra_to_view back,
+     * extra_proj is its projection (column-major 4x4 each). */
+    GLuint extra_depth, extra_normal, extra_radiance;
+    const float *extra_from_view, *extra_to_view, *extra_proj;
 } ob_ao_inputs;
 
 /* Where a method writes: textures of the inputs' size. */

@@ -18,7 +18,7 @@
 #include "sampling/sampling.h"
 #include "ssdo_params.h"
 
-enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_COUNT };
+enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_EXTRA_VIEW, P_COUNT };
 
 static const ob_param_info ssdo_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -43,6 +43,12 @@ static const ob_param_info ssdo_params[P_COUNT] = {
      * is in front of the second (inside the object); behind it the sample is free. */
     [P_LAYERS] = {"layers", OB_PARAM_INT, 1.0f, 2.0f, 1.0f, "count",
                   "depth layers: 1 = the depth buffer alone (every occluder as the method assumes), 2 = also the second layer (depth peeling) behind it", false},
+    /* Seed 000 §4.4: a sample hidden in this view but seen in front of the extra view's surface
+     * is free, and a bounce comes from whichever view's surface lies nearer the sample. */
+    [P_EXTRA_VIEW] = {"extra_view", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
+                      "also a camera turned 90 degrees around the target: its G-buffer frees samples it sees and "
+                      "sends bounces from surfaces this view sees at grazing angles",
+                      false},
 };
 
 #define KERNEL_SEED 0x55D0u
@@ -93,7 +99,8 @@ static void build_kernel(ssdo_state *s, int count, ob_direction_pdf pdf)
 /* The second depth layer only when asked for. */
 static uint32_t ssdo_active_reads(const float *params)
 {
-    return OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | (params[P_LAYERS] >= 2.0f ? OB_READS_SECOND_LAYER : 0u);
+    return OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | (params[P_LAYERS] >= 2.0f ? OB_READS_SECOND_LAYER : 0u) |
+           (params[P_EXTRA_VIEW] != 0.0f ? OB_READS_EXTRA_VIEW : 0u);
 }
 
 static uint32_t ssdo_active_writes(const float *params)
@@ -127,6 +134,17 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     c->noise = OB_NOISE_TEXTURE4; /* the 4x4 rotation texture: the filters' windows cancel its tile */
     c->bounce = bounce ? 1 : 0;
     c->layers = params[P_LAYERS] >= 2.0f && in->second_depth ? 1 : 0;
+    c->extra_view = params[P_EXTRA_VIEW] != 0.0f && in->extra_depth ? 1 : 0;
+    if (c->extra_view) {
+        memcpy(c->extra_from_view, in->extra_from_view, sizeof c->extra_from_view);
+        memcpy(c->extra_to_view, in->extra_to_view, sizeof c->extra_to_view);
+        memcpy(c->extra_proj, in->extra_proj, sizeof c->extra_proj);
+        const float *ep = in->extra_proj; /* column-major: 1/P00, 1/P11, P20, P21 as ob_view_position takes them */
+        c->extra_proj_info[0] = 1.0f / ep[0];
+        c->extra_proj_info[1] = 1.0f / ep[5];
+        c->extra_proj_info[2] = ep[8];
+        c->extra_proj_info[3] = ep[9];
+    }
 
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     c->stage = s->merged ? OB_SSDO_STAGE_MERGED : OB_SSDO_STAGE_DIRECT;
@@ -134,6 +152,9 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     glBindTextureUnit(3, in->radiance);
     glBindTextureUnit(5, in->sample_multiplier ? in->sample_multiplier : s->kit.noise);
     glBindTextureUnit(6, in->second_depth ? in->second_depth : in->linear_depth); /* valid when unused */
+    glBindTextureUnit(7, in->extra_depth ? in->extra_depth : in->linear_depth);
+    glBindTextureUnit(8, in->extra_normal ? in->extra_normal : in->view_normal);
+    glBindTextureUnit(9, in->extra_radiance ? in->extra_radiance : in->radiance);
     /* The renderer gives every declared output a target, so image 1 is valid with the bounce off
      * too (the merged stage then writes zeros there; nothing reads them). */
     glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -175,7 +196,7 @@ const ob_method_impl ob_method_ssdo = {
     .shader = "ssdo.glsl",
     .constants_size = sizeof(ob_ssdo_constants),
     .state_size = sizeof(ssdo_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER | OB_READS_EXTRA_VIEW,
     .active_reads = ssdo_active_reads,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
     .adapts = true,
@@ -194,7 +215,7 @@ const ob_method_impl ob_method_ssdo_merged = {
     .shader = "ssdo.glsl",
     .constants_size = sizeof(ob_ssdo_constants),
     .state_size = sizeof(ssdo_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER | OB_READS_EXTRA_VIEW,
     .active_reads = ssdo_active_reads,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
     .adapts = true,

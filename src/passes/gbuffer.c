@@ -155,6 +155,11 @@ ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene)
 
 void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj, bool textures)
 {
+    ob_gbuffer_run_from(g, g, view, proj, textures);
+}
+
+void ob_gbuffer_run_from(ob_gbuffer *g, const ob_gbuffer *scene, const float *view, const float *proj, bool textures)
+{
     ob_gbuffer_constants c;
     memset(&c, 0, sizeof c);
     memcpy(c.view, view, sizeof c.view);
@@ -182,16 +187,16 @@ void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj, bool te
     glUseProgram(g->program);
     glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_PASS, g->ubo);
     int last_material = -2;
-    for (int i = 0; i < g->mesh_count; ++i) {
-        const ob_gpu_mesh *m = &g->meshes[i];
+    for (int i = 0; i < scene->mesh_count; ++i) {
+        const ob_gpu_mesh *m = &scene->meshes[i];
         if (m->material != last_material) {
-            int mi = m->material >= 0 && m->material < g->material_count ? m->material : -1;
-            c.diffuse[0] = mi >= 0 ? g->diffuse[mi][0] : 0.8f;
-            c.diffuse[1] = mi >= 0 ? g->diffuse[mi][1] : 0.8f;
-            c.diffuse[2] = mi >= 0 ? g->diffuse[mi][2] : 0.8f;
-            c.textured = textures && mi >= 0 && g->textures[mi] ? 1 : 0;
+            int mi = m->material >= 0 && m->material < scene->material_count ? m->material : -1;
+            c.diffuse[0] = mi >= 0 ? scene->diffuse[mi][0] : 0.8f;
+            c.diffuse[1] = mi >= 0 ? scene->diffuse[mi][1] : 0.8f;
+            c.diffuse[2] = mi >= 0 ? scene->diffuse[mi][2] : 0.8f;
+            c.textured = textures && mi >= 0 && scene->textures[mi] ? 1 : 0;
             glNamedBufferSubData(g->ubo, 0, sizeof c, &c);
-            glBindTextureUnit(0, c.textured ? g->textures[mi] : 0);
+            glBindTextureUnit(0, c.textured ? scene->textures[mi] : 0);
             last_material = m->material;
         }
         glBindVertexArray(m->vao);

@@ -38,6 +38,9 @@ ob_error ob_gbuffer_resize(ob_gbuffer *g, int width, int height);
 ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene);
 /* textures false: every material's diffuse colour alone (ob_settings.textures_off). */
 void ob_gbuffer_run(ob_gbuffer *g, const float *view, const float *proj, bool textures);
+/* The same into g's targets, drawing the meshes and materials of `scene` (another G-buffer, e.g.
+ * the main one for an extra view; g itself for ob_gbuffer_run). */
+void ob_gbuffer_run_from(ob_gbuffer *g, const ob_gbuffer *scene, const float *view, const float *proj, bool textures);
 void ob_gbuffer_destroy(ob_gbuffer *g);
 
 /* ---- the second depth layer: peel.c, peel.frag.glsl ----------------------------------------- */

@@ -161,6 +161,6 @@ const char *ob_view_name(ob_view view)
 {
     static const char *const names[OB_VIEW_COUNT] = {"final",    "ao",      "normals", "depth",
                                                      "shadow",   "radiance", "samples", "bounce",
-                                                     "bent_normals", "luminance", "second_depth"};
+                                                     "bent_normals", "luminance", "second_depth", "extra"};
     return (int)view >= 0 && view < OB_VIEW_COUNT ? names[view] : "";
 }

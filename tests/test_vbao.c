@@ -419,41 +419,19 @@ static void check_second_layer(ob_context *ctx)
 {
     ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "slab"});
     CHECK(scene != NULL, "slab scene");
-    ob_camera cam = {0};
-    ob_renderer *r = scene && ob_find_camera(scene, "front", &cam) == OB_OK
-                         ? ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H})
-                         : NULL;
-    CHECK(r != NULL, "renderer");
-    if (!r) {
-        ob_destroy_scene(scene);
-        return;
-    }
-    ob_renderer_set_scene(r, scene);
     size_t n = (size_t)W * H;
-    float *d1 = malloc(n * sizeof(float)), *d2 = malloc(n * sizeof(float)), *pos = malloc(n * 3 * sizeof(float));
-    float *nrm = malloc(n * 3 * sizeof(float)), *wn = malloc(n * 3 * sizeof(float));
     ob_settings s;
+    frame f;
     const char *one[] = {"vbao.layers=1", NULL}, *two[] = {"vbao.layers=2", NULL};
-    bool ok = d1 && d2 && pos && nrm && wn && settings_for(&s, "vbao", one) && ob_render_frame(r, &cam, &s) == OB_OK &&
-              ob_image_size(r, OB_IMAGE_SECOND_DEPTH_F32) == n * sizeof(float) &&
-              ob_read_image(r, OB_IMAGE_SECOND_DEPTH_F32, d2, n * sizeof(float)) == OB_OK;
-    CHECK(ok, "layers=1 frame");
-    int nonzero = 0;
-    for (size_t i = 0; ok && i < n; ++i) nonzero += d2[i] != 0.0f;
-    CHECK(ok && nonzero == 0, "no second layer without a method that reads it (%d pixels set)", nonzero);
-    ok = ok && settings_for(&s, "vbao", two) && ob_render_frame(r, &cam, &s) == OB_OK &&
-         ob_read_image(r, OB_IMAGE_SECOND_DEPTH_F32, d2, n * sizeof(float)) == OB_OK &&
-         ob_read_image(r, OB_IMAGE_DEPTH_F32, d1, n * sizeof(float)) == OB_OK &&
-         ob_read_image(r, OB_IMAGE_NORMAL_F32, nrm, n * 3 * sizeof(float)) == OB_OK;
-    CHECK(ok, "layers=2 frame");
-    if (ok) {
-        mat4 view, proj, inv_view;
-        glm_lookat(cam.eye, cam.target, cam.up, view);
-        glm_perspective(glm_rad(cam.fov_y_deg), (float)W / (float)H, 0.05f, 20.0f, proj);
-        glm_mat4_inv(view, inv_view);
-        const float info[4] = {1.0f / proj[0][0], 1.0f / proj[1][1], proj[2][0], proj[2][1]};
-        ok = ob_reference_points(d1, nrm, W, H, info, (const float *)inv_view, pos, wn) == OB_OK;
+    if (scene && settings_for(&s, "vbao", one) && render_frame(ctx, scene, "front", &s, OB_IMAGE_SECOND_DEPTH_F32, &f)) {
+        int nonzero = 0;
+        for (size_t i = 0; i < n; ++i) nonzero += f.img[i] != 0.0f;
+        CHECK(nonzero == 0, "no second layer without a method that reads it (%d pixels set)", nonzero);
+        frame_free(&f);
     }
+    bool ok = scene && settings_for(&s, "vbao", two) &&
+              render_frame(ctx, scene, "front", &s, OB_IMAGE_SECOND_DEPTH_F32, &f);
+    const float *d1 = f.depth, *d2 = f.img, *pos = f.pos;
     /* Per kind of pixel (by its world position): the slabs' tops, the floor. */
     int top[2] = {0, 0}, top_ok[2] = {0, 0}, floor_px = 0, floor_ok = 0;
     const float top_y[2] = {0.17f, 1.15f}, least[2] = {0.02f, 0.3f}, most[2] = {0.04f, 2.0f};
@@ -480,12 +458,7 @@ static void check_second_layer(ob_context *ctx)
     CHECK(top[0] > 20 && top_ok[0] == top[0], "thin slab's bottom behind its top: %d of %d", top_ok[0], top[0]);
     CHECK(top[1] > 20 && top_ok[1] == top[1], "thick slab's bottom behind its top: %d of %d", top_ok[1], top[1]);
     CHECK(floor_px > 100 && floor_ok == floor_px, "nothing behind the floor: %d of %d", floor_ok, floor_px);
-    free(d1);
-    free(d2);
-    free(pos);
-    free(nrm);
-    free(wn);
-    ob_destroy_renderer(r);
+    if (ok) frame_free(&f);
     ob_destroy_scene(scene);
 }
 

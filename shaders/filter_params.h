@@ -7,6 +7,8 @@
 #define OB_FILTER_GROUP_Y 8
 /* Largest kernel radius (taps each side): 16 gives 33x33, beyond seed 003 §6.2's 11x11. */
 #define OB_FILTER_MAX_RADIUS 16
+/* crease's tiled program holds a work group's window in shared memory up to this radius. */
+#define OB_CREASE_TILE_RADIUS 4
 
 /* Each filter shader is compiled twice: as is for R32F AO, and with OB_FILTER_RGB defined for
  * SSDO's RGBA16F modulation factor and bounce (the same weights on every channel). The sky's

@@ -540,6 +540,57 @@ static void test_scenes(ob_context *ctx)
     }
 }
 
+/* crease's tiled program against the plain one it replaces: the same output (only acos and exp
+ * are approximated: weights move by < 1e-3 of themselves) on a frame whose size is no multiple of
+ * the 8x8 work group (partial tiles at the right and top), at full and half AO resolution, for
+ * AO (R32F) and SSDO's M (RGBA16F), and at a radius the tiles do not hold (the plain program). */
+static void test_crease_tiled(ob_context *ctx)
+{
+    enum { TW = 101, TH = 77 };
+    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "cornell"});
+    ob_camera cam;
+    CHECK(scene && ob_find_camera(scene, "front", &cam) == OB_OK, "cornell:front");
+    ob_renderer *r = scene ? ob_make_renderer(ctx, &(ob_renderer_desc){.width = TW, .height = TH}) : NULL;
+    if (!r) {
+        ob_destroy_scene(scene);
+        return;
+    }
+    ob_renderer_set_scene(r, scene);
+    size_t n = (size_t)TW * TH * 3;
+    float *a = malloc(n * sizeof(float)), *b = malloc(n * sizeof(float));
+    const struct {
+        const char *method;
+        float scale;
+        const char *radius;
+    } cases[] = {{"ssao", 1.0f, "crease.radius=2"}, {"ssao", 0.5f, "crease.radius=3"}, {"ssdo", 1.0f, "crease.radius=2"},
+                 {"hbao", 1.0f, "crease.radius=6"}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        float *out[2] = {a, b};
+        for (int t = 0; t < 2; ++t) {
+            ob_settings s;
+            ob_settings_init(&s, cases[c].method);
+            ob_settings_set_filter(&s, "crease");
+            ob_settings_set_ao_scale(&s, cases[c].scale);
+            ob_settings_set(&s, cases[c].radius);
+            ob_settings_set(&s, t ? "crease.tiled=on" : "crease.tiled=off");
+            CHECK(ob_render_frame(r, &cam, &s) == OB_OK, "%s frame", cases[c].method);
+            ob_read_image(r, OB_IMAGE_AO_RGB_F32, out[t], n * sizeof(float));
+        }
+        double worst = 0.0;
+        for (size_t i = 0; i < n; ++i) worst = fmax(worst, fabs((double)a[i] - b[i]));
+        /* RGBA16F M: one half-float step near 1 is 4.9e-4. */
+        double tol = !strcmp(cases[c].method, "ssdo") ? 1e-3 : 1e-4;
+        printf("  crease tiled vs plain, %s at %.1f, %s: max difference %.2g\n", cases[c].method, cases[c].scale,
+               cases[c].radius, worst);
+        CHECK(worst <= tol, "%s at %.1f, %s: tiled within %.0e of plain (%.2g)", cases[c].method, cases[c].scale,
+              cases[c].radius, tol, worst);
+    }
+    free(a);
+    free(b);
+    ob_destroy_renderer(r);
+    ob_destroy_scene(scene);
+}
+
 int main(void)
 {
     ob_context *ctx = check_context();
@@ -553,6 +604,7 @@ int main(void)
     test_upsample_silhouette();
     test_scenes(ctx);
     test_crease_corner(ctx);
+    test_crease_tiled(ctx);
     if (synthetic_frame_ubo) glDeleteBuffers(1, &synthetic_frame_ubo);
     ob_destroy_context(ctx);
     return check_finish("test_filters");

@@ -15,7 +15,7 @@
 #include "core/error.h"
 #include "filters/filter.h"
 
-enum { P_RADIUS, P_SIGMA_PLANE, P_SIGMA_NORMAL, P_COUNT };
+enum { P_RADIUS, P_SIGMA_PLANE, P_SIGMA_NORMAL, P_TILED, P_COUNT };
 
 #define OB_DEG_TO_RAD 0.017453292519943295f
 
@@ -45,7 +45,17 @@ static const ob_param_info crease_params[P_COUNT] = {
      * letting its (too dark) creases brighten from the other face, and cost hbao on the bunny. */
     [P_SIGMA_NORMAL] = {"sigma_normal", OB_PARAM_FLOAT, 1.0f, 90.0f, 20.0f, "degrees",
                         "standard deviation on the angle between normals", false},
+    /* On: the work group's window in shared memory, each texel rebuilt once (crease.glsl's tiled
+     * program); off: the plain program, the baseline it is measured against. Radii above
+     * OB_CREASE_TILE_RADIUS take the plain one. */
+    [P_TILED] = {"tiled", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
+                 "shared-memory tiles (off: the plain program, every tap fetched and rebuilt per pixel)", false},
 };
+
+/* Both programs, so a frame can switch between them. */
+typedef struct crease_state {
+    ob_compute_pass plain, tiled;
+} crease_state;
 
 void ob_crease_constants_init(ob_filter_constants *c, const ob_filter_inputs *in, int radius, float sigma_plane,
                               float sigma_normal)
@@ -59,17 +69,50 @@ void ob_crease_constants_init(ob_filter_constants *c, const ob_filter_inputs *in
     c->weights[c->radius][0] = c->radius > 0 ? 0.5f : 1.0f;
 }
 
-static void *crease_init(void) { return ob_filter_make_pass("crease.glsl", false); }
-static void *crease_init_rgb(void) { return ob_filter_make_pass("crease.glsl", true); }
+static void crease_destroy(void *state)
+{
+    crease_state *s = state;
+    if (!s) return;
+    ob_compute_pass_destroy(&s->plain);
+    ob_compute_pass_destroy(&s->tiled);
+    free(s);
+}
+
+static void *make_state(bool rgb)
+{
+    crease_state *s = calloc(1, sizeof *s);
+    if (!s) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (crease.glsl)");
+        return NULL;
+    }
+    const char *plain = rgb ? "#define OB_FILTER_RGB 1\n" : NULL;
+    const char *tiled = rgb ? "#define OB_FILTER_RGB 1\n#define OB_CREASE_TILED 1\n" : "#define OB_CREASE_TILED 1\n";
+    if (ob_compute_pass_init(&s->plain, "crease.glsl", plain, sizeof(ob_filter_constants)) != OB_OK ||
+        ob_compute_pass_init(&s->tiled, "crease.glsl", tiled, sizeof(ob_filter_constants)) != OB_OK) {
+        crease_destroy(s);
+        return NULL;
+    }
+    return s;
+}
+
+static void *crease_init(void) { return make_state(false); }
+static void *crease_init_rgb(void) { return make_state(true); }
 
 static ob_error crease_run(void *state, const ob_filter_inputs *in, const float *params)
 {
+    crease_state *s = state;
     ob_filter_constants c;
     ob_crease_constants_init(&c, in, (int)params[P_RADIUS], params[P_SIGMA_PLANE],
                              params[P_SIGMA_NORMAL] * OB_DEG_TO_RAD);
+    bool tiled = params[P_TILED] != 0.0f && c.radius <= OB_CREASE_TILE_RADIUS;
+    if (tiled) {
+        /* The tiled program takes exp2: the same exponents times log2(e). */
+        c.depth_falloff *= 1.4426950408889634f;
+        c.normal_falloff *= 1.4426950408889634f;
+    }
     /* One pass: the view positions come from the frame's block at OB_BINDING_FRAME, which the
      * renderer binds for every pass of the frame (and ob_compute_ao_filtered for its own). */
-    ob_filter_run_single(state, &c, ob_filter_constants_used(&c), in);
+    ob_filter_run_single(tiled ? &s->tiled : &s->plain, &c, ob_filter_constants_used(&c), in);
     return OB_OK;
 }
 
@@ -81,6 +124,6 @@ const ob_filter_impl ob_filter_crease = {
              .params = crease_params},
     .init = crease_init,
     .run = crease_run,
-    .destroy = ob_filter_destroy_pass,
+    .destroy = crease_destroy,
     .init_rgb = crease_init_rgb,
 };

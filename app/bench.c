@@ -272,6 +272,8 @@ static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, con
         for (int e = 0; e < eye_count; ++e) {
             if (ob_render_frame(eyes[e], &cams[e], s) != OB_OK) return cli_fail_from_library();
             if (!measured) continue;
+            /* Each measured frame's own timings (ob_wait_timings), not the ring's older frame. */
+            if (ob_wait_timings(eyes[e]) != OB_OK) return cli_fail_from_library();
             ob_pass_timing t[MAX_PASSES];
             int n = ob_query_timings(eyes[e], t, MAX_PASSES);
             row->pass_count = n;

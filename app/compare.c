@@ -468,7 +468,7 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
         if (!radius_given && !isnan(ob_settings_get(&s, "radius"))) ob_settings_set(&s, radius_set);
         double ao_ms[FRAMES], frame_ms[FRAMES], chain_ms[FRAMES];
         for (int f = 0; f < FRAMES; ++f) {
-            if (ob_render_frame(r, &cam, &s) != OB_OK) {
+            if (ob_render_frame(r, &cam, &s) != OB_OK || ob_wait_timings(r) != OB_OK) {
                 code = cli_fail_from_library();
                 goto done;
             }

@@ -154,7 +154,9 @@ static int render_row(ob_renderer *r, const ob_camera *cam, const cli_config *cf
     double ms[FRAMES];
     int timed = 0;
     for (int f = 0; f < FRAMES; ++f) {
-        if (ob_render_frame(r, cam, &cfg->settings) != OB_OK) return cli_fail_from_library();
+        /* Wait: each frame's own timings, not a ring's older one. */
+        if (ob_render_frame(r, cam, &cfg->settings) != OB_OK || ob_wait_timings(r) != OB_OK)
+            return cli_fail_from_library();
         ob_pass_timing t[16];
         int n = ob_query_timings(r, t, 16);
         for (int p = 0; p < n; ++p)

@@ -184,6 +184,7 @@ static bool fit_renderers(viewer *v, int w, int h)
 /* Both eyes' passes as one list (the stereo frame's cost per pass), and each eye's sum. */
 static int merge_timings(ob_pass_timing *t, int n, const ob_pass_timing *right, int rn, double eye_ms[2])
 {
+    eye_ms[0] = eye_ms[1] = 0.0;
     for (int i = 0; i < n; ++i) eye_ms[0] += t[i].ms;
     for (int i = 0; i < rn; ++i) {
         eye_ms[1] += right[i].ms;
@@ -191,6 +192,22 @@ static int merge_timings(ob_pass_timing *t, int n, const ob_pass_timing *right, 
         while (k < n && strcmp(t[k].name, right[i].name) != 0) ++k;
         if (k < n) t[k].ms += right[i].ms;
         else if (n < MAX_PASSES) t[n++] = right[i];
+    }
+    return n;
+}
+
+int view_timings(viewer *v, bool wait, ob_pass_timing *t, double eye_ms[2], long long *timed, long long *rendered)
+{
+    if (wait && (ob_wait_timings(v->r) != OB_OK || (v->right && ob_wait_timings(v->right) != OB_OK))) return 0;
+    int n = ob_query_timings(v->r, t, MAX_PASSES);
+    ob_query_timings_frame(v->r, timed, rendered);
+    eye_ms[0] = eye_ms[1] = 0.0;
+    for (int i = 0; i < n; ++i) eye_ms[0] += t[i].ms;
+    if (v->stereo != VIEW_MONO && v->right) {
+        /* The eyes render in lockstep, so the right eye's newest timed frame is the left's or the
+         * one before: close enough for per-pass averages, and a wait makes them the same. */
+        ob_pass_timing right[MAX_PASSES];
+        n = merge_timings(t, n, right, ob_query_timings(v->right, right, MAX_PASSES), eye_ms);
     }
     return n;
 }
@@ -212,14 +229,7 @@ static bool frame(viewer *v, double dt)
               ob_stereo_cameras(&cam, &(ob_stereo_desc){.ipd = v->o.ipd, .aspect = (float)v->eye_width / (float)h},
                                 eyes) == OB_OK;
     ok = ok && ob_render_frame(v->r, &eyes[0], &v->s) == OB_OK;
-    ob_pass_timing timings[MAX_PASSES], right[MAX_PASSES];
-    int n = 0;
-    double eye_ms[2] = {0.0, 0.0};
-    if (ok) n = ob_query_timings(v->r, timings, MAX_PASSES);
-    if (ok && v->stereo != VIEW_MONO) {
-        ok = ob_render_frame(v->right, &eyes[1], &v->s) == OB_OK;
-        if (ok) n = merge_timings(timings, n, right, ob_query_timings(v->right, right, MAX_PASSES), eye_ms);
-    }
+    if (ok && v->stereo != VIEW_MONO) ok = ob_render_frame(v->right, &eyes[1], &v->s) == OB_OK;
     if (ok) {
         if (v->stereo == VIEW_MIRROR)
             ok = ob_present(v->r, v->view, 0, 0, 0, v->eye_width, h) == OB_OK &&
@@ -244,9 +254,13 @@ static bool frame(viewer *v, double dt)
     if (v->events) script_screenshot(v);
     glfwSwapBuffers(v->window);
     if (ok) {
-        profiler_add(&v->prof, timings, n, v->last_frame_ms);
-        if (v->stereo != VIEW_MONO) profiler_add_eyes(&v->prof, eye_ms);
-        if (v->test) test_step(v, timings, n, eye_ms);
+        ob_pass_timing timings[MAX_PASSES];
+        double eye_ms[2] = {0.0, 0.0};
+        long long timed = -1, rendered = -1;
+        int n = view_timings(v, false, timings, eye_ms, &timed, &rendered);
+        if (profiler_add_frame(&v->prof, timings, n, timed, rendered, v->last_frame_ms) && v->stereo != VIEW_MONO)
+            profiler_add_eyes(&v->prof, eye_ms);
+        if (v->test) test_step(v);
     }
     return ok;
 }

@@ -42,8 +42,8 @@ int parse_view_opts(int argc, char **argv, view_opts *o);
 /* ---- profiler (view_profiler.c) -------------------------------------------------------------- */
 typedef struct pass_stats {
     const char *name;
-    double current, sum, min, max;
-    long calls;
+    double current, sum, min, max; /* current: in the newest timed frame, NAN if it did not run there */
+    long calls;                    /* timed frames it ran in: a pass that ran once is averaged once */
 } pass_stats;
 
 typedef struct profiler {
@@ -51,6 +51,12 @@ typedef struct profiler {
     int count;
     double frame_sum, frame_min, frame_max; /* wall-clock frame time, ms */
     long frames;
+    /* Each timed frame's sum of its own passes (what the GPU spent on that frame), ms: a pass that
+     * ran in one frame only (the shadow maps, then cached) is in that frame's sum alone. */
+    double gpu_current, gpu_sum, gpu_min, gpu_max;
+    long gpu_frames;
+    long long gpu_frame;   /* the renderer's frame the last timings described (ob_query_timings_frame) */
+    long long first_frame; /* the first frame counted since the reset, -1 until the next add sets it */
     /* Stereo: each eye's GPU sum of passes (the pass rows above hold both eyes summed). */
     double eye_current[2], eye_sum[2], stereo_max;
     long stereo_frames, over_budget;
@@ -148,11 +154,20 @@ void run_script_events(viewer *v);
 /* Take the screenshot due now, once the frame is on the back buffer. */
 void script_screenshot(viewer *v);
 
+/* ---- view.c ---------------------------------------------------------------------------------- */
+/* The newest timed frame's passes (both eyes summed in stereo, each eye's sum in eye_ms) and its
+ * number (*timed; *rendered: the last rendered), waiting for the GPU first when `wait`. Returns
+ * the count (at most MAX_PASSES). */
+int view_timings(viewer *v, bool wait, ob_pass_timing *t, double eye_ms[2], long long *timed, long long *rendered);
+
 /* ---- view_profiler.c ------------------------------------------------------------------------- */
 /* Forget every statistic (after a change that makes the old ones meaningless). */
 void profiler_reset(profiler *p);
-/* Count one frame's pass timings and its wall-clock time. */
-void profiler_add(profiler *p, const ob_pass_timing *t, int n, double frame_ms);
+/* Count one wall-clock frame (frame_ms <= 0: the first frame, which has no interval yet) and, when
+ * `timed` names a frame not counted yet and rendered after the reset, its pass timings (`timed`
+ * and `rendered` from ob_query_timings_frame). Returns whether the timings were counted. */
+bool profiler_add_frame(profiler *p, const ob_pass_timing *t, int n, long long timed, long long rendered,
+                        double frame_ms);
 /* Count one stereo frame's per-eye GPU sums (after profiler_add with both eyes' passes summed). */
 void profiler_add_eyes(profiler *p, const double eye_ms[2]);
 /* The profiler's table in the panel. */
@@ -165,8 +180,9 @@ void build_gui(viewer *v);
 /* ---- view_testmode.c: every camera x method, timed ------------------------------------------- */
 /* Check --methods and the screenshot directory and start the first slot; 0 or the exit code. */
 int test_init(viewer *v);
-/* Count a drawn frame into the current slot and move on when its time is up. */
-void test_step(viewer *v, const ob_pass_timing *timings, int n, const double eye_ms[2]);
+/* Count a drawn frame's timings into the current slot (those of frames the slot rendered, after its
+ * first) and move on when its time is up. */
+void test_step(viewer *v);
 /* The summary table and the CSV log, or a failure when the run stopped early. */
 int test_finish(viewer *v);
 /* The test mode's progress line in the overlay. */

@@ -7,10 +7,32 @@
 #include "view.h"
 #include "view_gui.h"
 
-void profiler_reset(profiler *p) { memset(p, 0, sizeof *p); }
-
-void profiler_add(profiler *p, const ob_pass_timing *t, int n, double frame_ms)
+void profiler_reset(profiler *p)
 {
+    memset(p, 0, sizeof *p);
+    p->gpu_frame = -1;
+    p->first_frame = -1;
+}
+
+/* Why per timed frame and not per call: the renderer's timings arrive a few frames late (a ring of
+ * queries, never a stall), so the same frame is reported until a newer one lands (counting it twice
+ * would weigh it twice), and the frames just before a reset (a change of method) still arrive after
+ * it. The first frame after a reset is left out too: it pays for the new shaders' compiles. */
+bool profiler_add_frame(profiler *p, const ob_pass_timing *t, int n, long long timed, long long rendered,
+                        double frame_ms)
+{
+    if (p->first_frame < 0) p->first_frame = rendered + 1;
+    if (frame_ms > 0.0) {
+        if (p->frames == 0) p->frame_min = INFINITY;
+        p->frame_sum += frame_ms;
+        p->frame_min = frame_ms < p->frame_min ? frame_ms : p->frame_min;
+        p->frame_max = frame_ms > p->frame_max ? frame_ms : p->frame_max;
+        ++p->frames;
+    }
+    if (timed < p->first_frame || timed == p->gpu_frame) return false;
+    p->gpu_frame = timed;
+    for (int k = 0; k < p->count; ++k) p->pass[k].current = NAN;
+    double sum = 0.0;
     for (int i = 0; i < n; ++i) {
         pass_stats *s = NULL;
         for (int k = 0; k < p->count && !s; ++k)
@@ -19,6 +41,7 @@ void profiler_add(profiler *p, const ob_pass_timing *t, int n, double frame_ms)
             s = &p->pass[p->count++];
             *s = (pass_stats){.name = t[i].name, .min = INFINITY};
         }
+        sum += t[i].ms;
         if (!s) continue;
         s->current = t[i].ms;
         s->sum += t[i].ms;
@@ -26,11 +49,13 @@ void profiler_add(profiler *p, const ob_pass_timing *t, int n, double frame_ms)
         s->max = t[i].ms > s->max ? t[i].ms : s->max;
         ++s->calls;
     }
-    if (p->frames == 0) p->frame_min = INFINITY;
-    p->frame_sum += frame_ms;
-    p->frame_min = frame_ms < p->frame_min ? frame_ms : p->frame_min;
-    p->frame_max = frame_ms > p->frame_max ? frame_ms : p->frame_max;
-    ++p->frames;
+    if (p->gpu_frames == 0) p->gpu_min = INFINITY;
+    p->gpu_current = sum;
+    p->gpu_sum += sum;
+    p->gpu_min = sum < p->gpu_min ? sum : p->gpu_min;
+    p->gpu_max = sum > p->gpu_max ? sum : p->gpu_max;
+    ++p->gpu_frames;
+    return true;
 }
 
 void profiler_add_eyes(profiler *p, const double eye_ms[2])
@@ -69,27 +94,30 @@ void panel_profiler(viewer *v)
     panel_stereo(v);
     static const char *const headers[] = {"pass", "current", "average", "min", "max", "calls"};
     if (gui_begin_table("passes", 6, headers)) {
-        double total = 0.0;
+        /* average and calls per pass: over the timed frames it ran in (a pass that ran once, like
+         * shadow maps then cached, is one call); GPU sum: each timed frame's passes added up. */
         for (int i = 0; i < p->count; ++i) {
             const pass_stats *s = &p->pass[i];
             if (s->calls == 0) continue;
             gui_table_row();
             gui_table_cell("%s", s->name);
-            gui_table_cell("%.3f", s->current);
+            if (isnan(s->current)) gui_table_cell("-");
+            else gui_table_cell("%.3f", s->current);
             gui_table_cell("%.3f", s->sum / (double)s->calls);
             gui_table_cell("%.3f", s->min);
             gui_table_cell("%.3f", s->max);
             gui_table_cell("%ld", s->calls);
-            total += s->sum / (double)s->calls;
         }
-        if (p->frames > 0) {
+        if (p->gpu_frames > 0) {
             gui_table_row();
             gui_table_cell("GPU sum");
-            gui_table_cell(" ");
-            gui_table_cell("%.3f", total);
-            gui_table_cell(" ");
-            gui_table_cell(" ");
-            gui_table_cell(" ");
+            gui_table_cell("%.3f", p->gpu_current);
+            gui_table_cell("%.3f", p->gpu_sum / (double)p->gpu_frames);
+            gui_table_cell("%.3f", p->gpu_min);
+            gui_table_cell("%.3f", p->gpu_max);
+            gui_table_cell("%ld", p->gpu_frames);
+        }
+        if (p->frames > 0) {
             gui_table_row();
             gui_table_cell("frame");
             gui_table_cell("%.3f", v->last_frame_ms);
@@ -101,5 +129,7 @@ void panel_profiler(viewer *v)
         gui_end_table();
     }
     if (gui_button("reset")) profiler_reset(&v->prof);
-    gui_tooltip("statistics since the last reset (a change of method, filter or size also resets)");
+    gui_tooltip("statistics since the last reset (a change of method, filter or size also resets); GPU times arrive "
+                "a few frames late (never a stall), 'calls' counts the timed frames a pass ran in, '-' a pass that "
+                "did not run in the newest one");
 }

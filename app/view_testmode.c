@@ -31,6 +31,8 @@ typedef struct test_run {
     int method_count, camera_count;
     int cycle, camera, method;      /* the slot being measured */
     bool warmed;                    /* the slot's first frame (shader compiles, first use) is done */
+    long long first_timed;          /* the slot's first frame whose timings count (after the warm one) */
+    long long last_timed;           /* the last frame whose timings were counted */
     double slot_start;
     long slot_frames;
     test_cell *cells;               /* camera_count x method_count */
@@ -126,19 +128,17 @@ int test_finish(viewer *v)
     return code;
 }
 
-/* After each frame: count it into the slot, and move on when the slot's time is up. */
-void test_step(viewer *v, const ob_pass_timing *timings, int n, const double eye_ms[2])
+/* One timed frame's passes into the slot's cell, once per frame and only a frame of this slot: the
+ * timings arrive a few frames late, so the first ones after a switch are the previous slot's. */
+static void count_timings(viewer *v, test_cell *cell, bool wait)
 {
     test_run *t = v->test;
-    double now = glfwGetTime();
-    if (!t->warmed) {
-        /* The slot's first frame pays for shader compiles and first-use allocations. */
-        t->warmed = true;
-        t->slot_start = now;
-        return;
-    }
-    test_cell *cell = &t->cells[(size_t)t->camera * (size_t)t->method_count + (size_t)t->method];
-    ++t->slot_frames;
+    ob_pass_timing timings[MAX_PASSES];
+    double eye_ms[2] = {0.0, 0.0};
+    long long timed = -1, rendered = -1;
+    int n = view_timings(v, wait, timings, eye_ms, &timed, &rendered);
+    if (timed < t->first_timed || timed == t->last_timed) return;
+    t->last_timed = timed;
     for (int i = 0; i < n; ++i) {
         int col = pass_column(timings[i].name);
         if (col < 0) continue;
@@ -150,8 +150,30 @@ void test_step(viewer *v, const ob_pass_timing *timings, int n, const double eye
         cell->eye_ms[1] += eye_ms[1];
         ++cell->eye_frames;
     }
+}
+
+/* After each frame: count it into the slot, and move on when the slot's time is up. */
+void test_step(viewer *v)
+{
+    test_run *t = v->test;
+    double now = glfwGetTime();
+    if (!t->warmed) {
+        /* The slot's first frame pays for shader compiles and first-use allocations. */
+        long long rendered = -1;
+        ob_query_timings_frame(v->r, NULL, &rendered);
+        t->warmed = true;
+        t->slot_start = now;
+        t->first_timed = rendered + 1;
+        return;
+    }
+    test_cell *cell = &t->cells[(size_t)t->camera * (size_t)t->method_count + (size_t)t->method];
+    ++t->slot_frames;
     double elapsed = now - t->slot_start;
-    if (elapsed < (double)v->o.seconds) return;
+    const bool last = elapsed >= (double)v->o.seconds;
+    /* The slot's last frame waits for the GPU, so that even a short slot has its own timings (one
+     * stall per slot, outside the measured time). */
+    count_timings(v, cell, last);
+    if (!last) return;
     cell->fps[t->cycle] = (double)t->slot_frames / elapsed;
     cell->frames += t->slot_frames;
     cell->seconds += elapsed;

@@ -38,6 +38,7 @@ expect 2 "out of range" -- "${R[@]}" --set ssao.samples=100000
 expect 2 "finite" -- "${R[@]}" --set ssao.radius=nan
 expect 2 "expects a number" -- "${R[@]}" --set ssao.bias=abc
 expect 2 "integer" -- "${R[@]}" --set ssao.samples=3.5
+expect 2 "warmup: expected 0..100000, got '-1'" -- "${R[@]}" --warmup -1
 expect 2 "WIDTHxHEIGHT" -- "${R[@]}" --size abc
 expect 2 "WIDTHxHEIGHT" -- "${R[@]}" --size 0x0
 expect 2 "WIDTHxHEIGHT" -- "${R[@]}" --size 640x
@@ -165,9 +166,11 @@ else
     bad "corner render failed: $(cat "$dir/stderr")"
 fi
 grep -q "llvmpipe" "$dir/stderr" && ok || bad "-v does not print GL_RENDERER: $(cat "$dir/stderr")"
-for pass in gbuffer ao filter compose total; do
+for pass in gbuffer ao filter compose "GPU sum" frame; do
     grep -qE "^$pass +[0-9]+\.[0-9]+" "$dir/stdout" && ok || bad "--timings lacks $pass: $(cat "$dir/stdout")"
 done
+# --timings warms up 3 frames unless told otherwise.
+grep -q "1 frame(s) after 3 warm-up" "$dir/stdout" && ok || bad "--timings without its warm-up: $(cat "$dir/stdout")"
 read -r w h c lo hi mean < <("$IMGCHECK" "$dir/c.png")
 [ "$w $h $c" = "96 64 4" ] && [ "$hi" -gt 0 ] && ok || bad "final PNG is '$w $h $c $lo $hi'"
 read -r w h c lo hi mean < <("$IMGCHECK" "$dir/c_ao.png")

@@ -340,6 +340,7 @@ static void bench(void)
             ob_downsample_run(&copy, &grid, input, normal, depth_out, normal_out);
             ob_timer_end(&timers);
             ob_timers_frame_end(&timers);
+            ob_timers_wait(&timers);
             if (r >= WARM) ms[0][r - WARM] = timers.ms[0], ms[1][r - WARM] = timers.ms[1];
         }
         for (int k = 0; k < 2; ++k) {

@@ -291,6 +291,7 @@ static void bench(int w, int h, int frames)
         ob_timers_frame_begin(&timers);
         ob_hdr_run(&hp, tex, &s, final, &timers);
         ob_timers_frame_end(&timers);
+        ob_timers_wait(&timers);
         for (int i = 0; f >= 0 && i < timers.count && i < 3; ++i) ms[i][f] = timers.ms[i];
     }
     printf("bench %dx%d (%d frames, median ms):", w, h, frames);

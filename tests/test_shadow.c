@@ -157,6 +157,7 @@ static double probe_run(probe *p, const ob_shadow_maps *maps, const ob_light *li
     glDispatchCompute((GLuint)((n + 63) / 64), 1, 1);
     ob_timer_end(&t);
     ob_timers_frame_end(&t);
+    ob_timers_wait(&t);
     double ms = t.ms[0];
     ob_timers_destroy(&t);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -464,6 +465,7 @@ static void timings(fixture *f)
             ob_timers_frame_begin(&t);
             ob_shadows_render(&f->maps, &f->g, &l, 1, f->bmin, f->bmax, &st, &t);
             ob_timers_frame_end(&t);
+            ob_timers_wait(&t);
             glFinish();
             wall[k] = wall_ms() - t0;
             shadow_ms[k] = t.count > 0 ? t.ms[0] : -1.0;
@@ -495,6 +497,7 @@ static int timed_render(fixture *f, const ob_light *l, const ob_shadow_settings 
     ob_timers_frame_begin(&t);
     ob_error err = ob_shadows_render(&f->maps, &f->g, l, 1, f->bmin, f->bmax, st, &t);
     ob_timers_frame_end(&t);
+    ob_timers_wait(&t);
     int count = err == OB_OK ? t.count : -1;
     ob_timers_destroy(&t);
     return count;

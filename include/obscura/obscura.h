@@ -503,8 +503,25 @@ typedef struct ob_pass_timing {
     double ms;        /* GPU time between GL_TIMESTAMP queries around the pass */
 } ob_pass_timing;
 
-/* Timings of the last frame; returns the count written (at most max). */
+/* Per-pass GPU times of the newest frame whose timer queries the GPU has finished, read without
+ * waiting: the queries of the last 4 frames are kept in a ring, so this is usually a frame one to
+ * three behind the last ob_render_frame (ob_query_timings_frame says which). Only the passes that
+ * ran in that frame are listed, in the order they ran: a frame that reused its shadow maps
+ * (ob_shadow_settings.reuse) has no "shadow". Returns the count written (at most max); 0 before
+ * any frame has finished. Call ob_wait_timings first for the last frame's own timings. */
 int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max);
+
+/* Which frame ob_query_timings describes: *timed gets its number, counting ob_render_frame calls
+ * on this renderer from 0 (-1 when none has finished yet), *rendered the number of the last frame
+ * rendered (-1 before the first). A host that averages timings adds them when *timed changes.
+ * Either pointer may be NULL. */
+void ob_query_timings_frame(const ob_renderer *r, long long *timed, long long *rendered);
+
+/* Wait until the GPU has finished every frame rendered so far, so that ob_query_timings returns
+ * the last one's timings: for one-shot measurements (the CLI's render --timings and bench). It
+ * stalls the CPU until the GPU is idle: an interactive loop reads ob_query_timings alone.
+ * Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_GL. */
+ob_error ob_wait_timings(ob_renderer *r);
 
 /* ---- presenting: the last frame or a debug view into a framebuffer, on the GPU --------------
  * The views are the CLI's --view images (app/render.c), made by one compute pass (shaders/view.glsl)

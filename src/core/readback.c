@@ -204,3 +204,18 @@ int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max)
     }
     return n;
 }
+
+void ob_query_timings_frame(const ob_renderer *r, long long *timed, long long *rendered)
+{
+    if (timed) *timed = r ? r->timers.frame : -1;
+    if (rendered) *rendered = r ? r->timers.frames - 1 : -1;
+}
+
+ob_error ob_wait_timings(ob_renderer *r)
+{
+    if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_wait_timings: NULL renderer");
+    ob_timers_wait(&r->timers);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x reading the timer queries", e);
+    return OB_OK;
+}

@@ -55,21 +55,41 @@ GLuint ob_make_rotation_noise_texture(void);
 
 /* ---- timers (timer.c) ----------------------------------------------------------------------- */
 #define OB_MAX_TIMED_PASSES 16
+/* Frames of queries in flight: results are read 1..OB_TIMER_RING frames late (timer.c says why). */
+#define OB_TIMER_RING 4
 
-typedef struct ob_timer_set {
+typedef struct ob_timer_frame {
     GLuint queries[2 * OB_MAX_TIMED_PASSES]; /* a GL_TIMESTAMP before and after each pass */
     const char *names[OB_MAX_TIMED_PASSES];
+    int count;          /* passes begun in this frame */
+    long long frame;    /* the frame recorded here (ob_timers_frame_begin's count), -1 if none */
+    bool pending;       /* recorded, results not read yet */
+} ob_timer_frame;
+
+typedef struct ob_timer_set {
+    ob_timer_frame ring[OB_TIMER_RING];
+    ob_timer_frame *current; /* the slot being recorded, NULL between frames */
+    int open;                /* index of the running query in *current, -1 if none */
+    long long frames;        /* frames begun */
+    /* The newest frame whose queries have all landed: */
+    const char *names[OB_MAX_TIMED_PASSES];
     double ms[OB_MAX_TIMED_PASSES];
-    int count;       /* passes begun this frame */
-    int open;        /* index of the running query, -1 if none */
+    int count;
+    long long frame;         /* its number (0 = the first frame begun), -1 before any */
 } ob_timer_set;
 
 void ob_timers_init(ob_timer_set *t);
 void ob_timers_destroy(ob_timer_set *t);
+/* Start recording a frame into the next slot of the ring (waiting for that slot's old results
+ * only if the GPU is a whole ring behind). */
 void ob_timers_frame_begin(ob_timer_set *t);
-void ob_timer_begin(ob_timer_set *t, const char *name); /* name must outlive the frame */
+void ob_timer_begin(ob_timer_set *t, const char *name); /* name must outlive the ring */
 void ob_timer_end(ob_timer_set *t);
-/* Wait for the queries and fill ms[]. */
+/* Close the frame and read every slot whose queries have landed, without waiting: names/ms/count
+ * then describe frame `frame`, which may be an earlier one than this. */
 void ob_timers_frame_end(ob_timer_set *t);
+/* Wait for every recorded frame: names/ms/count then describe the last one (a stall: for one-shot
+ * measurements and tests, not for an interactive loop). */
+void ob_timers_wait(ob_timer_set *t);
 
 #endif

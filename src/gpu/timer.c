@@ -1,9 +1,17 @@
-/* Per-pass GPU time from GL_TIMESTAMP queries taken before and after each pass.
+/* Per-pass GPU time from GL_TIMESTAMP queries taken before and after each pass, kept in a ring of
+ * OB_TIMER_RING frames and read a few frames late.
  *
  * Why not GL_TIME_ELAPSED: Mesa's llvmpipe (22.3) records TIME_ELAPSED only for work that goes
  * through its rasteriser, so compute passes read 0 ms and a span that starts with a draw reads
  * garbage; timestamps bracket compute dispatches correctly there (a 566 ms dispatch read 566 ms)
- * and are equally exact on NVIDIA. Timestamps are also nestable-free: passes stay sequential. */
+ * and are equally exact on NVIDIA. Timestamps are also nestable-free: passes stay sequential.
+ *
+ * Why a ring: reading a query's result before the GPU has reached it makes the CPU wait for the
+ * whole frame (the GPU then idles while the CPU records the next one). Each frame records into
+ * its own slot, and a slot is read only once GL_QUERY_RESULT_AVAILABLE says all its queries have
+ * landed; the newest such frame is what the renderer reports. A slot is waited for only when the
+ * CPU comes round to it again with its results still out, that is with the GPU OB_TIMER_RING
+ * frames behind, where a wait costs nothing that the driver's own frame queue would not. */
 #include <string.h>
 
 #include "gpu/gpu.h"
@@ -11,46 +19,102 @@
 void ob_timers_init(ob_timer_set *t)
 {
     memset(t, 0, sizeof *t);
-    glCreateQueries(GL_TIMESTAMP, 2 * OB_MAX_TIMED_PASSES, t->queries);
+    for (int s = 0; s < OB_TIMER_RING; ++s) {
+        glCreateQueries(GL_TIMESTAMP, 2 * OB_MAX_TIMED_PASSES, t->ring[s].queries);
+        t->ring[s].frame = -1;
+    }
     t->open = -1;
+    t->frame = -1;
 }
 
 void ob_timers_destroy(ob_timer_set *t)
 {
-    if (t->queries[0]) glDeleteQueries(2 * OB_MAX_TIMED_PASSES, t->queries);
+    for (int s = 0; s < OB_TIMER_RING; ++s)
+        if (t->ring[s].queries[0]) glDeleteQueries(2 * OB_MAX_TIMED_PASSES, t->ring[s].queries);
     memset(t, 0, sizeof *t);
     t->open = -1;
+    t->frame = -1;
+}
+
+static bool slot_available(const ob_timer_frame *f)
+{
+    /* Every query, not only the last: the spec orders nothing between query objects. */
+    for (int i = 0; i < 2 * f->count; ++i) {
+        GLuint ready = GL_FALSE;
+        glGetQueryObjectuiv(f->queries[i], GL_QUERY_RESULT_AVAILABLE, &ready);
+        if (!ready) return false;
+    }
+    return true;
+}
+
+/* Read a finished slot (waiting for it when `wait`) and report it if it is the newest so far. */
+static void collect(ob_timer_set *t, ob_timer_frame *f, bool wait)
+{
+    if (!f->pending || (!wait && !slot_available(f))) return;
+    f->pending = false;
+    if (f->frame < t->frame) return;
+    t->frame = f->frame;
+    t->count = f->count;
+    for (int i = 0; i < f->count; ++i) {
+        GLuint64 t0 = 0, t1 = 0;
+        glGetQueryObjectui64v(f->queries[2 * i], GL_QUERY_RESULT, &t0);
+        glGetQueryObjectui64v(f->queries[2 * i + 1], GL_QUERY_RESULT, &t1);
+        t->names[i] = f->names[i];
+        t->ms[i] = t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0.0;
+    }
+}
+
+/* Every slot with results out, oldest frame first, so the newest finished one is reported last. */
+static void collect_all(ob_timer_set *t, bool wait)
+{
+    for (long long k = t->frames - OB_TIMER_RING; k < t->frames; ++k) {
+        if (k < 0) continue;
+        ob_timer_frame *f = &t->ring[k % OB_TIMER_RING];
+        if (f->frame == k) collect(t, f, wait);
+    }
 }
 
 void ob_timers_frame_begin(ob_timer_set *t)
 {
-    t->count = 0;
+    if (t->open >= 0) ob_timer_end(t);
+    ob_timer_frame *f = &t->ring[t->frames % OB_TIMER_RING];
+    collect(t, f, true); /* the GPU is a whole ring behind: its results are due anyway */
+    f->frame = t->frames++;
+    f->count = 0;
+    f->pending = false;
+    t->current = f;
     t->open = -1;
 }
 
 void ob_timer_begin(ob_timer_set *t, const char *name)
 {
+    ob_timer_frame *f = t->current;
+    if (!f) return;
     if (t->open >= 0) ob_timer_end(t);
-    if (t->count >= OB_MAX_TIMED_PASSES) return;
-    t->names[t->count] = name;
-    t->open = t->count++;
-    glQueryCounter(t->queries[2 * t->open], GL_TIMESTAMP);
+    if (f->count >= OB_MAX_TIMED_PASSES) return;
+    f->names[f->count] = name;
+    t->open = f->count++;
+    glQueryCounter(f->queries[2 * t->open], GL_TIMESTAMP);
 }
 
 void ob_timer_end(ob_timer_set *t)
 {
-    if (t->open < 0) return;
-    glQueryCounter(t->queries[2 * t->open + 1], GL_TIMESTAMP);
+    if (t->open < 0 || !t->current) return;
+    glQueryCounter(t->current->queries[2 * t->open + 1], GL_TIMESTAMP);
     t->open = -1;
 }
 
 void ob_timers_frame_end(ob_timer_set *t)
 {
+    if (!t->current) return;
     ob_timer_end(t);
-    for (int i = 0; i < t->count; ++i) {
-        GLuint64 t0 = 0, t1 = 0;
-        glGetQueryObjectui64v(t->queries[2 * i], GL_QUERY_RESULT, &t0);
-        glGetQueryObjectui64v(t->queries[2 * i + 1], GL_QUERY_RESULT, &t1);
-        t->ms[i] = t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0.0;
-    }
+    t->current->pending = true;
+    t->current = NULL;
+    collect_all(t, false);
+}
+
+void ob_timers_wait(ob_timer_set *t)
+{
+    if (t->current) ob_timers_frame_end(t);
+    collect_all(t, true);
 }

@@ -523,6 +523,24 @@ void ob_query_timings_frame(const ob_renderer *r, long long *timed, long long *r
  * Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_GL. */
 ob_error ob_wait_timings(ob_renderer *r);
 
+/* The floor of this machine for a method (obscura bench --floor, issue 18): a bare compute kernel
+ * (shaders/floor.glsl) over the last frame's AO-grid depth (R32F) and normals (RGBA16F) that takes
+ * the N taps the settings' method would take (its sample count; HBAO directions x steps, GTAO and
+ * VBAO 2 x slices x steps) spread over its radius in pixels, in the same pattern (a disk, or rays
+ * for the horizon marchers), sums them and writes one R32F value per pixel: what any AO method at
+ * those settings must at least do. It runs as a frame of the timers of its own with one pass,
+ * "floor": ob_wait_timings then ob_query_timings gives its time (and ob_query_timings_frame counts
+ * it as a frame). The last ob_render_frame must have used the same AO scale, and the frame's
+ * outputs stay as they were. info (may be NULL) gets what the kernel took. Errors:
+ * OB_ERR_INVALID_ARGUMENT (NULL r or settings, no frame yet or one at another AO scale, a method
+ * without a sample count or a radius, more than 2048 taps), OB_ERR_SHADER, OB_ERR_GL. */
+typedef struct ob_floor_info {
+    int taps;        /* N */
+    int rays;        /* 0: spread over the disk of the radius; else the rays the taps lie on */
+    float radius;    /* the method's radius, world units */
+} ob_floor_info;
+ob_error ob_render_floor(ob_renderer *r, const ob_settings *settings, ob_floor_info *info);
+
 /* ---- presenting: the last frame or a debug view into a framebuffer, on the GPU --------------
  * The views are the CLI's --view images (app/render.c), made by one compute pass (shaders/view.glsl)
  * instead of a read-back:

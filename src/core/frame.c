@@ -572,3 +572,53 @@ ob_error ob_compute_ao_filtered(ob_renderer *r, uint32_t linear_depth_tex, uint3
 {
     return compute_ao(r, linear_depth_tex, normal_tex, proj, s, ao_out_tex, true);
 }
+
+ob_error ob_render_floor(ob_renderer *r, const ob_settings *s, ob_floor_info *info)
+{
+    if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_floor: NULL renderer");
+    if (check_settings(s) != OB_OK) return ob_peek_error(NULL);
+    const int si = scale_index(s->ao_divisor);
+    if (!r->has_frame || r->last_scale != si || !r->scales[si].ready)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT,
+                            "ob_render_floor: no frame at AO scale 1/%d yet (the floor reads its depth and normals)",
+                            s->ao_divisor > 0 ? s->ao_divisor : 1);
+    method_plan plan;
+    ob_error err = plan_method(r, s, &plan);
+    if (err != OB_OK) return err;
+    const ob_method_info *m = &plan.impl->info;
+    /* The settings as the method resolves them (a radius that follows the scene, the sample count
+     * of HBAO's directions x steps), so the floor takes exactly the method's N and R. */
+    float radius = 0.0f, max_radius_px = 0.0f;
+    for (int i = 0; i < m->param_count; ++i) {
+        if (!strcmp(m->params[i].name, "radius")) radius = plan.params[i];
+        if (!strcmp(m->params[i].name, "max_radius_px")) max_radius_px = plan.params[i];
+    }
+    const int taps = ob_method_samples(plan.impl, plan.params);
+    if (taps <= 0 || !(radius > 0.0f))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_floor: %s has no %s", m->name,
+                            taps <= 0 ? "sample count" : "radius");
+    const ao_targets *t = &r->scales[si];
+    /* R_px = R x (height / 2) x P11 / d, the methods' projection (hbao.c, alchemy.c px_per_unit). */
+    const ob_floor_desc d = {.taps = taps,
+                             .rays = plan.impl->count_rays ? plan.impl->count_rays(plan.params) : 0,
+                             .radius = radius,
+                             .px_per_unit = 0.5f * (float)t->grid.height / r->frame_constants.ao_proj_info[1],
+                             .max_radius_px = max_radius_px};
+    if (!r->floor_ready) {
+        if (ob_floor_init(&r->floor) != OB_OK) {
+            err = ob_peek_error(NULL);
+            ob_floor_destroy(&r->floor);
+            return err;
+        }
+        r->floor_ready = true;
+    }
+    ob_timers_frame_begin(&r->timers);
+    ob_timer_begin(&r->timers, "floor");
+    err = ob_floor_run(&r->floor, &d, t->depth, t->normal, t->grid.width, t->grid.height);
+    ob_timers_frame_end(&r->timers);
+    if (err != OB_OK) return err;
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x in the floor kernel", e);
+    if (info) *info = (ob_floor_info){.taps = d.taps, .rays = d.rays, .radius = d.radius};
+    return OB_OK;
+}

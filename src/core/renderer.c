@@ -85,6 +85,7 @@ void ob_destroy_renderer(ob_renderer *r)
     release_scales(r);
     ob_view_destroy(&r->view);
     if (r->depth_mips_ready) ob_depth_mips_destroy(&r->depth_mips);
+    if (r->floor_ready) ob_floor_destroy(&r->floor);
     if (r->peel_ready) ob_peel_destroy(&r->peel);
     if (r->extra_ready) {
         ob_gbuffer_destroy(&r->extra_gbuffer);

@@ -77,6 +77,8 @@ struct ob_renderer {
     ob_view_pass view;         /* ob_present */
     ob_depth_mips depth_mips;  /* for methods that read OB_READS_DEPTH_MIPS, made on first use */
     bool depth_mips_ready;
+    ob_floor floor;            /* ob_render_floor, made on first use */
+    bool floor_ready;
     ob_peel peel;              /* the second depth layer, for methods that read OB_READS_SECOND_LAYER */
     bool peel_ready;
     bool last_second_layer;    /* the last frame peeled a second layer */

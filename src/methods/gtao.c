@@ -120,6 +120,7 @@ static void gtao_destroy(void *p)
 }
 
 static int gtao_count_samples(const float *params) { return 2 * (int)params[P_SLICES] * (int)params[P_STEPS]; }
+static int gtao_count_rays(const float *params) { return 2 * (int)params[P_SLICES]; }
 
 /* Seed 000's quality levels as slices x steps: ob_slice_set_samples. */
 static ob_error gtao_set_samples(float *params, uint32_t *params_set, int samples)
@@ -145,5 +146,6 @@ const ob_method_impl ob_method_gtao = {
     .active_writes = gtao_active_writes,
     .set_samples = gtao_set_samples,
     .count_samples = gtao_count_samples,
+    .count_rays = gtao_count_rays,
     .adapts = true,
 };

@@ -80,6 +80,7 @@ static int clamp_int(long v, int lo, int hi) { return v < lo ? lo : v > hi ? hi 
  * remove, few steps miss thin occluders, so both grow together. Other counts split near
  * sqrt(N) x sqrt(N). */
 static int hbao_count_samples(const float *params) { return (int)params[P_DIRECTIONS] * (int)params[P_STEPS]; }
+static int hbao_count_rays(const float *params) { return (int)params[P_DIRECTIONS]; }
 
 static ob_error hbao_set_samples(float *params, uint32_t *params_set, int samples)
 {
@@ -119,5 +120,6 @@ const ob_method_impl ob_method_hbao = {
     .run = hbao_run,
     .set_samples = hbao_set_samples,
     .count_samples = hbao_count_samples,
+    .count_rays = hbao_count_rays,
     .adapts = true,
 };

@@ -108,6 +108,10 @@ typedef struct ob_method_impl {
     /* Samples per pixel these params ask for, when not a parameter named "samples" (HBAO:
      * directions x steps). NULL for the default. */
     int (*count_samples)(const float *params);
+    /* Rays these params march from the pixel, when the samples lie on rays (HBAO: directions;
+     * GTAO and VBAO: 2 x slices, a slice searched on both sides); NULL: the samples scatter over
+     * the disk of the radius. The floor kernel takes its taps in the same pattern (bench --floor). */
+    int (*count_rays)(const float *params);
     /* Honours ob_ao_inputs.sample_multiplier (adaptive sample counts). */
     bool adapts;
     /* The sample kernel these params give the shader at a fixed count: xyz per entry in the

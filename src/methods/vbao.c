@@ -156,6 +156,7 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
 }
 
 static int vb_count_samples(const float *params) { return 2 * (int)params[P_SLICES] * (int)params[P_STEPS]; }
+static int vb_count_rays(const float *params) { return 2 * (int)params[P_SLICES]; }
 
 static ob_error vbao_set_samples(float *params, uint32_t *params_set, int samples)
 {
@@ -186,6 +187,7 @@ const ob_method_impl ob_method_vbao = {
     .active_reads = vbao_active_reads,
     .set_samples = vbao_set_samples,
     .count_samples = vb_count_samples,
+    .count_rays = vb_count_rays,
     .adapts = true,
 };
 
@@ -206,5 +208,6 @@ const ob_method_impl ob_method_vbgi = {
     .active_reads = vbgi_active_reads,
     .set_samples = vbgi_set_samples,
     .count_samples = vb_count_samples,
+    .count_rays = vb_count_rays,
     .adapts = true,
 };

@@ -4,6 +4,7 @@
 #define OB_PASSES_H
 
 #include "depth_mips_params.h"
+#include "floor_params.h"
 #include "gpu/gpu.h"
 #include "lighting_params.h"
 #include "resample_params.h"
@@ -128,6 +129,36 @@ void ob_depth_mips_destroy(ob_depth_mips *m);
  * floats, row-major, for L below the returned count) from depth (width x height). Returns
  * ob_depth_mips_level_count(width, height). */
 int ob_depth_mips_reference(const float *depth, int width, int height, float *const levels[OB_DEPTH_MIPS_LEVELS]);
+
+/* ---- the floor: floor.c, shaders/floor.glsl (obscura bench --floor; issue 18) ---------------
+ * A bare N-tap kernel over the AO grid's depth and normals: what any AO method at N taps and radius
+ * R must at least do (the shader says exactly what it does and leaves out). */
+typedef struct ob_floor_desc {
+    int taps;            /* N, 1..OB_FLOOR_MAX_TAPS */
+    int rays;            /* 0: a spiral over the disk of R_px; D: D rays of N / D steps (N a multiple of D) */
+    float radius;        /* R, world units, > 0 */
+    float px_per_unit;   /* R_px = R x px_per_unit / d: 0.5 x AO-grid height x P11, as the methods */
+    float max_radius_px; /* the method's clamp of R_px; 0 = none */
+} ob_floor_desc;
+
+typedef struct ob_floor {
+    ob_compute_pass pass;
+    GLuint taps_buffer;  /* the tap table, OB_FLOOR_MAX_TAPS vec4 */
+    GLuint texture;      /* R32F output, made by the first run at its size */
+    int width, height;
+} ob_floor;
+
+/* The constants and the tap table (taps x 4 floats: unit direction xy, distance a + b R_px) for a
+ * width x height grid; pure, for the test's CPU twin. Errors: OB_ERR_INVALID_ARGUMENT (NULL, taps
+ * out of range or not a multiple of rays, radius or scale <= 0), OB_ERR_BAD_SIZE. */
+ob_error ob_floor_fill(const ob_floor_desc *d, int width, int height, ob_floor_constants *c, float *table);
+ob_error ob_floor_init(ob_floor *f);
+/* One dispatch into f->texture (remade when the size changes), then a fetch/image barrier. Not
+ * timed here: the caller brackets it. Errors: those of ob_floor_fill, OB_ERR_GL. */
+ob_error ob_floor_run(ob_floor *f, const ob_floor_desc *d, GLuint linear_depth, GLuint view_normal, int width,
+                      int height);
+/* Safe on a zeroed or destroyed f. */
+void ob_floor_destroy(ob_floor *f);
 
 /* ---- direct light: lighting.c, shaders/lighting.glsl ---------------------------------------- */
 typedef struct ob_lighting_pass { ob_compute_pass pass; ob_lighting_constants constants; } ob_lighting_pass;

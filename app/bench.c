@@ -24,6 +24,7 @@ typedef struct bench_opts {
     int radius_count;
     int frames, warmup;
     bool stereo, scaling;
+    bool floor;                   /* --floor: time the bare N-tap kernel beside each AO pass */
     float ipd;
     int sizes[MAX_SIZES][2], size_count;
 } bench_opts;
@@ -43,6 +44,11 @@ typedef struct bench_row {
     char pass[MAX_PASSES][16];
     double med[MAX_PASSES], min[MAX_PASSES], max[MAX_PASSES];
     double frame_med, frame_min, frame_max, ao_ms;
+    /* --floor: the bare N-tap kernel at this row's N, radius and AO grid (ob_render_floor), median,
+     * min, max over the same number of measured frames after the same warm-up; floor_taps 0 = not
+     * measured (the method takes no sample count, or no --floor). */
+    double floor_med, floor_min, floor_max;
+    int floor_taps, floor_rays;
     int baseline;         /* index of this camera's none row, -1 when none */
     int study;            /* 0 the sweep, 1 scaling over resolution, 2 scaling over triangles */
 } bench_row;
@@ -83,6 +89,9 @@ static void bench_usage(FILE *f, const cli_common *defaults)
           "                        at the first --samples and --radius values, first camera\n"
           "  --sizes WxH,WxH       --scaling's resolutions (default 640x480,1280x720,1920x1080,\n"
           "                        2560x1440,3840x2160)\n"
+          "  --floor               also time a bare N-tap compute kernel (shaders/floor.glsl) at each\n"
+          "                        configuration's N, radius and AO grid, after the same warm-up, and\n"
+          "                        report AO pass / floor (the floor of the machine at hand)\n"
           "  --json FILE           every number, with GL renderer/version, CPU, commit and date\n"
           "  --csv FILE            one row per configuration and pass\n"
           "\n"
@@ -147,6 +156,7 @@ static int parse(int argc, char **argv, bench_opts *o)
         }
         if (!strcmp(a, "--stereo")) { o->stereo = true; continue; }
         if (!strcmp(a, "--scaling")) { o->scaling = true; continue; }
+        if (!strcmp(a, "--floor")) { o->floor = true; continue; }
         int taken = cli_common_option(c, argc, argv, &i);
         if (taken == CLI_TAKEN) continue;
         if (taken != CLI_NOT_MINE) return taken;
@@ -256,6 +266,32 @@ static bench_row *new_row(bench_state *st)
     return r;
 }
 
+/* --floor, right after the configuration's own frames (whose depth and normals it reads): the same
+ * warm-up and measured frame counts of the floor kernel, each frame waited for like the method's;
+ * stereo sums both eyes as the passes do. */
+static int measure_floor(ob_renderer **eyes, int eye_count, const ob_settings *s, const bench_opts *o,
+                         double *scratch, bench_row *row)
+{
+    for (int f = 0; f < o->warmup + o->frames; ++f) {
+        bool measured = f >= o->warmup;
+        if (measured) scratch[f - o->warmup] = 0.0;
+        for (int e = 0; e < eye_count; ++e) {
+            ob_floor_info info = {0};
+            if (ob_render_floor(eyes[e], s, &info) != OB_OK) return cli_fail_from_library();
+            row->floor_taps = info.taps;
+            row->floor_rays = info.rays;
+            if (!measured) continue;
+            if (ob_wait_timings(eyes[e]) != OB_OK) return cli_fail_from_library();
+            ob_pass_timing t[MAX_PASSES];
+            int n = ob_query_timings(eyes[e], t, MAX_PASSES);
+            for (int p = 0; p < n; ++p)
+                if (!strcmp(t[p].name, "floor")) scratch[f - o->warmup] += t[p].ms;
+        }
+    }
+    stats(scratch, o->frames, &row->floor_med, &row->floor_min, &row->floor_max);
+    return EXIT_OK;
+}
+
 /* Warm-up, then o->frames measured frames on every eye. scratch holds frames x (MAX_PASSES + 1). */
 static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, const ob_settings *s, const bench_opts *o,
                    double *scratch, bench_row *row)
@@ -290,7 +326,7 @@ static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, con
         if (!strcmp(row->pass[p], "ao")) row->ao_ms = row->med[p];
     }
     stats(frame_ms, frames, &row->frame_med, &row->frame_min, &row->frame_max);
-    return EXIT_OK;
+    return o->floor && row->samples > 0 ? measure_floor(eyes, eye_count, s, o, scratch, row) : EXIT_OK;
 }
 
 /* The settings of one configuration: its combination's, then the sweep's N and r (samples 0 /
@@ -390,6 +426,40 @@ static void git_commit(char *out, size_t n)
 
 static const char *method_name(int m) { return ob_method_at(m)->name; }
 
+/* --floor: the method's table again, each cell AO pass / floor (floor ms, its taps), rows N as
+ * asked (the floor's N is the method's actual sample count). */
+static void print_floor_table(const bench_state *st, int camera, const cli_config *cfg, const int *ns, int nn,
+                              const float *rs, int rn)
+{
+    printf("%s: AO pass / floor (floor ms, taps)\n%-8s", cfg->label, "");
+    for (int q = 0; q < rn; ++q) {
+        char h[32];
+        if (rs[q] > 0.0f) snprintf(h, sizeof h, "r = %g", (double)rs[q]);
+        else snprintf(h, sizeof h, "r = -");
+        printf(" %20s", h);
+    }
+    printf("\n");
+    for (int j = 0; j < nn; ++j) {
+        char h[32];
+        if (ns[j] > 0) snprintf(h, sizeof h, "N = %d", ns[j]);
+        else snprintf(h, sizeof h, "N = -");
+        printf("%-8s", h);
+        for (int q = 0; q < rn; ++q) {
+            const bench_row *hit = NULL;
+            for (int i = 0; i < st->count; ++i) {
+                const bench_row *r = &st->rows[i];
+                if (r->camera == camera && r->cfg == cfg && r->samples == ns[j] && r->r == rs[q]) hit = r;
+            }
+            char cell[48] = "-";
+            if (hit && hit->floor_taps > 0 && hit->floor_med > 0.0)
+                snprintf(cell, sizeof cell, "%.2fx (%.3f, %d)", hit->ao_ms / hit->floor_med, hit->floor_med,
+                         hit->floor_taps);
+            printf(" %20s", cell);
+        }
+        printf("\n");
+    }
+}
+
 static void print_tables(const bench_opts *o, const ob_scene *scene, const bench_state *st, const int *cams, int cam_count,
                          const cli_config *configs, int config_count)
 {
@@ -461,6 +531,7 @@ static void print_tables(const bench_opts *o, const ob_scene *scene, const bench
                 printf("\n");
             }
             if (cells) printf("mean frame / none frame: %.2fx\n", sum_ratio / cells);
+            if (o->floor) print_floor_table(st, cams[c], cfg, ns, nn, rs, rn);
         }
     }
 }
@@ -511,6 +582,20 @@ static cJSON *row_json(const bench_row *r, const bench_row *none, const ob_scene
     cJSON_AddNumberToObject(fr, "max", r->frame_max);
     cJSON_AddNumberToObject(j, "fps", 1000.0 / r->frame_med);
     cJSON_AddNumberToObject(j, "ao_ms", r->ao_ms);
+    if (r->floor_taps > 0) {
+        cJSON *fl = cJSON_AddObjectToObject(j, "floor_ms");
+        cJSON_AddNumberToObject(fl, "median", r->floor_med);
+        cJSON_AddNumberToObject(fl, "min", r->floor_min);
+        cJSON_AddNumberToObject(fl, "max", r->floor_max);
+        if (r->floor_med > 0.0) cJSON_AddNumberToObject(j, "floor_ratio", r->ao_ms / r->floor_med);
+        else cJSON_AddNullToObject(j, "floor_ratio");
+        cJSON_AddNumberToObject(j, "floor_taps", r->floor_taps);
+        cJSON_AddStringToObject(j, "floor_pattern", r->floor_rays > 0 ? "rays" : "disk");
+        if (r->floor_rays > 0) cJSON_AddNumberToObject(j, "floor_rays", r->floor_rays);
+    } else {
+        cJSON_AddNullToObject(j, "floor_ms");
+        cJSON_AddNullToObject(j, "floor_ratio");
+    }
     if (none) {
         cJSON *v = cJSON_AddObjectToObject(j, "vs_none");
         cJSON_AddNumberToObject(v, "ao_minus_ms", r->ao_ms - none->ao_ms);
@@ -536,7 +621,7 @@ static int write_csv(const char *path, const bench_state *st, const ob_scene *sc
     if (!buf) return cli_fail(EXIT_RUNTIME, "out of memory");
     len += (size_t)snprintf(buf + len, cap - len,
                             "scene,camera,method,samples,r,radius_world,filter,ao_scale,width,height,eyes,triangles,pass,"
-                            "median_ms,min_ms,max_ms,fps,minus_none_ms,ratio_none,label\n");
+                            "median_ms,min_ms,max_ms,fps,minus_none_ms,ratio_none,label,floor_ms,floor_ratio\n");
     for (int i = 0; i < st->count; ++i) {
         const bench_row *r = &st->rows[i];
         const bench_row *none = baseline_of(st, r);
@@ -566,12 +651,18 @@ static int write_csv(const char *path, const bench_state *st, const ob_scene *sc
             }
             char label[CLI_MAX_LABEL + 32] = "";
             row_label(r, label, sizeof label);
+            /* The floor on the ao row: its median and AO pass / floor. */
+            char fms[32] = "", fratio[32] = "";
+            if (!frame && r->floor_taps > 0 && !strcmp(r->pass[p], "ao")) {
+                snprintf(fms, sizeof fms, "%.4f", r->floor_med);
+                if (r->floor_med > 0.0) snprintf(fratio, sizeof fratio, "%.4f", r->ao_ms / r->floor_med);
+            }
             len += (size_t)snprintf(buf + len, cap - len,
-                                    "%s,%s,%s,%s,%s,%s,%s,%g,%d,%d,%d,%u,%s,%.4f,%.4f,%.4f,%s,%s,%s,%s\n",
+                                    "%s,%s,%s,%s,%s,%s,%s,%g,%d,%d,%d,%u,%s,%.4f,%.4f,%.4f,%s,%s,%s,%s,%s,%s\n",
                                     ob_query_scene_name(scene), ob_query_camera(scene, r->camera).name,
                                     method_name(r->method), samples, rr, rw, ob_filter_at(r->cfg->filter)->name,
                                     1.0 / r->cfg->ao_divisor, r->width, r->height, eyes, r->triangles,
-                                    frame ? "frame" : r->pass[p], med, lo, hi, fps, minus, ratio, label);
+                                    frame ? "frame" : r->pass[p], med, lo, hi, fps, minus, ratio, label, fms, fratio);
         }
     }
     ob_error e = ob_write_text(path, buf);
@@ -614,6 +705,15 @@ static scaling_verdict verdict(const bench_state *st, const cli_config *cfg)
         v.linear_in_pixels = med > 0.0 && v.mpx_spread <= 0.3;
     }
     return v;
+}
+
+/* --floor in the scaling lines: ", 2.91x floor" (one static buffer: one call per printf). */
+static const char *floor_note(const bench_row *r)
+{
+    static char note[48];
+    note[0] = '\0';
+    if (r->floor_taps > 0 && r->floor_med > 0.0) snprintf(note, sizeof note, ", %.2fx floor", r->ao_ms / r->floor_med);
+    return note;
 }
 
 /* ---- the command ----------------------------------------------------------------------------- */
@@ -797,12 +897,13 @@ int cmd_bench(int argc, char **argv)
                 printf("\n%s\n  resolution:", configs[k].label);
                 for (int i = 0; i < st.count; ++i)
                     if (st.rows[i].cfg == &configs[k] && st.rows[i].study == 1)
-                        printf("  %dx%d %.3f ms (%.3f ms/MP)", st.rows[i].width, st.rows[i].height, st.rows[i].ao_ms,
-                               st.rows[i].ao_ms / (st.rows[i].width * (double)st.rows[i].height * 1e-6));
+                        printf("  %dx%d %.3f ms (%.3f ms/MP%s)", st.rows[i].width, st.rows[i].height, st.rows[i].ao_ms,
+                               st.rows[i].ao_ms / (st.rows[i].width * (double)st.rows[i].height * 1e-6),
+                               floor_note(&st.rows[i]));
                 printf("\n  triangles: ");
                 for (int i = 0; i < st.count; ++i)
                     if (st.rows[i].cfg == &configs[k] && st.rows[i].study == 2)
-                        printf("  %u tris %.3f ms", st.rows[i].triangles, st.rows[i].ao_ms);
+                        printf("  %u tris %.3f ms%s", st.rows[i].triangles, st.rows[i].ao_ms, floor_note(&st.rows[i]));
                 scaling_verdict v = verdict(&st, &configs[k]);
                 printf("\n  flat in triangles: %s (max/min %.2f, < 1.2); linear in pixels: %s (ms/MP within %.0f%% of "
                        "the median, limit 30%%)\n",
@@ -852,6 +953,7 @@ int cmd_bench(int argc, char **argv)
         }
         cJSON_AddNumberToObject(root, "frames", o.frames);
         cJSON_AddNumberToObject(root, "warmup", o.warmup);
+        cJSON_AddBoolToObject(root, "floor", o.floor);
         cJSON_AddStringToObject(root, "filter", filters);
         cJSON_AddNumberToObject(root, "seconds", seconds);
         cJSON *arr = cJSON_AddArrayToObject(root, "configurations");

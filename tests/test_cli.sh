@@ -270,6 +270,37 @@ if "$OBSCURA" render --scene cornell --size 48x40 --stereo single --ipd 0.05 --o
 else
     bad "render --stereo single failed: $(cat "$dir/stderr")"
 fi
+# bench --floor (issue 18): the ratio table on stdout and floor_ms / floor_ratio in the JSON for
+# every configuration with a sample count (none has none); with --stereo and --scaling too.
+B=(bench --scene cornell --cameras front --size 32x24 --frames 2 --warmup 1 --samples 16 --radius 4
+   --filter none --shadow none --hdr off --floor)
+if "$OBSCURA" "${B[@]}" --methods ssao,hbao --json "$dir/floor.json" >"$dir/stdout" 2>"$dir/stderr"; then
+    grep -q "ssao: AO pass / floor" "$dir/stdout" && grep -qE "^N = 16 +[0-9.]+x \([0-9.]+, 16\)" "$dir/stdout" &&
+        ok || bad "bench --floor: no ratio column: $(cat "$dir/stdout")"
+    python3 - "$dir/floor.json" <<'PY' && ok || bad "bench --floor JSON"
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+assert d["floor"] is True
+by = {c["method"]: c for c in d["configurations"]}
+assert by["none"]["floor_ms"] is None and by["none"]["floor_ratio"] is None
+for m, pattern in (("ssao", "disk"), ("hbao", "rays")):
+    c = by[m]
+    f = c["floor_ms"]
+    assert 0 < f["min"] <= f["median"] <= f["max"] and math.isfinite(f["max"]), (m, f)
+    assert abs(c["floor_ratio"] - c["ao_ms"] / f["median"]) < 1e-9 * c["floor_ratio"], (m, c["floor_ratio"])
+    assert c["floor_taps"] == 16 and c["floor_pattern"] == pattern, (m, c["floor_taps"], c["floor_pattern"])
+PY
+else
+    bad "bench --floor failed: $(cat "$dir/stderr")"
+fi
+for mode in --stereo --scaling; do
+    if "$OBSCURA" "${B[@]}" --methods ssao $mode --sizes 32x24 --json "$dir/floor.json" >"$dir/stdout" 2>"$dir/stderr"; then
+        python3 -c 'import json, sys; c = [c for c in json.load(open(sys.argv[1]))["configurations"] if c["method"] == "ssao"]; assert c and all(x["floor_ratio"] > 0 for x in c)' "$dir/floor.json" &&
+            ok || bad "bench --floor $mode: no floor_ratio"
+    else
+        bad "bench --floor $mode failed: $(cat "$dir/stderr")"
+    fi
+done
 "$OBSCURA" list | grep -q "ssao" && ok || bad "list"
 "$OBSCURA" render --help | grep -q -- "--ao-out" && ok || bad "render --help"
 "$OBSCURA" list --help | grep -q -- "--json" && ok || bad "list --help"

@@ -1,7 +1,8 @@
 #version 450 core
 /* Screen-space directional occlusion with one indirect bounce (Ritschel, Grosch & Seidel 2009,
- * as described in seed 003 §3.3 and §4.2; seed 000 §4.1-4.2). One program, three stages
- * (ssdo.stage), so `ssdo`'s two passes and `ssdo_merged` take exactly the same samples:
+ * as described in seed 003 §3.3 and §4.2; seed 000 §4.1-4.2). One program, four stages
+ * (ssdo.stage), so `ssdo`'s two passes, its fused one (both outputs from one dispatch, the
+ * default) and `ssdo_merged` take exactly the same samples:
  *
  *   - samples P + r_i w_i in the normal hemisphere in 3D (w_i from a Halton 2,5 kernel, r_i from
  *     base 3, seed 003 §5.3), rotated per pixel, back-projected; a sample behind the depth buffer

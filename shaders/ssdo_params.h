@@ -13,6 +13,7 @@
 #define OB_SSDO_STAGE_DIRECT 0 /* `ssdo` pass 1: M from uniform directions (eq. 5.3) */
 #define OB_SSDO_STAGE_MERGED 1 /* `ssdo_merged`: M (cosine directions, eq. 5.2) + bounce x M */
 #define OB_SSDO_STAGE_BOUNCE 2 /* `ssdo` pass 2: the bounce from the same occluders (eq. 3.4) */
+#define OB_SSDO_STAGE_BOTH 3   /* `ssdo` fused: passes 1 and 2 in one dispatch, the same samples taken once */
 
 OB_CONSTANTS_BEGIN(ob_ssdo_constants, OB_BINDING_PASS)
     OB_FLOAT radius;        /* sampling hemisphere radius, world units */

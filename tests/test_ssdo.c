@@ -164,6 +164,30 @@ static void test_agreement(ob_renderer *r)
     free(b_merged);
 }
 
+/* `ssdo` fused (one dispatch) against its two passes: the same samples and the same arithmetic,
+ * so the same bits in M and in the bounce, before the filter (raw) and after it. */
+static void test_fused(ob_renderer *r)
+{
+    ob_settings one, two;
+    settings_for(&one, "ssdo");
+    ob_settings_set_filter(&one, "none");
+    two = one;
+    CHECK(ob_settings_set(&one, "ssdo.fused=on") == OB_OK && ob_settings_set(&two, "ssdo.fused=off") == OB_OK,
+          "ssdo.fused");
+    float *m1 = render(r, &one, OB_IMAGE_AO_RGB_F32), *b1 = render(r, &one, OB_IMAGE_BOUNCE_F32);
+    float *m2 = render(r, &two, OB_IMAGE_AO_RGB_F32), *b2 = render(r, &two, OB_IMAGE_BOUNCE_F32);
+    size_t n = (size_t)W * H * 3;
+    CHECK(!memcmp(m1, m2, n * sizeof(float)), "fused ssdo's M is the two passes' bit for bit");
+    CHECK(!memcmp(b1, b2, n * sizeof(float)), "fused ssdo's bounce is the two passes' bit for bit");
+    double bounce = 0.0;
+    for (size_t i = 0; i < n; ++i) bounce += b1[i];
+    CHECK(bounce > 0.0, "and there is a bounce to compare (%g)", bounce);
+    free(m1);
+    free(b1);
+    free(m2);
+    free(b2);
+}
+
 /* M in [0,1]; sky pixels M = 1 and bounce 0; bounce off gives a black bounce. */
 static void test_ranges(ob_renderer *r, const char *m, float scale)
 {
@@ -219,6 +243,7 @@ int main(void)
     test_bleeding(r, "ssdo_merged");
     test_light_moves(r, cornell);
     test_agreement(r);
+    test_fused(r);
     test_ranges(r, "ssdo", 1.0f);
     test_ranges(r, "ssdo_merged", 1.0f);
     test_ranges(r, "ssdo_merged", 0.5f);

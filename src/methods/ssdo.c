@@ -18,7 +18,7 @@
 #include "sampling/sampling.h"
 #include "ssdo_params.h"
 
-enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_EXTRA_VIEW, P_COUNT };
+enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_EXTRA_VIEW, P_FUSED, P_COUNT };
 
 static const ob_param_info ssdo_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -49,6 +49,12 @@ static const ob_param_info ssdo_params[P_COUNT] = {
                       "also a camera turned 90 degrees around the target: its G-buffer frees samples it sees and "
                       "sends bounces from surfaces this view sees at grazing angles",
                       false},
+    /* On: `ssdo`'s two passes (M, then the bounce from the same samples) in one dispatch, which
+     * takes, tests and projects each sample once instead of twice; the outputs are the same
+     * bits (tests/test_ssdo.c). Off: the seed's two passes, the baseline. ssdo_merged has one
+     * pass either way. */
+    [P_FUSED] = {"fused", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
+                 "ssdo: M and the bounce in one dispatch (off: two passes over the same samples)", false},
 };
 
 #define KERNEL_SEED 0x55D0u
@@ -147,7 +153,8 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     }
 
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];
-    c->stage = s->merged ? OB_SSDO_STAGE_MERGED : OB_SSDO_STAGE_DIRECT;
+    const bool fused = params[P_FUSED] != 0.0f && bounce;
+    c->stage = s->merged ? OB_SSDO_STAGE_MERGED : fused ? OB_SSDO_STAGE_BOTH : OB_SSDO_STAGE_DIRECT;
     ob_method_kit_use(&s->kit, c, used, in, out, GL_RGBA16F);
     glBindTextureUnit(3, in->radiance);
     glBindTextureUnit(5, in->sample_multiplier ? in->sample_multiplier : s->kit.noise);
@@ -159,7 +166,7 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
      * too (the merged stage then writes zeros there; nothing reads them). */
     glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
-    if (s->merged || !bounce) return OB_OK;
+    if (s->merged || !bounce || fused) return OB_OK;
     /* Pass 2 reads nothing pass 1 wrote (the senders' radiance is the lighting pass's), so no
      * barrier: the same samples, the bounce of eq. 3.4. */
     c->stage = OB_SSDO_STAGE_BOUNCE;

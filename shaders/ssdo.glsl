@@ -2,7 +2,10 @@
 /* Screen-space directional occlusion with one indirect bounce (Ritschel, Grosch & Seidel 2009,
  * as described in seed 003 §3.3 and §4.2; seed 000 §4.1-4.2). One program, four stages
  * (ssdo.stage), so `ssdo`'s two passes, its fused one (both outputs from one dispatch, the
- * default) and `ssdo_merged` take exactly the same samples:
+ * default) and `ssdo_merged` take exactly the same samples. The second depth layer
+ * (OB_SSDO_LAYERS) and the extra view (OB_SSDO_EXTRA_VIEW) are program variants, so the default
+ * program carries none of their code (as options read per sample they cost every frame 40 % on
+ * llvmpipe):
  *
  *   - samples P + r_i w_i in the normal hemisphere in 3D (w_i from a Halton 2,5 kernel, r_i from
  *     base 3, seed 003 §5.3), rotated per pixel, back-projected; a sample behind the depth buffer
@@ -77,6 +80,7 @@ vec3 incoming(vec3 w, vec3 up, mat3 to_world)
     return l_in;
 }
 
+#ifdef OB_SSDO_EXTRA_VIEW
 /* Seed 000 §4.4's extra view, for a sample s that this view says is occluded (behind its depth
  * buffer): the extra camera, turned 90 degrees around the target, sees it too. In front of the
  * extra view's surface at its pixel (or over its sky), s lies on a ray that camera sees through,
@@ -105,6 +109,8 @@ void extra_test(vec3 s, float bias, inout vec3 scene_p, inout float occ, inout v
         send_l = texelFetch(extra_direct, qe, 0).rgb;
     }
 }
+
+#endif
 
 void main()
 {
@@ -156,9 +162,11 @@ void main()
         float occ = 0.0;
         ivec2 q = ivec2(0);
         vec3 scene_p = vec3(0.0);
+#ifdef OB_SSDO_EXTRA_VIEW
         /* The sender of a bounce: the occluding surface point, its normal and direct radiance
          * (this view's unless the extra view's surface lies nearer the sample). */
         vec3 send_n = vec3(0.0), send_l = vec3(0.0);
+#endif
         vec3 s = p + dir * (radius * ssdo.kernel[i].w);
         vec4 clip = frame.ao_proj * vec4(s, 1.0);
         if (clip.w > 0.0) {
@@ -176,16 +184,19 @@ void main()
                     /* Seed 000 around Fig. 4.6: with a second layer a sample behind the first
                      * surface is inside the object only up to the second; behind that it is free
                      * (0 = nothing behind the first: the single-layer test). */
-                    float back = 0.0;
-                    if (ssdo.layers != 0)
-                        back = texelFetch(second_layer, min(q * frame.ao_k + frame.ao_o, full_size - 1), 0).r;
-                    bool inside = back <= 0.0 || -s.z <= back;
+                    bool inside = true;
+#ifdef OB_SSDO_LAYERS
+                    float back = texelFetch(second_layer, min(q * frame.ao_k + frame.ao_o, full_size - 1), 0).r;
+                    inside = back <= 0.0 || -s.z <= back;
+#endif
                     occ = above && scene_d <= -s.z - bias && inside ? range : 0.0;
+#ifdef OB_SSDO_EXTRA_VIEW
                     if (want_bounce && occ > 0.0) {
                         send_n = texelFetch(view_normal, q, 0).xyz;
                         send_l = texelFetch(direct_map, min(q * frame.ao_k + frame.ao_o, full_size - 1), 0).rgb;
                     }
-                    if (ssdo.extra_view != 0 && occ > 0.0) extra_test(s, bias, scene_p, occ, send_n, send_l);
+                    if (occ > 0.0) extra_test(s, bias, scene_p, occ, send_n, send_l);
+#endif
                 }
             }
         }
@@ -200,9 +211,17 @@ void main()
             vec3 v = p - scene_p;
             float len2 = max(dot(v, v), 1e-12);
             vec3 vd = v * inversesqrt(len2);
+#ifndef OB_SSDO_EXTRA_VIEW
+            vec3 send_n = texelFetch(view_normal, q, 0).xyz;
+#endif
             float cos_s = dot(send_n, vd); /* the sender must face P */
             float cos_r = dot(n, -vd);     /* and P must face the sender */
-            if (cos_s > 0.0 && cos_r > 0.0) bounce += send_l * (occ * cos_s * cos_r / max(len2, min_d2));
+            if (cos_s > 0.0 && cos_r > 0.0) {
+#ifndef OB_SSDO_EXTRA_VIEW
+                vec3 send_l = texelFetch(direct_map, clamp(q * frame.ao_k + frame.ao_o, ivec2(0), full_size - 1), 0).rgb;
+#endif
+                bounce += send_l * (occ * cos_s * cos_r / max(len2, min_d2));
+            }
         }
     }
     vec3 m = vec3(1.0);

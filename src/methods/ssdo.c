@@ -61,6 +61,9 @@ static const ob_param_info ssdo_params[P_COUNT] = {
 
 typedef struct ssdo_state {
     ob_method_kit kit;
+    /* The program variants with the second layer (bit 0) and the extra view (bit 1), made on first
+     * use; [0] is the kit's own program. */
+    GLuint variants[4];
     int kernel_count; /* the cached kernel was built for these */
     int kernel_pdf;
     bool merged;
@@ -114,6 +117,13 @@ static uint32_t ssdo_active_writes(const float *params)
     return OB_WRITES_VISIBILITY_RGB | (params[P_BOUNCE] != 0.0f ? OB_WRITES_BOUNCE : 0u);
 }
 
+static void ssdo_destroy(void *p)
+{
+    ssdo_state *s = p;
+    for (int v = 1; v < 4; ++v)
+        if (s->variants[v]) glDeleteProgram(s->variants[v]);
+}
+
 static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
 {
     ssdo_state *s = p;
@@ -152,6 +162,18 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
         c->extra_proj_info[3] = ep[9];
     }
 
+    /* The layer and extra-view code only in their own programs (shaders/ssdo.glsl). */
+    GLuint variant = 0;
+    const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0);
+    if (v) {
+        if (!s->variants[v]) {
+            static const char *const defines[4] = {NULL, "#define OB_SSDO_LAYERS 1\n", "#define OB_SSDO_EXTRA_VIEW 1\n",
+                                                   "#define OB_SSDO_LAYERS 1\n#define OB_SSDO_EXTRA_VIEW 1\n"};
+            s->variants[v] = ob_make_compute_program("ssdo.glsl", defines[v]);
+            if (!s->variants[v]) return ob_peek_error(NULL);
+        }
+        variant = s->variants[v];
+    }
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     const bool fused = params[P_FUSED] != 0.0f && bounce;
     c->stage = s->merged ? OB_SSDO_STAGE_MERGED : fused ? OB_SSDO_STAGE_BOTH : OB_SSDO_STAGE_DIRECT;
@@ -165,12 +187,14 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     /* The renderer gives every declared output a target, so image 1 is valid with the bounce off
      * too (the merged stage then writes zeros there; nothing reads them). */
     glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    if (variant) glUseProgram(variant);
     ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
     if (s->merged || !bounce || fused) return OB_OK;
     /* Pass 2 reads nothing pass 1 wrote (the senders' radiance is the lighting pass's), so no
      * barrier: the same samples, the bounce of eq. 3.4. */
     c->stage = OB_SSDO_STAGE_BOUNCE;
     ob_compute_pass_use(&s->kit.pass, c, used);
+    if (variant) glUseProgram(variant);
     ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
     return OB_OK;
 }
@@ -205,6 +229,7 @@ const ob_method_impl ob_method_ssdo = {
     .state_size = sizeof(ssdo_state),
     .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER | OB_READS_EXTRA_VIEW,
     .active_reads = ssdo_active_reads,
+    .destroy = ssdo_destroy,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
     .adapts = true,
     .kernel = ssdo_kernel,
@@ -224,6 +249,7 @@ const ob_method_impl ob_method_ssdo_merged = {
     .state_size = sizeof(ssdo_state),
     .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER | OB_READS_EXTRA_VIEW,
     .active_reads = ssdo_active_reads,
+    .destroy = ssdo_destroy,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
     .adapts = true,
     .kernel = ssdo_merged_kernel,

@@ -249,7 +249,8 @@ static const struct {
     {"--light", 0},                {"--env", 0},         {"--ambient", 0},
     {"--ambient-color", 0},        {"--ao-light", 0},    {"--shadow", 0},
     {"--multibounce", 0},          {"--settings", 0},    {"--textures", 0},
-    {"--vsm-bits", 0},             {"--guard", 0},
+    {"--vsm-bits", 0},             {"--guard", 0},       {"--temporal", 0},
+    {"--temporal-at", 0},          {"--temporal-frames", 0},
     {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
 
@@ -309,6 +310,19 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         c->sets[c->set_count++] = v;
     } else if (!strcmp(a, "--guard")) {
         return parse_guard(c, v);
+    } else if (!strcmp(a, "--temporal")) {
+        if (!cli_parse_on_off(v, &c->temporal)) return cli_fail(EXIT_USAGE, "--temporal: expected on or off, got '%s'", v);
+    } else if (!strcmp(a, "--temporal-at")) {
+        if (!strcmp(v, "before")) c->temporal_at = OB_TEMPORAL_BEFORE_FILTER;
+        else if (!strcmp(v, "after")) c->temporal_at = OB_TEMPORAL_AFTER_FILTER;
+        else return cli_fail(EXIT_USAGE, "--temporal-at: expected before or after (the spatial filter), got '%s'", v);
+    } else if (!strcmp(a, "--temporal-frames")) {
+        char *end = NULL;
+        long n = strtol(v, &end, 10);
+        if (end == v || *end != '\0' || n < 1 || n > OB_TEMPORAL_FRAMES_MAX)
+            return cli_fail(EXIT_USAGE, "--temporal-frames: expected a history length of 1..%d frames, got '%s'",
+                            OB_TEMPORAL_FRAMES_MAX, v);
+        c->temporal_frames = (int)n;
     } else if (!strcmp(a, "--adaptive")) {
         if (!cli_parse_on_off(v, &c->adaptive)) return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
     } else if (!strcmp(a, "--light")) {
@@ -465,6 +479,12 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "                        frame, so occluders just outside it darken the border; cropped at\n"
           "                        compose (default 0 = off; rounded up to a multiple of 4 x the AO\n"
           "                        divisor; the AO chain costs about (W+2g)(H+2g)/WH)\n"
+          "  --temporal on|off     temporal accumulation (docs/temporal.md): reproject last frame's AO\n"
+          "                        through depth and the last camera, reject disocclusions, clamp to\n"
+          "                        the 3x3 neighbourhood, blend over --temporal-frames; turns every\n"
+          "                        method's noise with the frame index (default off)\n"
+          "  --temporal-at before|after  accumulate before (default) or after the spatial filter\n"
+          "  --temporal-frames N   history length, 1..256 (default 16)\n"
           "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off; every\n"
           "                        method takes them, see docs/filters.md)\n"
           "  --light SPEC          replaces the scene's lights (repeatable, up to 8), e.g.\n"
@@ -580,6 +600,9 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
         return cli_fail_from_library();
     s->adaptive = c->adaptive;
     s->guard = c->guard_px;
+    s->temporal = c->temporal;
+    s->temporal_at = c->temporal_at;
+    s->temporal_frames = c->temporal_frames;
     /* Every method adapts today; a new one that does not is named here rather than silently
      * ignoring the option. none takes no samples at all: nothing to say (bench's baseline frames
      * are none). */

@@ -106,6 +106,10 @@ typedef struct cli_common {
     int guard_px;
     float guard_percent;
     bool guard_is_percent;
+    /* --temporal on|off, --temporal-at before|after, --temporal-frames N (ob_settings.temporal*) */
+    bool temporal;
+    int temporal_at;
+    int temporal_frames;
 
     /* lighting, shadows, tone mapping */
     const char *lights[OB_MAX_LIGHTS];

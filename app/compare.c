@@ -607,6 +607,7 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
     cJSON_AddNumberToObject(root, "reference_spp", o->spp);
     /* --guard as given, in pixels per side (the renderer rounds it up to 4 x the AO divisor). */
     cJSON_AddNumberToObject(root, "guard", o->common.guard_px);
+    cJSON_AddBoolToObject(root, "temporal", o->common.temporal);
     time_t now = time(NULL);
     char date[32];
     strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));

@@ -50,6 +50,11 @@ expect 2 "unknown option" -- "${R[@]}" --frobnicate 3
 expect 2 "unknown filter 'nosuch'" -- "${R[@]}" --filter nosuch
 expect 2 "ao-scale" -- "${R[@]}" --ao-scale 0.3
 expect 2 "adaptive" -- "${R[@]}" --adaptive maybe
+expect 2 "temporal: expected on or off" -- "${R[@]}" --temporal maybe
+expect 2 "temporal-at: expected before or after" -- "${R[@]}" --temporal-at middle
+expect 2 "temporal-frames: expected a history length" -- "${R[@]}" --temporal-frames 0
+expect 2 "temporal-frames: expected a history length" -- "${R[@]}" --temporal-frames 300
+expect 2 "temporal_frames = 0 is out of range" -- "${R[@]}" --set temporal_frames=0
 expect 2 "textures: expected on or off" -- "${R[@]}" --textures maybe
 expect 2 "vsm-bits: expected 16 or 32" -- "${R[@]}" --shadow vsm --vsm-bits 8
 expect 2 "view" -- "${R[@]}" --view bogus

@@ -54,7 +54,7 @@ GLuint ob_make_texture_2d(GLenum internal_format, int w, int h);
 GLuint ob_make_rotation_noise_texture(void);
 
 /* ---- timers (timer.c) ----------------------------------------------------------------------- */
-#define OB_MAX_TIMED_PASSES 16
+#define OB_MAX_TIMED_PASSES 20
 
 typedef struct ob_timer_set {
     GLuint queries[2 * OB_MAX_TIMED_PASSES]; /* a GL_TIMESTAMP before and after each pass */

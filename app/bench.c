@@ -12,7 +12,7 @@
 
 #include "cli_options.h"
 
-enum { MAX_PASSES = 16, MAX_LIST = CLI_MAX_LIST, MAX_CAMS = 32, MAX_SIZES = 16 };
+enum { MAX_PASSES = 20, MAX_LIST = CLI_MAX_LIST, MAX_CAMS = 32, MAX_SIZES = 16 };
 
 static const double VR_BUDGET_MS = 1000.0 / 90.0;
 
@@ -134,7 +134,7 @@ static int parse(int argc, char **argv, bench_opts *o)
     *o = (bench_opts){.frames = 50, .warmup = 5, .ipd = 0.064f, .radii = {2.0f, 4.0f, 8.0f}, .radius_count = 3,
                       .sizes = {{640, 480}, {1280, 720}, {1920, 1080}, {2560, 1440}, {3840, 2160}}, .size_count = 5};
     cli_common *c = &o->common;
-    cli_common_init(c, "bench", CLI_TAKES_SCENE | CLI_TAKES_LISTS | CLI_TAKES_GPU);
+    cli_common_init(c, "bench", CLI_TAKES_SCENE | CLI_TAKES_LISTS | CLI_TAKES_GPU | CLI_TAKES_PATH);
     c->scene = "cornell";
     c->default_method = NULL; /* every method */
     c->width = 800;
@@ -175,6 +175,7 @@ static int parse(int argc, char **argv, bench_opts *o)
         }
     }
     if (o->stereo && o->scaling) return cli_fail(EXIT_USAGE, "--stereo and --scaling exclude each other");
+    if (o->stereo && (c->path || c->has_orbit)) return cli_fail(EXIT_USAGE, "--stereo and --path/--orbit exclude each other");
     int code = cli_common_finish(c);
     if (code != EXIT_OK) return code;
     if (o->stereo && !c->has_size) {
@@ -256,6 +257,14 @@ static bench_row *new_row(bench_state *st)
     return r;
 }
 
+/* --path / --orbit: every frame of a measurement takes the next camera along it (warm-up frames
+ * included, wrapping after --path-frames), so the timings include the history's reprojection under
+ * motion; set once the scene is loaded. */
+static struct {
+    const cli_common *common;
+    const ob_scene *scene;
+} moving;
+
 /* Warm-up, then o->frames measured frames on every eye. scratch holds frames x (MAX_PASSES + 1). */
 static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, const ob_settings *s, const bench_opts *o,
                    double *scratch, bench_row *row)
@@ -270,7 +279,12 @@ static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, con
             for (int p = 0; p < MAX_PASSES; ++p) scratch[(size_t)p * (size_t)frames + (size_t)m] = 0.0;
         }
         for (int e = 0; e < eye_count; ++e) {
-            if (ob_render_frame(eyes[e], &cams[e], s) != OB_OK) return cli_fail_from_library();
+            ob_camera cam = cams[e];
+            if (moving.scene && eye_count == 1) {
+                int code = cli_common_path_camera(moving.common, moving.scene, &cams[e], f % moving.common->path_frames, &cam);
+                if (code != EXIT_OK) return code;
+            }
+            if (ob_render_frame(eyes[e], &cam, s) != OB_OK) return cli_fail_from_library();
             if (!measured) continue;
             ob_pass_timing t[MAX_PASSES];
             int n = ob_query_timings(eyes[e], t, MAX_PASSES);
@@ -328,6 +342,12 @@ static int takes_samples(const bench_opts *o, int method, bool *yes)
 static int camera_list(const bench_opts *o, const ob_scene *scene, int *idx, int *count)
 {
     *count = 0;
+    if (o->common.path) {
+        /* The path is the camera: one measurement (the first preset's index only labels it). */
+        if (o->cameras) return cli_fail(EXIT_USAGE, "--cameras and --path exclude each other (the path is the camera)");
+        idx[(*count)++] = 0;
+        return EXIT_OK;
+    }
     if (!o->cameras) {
         for (int i = 0; i < ob_query_camera_count(scene) && *count < MAX_CAMS; ++i) idx[(*count)++] = i;
         return EXIT_OK;
@@ -459,6 +479,16 @@ static void print_tables(const bench_opts *o, const ob_scene *scene, const bench
                 printf("\n");
             }
             if (cells) printf("mean frame / none frame: %.2fx\n", sum_ratio / cells);
+            /* --temporal on: the accumulation pass against the method's AO pass, the same frames
+             * (issue 17's budget: at most 15 % of gtao-high's). */
+            for (int i = 0; i < st->count; ++i) {
+                const bench_row *r = &st->rows[i];
+                if (r->camera != cams[c] || r->cfg != cfg) continue;
+                for (int p = 0; p < r->pass_count; ++p)
+                    if (!strcmp(r->pass[p], "temporal") && r->ao_ms > 0.0)
+                        printf("temporal accumulation N=%d r=%g: %.3f ms = %.1f %% of the AO pass (%.3f ms)\n", r->samples,
+                               (double)r->r, r->med[p], 100.0 * r->med[p] / r->ao_ms, r->ao_ms);
+            }
         }
     }
 }
@@ -658,6 +688,13 @@ int cmd_bench(int argc, char **argv)
     if (!scene) {
         code = cli_fail_from_library();
         goto cleanup;
+    }
+    if (cli_common_moves(c)) {
+        /* An unknown path fails here, before any GPU work. */
+        ob_camera probe = ob_query_camera(scene, 0);
+        if ((code = cli_common_path_camera(c, scene, &probe, 0, &probe)) != EXIT_OK) goto cleanup;
+        moving.common = c;
+        moving.scene = scene;
     }
     int cams[MAX_CAMS] = {0}, cam_count = 0;
     if ((code = camera_list(&o, scene, cams, &cam_count)) != EXIT_OK) goto cleanup;

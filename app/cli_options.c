@@ -251,6 +251,7 @@ static const struct {
     {"--multibounce", 0},          {"--settings", 0},    {"--textures", 0},
     {"--vsm-bits", 0},             {"--guard", 0},       {"--temporal", 0},
     {"--temporal-at", 0},          {"--temporal-frames", 0},
+    {"--path", CLI_TAKES_PATH},    {"--orbit", CLI_TAKES_PATH}, {"--path-frames", CLI_TAKES_PATH},
     {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
 
@@ -310,6 +311,19 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         c->sets[c->set_count++] = v;
     } else if (!strcmp(a, "--guard")) {
         return parse_guard(c, v);
+    } else if (!strcmp(a, "--path")) {
+        if (!v[0]) return cli_fail(EXIT_USAGE, "--path: expected the name of one of the scene's paths");
+        c->path = v;
+    } else if (!strcmp(a, "--orbit")) {
+        if (!cli_parse_float(v, &c->orbit_deg) || fabsf(c->orbit_deg) > 3600.0f)
+            return cli_fail(EXIT_USAGE, "--orbit: expected degrees in [-3600, 3600], got '%s'", v);
+        c->has_orbit = true;
+    } else if (!strcmp(a, "--path-frames")) {
+        char *end = NULL;
+        long n = strtol(v, &end, 10);
+        if (end == v || *end != '\0' || n < 2 || n > CLI_MAX_PATH_FRAMES)
+            return cli_fail(EXIT_USAGE, "--path-frames: expected 2..%d frames, got '%s'", CLI_MAX_PATH_FRAMES, v);
+        c->path_frames = (int)n;
     } else if (!strcmp(a, "--temporal")) {
         if (!cli_parse_on_off(v, &c->temporal)) return cli_fail(EXIT_USAGE, "--temporal: expected on or off, got '%s'", v);
     } else if (!strcmp(a, "--temporal-at")) {
@@ -377,6 +391,11 @@ int cli_common_finish(cli_common *c)
     if (c->has_eye && c->eye[0] == c->target[0] && c->eye[1] == c->target[1] && c->eye[2] == c->target[2])
         return cli_fail(EXIT_USAGE, "--eye and --target are the same point");
     if (c->ambient_mode == OB_AMBIENT_ENVIRONMENT && !c->env) return cli_fail(EXIT_USAGE, "--ambient env needs --env FILE.hdr");
+    if (c->path && c->has_orbit) return cli_fail(EXIT_USAGE, "--path and --orbit exclude each other");
+    if (c->path && (c->camera || c->has_eye))
+        return cli_fail(EXIT_USAGE, "--path gives the camera: it excludes --camera and --eye/--target");
+    if (c->path_frames && !cli_common_moves(c)) return cli_fail(EXIT_USAGE, "--path-frames needs --path or --orbit");
+    if (!c->path_frames) c->path_frames = CLI_PATH_FRAMES;
     if (c->guard_is_percent) {
         int larger = c->width > c->height ? c->width : c->height;
         c->guard_px = (int)ceilf(c->guard_percent * 0.01f * (float)larger);
@@ -440,6 +459,11 @@ void cli_common_usage(FILE *f, const cli_common *c)
         fputs("  --camera NAME|INDEX   a camera preset of the scene (default: 'default', which frames the\n"
               "                        scene's bounds unless its sidecar defines it)\n"
               "  --eye X,Y,Z --target X,Y,Z [--fov DEG]   an explicit camera (world units, degrees)\n",
+              f);
+    if (takes(c, CLI_TAKES_PATH))
+        fputs("  --path NAME           move the camera along the scene's sidecar path NAME (docs/temporal.md)\n"
+              "  --orbit DEG           or turn it DEG about the vertical through its target\n"
+              "  --path-frames N       frames along the path or orbit, 2..10000 (default 32)\n",
               f);
     fprintf(f, "  --size WxH            image size (default %dx%d)\n", c->width, c->height);
     if (lists) {
@@ -785,6 +809,21 @@ int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *pr
     const char *name = preset ? preset : c->camera ? c->camera : "default";
     if (ob_find_camera(scene, name, cam) != OB_OK) return cli_fail_from_library();
     if (c->has_fov) cam->fov_y_deg = c->fov;
+    return EXIT_OK;
+}
+
+bool cli_common_moves(const cli_common *c) { return c->path || c->has_orbit; }
+
+int cli_common_path_camera(const cli_common *c, const ob_scene *scene, const ob_camera *base, int f, ob_camera *out)
+{
+    const int n = c->path_frames > 1 ? c->path_frames : CLI_PATH_FRAMES;
+    const float u = (float)f / (float)(n - 1);
+    if (c->path) {
+        if (ob_camera_on_path(scene, c->path, u, out) != OB_OK) return cli_fail_from_library();
+        if (c->has_fov) out->fov_y_deg = c->fov;
+        return EXIT_OK;
+    }
+    *out = c->has_orbit ? ob_camera_orbit(base, c->orbit_deg * u) : *base;
     return EXIT_OK;
 }
 

@@ -169,6 +169,10 @@ static void panel_method(viewer *v)
     gui_checkbox("temporal", &v->s.temporal);
     gui_tooltip("accumulate the AO over frames: reprojected history, disocclusion by depth and normal, 3x3 clamp "
                 "(docs/temporal.md); turns every method's noise with the frame index. The history_age view shows it");
+    if (cli_common_moves(&v->o.common)) {
+        gui_checkbox("play path", &v->path_playing);
+        gui_tooltip("follow --path / --orbit, one path frame per rendered frame (Space)");
+    }
     if (v->s.temporal) {
         static const char *const places[] = {"before the filter", "after the filter"};
         gui_combo("temporal at", &v->s.temporal_at, places, 2);

@@ -258,6 +258,23 @@ ob_camera ob_query_camera(const ob_scene *scene, int index);
 /* By name or decimal index. Errors: OB_ERR_UNKNOWN_CAMERA. */
 ob_error ob_find_camera(const ob_scene *scene, const char *name_or_index, ob_camera *out);
 
+/* ---- camera paths (issue 17): a scene's named paths (sidecar "paths") and orbits --------------
+ * A path is 2..OB_MAX_PATH_KEYS keyframes (time, eye, target, fov) with increasing times. */
+#define OB_MAX_PATHS 8
+#define OB_MAX_PATH_KEYS 32
+int ob_query_path_count(const ob_scene *scene);
+/* The name of path `index`, or "" when out of range (or scene NULL). */
+const char *ob_query_path_name(const ob_scene *scene, int index);
+/* The camera at fraction u (clamped to [0, 1]) of path `name`'s time span: eye and target on
+ * Catmull-Rom splines through the keys, parametrised by time (C1, through every key; the end
+ * tangents mirror their neighbours), the fov linear between keys, up +Y, near and far 0 (the
+ * renderer fits them to the scene). Errors: OB_ERR_INVALID_ARGUMENT (NULL, or `name` is none of
+ * the scene's paths; the message lists them). */
+ob_error ob_camera_on_path(const ob_scene *scene, const char *name, float u, ob_camera *out);
+/* `camera` turned by `degrees` about the vertical (+Y) axis through its target: the orbit of the
+ * CLI's --orbit DEG (frame i of N at degrees x i / (N - 1)). Everything else is kept. */
+ob_camera ob_camera_orbit(const ob_camera *camera, float degrees);
+
 /* A deep copy of `scene` with every triangle split `levels` times by midpoint subdivision (each
  * triangle becomes 4: levels 1 = 4x, 2 = 16x the triangles; 0 = a plain copy). New vertices lie on
  * the original triangles, so the surfaces, cameras, lights, bounds and suggested radius are

@@ -226,6 +226,11 @@ ob_error ob_renderer_reshape(ob_renderer *r, int width, int height, int guard)
     return OB_OK;
 }
 
+void ob_renderer_reset_history(ob_renderer *r)
+{
+    if (r) r->history_valid = false;
+}
+
 ob_error ob_renderer_resize(ob_renderer *r, int width, int height)
 {
     if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_renderer_resize: NULL renderer");

@@ -211,8 +211,8 @@ static ob_error run_filter(const ob_filter_impl *filter, void *fstate, const ao_
 
 /* Temporal accumulation of the main chain (visibility or M) and the bounce: `*_in` this frame's
  * values, `*_out` where the accumulation goes (passes/temporal.c). The history is reused only when
- * the last frame accumulated under the same key; afterwards this frame's depth and normals become
- * the previous ones. */
+ * the last frame accumulated under the same key; the pass also writes this frame's depth and
+ * normals for the next (geometry[1 - h]). */
 static void run_temporal(ob_renderer *r, const ob_settings *s, const method_plan *plan, ao_targets *t, GLuint main_in,
                          GLuint main_out, GLuint bounce_in, GLuint bounce_out)
 {
@@ -227,18 +227,14 @@ static void run_temporal(ob_renderer *r, const ob_settings *s, const method_plan
     const ob_temporal_chain main_chain = {.current = main_in, .result = main_out, .rgb = plan->rgb,
                                           .history = plan->rgb ? t->history_rgb[h] : t->history[h],
                                           .next_history = plan->rgb ? t->history_rgb[1 - h] : t->history[1 - h]};
-    ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, t->prev_depth, t->prev_normal, t->motion, &main_chain);
+    ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, t->geometry[h], t->geometry[1 - h], t->motion,
+                    &main_chain);
     if (plan->bounce) {
         const ob_temporal_chain bounce = {.current = bounce_in, .result = bounce_out, .rgb = true,
                                           .history = t->bounce_history[h], .next_history = t->bounce_history[1 - h]};
-        ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, t->prev_depth, t->prev_normal, t->motion,
+        ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, t->geometry[h], t->geometry[1 - h], t->motion,
                         &bounce);
     }
-    /* The copies wait for the reads of prev_depth/prev_normal above. */
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-    const int w = t->grid.width, hh = t->grid.height;
-    glCopyImageSubData(t->depth, GL_TEXTURE_2D, 0, 0, 0, 0, t->prev_depth, GL_TEXTURE_2D, 0, 0, 0, 0, w, hh, 1);
-    glCopyImageSubData(t->normal, GL_TEXTURE_2D, 0, 0, 0, 0, t->prev_normal, GL_TEXTURE_2D, 0, 0, 0, 0, w, hh, 1);
     t->history_index = 1 - h;
     r->history_key = key;
     r->history_valid = true;

@@ -20,7 +20,7 @@ static void release_scales(ob_renderer *r)
         glDeleteTextures(7, rgb);
         GLuint temporal[12] = {t->accum, t->history[0], t->history[1], t->accum_rgb, t->history_rgb[0],
                                t->history_rgb[1], t->bounce_accum, t->bounce_history[0], t->bounce_history[1],
-                               t->prev_depth, t->prev_normal, t->motion};
+                               t->geometry[0], t->geometry[1], t->motion};
         glDeleteTextures(12, temporal);
         if (t->grid.k > 1) {
             GLuint own[2] = {t->depth, t->normal};
@@ -344,8 +344,8 @@ ob_error ob_renderer_temporal_targets(ob_renderer *r, ao_targets *t)
         t->history_rgb[i] = ob_make_texture_2d(GL_RGBA16F, w, h);
         t->bounce_history[i] = ob_make_texture_2d(GL_RGBA16F, w, h);
     }
-    t->prev_depth = ob_make_texture_2d(GL_R32F, w, h);
-    t->prev_normal = ob_make_texture_2d(GL_RGBA16F, w, h);
+    t->geometry[0] = ob_make_texture_2d(GL_RGBA16F, w, h);
+    t->geometry[1] = ob_make_texture_2d(GL_RGBA16F, w, h);
     t->motion = ob_make_texture_2d(GL_RG16F, w, h);
     t->history_index = 0;
     t->temporal_ready = true;

@@ -30,7 +30,8 @@ typedef struct ao_targets {
     GLuint accum, history[2];                 /* visibility: R32F; RG32F (value, age) */
     GLuint accum_rgb, history_rgb[2];         /* M: RGBA16F; RGBA16F (rgb, age) */
     GLuint bounce_accum, bounce_history[2];   /* the bounce: the same */
-    GLuint prev_depth, prev_normal, motion;   /* R32F, RGBA16F, RG16F (offset in AO pixels) */
+    GLuint geometry[2];                       /* RGBA16F view normal, depth: [history_index] the last frame's */
+    GLuint motion;                            /* RG16F (offset in AO pixels) */
     int history_index;
     bool temporal_ready;
     bool ready;

@@ -102,13 +102,14 @@ void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const
 ob_error ob_temporal_init(ob_temporal_pass *p);
 /* One chain: `current` (R32F or RGBA16F) and `history` (RG32F or RGBA16F, with the age) in,
  * `result` and `next_history` out (the same formats), `motion` (RG16F) the reprojection offset.
- * depth/normal are this frame's at the AO resolution, prev_depth/prev_normal the previous frame's. */
+ * depth/normal are this frame's at the AO resolution; prev_geometry (RGBA16F normal xyz, depth w)
+ * the previous frame's, next_geometry this frame's for the next (a different texture). */
 typedef struct ob_temporal_chain {
     GLuint current, history, result, next_history;
     bool rgb;
 } ob_temporal_chain;
 void ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth, GLuint normal,
-                     GLuint prev_depth, GLuint prev_normal, GLuint motion, const ob_temporal_chain *chain);
+                     GLuint prev_geometry, GLuint next_geometry, GLuint motion, const ob_temporal_chain *chain);
 void ob_temporal_destroy(ob_temporal_pass *p);
 
 /* ---- depth MIP prefilter: depth_mips.c, shaders/depth_mips.glsl (issue 13) -------------------

@@ -47,11 +47,12 @@ ob_error ob_temporal_init(ob_temporal_pass *p)
 }
 
 void ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth, GLuint normal,
-                     GLuint prev_depth, GLuint prev_normal, GLuint motion, const ob_temporal_chain *chain)
+                     GLuint prev_geometry, GLuint next_geometry, GLuint motion, const ob_temporal_chain *chain)
 {
     ob_compute_pass_use(chain->rgb ? &p->rgb : &p->scalar, c, sizeof *c);
-    const GLuint units[6] = {chain->current, chain->history, depth, normal, prev_depth, prev_normal};
-    for (int i = 0; i < 6; ++i) glBindTextureUnit((GLuint)i, units[i]);
+    const GLuint units[5] = {chain->current, chain->history, depth, normal, prev_geometry};
+    for (int i = 0; i < 5; ++i) glBindTextureUnit((GLuint)i, units[i]);
+    glBindImageTexture(3, next_geometry, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(0, chain->result, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_R32F);
     glBindImageTexture(1, chain->next_history, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_RG32F);
     glBindImageTexture(2, motion, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);

@@ -886,6 +886,11 @@ int cmd_bench(int argc, char **argv)
             cJSON_AddNumberToObject(root, "budget_ms", VR_BUDGET_MS);
         }
         cJSON_AddNumberToObject(root, "frames", o.frames);
+        /* Issue 17: the accumulation and the camera's motion change every pass's work. */
+        cJSON_AddBoolToObject(root, "temporal", c->temporal);
+        if (c->path) cJSON_AddStringToObject(root, "path", c->path);
+        if (c->has_orbit) cJSON_AddNumberToObject(root, "orbit_degrees", c->orbit_deg);
+        if (cli_common_moves(c)) cJSON_AddNumberToObject(root, "path_frames", c->path_frames);
         cJSON_AddNumberToObject(root, "warmup", o.warmup);
         cJSON_AddStringToObject(root, "filter", filters);
         cJSON_AddNumberToObject(root, "seconds", seconds);

@@ -335,8 +335,10 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     GLuint main_in = plan->rgb ? t->raw_rgb : t->raw, bounce_in = t->bounce_raw;
     GLuint main_out = plan->rgb ? (g->k > 1 ? t->filtered_rgb : r->ao_rgb) : (g->k > 1 ? t->filtered : r->ao);
     GLuint bounce_out = g->k > 1 ? t->bounce_filtered : r->bounce;
-    r->last_temporal = s->temporal;
-    if (s->temporal) {
+    /* A method that dispatches nothing (none) writes a constant: nothing to accumulate. */
+    const bool temporal = s->temporal && plan->impl->shader != NULL;
+    r->last_temporal = temporal;
+    if (temporal) {
         err = ob_renderer_temporal_targets(r, t);
         if (err != OB_OK) return err;
         r->last_temporal_frames = s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
@@ -383,7 +385,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     }
     if (err != OB_OK) return err;
     glMemoryBarrier(barrier);
-    if (s->temporal && s->temporal_at == OB_TEMPORAL_AFTER_FILTER) {
+    if (temporal && s->temporal_at == OB_TEMPORAL_AFTER_FILTER) {
         ob_timer_begin(&r->timers, "temporal");
         run_temporal(r, s, plan, t, main_out, plan->rgb ? (g->k > 1 ? t->filtered_rgb : r->ao_rgb)
                                                         : (g->k > 1 ? t->filtered : r->ao),

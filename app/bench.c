@@ -12,7 +12,7 @@
 
 #include "cli_options.h"
 
-enum { MAX_PASSES = 16, MAX_LIST = CLI_MAX_LIST, MAX_CAMS = 32, MAX_SIZES = 16 };
+enum { MAX_PASSES = 20, MAX_LIST = CLI_MAX_LIST, MAX_CAMS = 32, MAX_SIZES = 16 };
 
 static const double VR_BUDGET_MS = 1000.0 / 90.0;
 
@@ -143,7 +143,7 @@ static int parse(int argc, char **argv, bench_opts *o)
     *o = (bench_opts){.frames = 50, .warmup = 5, .ipd = 0.064f, .radii = {2.0f, 4.0f, 8.0f}, .radius_count = 3,
                       .sizes = {{640, 480}, {1280, 720}, {1920, 1080}, {2560, 1440}, {3840, 2160}}, .size_count = 5};
     cli_common *c = &o->common;
-    cli_common_init(c, "bench", CLI_TAKES_SCENE | CLI_TAKES_LISTS | CLI_TAKES_GPU);
+    cli_common_init(c, "bench", CLI_TAKES_SCENE | CLI_TAKES_LISTS | CLI_TAKES_GPU | CLI_TAKES_PATH);
     c->scene = "cornell";
     c->default_method = NULL; /* every method */
     c->width = 800;
@@ -185,6 +185,7 @@ static int parse(int argc, char **argv, bench_opts *o)
         }
     }
     if (o->stereo && o->scaling) return cli_fail(EXIT_USAGE, "--stereo and --scaling exclude each other");
+    if (o->stereo && (c->path || c->has_orbit)) return cli_fail(EXIT_USAGE, "--stereo and --path/--orbit exclude each other");
     int code = cli_common_finish(c);
     if (code != EXIT_OK) return code;
     if (o->stereo && !c->has_size) {
@@ -292,6 +293,14 @@ static int measure_floor(ob_renderer **eyes, int eye_count, const ob_settings *s
     return EXIT_OK;
 }
 
+/* --path / --orbit: every frame of a measurement takes the next camera along it (warm-up frames
+ * included, wrapping after --path-frames), so the timings include the history's reprojection under
+ * motion; set once the scene is loaded. */
+static struct {
+    const cli_common *common;
+    const ob_scene *scene;
+} moving;
+
 /* Warm-up, then o->frames measured frames on every eye. scratch holds frames x (MAX_PASSES + 1). */
 static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, const ob_settings *s, const bench_opts *o,
                    double *scratch, bench_row *row)
@@ -306,7 +315,12 @@ static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, con
             for (int p = 0; p < MAX_PASSES; ++p) scratch[(size_t)p * (size_t)frames + (size_t)m] = 0.0;
         }
         for (int e = 0; e < eye_count; ++e) {
-            if (ob_render_frame(eyes[e], &cams[e], s) != OB_OK) return cli_fail_from_library();
+            ob_camera cam = cams[e];
+            if (moving.scene && eye_count == 1) {
+                int code = cli_common_path_camera(moving.common, moving.scene, &cams[e], f % moving.common->path_frames, &cam);
+                if (code != EXIT_OK) return code;
+            }
+            if (ob_render_frame(eyes[e], &cam, s) != OB_OK) return cli_fail_from_library();
             if (!measured) continue;
             /* Each measured frame's own timings (ob_wait_timings), not the ring's older frame. */
             if (ob_wait_timings(eyes[e]) != OB_OK) return cli_fail_from_library();
@@ -366,6 +380,12 @@ static int takes_samples(const bench_opts *o, int method, bool *yes)
 static int camera_list(const bench_opts *o, const ob_scene *scene, int *idx, int *count)
 {
     *count = 0;
+    if (o->common.path) {
+        /* The path is the camera: one measurement (the first preset's index only labels it). */
+        if (o->cameras) return cli_fail(EXIT_USAGE, "--cameras and --path exclude each other (the path is the camera)");
+        idx[(*count)++] = 0;
+        return EXIT_OK;
+    }
     if (!o->cameras) {
         for (int i = 0; i < ob_query_camera_count(scene) && *count < MAX_CAMS; ++i) idx[(*count)++] = i;
         return EXIT_OK;
@@ -532,6 +552,16 @@ static void print_tables(const bench_opts *o, const ob_scene *scene, const bench
             }
             if (cells) printf("mean frame / none frame: %.2fx\n", sum_ratio / cells);
             if (o->floor) print_floor_table(st, cams[c], cfg, ns, nn, rs, rn);
+            /* --temporal on: the accumulation pass against the method's AO pass, the same frames
+             * (issue 17's budget: at most 15 % of gtao-high's). */
+            for (int i = 0; i < st->count; ++i) {
+                const bench_row *r = &st->rows[i];
+                if (r->camera != cams[c] || r->cfg != cfg) continue;
+                for (int p = 0; p < r->pass_count; ++p)
+                    if (!strcmp(r->pass[p], "temporal") && r->ao_ms > 0.0)
+                        printf("temporal accumulation N=%d r=%g: %.3f ms = %.1f %% of the AO pass (%.3f ms)\n", r->samples,
+                               (double)r->r, r->med[p], 100.0 * r->med[p] / r->ao_ms, r->ao_ms);
+            }
         }
     }
 }
@@ -761,6 +791,13 @@ int cmd_bench(int argc, char **argv)
         code = cli_fail_from_library();
         goto cleanup;
     }
+    if (cli_common_moves(c)) {
+        /* An unknown path fails here, before any GPU work. */
+        ob_camera probe = ob_query_camera(scene, 0);
+        if ((code = cli_common_path_camera(c, scene, &probe, 0, &probe)) != EXIT_OK) goto cleanup;
+        moving.common = c;
+        moving.scene = scene;
+    }
     int cams[MAX_CAMS] = {0}, cam_count = 0;
     if ((code = camera_list(&o, scene, cams, &cam_count)) != EXIT_OK) goto cleanup;
     const float suggested = ob_query_scene_ao_radius(scene);
@@ -952,6 +989,11 @@ int cmd_bench(int argc, char **argv)
             cJSON_AddNumberToObject(root, "budget_ms", VR_BUDGET_MS);
         }
         cJSON_AddNumberToObject(root, "frames", o.frames);
+        /* Issue 17: the accumulation and the camera's motion change every pass's work. */
+        cJSON_AddBoolToObject(root, "temporal", c->temporal);
+        if (c->path) cJSON_AddStringToObject(root, "path", c->path);
+        if (c->has_orbit) cJSON_AddNumberToObject(root, "orbit_degrees", c->orbit_deg);
+        if (cli_common_moves(c)) cJSON_AddNumberToObject(root, "path_frames", c->path_frames);
         cJSON_AddNumberToObject(root, "warmup", o.warmup);
         cJSON_AddBoolToObject(root, "floor", o.floor);
         cJSON_AddStringToObject(root, "filter", filters);

@@ -249,7 +249,9 @@ static const struct {
     {"--light", 0},                {"--env", 0},         {"--ambient", 0},
     {"--ambient-color", 0},        {"--ao-light", 0},    {"--shadow", 0},
     {"--multibounce", 0},          {"--settings", 0},    {"--textures", 0},
-    {"--vsm-bits", 0},             {"--guard", 0},
+    {"--vsm-bits", 0},             {"--guard", 0},       {"--temporal", 0},
+    {"--temporal-at", 0},          {"--temporal-frames", 0},
+    {"--path", CLI_TAKES_PATH},    {"--orbit", CLI_TAKES_PATH}, {"--path-frames", CLI_TAKES_PATH},
     {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
 
@@ -309,6 +311,32 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         c->sets[c->set_count++] = v;
     } else if (!strcmp(a, "--guard")) {
         return parse_guard(c, v);
+    } else if (!strcmp(a, "--path")) {
+        if (!v[0]) return cli_fail(EXIT_USAGE, "--path: expected the name of one of the scene's paths");
+        c->path = v;
+    } else if (!strcmp(a, "--orbit")) {
+        if (!cli_parse_float(v, &c->orbit_deg) || fabsf(c->orbit_deg) > 3600.0f)
+            return cli_fail(EXIT_USAGE, "--orbit: expected degrees in [-3600, 3600], got '%s'", v);
+        c->has_orbit = true;
+    } else if (!strcmp(a, "--path-frames")) {
+        char *end = NULL;
+        long n = strtol(v, &end, 10);
+        if (end == v || *end != '\0' || n < 2 || n > CLI_MAX_PATH_FRAMES)
+            return cli_fail(EXIT_USAGE, "--path-frames: expected 2..%d frames, got '%s'", CLI_MAX_PATH_FRAMES, v);
+        c->path_frames = (int)n;
+    } else if (!strcmp(a, "--temporal")) {
+        if (!cli_parse_on_off(v, &c->temporal)) return cli_fail(EXIT_USAGE, "--temporal: expected on or off, got '%s'", v);
+    } else if (!strcmp(a, "--temporal-at")) {
+        if (!strcmp(v, "before")) c->temporal_at = OB_TEMPORAL_BEFORE_FILTER;
+        else if (!strcmp(v, "after")) c->temporal_at = OB_TEMPORAL_AFTER_FILTER;
+        else return cli_fail(EXIT_USAGE, "--temporal-at: expected before or after (the spatial filter), got '%s'", v);
+    } else if (!strcmp(a, "--temporal-frames")) {
+        char *end = NULL;
+        long n = strtol(v, &end, 10);
+        if (end == v || *end != '\0' || n < 1 || n > OB_TEMPORAL_FRAMES_MAX)
+            return cli_fail(EXIT_USAGE, "--temporal-frames: expected a history length of 1..%d frames, got '%s'",
+                            OB_TEMPORAL_FRAMES_MAX, v);
+        c->temporal_frames = (int)n;
     } else if (!strcmp(a, "--adaptive")) {
         if (!cli_parse_on_off(v, &c->adaptive)) return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
     } else if (!strcmp(a, "--light")) {
@@ -363,6 +391,11 @@ int cli_common_finish(cli_common *c)
     if (c->has_eye && c->eye[0] == c->target[0] && c->eye[1] == c->target[1] && c->eye[2] == c->target[2])
         return cli_fail(EXIT_USAGE, "--eye and --target are the same point");
     if (c->ambient_mode == OB_AMBIENT_ENVIRONMENT && !c->env) return cli_fail(EXIT_USAGE, "--ambient env needs --env FILE.hdr");
+    if (c->path && c->has_orbit) return cli_fail(EXIT_USAGE, "--path and --orbit exclude each other");
+    if (c->path && (c->camera || c->has_eye))
+        return cli_fail(EXIT_USAGE, "--path gives the camera: it excludes --camera and --eye/--target");
+    if (c->path_frames && !cli_common_moves(c)) return cli_fail(EXIT_USAGE, "--path-frames needs --path or --orbit");
+    if (!c->path_frames) c->path_frames = CLI_PATH_FRAMES;
     if (c->guard_is_percent) {
         int larger = c->width > c->height ? c->width : c->height;
         c->guard_px = (int)ceilf(c->guard_percent * 0.01f * (float)larger);
@@ -427,6 +460,11 @@ void cli_common_usage(FILE *f, const cli_common *c)
               "                        scene's bounds unless its sidecar defines it)\n"
               "  --eye X,Y,Z --target X,Y,Z [--fov DEG]   an explicit camera (world units, degrees)\n",
               f);
+    if (takes(c, CLI_TAKES_PATH))
+        fputs("  --path NAME           move the camera along the scene's sidecar path NAME (docs/temporal.md)\n"
+              "  --orbit DEG           or turn it DEG about the vertical through its target\n"
+              "  --path-frames N       frames along the path or orbit, 2..10000 (default 32)\n",
+              f);
     fprintf(f, "  --size WxH            image size (default %dx%d)\n", c->width, c->height);
     if (lists) {
         fprintf(f, "  --methods all|A,B     AO methods, see `obscura list` (default %s); --method A for one\n",
@@ -465,6 +503,12 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "                        frame, so occluders just outside it darken the border; cropped at\n"
           "                        compose (default 0 = off; rounded up to a multiple of 4 x the AO\n"
           "                        divisor; the AO chain costs about (W+2g)(H+2g)/WH)\n"
+          "  --temporal on|off     temporal accumulation (docs/temporal.md): reproject last frame's AO\n"
+          "                        through depth and the last camera, reject disocclusions, clamp to\n"
+          "                        the 3x3 neighbourhood, blend over --temporal-frames; turns every\n"
+          "                        method's noise with the frame index (default off)\n"
+          "  --temporal-at before|after  accumulate before (default) or after the spatial filter\n"
+          "  --temporal-frames N   history length, 1..256 (default 16)\n"
           "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off; every\n"
           "                        method takes them, see docs/filters.md)\n"
           "  --light SPEC          replaces the scene's lights (repeatable, up to 8), e.g.\n"
@@ -580,6 +624,9 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
         return cli_fail_from_library();
     s->adaptive = c->adaptive;
     s->guard = c->guard_px;
+    s->temporal = c->temporal;
+    s->temporal_at = c->temporal_at;
+    s->temporal_frames = c->temporal_frames;
     /* Every method adapts today; a new one that does not is named here rather than silently
      * ignoring the option. none takes no samples at all: nothing to say (bench's baseline frames
      * are none). */
@@ -762,6 +809,21 @@ int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *pr
     const char *name = preset ? preset : c->camera ? c->camera : "default";
     if (ob_find_camera(scene, name, cam) != OB_OK) return cli_fail_from_library();
     if (c->has_fov) cam->fov_y_deg = c->fov;
+    return EXIT_OK;
+}
+
+bool cli_common_moves(const cli_common *c) { return c->path || c->has_orbit; }
+
+int cli_common_path_camera(const cli_common *c, const ob_scene *scene, const ob_camera *base, int f, ob_camera *out)
+{
+    const int n = c->path_frames > 1 ? c->path_frames : CLI_PATH_FRAMES;
+    const float u = (float)f / (float)(n - 1);
+    if (c->path) {
+        if (ob_camera_on_path(scene, c->path, u, out) != OB_OK) return cli_fail_from_library();
+        if (c->has_fov) out->fov_y_deg = c->fov;
+        return EXIT_OK;
+    }
+    *out = c->has_orbit ? ob_camera_orbit(base, c->orbit_deg * u) : *base;
     return EXIT_OK;
 }
 

@@ -31,6 +31,8 @@ enum {
     CLI_MAX_SETS = 64,      /* --set assignments */
     CLI_MAX_CONFIGS = 256,  /* combinations of the lists: beyond this a run takes hours on llvmpipe */
     CLI_MAX_LABEL = 160,
+    CLI_PATH_FRAMES = 32,   /* --path-frames when not given */
+    CLI_MAX_PATH_FRAMES = 10000,
 };
 
 /* What a command takes beyond the options every rendering command has. */
@@ -39,6 +41,7 @@ enum {
     CLI_TAKES_CAMERA = 1u << 1, /* --camera, --eye, --target, --fov */
     CLI_TAKES_LISTS = 1u << 2,  /* --methods, --filters, --ao-scales, and --quality/--samples as lists */
     CLI_TAKES_GPU = 1u << 3,    /* --gpu and -v: the command makes its own headless context (not view) */
+    CLI_TAKES_PATH = 1u << 4,   /* --path NAME | --orbit DEG, --path-frames N (issue 17) */
 };
 
 /* cli_common_option's answers besides an exit code (which is never 0: EXIT_OK means nothing to
@@ -106,6 +109,16 @@ typedef struct cli_common {
     int guard_px;
     float guard_percent;
     bool guard_is_percent;
+    /* --temporal on|off, --temporal-at before|after, --temporal-frames N (ob_settings.temporal*) */
+    bool temporal;
+    int temporal_at;
+    int temporal_frames;
+    /* --path NAME (a sidecar path) or --orbit DEG (about the camera's target), over --path-frames
+     * frames (default CLI_PATH_FRAMES) */
+    const char *path;
+    float orbit_deg;
+    bool has_orbit;
+    int path_frames;
 
     /* lighting, shadows, tone mapping */
     const char *lights[OB_MAX_LIGHTS];
@@ -168,6 +181,12 @@ ob_scene *cli_common_load_scene(const cli_common *c, const char *name);
 /* The camera: --eye/--target/--fov, else the preset `preset` (c->camera when NULL, else
  * "default") with --fov. 0 or an exit code. */
 int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *preset, ob_camera *cam);
+/* --path or --orbit given. */
+bool cli_common_moves(const cli_common *c);
+/* The camera of frame f (0..path_frames-1) along --path (at f / (frames - 1) of its time span) or
+ * --orbit (base turned by DEG x f / (frames - 1) about its target). 0 or an exit code (an unknown
+ * path: one line naming the scene's paths). */
+int cli_common_path_camera(const cli_common *c, const ob_scene *scene, const ob_camera *base, int f, ob_camera *out);
 /* What a new renderer needs from the options (--env). 0 or an exit code. */
 int cli_common_prepare(const cli_common *c, ob_renderer *r);
 

@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "cli_options.h"
+#include "flicker.h"
 #include "reference_cache.h"
 
 enum { MAX_VIEWS = 16, FRAMES = 5 };
@@ -85,7 +86,7 @@ static void compare_usage(FILE *f, const cli_common *defaults)
 static int parse(int argc, char **argv, compare_opts *o)
 {
     *o = (compare_opts){.spp = 512};
-    cli_common_init(&o->common, "compare", CLI_TAKES_CAMERA | CLI_TAKES_LISTS | CLI_TAKES_GPU);
+    cli_common_init(&o->common, "compare", CLI_TAKES_CAMERA | CLI_TAKES_LISTS | CLI_TAKES_GPU | CLI_TAKES_PATH);
     o->common.default_method = NULL; /* every method */
     o->common.width = 320;
     o->common.height = 240;
@@ -287,6 +288,9 @@ typedef struct view_result {
     size_t mask_pixels[OB_MASK_COUNT];
     method_result *methods; /* one per configuration */
     int method_count;
+    /* --path / --orbit: the flicker metrics (flicker.h), one row per configuration */
+    cli_flicker_row *flicker;
+    cli_flicker_reference flicker_ref;
 } view_result;
 
 /* A --scene: loaded, with its camera, before anything is written. */
@@ -607,6 +611,7 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
     cJSON_AddNumberToObject(root, "reference_spp", o->spp);
     /* --guard as given, in pixels per side (the renderer rounds it up to 4 x the AO divisor). */
     cJSON_AddNumberToObject(root, "guard", o->common.guard_px);
+    cJSON_AddBoolToObject(root, "temporal", o->common.temporal);
     time_t now = time(NULL);
     char date[32];
     strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
@@ -688,6 +693,35 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
             cJSON_AddBoolToObject(e, "pareto", m->pareto);
             cJSON_AddNumberToObject(e, "frame_ms", m->frame_ms);
             cJSON_AddItemToArray(jm, e);
+        }
+        if (vr->flicker) {
+            /* The flicker metrics (flicker.h): per configuration, temporal accumulation off (the
+             * same moving noise, a one-frame history) and on. */
+            cJSON *fl = cJSON_AddObjectToObject(j, "flicker");
+            cJSON_AddStringToObject(fl, "path", o->common.path ? o->common.path : "orbit");
+            if (o->common.has_orbit) cJSON_AddNumberToObject(fl, "orbit_degrees", o->common.orbit_deg);
+            cJSON_AddNumberToObject(fl, "path_frames", vr->flicker_ref.frames);
+            cJSON_AddNumberToObject(fl, "still_frames", FLICKER_STILL_FRAMES);
+            cJSON_AddNumberToObject(fl, "reference_warped_error", vr->flicker_ref.warped);
+            cJSON *rows = cJSON_AddArrayToObject(fl, "rows");
+            for (int k = 0; k < vr->method_count; ++k) {
+                const cli_flicker_row *row = &vr->flicker[k];
+                cJSON *e = cJSON_CreateObject();
+                cJSON_AddStringToObject(e, "label", vr->methods[k].label);
+                cJSON_AddStringToObject(e, "method", vr->methods[k].name);
+                const cli_flicker_variant *vs[2] = {&row->off, &row->on};
+                for (int q = 0; q < 2; ++q) {
+                    cJSON *x = cJSON_AddObjectToObject(e, q ? "temporal_on" : "temporal_off");
+                    cJSON_AddNumberToObject(x, "static_noise", vs[q]->static_noise);
+                    cJSON_AddNumberToObject(x, "warped_error", vs[q]->warped_excess);
+                    cJSON_AddNumberToObject(x, "warped_error_raw", vs[q]->warped);
+                    cJSON_AddNumberToObject(x, "rmse_last", vs[q]->rmse_last);
+                    cJSON_AddNumberToObject(x, "rmse_worst", vs[q]->rmse_worst);
+                    cJSON_AddNumberToObject(x, "worst_frame", vs[q]->worst_frame);
+                    cJSON_AddNumberToObject(x, "temporal_ms", vs[q]->temporal_ms);
+                }
+                cJSON_AddItemToArray(rows, e);
+            }
         }
         if (o->budget_ms > 0.0) {
             cJSON *so = cJSON_AddObjectToObject(j, "shootout");
@@ -888,6 +922,48 @@ static void write_mask_table(FILE *f, const view_result *vr, int w, int h)
     fputs("</div>\n", f);
 }
 
+/* The flicker table (flicker.h) and each configuration's worst frame with temporal on. */
+static void write_flicker_table(FILE *f, const compare_opts *o, const view_result *vr)
+{
+    const cli_common *c = &o->common;
+    fprintf(f, "<h3>Flicker along ");
+    if (c->path) {
+        fputs("path ", f);
+        html_escape(f, c->path);
+    } else {
+        fprintf(f, "an orbit of %g&deg;", (double)c->orbit_deg);
+    }
+    fprintf(f, " (%d frames)</h3>\n<p class=\"note\">off: the spatial filter alone with the same noise moving every "
+               "frame; on: temporal accumulation. Static noise: camera still for %d frames, mean per-pixel std-dev; "
+               "warped error: mean |AO<sub>t</sub> &minus; reprojected AO<sub>t&minus;1</sub>| over pixels seen in both "
+               "(the ratio is of these), and the same minus the reference's own (%.4f: AO<sub>R</sub> belongs to the "
+               "surface point, so on a static scene the reference's change is its Monte Carlo noise and "
+               "resampling); RMSE against the reference on the last and the worst frame.</p>\n",
+            vr->flicker_ref.frames, FLICKER_STILL_FRAMES, vr->flicker_ref.warped);
+    fputs("<table class=\"sortable\"><thead><tr><th>method</th><th>static noise off</th><th>on</th><th>ratio</th>"
+          "<th>warped error off</th><th>on</th><th>ratio</th><th>minus reference off</th><th>on</th><th>RMSE last off</th><th>on</th>"
+          "<th>RMSE worst off (frame)</th><th>on (frame)</th><th>temporal ms</th></tr></thead><tbody>\n",
+          f);
+    for (int k = 0; k < vr->method_count; ++k) {
+        const cli_flicker_variant *a = &vr->flicker[k].off, *b = &vr->flicker[k].on;
+        fputs("<tr><td>", f);
+        html_escape(f, vr->methods[k].label);
+        fprintf(f, "</td><td>%.4f</td><td>%.4f</td><td>%.1fx</td><td>%.4f</td><td>%.4f</td><td>%.1fx</td>"
+                   "<td>%+.4f</td><td>%+.4f</td><td>%.4f</td><td>%.4f</td><td>%.4f (%d)</td><td>%.4f (%d)</td><td>%.2f</td></tr>\n",
+                a->static_noise, b->static_noise, b->static_noise > 0.0 ? a->static_noise / b->static_noise : 0.0,
+                a->warped, b->warped, b->warped > 0.0 ? a->warped / b->warped : 0.0, a->warped_excess, b->warped_excess,
+                a->rmse_last, b->rmse_last, a->rmse_worst, a->worst_frame, b->rmse_worst, b->worst_frame, b->temporal_ms);
+    }
+    fputs("</tbody></table>\n<div class=\"grid\">", f);
+    for (int k = 0; k < vr->method_count; ++k) {
+        fprintf(f, "<div class=\"cell\"><img src=\"%s/%s_temporal_worst.png\" width=\"%d\" height=\"%d\" alt=\"\">",
+                vr->dir, vr->methods[k].stem, c->width, c->height);
+        html_escape(f, vr->methods[k].label);
+        fprintf(f, " temporal on, worst frame %d</div>", vr->flicker[k].on.worst_frame);
+    }
+    fputs("</div>\n", f);
+}
+
 static int write_html(const compare_opts *o, ob_context *ctx, const view_result *views, int count, outputs *out)
 {
     char path[700], tmp[720];
@@ -950,6 +1026,7 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
             fputs("</tbody></table>\n", f);
         }
         if (o->budget_ms > 0.0) write_shootout_table(f, vr, o->budget_ms);
+        if (vr->flicker) write_flicker_table(f, o, vr);
         write_mask_table(f, vr, o->common.width, o->common.height);
         fputs("<div class=\"chart\">", f);
         char svg[700];
@@ -1002,6 +1079,26 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
     return EXIT_OK;
 }
 
+/* --path / --orbit: the flicker metrics of every configuration (flicker.h), and each one's worst
+ * frame with temporal on as STEM_temporal_worst.png. */
+static int run_flicker(const compare_opts *o, ob_renderer *r, const view_input *in, const cli_config *configs, int count,
+                       outputs *out, view_result *vr)
+{
+    vr->flicker = calloc((size_t)count, sizeof *vr->flicker);
+    if (!vr->flicker) return cli_fail(EXIT_RUNTIME, "out of memory");
+    const cli_flicker_desc d = {.common = &o->common, .renderer = r, .scene = in->scene, .scene_key = in->name,
+                                .base = in->cam, .radius = vr->radius, .spp = o->spp, .no_cache = o->no_cache};
+    int code = cli_flicker_run(&d, configs, count, vr->flicker, &vr->flicker_ref);
+    for (int k = 0; k < count && code == EXIT_OK; ++k) {
+        char path[900] = "";
+        snprintf(path, sizeof path, "%s/%s/%s_temporal_worst.png", o->report, vr->dir, vr->methods[k].stem);
+        if (!track_file(out, path)) return cli_fail(EXIT_RUNTIME, "out of memory");
+        if (write_grey(path, vr->flicker[k].on.worst_ao, o->common.width, o->common.height) != OB_OK)
+            return cli_fail_library_as(EXIT_OUTPUT);
+    }
+    return code;
+}
+
 int cmd_compare(int argc, char **argv)
 {
     compare_opts o;
@@ -1026,6 +1123,10 @@ int cmd_compare(int argc, char **argv)
         goto cleanup;
     }
     for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) code = load_view(&o, o.views[v], &inputs[v]);
+    for (int v = 0; v < o.view_count && code == EXIT_OK && cli_common_moves(c); ++v) {
+        ob_camera probe; /* --path names a path of every scene */
+        code = cli_common_path_camera(c, inputs[v].scene, &inputs[v].cam, 0, &probe);
+    }
     if (code != EXIT_OK) goto cleanup;
     ctx = cli_make_context(c->gpu, c->verbose);
     if (!ctx) {
@@ -1042,6 +1143,7 @@ int cmd_compare(int argc, char **argv)
     if ((code = make_report_dir(&out, o.report)) != EXIT_OK) goto cleanup;
     for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) {
         code = run_view(&o, r, &inputs[v], configs, count, &out, &views[v]);
+        if (code == EXIT_OK && cli_common_moves(c)) code = run_flicker(&o, r, &inputs[v], configs, count, &out, &views[v]);
         if (code == EXIT_OK) mark_pareto(&views[v]);
         if (code == EXIT_OK) code = write_chart(&o, &views[v], &out);
         if (code == EXIT_OK) ++done;
@@ -1051,7 +1153,11 @@ int cmd_compare(int argc, char **argv)
     if (code == EXIT_OK) printf("report: %s/index.html\n", o.report);
 cleanup:
     outputs_finish(&out, code != EXIT_OK);
-    for (int v = 0; v < MAX_VIEWS && views; ++v) free(views[v].methods);
+    for (int v = 0; v < MAX_VIEWS && views; ++v) {
+        free(views[v].methods);
+        cli_flicker_free(views[v].flicker, views[v].method_count);
+        free(views[v].flicker);
+    }
     free(views);
     for (int v = 0; v < MAX_VIEWS; ++v) ob_destroy_scene(inputs[v].scene);
     ob_destroy_renderer(r);

@@ -32,7 +32,8 @@ static void render_usage(FILE *f, const cli_common *defaults)
           "                        second_depth (the second depth layer as depth shows the first; a\n"
           "                        method with layers=2 makes one), extra (the extra view's direct\n"
           "                        light, the camera turned 90 degrees around the target: ssdo with\n"
-          "                        extra_view=on);\n"
+          "                        extra_view=on), history_age (--temporal on: frames in each pixel's\n"
+          "                        history / --temporal-frames; black where reset);\n"
           "                        for ssdo* ao shows the RGB modulation factor M\n"
           "  --ao-out FILE.pfm     the AO map as exact floats (PFM, bottom row first)\n"
           "  --ao-png FILE.png     the AO map as an 8-bit grey PNG\n"
@@ -76,7 +77,7 @@ typedef struct render_opts {
 static void render_defaults(render_opts *o)
 {
     *o = (render_opts){.view = OB_VIEW_FINAL, .frames = 1, .warmup = -1};
-    cli_common_init(&o->common, "render", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_GPU);
+    cli_common_init(&o->common, "render", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_GPU | CLI_TAKES_PATH);
     o->common.scene = "cornell";
     /* The method closest to the ray-traced AO_R on every graded view (docs/compare.md). */
     o->common.default_method = "gtao";
@@ -151,6 +152,10 @@ static int parse(int argc, char **argv, render_opts *o)
         }
     }
     if (!o->out) return cli_fail(EXIT_USAGE, "--out FILE.png is required (see obscura render --help)");
+    if (o->stereo && (o->common.path || o->common.has_orbit))
+        return cli_fail(EXIT_USAGE, "--stereo and --path/--orbit exclude each other");
+    if (o->frames != 1 && (o->common.path || o->common.has_orbit))
+        return cli_fail(EXIT_USAGE, "--frames and --path/--orbit exclude each other (--path-frames counts the frames)");
     if (!o->stereo && (o->ipd > 0.0f || o->convergence > 0.0f || o->headset || o->reference_spp))
         return cli_fail(EXIT_USAGE, "--ipd, --convergence, --headset and --reference-spp need --stereo mirror|single");
     if (o->headset && o->convergence > 0.0f)
@@ -364,6 +369,73 @@ static int report_consistency(ob_renderer *const *eyes, const ob_camera *cams, c
     return EXIT_OK;
 }
 
+/* FILE.png -> FILE-0007.png (the number before the last extension, or at the end without one). */
+static void numbered(const char *path, int f, char *out, size_t n)
+{
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    if (!dot || (slash && dot < slash)) dot = path + strlen(path);
+    snprintf(out, n, "%.*s-%04d%s", (int)(dot - path), path, f, dot);
+}
+
+/* --path / --orbit: the frames along it, --out numbered per frame (what --view shows), the other
+ * outputs of the last frame; --timings as medians over the path. A failure removes every frame
+ * written. */
+static int render_path(ob_renderer *r, const ob_camera *base, const ob_scene *scene, const ob_settings *settings,
+                       const render_opts *o)
+{
+    const cli_common *c = &o->common;
+    const int frames = c->path_frames;
+    char (*names)[1100] = calloc((size_t)frames, sizeof *names);
+    double *ms = calloc((size_t)frames, sizeof(double));
+    double *ao_ms = calloc((size_t)frames, sizeof(double));
+    double *temporal_ms = calloc((size_t)frames, sizeof(double));
+    if (!names || !ms || !ao_ms || !temporal_ms) {
+        free(names);
+        free(ms);
+        free(ao_ms);
+        free(temporal_ms);
+        return cli_fail(EXIT_RUNTIME, "out of memory");
+    }
+    int code = EXIT_OK, done = 0;
+    for (int f = 0; f < frames && code == EXIT_OK; ++f) {
+        ob_camera cam;
+        if ((code = cli_common_path_camera(c, scene, base, f, &cam)) != EXIT_OK) break;
+        if (ob_render_frame(r, &cam, settings) != OB_OK) {
+            code = cli_fail_from_library();
+            break;
+        }
+        ob_pass_timing t[20];
+        int n = ob_query_timings(r, t, 20);
+        for (int p = 0; p < n; ++p) {
+            ms[f] += t[p].ms;
+            if (!strcmp(t[p].name, "ao")) ao_ms[f] = t[p].ms;
+            if (!strcmp(t[p].name, "temporal")) temporal_ms[f] = t[p].ms;
+        }
+        render_opts fo = *o;
+        numbered(o->out, f, names[f], sizeof names[f]);
+        fo.out = names[f];
+        if (f < frames - 1) fo.ao_out = fo.ao_png = fo.depth_out = fo.normal_out = NULL;
+        ob_renderer *one[1] = {r};
+        code = write_outputs(one, 1, &fo);
+        if (code == EXIT_OK) done = f + 1;
+    }
+    if (code != EXIT_OK)
+        for (int f = 0; f < done; ++f) remove(names[f]);
+    if (code == EXIT_OK) {
+        if (c->path) printf("%d frames along path %s: %s .. %s\n", frames, c->path, names[0], names[frames - 1]);
+        else printf("%d frames along an orbit of %g degrees: %s .. %s\n", frames, (double)c->orbit_deg, names[0],
+                    names[frames - 1]);
+        if (o->timings)
+            printf("frame %.3f ms, ao %.3f ms, temporal %.3f ms (GPU medians over the path)\n", cli_median(ms, frames),
+                   cli_median(ao_ms, frames), cli_median(temporal_ms, frames));
+    }
+    free(names);
+    free(ms);
+    free(ao_ms);
+    free(temporal_ms);
+    return code;
+}
+
 int cmd_render(int argc, char **argv)
 {
     render_opts o;
@@ -414,6 +486,10 @@ int cmd_render(int argc, char **argv)
         else code = cli_common_prepare(c, eyes[e]);
     }
     if (code != EXIT_OK) goto cleanup;
+    if (cli_common_moves(c)) {
+        code = render_path(eyes[0], &cam, scene, &settings, &o);
+        goto cleanup;
+    }
     if (o.reference_spp > 0 && (code = trace_references(eyes, cams, &o, scene, &reference)) != EXIT_OK) goto cleanup;
     /* Per eye, pass, frame; the frame's total per eye after the passes. */
     samples = calloc((size_t)eye_count * (size_t)o.frames * (MAX_PASSES + 2), sizeof(double));

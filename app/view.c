@@ -222,6 +222,7 @@ static bool frame(viewer *v, double dt)
     if (v->events) run_script_events(v);
     if (!fit_renderers(v, w, h)) return false;
     move_camera(v, dt);
+    follow_path(v);
     ob_camera cam = current_camera(v);
     /* Stereo: the eyes of the fly camera (parallel axes, frusta converging at its target). */
     ob_camera eyes[2] = {cam, cam};
@@ -323,6 +324,7 @@ int cmd_view(int argc, char **argv)
     }
     if ((code = setup_settings(v)) != 0) goto done;
     if ((code = camera_setup(v)) != 0) goto done;
+    v->path_playing = cli_common_moves(&v->o.common); /* --path / --orbit starts playing */
     v->gui_visible = v->o.gui;
     v->vsync = v->o.vsync;
     v->shot_dir = v->o.shots ? v->o.shots : "screenshots";

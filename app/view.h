@@ -86,6 +86,10 @@ typedef struct viewer {
     float eye[3], fwd[3], up[3];
     float fov, speed, scene_size;
     bool camera_locked, gui_visible, vsync;
+    /* --path / --orbit: the camera follows it while playing (Space: play/pause), one path frame per
+     * rendered frame, from path_frame */
+    bool path_playing;
+    int path_frame;
     bool keys[GLFW_KEY_LAST + 1];
     bool look;              /* right button held */
     double mouse_x, mouse_y;
@@ -135,6 +139,8 @@ int camera_setup(viewer *v);
 /* Make preset index (wrapping) the current camera. */
 void use_camera(viewer *v, int index);
 /* The camera to render now. */
+/* --path / --orbit while playing: the camera of the next path frame. */
+void follow_path(viewer *v);
 ob_camera current_camera(const viewer *v);
 /* Move by the held keys over dt seconds. */
 void move_camera(viewer *v, double dt);

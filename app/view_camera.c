@@ -47,6 +47,26 @@ void use_camera(viewer *v, int index)
     v->fov = c.fov_y_deg > 0.0f ? c.fov_y_deg : 60.0f;
 }
 
+/* --path / --orbit while playing: the fly camera jumps to the path's next frame (paused, it stays
+ * free to fly from there). */
+void follow_path(viewer *v)
+{
+    const cli_common *c = &v->o.common;
+    if (!cli_common_moves(c) || !v->path_playing) return;
+    ob_camera base = ob_query_camera(v->scene, v->camera_index), cam;
+    if (cli_common_path_camera(c, v->scene, &base, v->path_frame, &cam) != 0) {
+        v->path_playing = false;
+        return;
+    }
+    v->path_frame = (v->path_frame + 1) % c->path_frames;
+    memcpy(v->eye, cam.eye, sizeof v->eye);
+    for (int i = 0; i < 3; ++i) v->fwd[i] = cam.target[i] - cam.eye[i];
+    vnorm(v->fwd);
+    v->up[0] = v->up[2] = 0.0f;
+    v->up[1] = 1.0f;
+    v->fov = cam.fov_y_deg > 0.0f ? cam.fov_y_deg : v->fov;
+}
+
 ob_camera current_camera(const viewer *v)
 {
     ob_camera c;
@@ -128,6 +148,13 @@ void handle_key(viewer *v, int key, int action, int mods)
     } else if (key == GLFW_KEY_P || key == GLFW_KEY_F12) {
         save_screenshot(v, NULL);
     } else if (key == GLFW_KEY_R) reload_shaders(v);
+    else if (key == GLFW_KEY_SPACE && cli_common_moves(&v->o.common)) {
+        v->path_playing = !v->path_playing;
+        say(v, false, "path %s at frame %d", v->path_playing ? "playing" : "paused", v->path_frame);
+    } else if (key == GLFW_KEY_T) {
+        v->s.temporal = !v->s.temporal;
+        say(v, false, "temporal accumulation %s", v->s.temporal ? "on" : "off");
+    }
 }
 
 void handle_mouse_button(viewer *v, int button, int action)

@@ -39,7 +39,8 @@ static void view_usage(FILE *f, const cli_common *c)
           "      scroll: zoom (field of view), 1-9 camera presets, Tab next preset, L lock the\n"
           "      camera, M / Shift+M next / previous method, V / Shift+V next / previous view,\n"
           "      F1 or H panel on/off, F3 vsync, P or F12 screenshot, R reload shaders (development\n"
-          "      builds), Esc quit\n"
+          "      builds), T temporal accumulation on/off, Space play/pause --path/--orbit (starts\n"
+          "      playing), Esc quit\n"
           "\n"
           "script lines: TIME EVENT ARGS, TIME in seconds on a clock that advances 1/30 s per frame\n"
           "  key NAME down|up|press       NAME: A-Z, 0-9, TAB, ESCAPE, SPACE, LEFT_SHIFT, F1-F12\n"
@@ -56,7 +57,7 @@ int parse_view_opts(int argc, char **argv, view_opts *o)
     *o = (view_opts){.vsync = true, .gui = true, .cycles = 3, .seconds = 5.0f, .ipd = 0.064f};
     bool has_ipd = false;
     cli_common *c = &o->common;
-    cli_common_init(c, "view", CLI_TAKES_SCENE | CLI_TAKES_CAMERA);
+    cli_common_init(c, "view", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_PATH);
     c->scene = "fzk-haus";
     c->width = 1280;
     c->height = 720;

@@ -166,6 +166,19 @@ static void panel_method(viewer *v)
     gui_tooltip("run the method and the filter at this fraction of the size, then joint bilateral upsampling");
     gui_checkbox("adaptive samples", &v->s.adaptive);
     gui_tooltip("an edge pre-pass gives edge pixels 2x or 3x the base count (ssao, crytek)");
+    gui_checkbox("temporal", &v->s.temporal);
+    gui_tooltip("accumulate the AO over frames: reprojected history, disocclusion by depth and normal, 3x3 clamp "
+                "(docs/temporal.md); turns every method's noise with the frame index. The history_age view shows it");
+    if (cli_common_moves(&v->o.common)) {
+        gui_checkbox("play path", &v->path_playing);
+        gui_tooltip("follow --path / --orbit, one path frame per rendered frame (Space)");
+    }
+    if (v->s.temporal) {
+        static const char *const places[] = {"before the filter", "after the filter"};
+        gui_combo("temporal at", &v->s.temporal_at, places, 2);
+        int frames = v->s.temporal_frames > 0 ? v->s.temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
+        if (gui_slider_int("history frames", &frames, 1, OB_TEMPORAL_FRAMES_MAX, true)) v->s.temporal_frames = frames;
+    }
     panel_guard(v);
 }
 

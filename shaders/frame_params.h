@@ -29,7 +29,8 @@ OB_CONSTANTS_BEGIN(ob_frame_constants, OB_BINDING_FRAME)
     OB_INT ambient_mode;     /* OB_AMBIENT_MODE_* */
     OB_FLOAT near_z;         /* the camera's planes, world units */
     OB_FLOAT far_z;
-    OB_FLOAT pad0;
+    OB_FLOAT noise_turn;     /* ob_settings.temporal: the per-frame turn (fraction of a circle) of every
+                                random-kernel method's rotation noise (noise.glsl), 0 otherwise */
     OB_VEC4 ambient;         /* constant ambient radiance (rgb) */
     OB_VEC4 sky;             /* hemisphere ambient: radiance from +Y (rgb) */
     OB_VEC4 ground;          /* hemisphere ambient: radiance from -Y (rgb) */

@@ -33,6 +33,7 @@
 #define OB_VIEW_MODE_LUMINANCE 9
 #define OB_VIEW_MODE_SECOND_DEPTH 10
 #define OB_VIEW_MODE_EXTRA 11
+#define OB_VIEW_MODE_HISTORY_AGE 12
 /* The luminance view's range in stops (obscura.h OB_LUMINANCE_LOG2_*). */
 #define OB_VIEW_LUMINANCE_LOG2_LO (-8)
 #define OB_VIEW_LUMINANCE_LOG2_HI 4

@@ -72,6 +72,13 @@ void main()
         c = vec3(s.r > 0.0 ? count * vw.inv_max_samples : 0.0); /* the sky takes no samples */
         break;
     }
+    case OB_VIEW_MODE_HISTORY_AGE: {
+        /* The AO grid's history (src / ao_k, as the samples view finds a block): age in .g of the
+         * scalar RG32F history, .a of the RGBA16F one (directional). */
+        vec4 h = texelFetch(source, src / vw.ao_k, 0);
+        c = vec3((directional ? h.a : h.g) * vw.inv_history_frames);
+        break;
+    }
     default: break;
     }
     imageStore(display, pix, vec4(clamp(c, 0.0, 1.0), 1.0));

@@ -17,7 +17,7 @@ OB_CONSTANTS_BEGIN(ob_view_constants, OB_BINDING_PASS)
     OB_FLOAT inv_max_samples; /* samples: 1 / the most a pixel could take, which shows white */
     OB_INT offset;            /* display pixel p shows source pixel p + offset (the guard band, renderer.h) */
     OB_IVEC2 size;            /* the display texture, px */
-    OB_FLOAT pad1;
+    OB_FLOAT inv_history_frames; /* history_age: 1 / the history length, 0 = no history (black) */
     OB_FLOAT pad2;
 OB_CONSTANTS_END(ob_view_constants, vw)
 OB_CONSTANTS_SIZE(ob_view_constants, 3 * 16);

@@ -51,6 +51,18 @@ expect 2 "unknown option" -- "${R[@]}" --frobnicate 3
 expect 2 "unknown filter 'nosuch'" -- "${R[@]}" --filter nosuch
 expect 2 "ao-scale" -- "${R[@]}" --ao-scale 0.3
 expect 2 "adaptive" -- "${R[@]}" --adaptive maybe
+expect 2 "temporal: expected on or off" -- "${R[@]}" --temporal maybe
+expect 2 "path and --orbit exclude each other" -- "${R[@]}" --path walk --orbit 30
+expect 2 "path-frames needs --path or --orbit" -- "${R[@]}" --path-frames 8
+expect 2 "path-frames: expected 2..10000" -- "${R[@]}" --orbit 30 --path-frames 1
+expect 2 "orbit: expected degrees" -- "${R[@]}" --orbit many
+expect 2 "path gives the camera" -- "${R[@]}" --path walk --camera front
+expect 2 "frames and --path/--orbit exclude" -- "${R[@]}" --orbit 30 --frames 4
+expect 2 "unknown camera path 'walk'.*no \"paths\"" -- "${R[@]}" --path walk
+expect 2 "temporal-at: expected before or after" -- "${R[@]}" --temporal-at middle
+expect 2 "temporal-frames: expected a history length" -- "${R[@]}" --temporal-frames 0
+expect 2 "temporal-frames: expected a history length" -- "${R[@]}" --temporal-frames 300
+expect 2 "temporal_frames = 0 is out of range" -- "${R[@]}" --set temporal_frames=0
 expect 2 "textures: expected on or off" -- "${R[@]}" --textures maybe
 expect 2 "vsm-bits: expected 16 or 32" -- "${R[@]}" --shadow vsm --vsm-bits 8
 expect 2 "view" -- "${R[@]}" --view bogus
@@ -140,6 +152,17 @@ expect 2 "guard band 4096 px makes 8200x8 into 16392x8200, above GL_MAX_TEXTURE_
 read -r w h c lo hi mean < <("$IMGCHECK" "$dir/guard.pfm")
 [ "$w $h $c" = "48 32 1" ] && ok || bad "--guard 10%: AO PFM is '$w $h $c' ($(cat "$dir/stderr"))"
 rm -f "$dir/guard.pfm" "$dir/guard.png"
+
+# --orbit: numbered frames, one per path frame, the camera turning (frames differ), nothing else.
+rm -f "$dir"/orbit-*.png
+"$OBSCURA" render --scene corner --size 32x24 --method ssao --temporal on --orbit 40 --path-frames 3 \
+    --out "$dir/orbit.png" >"$dir/stdout" 2>"$dir/stderr"
+if [ $? -eq 0 ] && [ "$(ls "$dir" | grep -c '^orbit-000[0-2]\.png$')" = 3 ] && [ ! -e "$dir/orbit.png" ] &&
+    grep -q "3 frames along an orbit of 40 degrees" "$dir/stdout"; then ok
+else bad "render --orbit: $(cat "$dir/stderr") $(ls "$dir")"; fi
+if [ -f "$dir/orbit-0000.png" ] && awk -v d="$("$IMGCHECK" diff "$dir/orbit-0000.png" "$dir/orbit-0002.png")" 'BEGIN { exit !(d > 1) }'; then ok
+else bad "render --orbit: the first and last frames are the same"; fi
+rm -f "$dir"/orbit-*.png
 
 # --adaptive: every method but none takes adaptive counts and runs the edge pass, silently.
 "$OBSCURA" render --scene corner --size 32x24 --method ssao --adaptive on --timings --out "$dir/adapt.png" \

@@ -132,7 +132,7 @@ static void luminance_pixel(const float *hdr, int x, int y, float rgb[3])
 
 /* The expected RGBA bytes of a view (bottom row first) from ob_read_image. far and max_samples are
  * the GPU's scales (the CLI's are the image's maxima). */
-static uint8_t *expected_view(ob_renderer *r, ob_view view, float far_z, float max_samples)
+static uint8_t *expected_view(ob_renderer *r, ob_view view, float far_z, float max_samples, const ob_settings *s)
 {
     const ob_image_kind kinds[OB_VIEW_COUNT] = {
         [OB_VIEW_AO] = OB_IMAGE_AO_RGB_F32,     [OB_VIEW_NORMALS] = OB_IMAGE_NORMAL_F32,
@@ -140,9 +140,28 @@ static uint8_t *expected_view(ob_renderer *r, ob_view view, float far_z, float m
         [OB_VIEW_RADIANCE] = OB_IMAGE_RADIANCE_F32, [OB_VIEW_SAMPLES] = OB_IMAGE_SAMPLES_F32,
         [OB_VIEW_BOUNCE] = OB_IMAGE_BOUNCE_F32, [OB_VIEW_BENT_NORMALS] = OB_IMAGE_BENT_NORMAL_F32,
         [OB_VIEW_LUMINANCE] = OB_IMAGE_HDR_F32, [OB_VIEW_SECOND_DEPTH] = OB_IMAGE_SECOND_DEPTH_F32,
-        [OB_VIEW_EXTRA] = OB_IMAGE_EXTRA_RADIANCE_F32};
+        [OB_VIEW_EXTRA] = OB_IMAGE_EXTRA_RADIANCE_F32, [OB_VIEW_HISTORY_AGE] = OB_IMAGE_HISTORY_AGE_F32};
     ob_image_kind kind = kinds[view];
     size_t px = (size_t)W * (size_t)H;
+    if (view == OB_VIEW_HISTORY_AGE) {
+        /* The AO grid's ages (k from the read-back's size) over the history length; 0 without. */
+        size_t count = ob_image_size(r, kind) / sizeof(float);
+        int k = 1;
+        while (k < 4 && (size_t)((W + k - 1) / k) * (size_t)((H + k - 1) / k) != count) k *= 2;
+        float *age = malloc(count * sizeof(float));
+        uint8_t *out = malloc(px * 4);
+        CHECK(ob_read_image(r, kind, age, count * sizeof(float)) == OB_OK, "read history_age");
+        int n = s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
+        float frames = s->temporal ? (float)n : 0.0f;
+        for (size_t i = 0; i < px; ++i) {
+            int x = (int)(i % W) / k, y = (int)(i / W) / k;
+            float v = frames > 0.0f ? age[(size_t)y * (size_t)((W + k - 1) / k) + (size_t)x] / frames : 0.0f;
+            for (int c = 0; c < 3; ++c) out[4 * i + (size_t)c] = to_byte(v);
+            out[4 * i + 3] = 255;
+        }
+        free(age);
+        return out;
+    }
     float *buf = malloc(ob_image_size(r, kind));
     uint8_t *out = malloc(px * 4);
     CHECK(ob_read_image(r, kind, buf, ob_image_size(r, kind)) == OB_OK, "read %s", ob_view_name(view));
@@ -188,7 +207,7 @@ static void test_view_names(void)
 {
     const char *names[OB_VIEW_COUNT] = {"final",    "ao",      "normals", "depth",        "shadow",
                                         "radiance", "samples", "bounce",  "bent_normals", "luminance",
-                                        "second_depth", "extra"};
+                                        "second_depth", "extra", "history_age"};
     for (int v = 0; v < OB_VIEW_COUNT; ++v) {
         CHECK(!strcmp(ob_view_name((ob_view)v), names[v]), "view %d is '%s'", v, ob_view_name((ob_view)v));
         int back = -1;
@@ -299,14 +318,13 @@ static void check_views(ob_renderer *r, const ob_settings *s, const char *label,
         glBindTextureUnit(0, 0);
         glDeleteTextures(1, &mine);
         uint8_t *got = read_target(&t);
-        uint8_t *want = expected_view(r, (ob_view)v, cam.far_z, max_samples);
+        uint8_t *want = expected_view(r, (ob_view)v, cam.far_z, max_samples, s);
         int diff = max_byte_diff(got, want, n);
         CHECK(diff <= 1, "%s: %s view within 1/255 of the CLI's mapping (max diff %d)", label,
               ob_view_name((ob_view)v), diff);
         free(got);
         free(want);
     }
-    (void)s;
     destroy_target(&t);
 }
 
@@ -340,6 +358,18 @@ static void test_present_views(ob_renderer *r)
     /* and a second depth layer (depth peeling): its view is the depth view of that layer. */
     ob_settings_set(&g, "gtao.layers=2");
     if (frame(r, &g)) check_views(r, &g, "gtao with bent normals and two layers", 36.0f);
+    /* Temporal accumulation: the history's age over its length, at half resolution for the scalar
+     * history (age in .g) and for ssdo's RGB one (age in .a), three frames in. */
+    ob_settings t = s;
+    t.adaptive = false;
+    t.temporal = true;
+    t.temporal_frames = 5;
+    ob_settings_set_ao_divisor(&t, 2);
+    if (frame(r, &t) && frame(r, &t) && frame(r, &t))
+        check_views(r, &t, "ssao temporal at 1/2", (float)(int)ob_settings_get(&t, "samples"));
+    d.temporal = true;
+    if (frame(r, &d) && frame(r, &d) && frame(r, &d))
+        check_views(r, &d, "ssdo temporal", (float)(int)ob_settings_get(&d, "samples"));
 }
 
 static void test_resize(ob_context *ctx, const ob_settings *s)

@@ -273,5 +273,33 @@ then ok; else bad "compare --budget-ms: $(tail -2 "$dir/shoot.err")"; fi
 "$OBSCURA" compare --scene corner:diagonal --size 64x48 --budget-ms -3 --report "$dir/shoot_bad" 2>"$dir/shoot.err"
 [ $? -eq 2 ] && grep -q "budget-ms" "$dir/shoot.err" && [ ! -e "$dir/shoot_bad" ] && ok || bad "--budget-ms -3: $(cat "$dir/shoot.err")"
 
+# compare --orbit: the flicker table (issue 17) in results.json and the HTML, with temporal
+# accumulation cutting the still camera's noise, and each row's worst frame written; an unknown
+# path is one line and no report.
+if "$OBSCURA" compare --scene corner:diagonal --size 48x36 --spp 16 --methods gtao --orbit 10 --path-frames 3 \
+    --shadow none --report "$dir/flicker" >"$dir/flicker.out" 2>"$dir/flicker.err" &&
+    python3 - "$dir/flicker" <<'PY'
+import json, os, sys
+report = sys.argv[1]
+v = json.load(open(os.path.join(report, "results.json")))["views"][0]
+fl = v["flicker"]
+assert fl["path"] == "orbit" and fl["orbit_degrees"] == 10 and fl["path_frames"] == 3 and fl["still_frames"] == 64, fl
+assert fl["reference_warped_error"] >= 0, fl
+[row] = fl["rows"]
+off, on = row["temporal_off"], row["temporal_on"]
+assert off["static_noise"] > 2 * on["static_noise"] > 0, row
+for x in (off, on):
+    assert 0 <= x["worst_frame"] < 3 and x["rmse_worst"] >= x["rmse_last"] > 0, x
+    assert abs(x["warped_error"] - (x["warped_error_raw"] - fl["reference_warped_error"])) < 1e-9, x
+assert on["temporal_ms"] > 0 and off["temporal_ms"] == 0, row
+html = open(os.path.join(report, "index.html")).read()
+assert "Flicker along an orbit of 10" in html and "_temporal_worst.png" in html
+assert any(n.endswith("_temporal_worst.png") for n in os.listdir(os.path.join(report, v["dir"]))), v["dir"]
+PY
+then ok; else bad "compare --orbit: $(tail -2 "$dir/flicker.err")"; fi
+"$OBSCURA" compare --scene corner:diagonal --size 48x36 --path nowhere --report "$dir/flicker_bad" 2>"$dir/flicker_bad.err"
+[ $? -ne 0 ] && [ "$(wc -l <"$dir/flicker_bad.err")" = 1 ] && grep -q "unknown camera path 'nowhere'" "$dir/flicker_bad.err" &&
+    [ ! -e "$dir/flicker_bad" ] && ok || bad "compare --path nowhere: $(cat "$dir/flicker_bad.err")"
+
 echo "test_report: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -1092,6 +1092,76 @@ static void test_tessellate(void)
     ob_destroy_scene(s);
 }
 
+/* Camera paths (issue 17): a sidecar path through its keys, C1 between them, the fov linear,
+ * unknown names, orbits, and the validation of "paths". */
+static void test_paths(void)
+{
+    char json[512];
+    tmp_path(json, sizeof json, "path.obscura.json");
+    write_text(json, "{\"paths\": [{\"name\": \"walk\", \"keys\": ["
+                     "{\"time\": 0, \"eye\": [0, 1, 4], \"target\": [0, 0.5, 0], \"fov\": 40},"
+                     "{\"time\": 1, \"eye\": [2, 1, 3], \"target\": [0.5, 0.5, 0]},"
+                     "{\"time\": 3, \"eye\": [4, 2, 0], \"target\": [1, 0.5, 0], \"fov\": 80}]}]}");
+    ob_scene *s = load("corner", json, OB_UP_DEFAULT);
+    CHECK(s && ob_query_path_count(s) == 1 && !strcmp(ob_query_path_name(s, 0), "walk") &&
+              !strcmp(ob_query_path_name(s, 1), ""),
+          "a sidecar path: %s", last_message());
+    if (s) {
+        ob_camera c0, c1, c3, a, b;
+        /* u = 1/3 is time 1 of the span 0..3: the middle key, exactly. */
+        CHECK(ob_camera_on_path(s, "walk", 0.0f, &c0) == OB_OK && ob_camera_on_path(s, "walk", 1.0f / 3.0f, &c1) == OB_OK &&
+                  ob_camera_on_path(s, "walk", 1.0f, &c3) == OB_OK,
+              "path cameras");
+        CHECK(near(c0.eye[2], 4.0f, 1e-5f) && near(c1.eye[0], 2.0f, 1e-5f) && near(c1.eye[2], 3.0f, 1e-5f) &&
+                  near(c3.eye[0], 4.0f, 1e-5f) && near(c3.target[0], 1.0f, 1e-5f),
+              "the path passes through its keys (%g %g %g)", (double)c1.eye[0], (double)c1.eye[1], (double)c1.eye[2]);
+        CHECK(near(c0.fov_y_deg, 40.0f, 1e-4f) && near(c1.fov_y_deg, 60.0f, 1e-4f) && near(c3.fov_y_deg, 80.0f, 1e-4f),
+              "fov: the keys' (60 when not given), linear between");
+        /* C1 at the middle key: the same velocity on both sides (per unit time: the gaps differ). */
+        const float e = 1e-3f;
+        ob_camera_on_path(s, "walk", 1.0f / 3.0f - e, &a);
+        ob_camera_on_path(s, "walk", 1.0f / 3.0f + e, &b);
+        float left = (c1.eye[0] - a.eye[0]) / e, right = (b.eye[0] - c1.eye[0]) / e;
+        CHECK(fabsf(left - right) < 0.02f * fabsf(left), "no kink at a key (%g vs %g)", (double)left, (double)right);
+        CHECK(ob_camera_on_path(s, "run", 0.5f, &a) == OB_ERR_INVALID_ARGUMENT && strstr(last_message(), "walk"),
+              "an unknown path names the scene's: %s", last_message());
+    }
+    ob_destroy_scene(s);
+    const ob_camera cam = {.eye = {3.0f, 2.0f, 0.0f}, .target = {1.0f, 0.5f, 0.0f}, .fov_y_deg = 50.0f};
+    ob_camera q = ob_camera_orbit(&cam, 90.0f), full = ob_camera_orbit(&cam, 360.0f);
+    CHECK(near(q.eye[0], 1.0f, 1e-5f) && near(q.eye[1], 2.0f, 1e-6f) && near(fabsf(q.eye[2]), 2.0f, 1e-5f) &&
+              near(q.target[0], 1.0f, 0.0f) && near(full.eye[0], 3.0f, 1e-5f) && near(full.eye[2], 0.0f, 1e-5f),
+          "an orbit turns the eye about the vertical through the target (%g %g %g)", (double)q.eye[0], (double)q.eye[1],
+          (double)q.eye[2]);
+#define KEY(t) "{\"time\": " #t ", \"eye\": [0, 1, 4], \"target\": [0, 0, 0]}"
+    static const struct { const char *text, *why; } bad[] = {
+        {"{\"paths\": [{\"name\": \"p\", \"keys\": [" KEY(0) "]}]}", "one key"},
+        {"{\"paths\": [{\"name\": \"p\", \"keys\": [" KEY(1) "," KEY(1) "]}]}", "times not increasing"},
+        {"{\"paths\": [{\"keys\": [" KEY(0) "," KEY(1) "]}]}", "path without name"},
+        {"{\"paths\": [{\"name\": \"p\"}]}", "path without keys"},
+        {"{\"paths\": [{\"name\": \"p\", \"keys\": [" KEY(0) ", {\"time\": 1, \"eye\": [0, 1, 4]}]}]}",
+         "key without target"},
+        {"{\"paths\": [{\"name\": \"p\", \"keys\": [" KEY(0) ", {\"time\": 1, \"eye\": [0, 3, 0], "
+         "\"target\": [0, 0, 0]}]}]}",
+         "key looking straight down"},
+        {"{\"paths\": [{\"name\": \"p\", \"keys\": [" KEY(0) "," KEY(1) "], \"loop\": true}]}", "unknown path key"},
+        {"{\"paths\": [{\"name\": \"p\", \"keys\": [" KEY(0) "," KEY(1) "]}, {\"name\": \"p\", \"keys\": [" KEY(0)
+         "," KEY(1) "]}]}",
+         "duplicate path name"},
+    };
+#undef KEY
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; ++k) {
+        write_text(json, bad[k].text);
+        s = load("corner", json, OB_UP_DEFAULT);
+        ob_error err = ob_get_error(NULL);
+        CHECK(!s && err == OB_ERR_SIDECAR && strstr(last_message(), json) && !strchr(last_message(), '\n'),
+              "sidecar path with %s: %s %s", bad[k].why, ob_error_name(err), last_message());
+        if (k < 2) printf("  %s -> %s\n", bad[k].why, last_message());
+        ob_destroy_scene(s);
+    }
+    unlink(json);
+}
+
 int main(void)
 {
     snprintf(tmpdir, sizeof tmpdir, "%s", "/tmp/obscura_test_scene_XXXXXX");
@@ -1113,6 +1183,7 @@ int main(void)
     test_sidecar_ground();
     test_new_named_scenes();
     test_tessellate();
+    test_paths();
     rmdir(tmpdir);
     return check_finish("scene");
 }

@@ -183,6 +183,22 @@ env -u DISPLAY "$OBSCURA" view --scene corner --script "$dir/bad.txt" >/dev/null
 code=$?
 if [ $code -eq 3 ] && grep -q "bad.txt:1" "$dir/bad3.err"; then ok; else bad "bad script: exit $code, $(cat "$dir/bad3.err")"; fi
 
+# --orbit plays from the start (the camera moves between frames); Space pauses it (it stays).
+cat >"$dir/orbit.txt" <<EOF
+0.1   screenshot $dir/orbit1.png
+0.2   screenshot $dir/orbit2.png
+0.25  key SPACE press
+0.3   screenshot $dir/paused1.png
+0.4   screenshot $dir/paused2.png
+0.45  quit
+EOF
+if xrun 300 "$OBSCURA" view --scene corner --gui off --size 160x120 --orbit 90 --path-frames 8 --script "$dir/orbit.txt" \
+    >/dev/null 2>"$dir/orbit.err"; then ok; else bad "orbit run failed: $(tail -3 "$dir/orbit.err")"; fi
+if [ -f "$dir/orbit1.png" ] && gt "$("$IMGCHECK" diff "$dir/orbit1.png" "$dir/orbit2.png")" 1; then ok
+else bad "--orbit: the camera did not move while playing"; fi
+if [ -f "$dir/paused1.png" ] && ! gt "$("$IMGCHECK" diff "$dir/paused1.png" "$dir/paused2.png")" 1; then ok
+else bad "Space: the camera still moved while paused"; fi
+
 # An unknown option: usage error, before anything else.
 "$OBSCURA" view --bogus >/dev/null 2>"$dir/bad4.err"
 code=$?

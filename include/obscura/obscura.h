@@ -258,6 +258,23 @@ ob_camera ob_query_camera(const ob_scene *scene, int index);
 /* By name or decimal index. Errors: OB_ERR_UNKNOWN_CAMERA. */
 ob_error ob_find_camera(const ob_scene *scene, const char *name_or_index, ob_camera *out);
 
+/* ---- camera paths (issue 17): a scene's named paths (sidecar "paths") and orbits --------------
+ * A path is 2..OB_MAX_PATH_KEYS keyframes (time, eye, target, fov) with increasing times. */
+#define OB_MAX_PATHS 8
+#define OB_MAX_PATH_KEYS 32
+int ob_query_path_count(const ob_scene *scene);
+/* The name of path `index`, or "" when out of range (or scene NULL). */
+const char *ob_query_path_name(const ob_scene *scene, int index);
+/* The camera at fraction u (clamped to [0, 1]) of path `name`'s time span: eye and target on
+ * Catmull-Rom splines through the keys, parametrised by time (C1, through every key; the end
+ * tangents mirror their neighbours), the fov linear between keys, up +Y, near and far 0 (the
+ * renderer fits them to the scene). Errors: OB_ERR_INVALID_ARGUMENT (NULL, or `name` is none of
+ * the scene's paths; the message lists them). */
+ob_error ob_camera_on_path(const ob_scene *scene, const char *name, float u, ob_camera *out);
+/* `camera` turned by `degrees` about the vertical (+Y) axis through its target: the orbit of the
+ * CLI's --orbit DEG (frame i of N at degrees x i / (N - 1)). Everything else is kept. */
+ob_camera ob_camera_orbit(const ob_camera *camera, float degrees);
+
 /* A deep copy of `scene` with every triangle split `levels` times by midpoint subdivision (each
  * triangle becomes 4: levels 1 = 4x, 2 = 16x the triangles; 0 = a plain copy). New vertices lie on
  * the original triangles, so the surfaces, cameras, lights, bounds and suggested radius are
@@ -390,7 +407,27 @@ typedef struct ob_settings {
      * targets at the next ob_render_frame; W + 2g above GL_MAX_TEXTURE_SIZE is OB_ERR_BAD_SIZE
      * there. Not for ob_compute_ao (see there). "guard=PX" in ob_settings_set. */
     int guard;
+    /* Temporal accumulation (issue 17, docs/temporal.md): a pass at the AO resolution that
+     * reprojects last frame's accumulated AO (and M, bounce) through this frame's depth and last
+     * frame's camera (static scenes), drops it where depth or normal say the surface is new
+     * (disocclusion), clamps it to this frame's 3x3 neighbourhood and blends with a history of
+     * temporal_frames frames. It also turns every stochastic method's noise with the frame index:
+     * gtao/vbao/vbgi's "temporal" parameter (R2 jitters) unless set explicitly, and a per-frame
+     * rotation of the random-kernel methods' noise. A new method, AO scale or size starts the
+     * history again. "temporal=on|off", "temporal_at=before|after", "temporal_frames=N" in
+     * ob_settings_set. Not for ob_compute_ao. */
+    bool temporal;
+    int temporal_at;              /* ob_temporal_at: before (default) or after the spatial filter */
+    int temporal_frames;          /* history length N, 1..OB_TEMPORAL_FRAMES_MAX (0 = OB_TEMPORAL_FRAMES_DEFAULT) */
 } ob_settings;
+
+/* Where the accumulation runs in the AO chain (ob_settings.temporal_at). */
+typedef enum ob_temporal_at {
+    OB_TEMPORAL_BEFORE_FILTER = 0, /* method -> accumulate -> filter: the filter smooths the history too */
+    OB_TEMPORAL_AFTER_FILTER,      /* method -> filter -> accumulate: the history holds filtered AO */
+} ob_temporal_at;
+#define OB_TEMPORAL_FRAMES_DEFAULT 16
+#define OB_TEMPORAL_FRAMES_MAX 256
 
 /* The largest ob_settings.guard ob_settings_set takes (the GL's texture size limits it further). */
 #define OB_GUARD_MAX 4096
@@ -404,11 +441,13 @@ ob_error ob_settings_init(ob_settings *settings, const char *method);
 /* Set "method.param=value", "filter.param=value" (the current filter) or "param=value" (the
  * current method) from text, validated against the table; "method.radius_scale=value" for every
  * method (ob_settings.radius_scale); "guard=PX" the guard band (ob_settings.guard, 0..OB_GUARD_MAX
- * pixels per side). Errors: OB_ERR_UNKNOWN_METHOD (an
+ * pixels per side); "temporal=on|off", "temporal_at=before|after" and "temporal_frames=N" the temporal
+ * accumulation (ob_settings.temporal*). Errors: OB_ERR_UNKNOWN_METHOD (an
  * unknown prefix), OB_ERR_UNKNOWN_PARAM, OB_ERR_OUT_OF_RANGE, OB_ERR_INVALID_ARGUMENT
  * (malformed, NaN, not an integer, a parameter of a method or filter not in use). */
 ob_error ob_settings_set(ob_settings *settings, const char *assignment);
-/* The value of a parameter of the current method by name ("radius_scale" and "guard" too), or NaN if unknown. */
+/* The value of a parameter of the current method by name ("radius_scale", "guard", "temporal" (0/1),
+ * "temporal_at" (ob_temporal_at) and "temporal_frames" too), or NaN if unknown. */
 float ob_settings_get(const ob_settings *settings, const char *param);
 /* Pick the filter (its parameters reset to their defaults). Errors: OB_ERR_UNKNOWN_METHOD. */
 ob_error ob_settings_set_filter(ob_settings *settings, const char *filter);
@@ -466,6 +505,9 @@ ob_error ob_renderer_set_environment(ob_renderer *r, const char *hdr_path);
 /* shadow maps -> G-buffer -> direct light -> [downsample] -> [edges] -> AO -> filter -> [upsample]
  * -> compose -> HDR (luminance, bloom, tone map), each pass timed. */
 ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *settings);
+/* Forget the temporal history (ob_settings.temporal): the next frame starts every pixel's history
+ * again, as after a camera cut. NULL is a no-op. */
+void ob_renderer_reset_history(ob_renderer *r);
 
 typedef enum ob_image_kind {
     OB_IMAGE_FINAL_RGBA8 = 0, /* sRGB, rows top to bottom, 4 bytes per pixel */
@@ -491,6 +533,12 @@ typedef enum ob_image_kind {
                                  (layers = 2); zeros otherwise. 1 float per pixel, bottom row first */
     OB_IMAGE_EXTRA_RADIANCE_F32, /* the extra view's direct light (ssdo with extra_view=on; zeros otherwise),
                                  linear RGB, 3 floats per pixel, bottom row first */
+    OB_IMAGE_HISTORY_AGE_F32, /* temporal accumulation: frames in each pixel's history (1 = just reset by a
+                                 disocclusion, temporal_frames at most, 0 = sky), at the AO resolution as
+                                 OB_IMAGE_AO_RAW_F32; zeros with temporal off. 1 float, bottom row first */
+    OB_IMAGE_MOTION_F32,      /* temporal accumulation: where each AO pixel's point was in the previous
+                                 frame, minus where it is, in AO pixels (x, y; y up), at the AO resolution;
+                                 zeros with temporal off. 2 floats per pixel, bottom row first */
 } ob_image_kind;
 
 /* Bytes needed for an image of the renderer's size. */
@@ -498,7 +546,7 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind);
 ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst_size);
 
 typedef struct ob_pass_timing {
-    const char *name; /* "shadow", "gbuffer", "lighting", "downsample", "edges", "depth_mips", "ao", "filter",
+    const char *name; /* "shadow", "gbuffer", "lighting", "downsample", "edges", "depth_mips", "ao", "temporal", "filter",
                          "upsample", "compose", "luminance", "bloom", "tonemap" */
     double ms;        /* GPU time between GL_TIMESTAMP queries around the pass */
 } ob_pass_timing;
@@ -576,6 +624,8 @@ typedef enum ob_view {
     OB_VIEW_EXTRA,        /* the extra view's direct light as radiance shows the main one's (ssdo with
                              extra_view=on; black otherwise): the camera turned 90 degrees around the
                              target (seed 000 §4.4) */
+    OB_VIEW_HISTORY_AGE,  /* temporal accumulation: frames in each pixel's history / temporal_frames,
+                             grey (black at a disocclusion, on the sky, or with temporal off) */
     OB_VIEW_COUNT
 } ob_view;
 
@@ -585,7 +635,7 @@ typedef enum ob_view {
 #define OB_LUMINANCE_LOG2_HI 4
 
 /* "final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce", "bent_normals",
- * "luminance", "second_depth", "extra" (the CLI's --view names); "" if out of range. */
+ * "luminance", "second_depth", "extra", "history_age" (the CLI's --view names); "" if out of range. */
 const char *ob_view_name(ob_view view);
 
 /* Draw the last frame (OB_VIEW_FINAL) or one of its debug views into `framebuffer` (0 = the

@@ -99,6 +99,10 @@ void ob_frame_constants_fill(ob_frame_constants *f, const ob_frame_desc *d)
         put3(f->sky, s->sky);
         put3(f->ground, s->ground);
         put3(f->background, s->background);
+        /* Temporal accumulation: the random-kernel methods' rotation noise turns by the golden
+         * ratio's fraction per frame (noise.glsl says why that sequence); in double, as 0.618 i
+         * loses the fraction in float after a few thousand frames. */
+        if (s->temporal) f->noise_turn = (float)fmod((double)d->frame_index * 0.6180339887498949, 1.0);
     }
     for (int i = 0; i < 9 && d->sh; ++i) put3(f->sh[i], d->sh[i]);
     int count = d->light_count < OB_MAX_LIGHTS ? d->light_count : OB_MAX_LIGHTS;
@@ -153,6 +157,11 @@ static ob_error check_settings(const ob_settings *s)
         return ob_set_error(OB_ERR_OUT_OF_RANGE, "ao divisor %d is not 1, 2 or 4", s->ao_divisor);
     if (s->guard < 0 || s->guard > OB_GUARD_MAX)
         return ob_set_error(OB_ERR_OUT_OF_RANGE, "guard band %d px is outside 0..%d", s->guard, OB_GUARD_MAX);
+    if (s->temporal_at != OB_TEMPORAL_BEFORE_FILTER && s->temporal_at != OB_TEMPORAL_AFTER_FILTER)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_at %d is not before (0) or after (1) the filter", s->temporal_at);
+    if (s->temporal_frames < 0 || s->temporal_frames > OB_TEMPORAL_FRAMES_MAX)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_frames %d is outside 1..%d", s->temporal_frames,
+                            OB_TEMPORAL_FRAMES_MAX);
     return OB_OK;
 }
 
@@ -185,6 +194,11 @@ static ob_error plan_method(ob_renderer *r, const ob_settings *s, method_plan *p
         if (m->params[i].follows_scene_radius)
             p->params[i] = fminf(fmaxf(p->params[i] * scale, m->params[i].min), m->params[i].max);
     }
+    /* Temporal accumulation wants noise that moves with the frame index: a method's own "temporal"
+     * switch (gtao, vbao, vbgi: R2 jitters) goes on unless it was set explicitly. */
+    for (int i = 0; i < m->param_count && s->temporal; ++i)
+        if (m->params[i].type == OB_PARAM_BOOL && !strcmp(m->params[i].name, "temporal") && !(s->params_set & (1u << i)))
+            p->params[i] = 1.0f;
     p->reads = ob_method_active_reads(p->impl, p->params);
     p->writes = ob_method_active_writes(p->impl, p->params);
     p->rgb = (p->impl->writes & OB_WRITES_VISIBILITY_RGB) != 0;
@@ -262,6 +276,39 @@ static ob_error run_extra_view(ob_renderer *r, const ob_settings *s, const ob_li
     r->lighting.constants = keep;
     glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_FRAME, r->frame_ubo);
     return OB_OK;
+}
+
+/* Temporal accumulation of the main chain (visibility or M) and the bounce: `*_in` this frame's
+ * values, `*_out` where the accumulation goes (passes/temporal.c). The history is reused only when
+ * the last frame accumulated under the same key; the pass also writes this frame's depth and
+ * normals for the next (geometry[1 - h]). */
+static void run_temporal(ob_renderer *r, const ob_settings *s, const method_plan *plan, ao_targets *t, GLuint main_in,
+                         GLuint main_out, GLuint bounce_in, GLuint bounce_out)
+{
+    const ob_history_key key = {.method = plan->index, .scale = r->last_scale, .at = s->temporal_at,
+                                .width = r->inner_width, .height = r->inner_height, .rgb = plan->rgb,
+                                .bounce = plan->bounce};
+    const bool valid = r->history_valid && !memcmp(&key, &r->history_key, sizeof key);
+    const int frames = s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
+    ob_temporal_constants c;
+    ob_temporal_fill(&c, r->prev_view, r->prev_ao_proj, valid, frames);
+    const int h = t->history_index;
+    const ob_temporal_chain main_chain = {.current = main_in, .result = main_out, .rgb = plan->rgb,
+                                          .history = plan->rgb ? t->history_rgb[h] : t->history[h],
+                                          .next_history = plan->rgb ? t->history_rgb[1 - h] : t->history[1 - h]};
+    ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, t->geometry[h], t->geometry[1 - h], t->motion,
+                    &main_chain);
+    if (plan->bounce) {
+        const ob_temporal_chain bounce = {.current = bounce_in, .result = bounce_out, .rgb = true,
+                                          .history = t->bounce_history[h], .next_history = t->bounce_history[1 - h]};
+        ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, t->geometry[h], t->geometry[1 - h], t->motion,
+                        &bounce);
+    }
+    t->history_index = 1 - h;
+    r->history_key = key;
+    r->history_valid = true;
+    memcpy(r->prev_view, r->frame_constants.view, sizeof r->prev_view);
+    memcpy(r->prev_ao_proj, r->frame_constants.ao_proj, sizeof r->prev_ao_proj);
 }
 
 /* Every pass of the frame, stopping at the first failure; the caller closes the timers. */
@@ -366,25 +413,49 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     if (err != OB_OK) return err;
     glMemoryBarrier(barrier);
 
+    /* The chains into and out of the filter; temporal accumulation (issue 17) sits before it, the
+     * filter then reading the accumulation, or after it, the filter writing into its input. */
+    GLuint main_in = plan->rgb ? t->raw_rgb : t->raw, bounce_in = t->bounce_raw;
+    GLuint main_out = plan->rgb ? (g->k > 1 ? t->filtered_rgb : r->ao_rgb) : (g->k > 1 ? t->filtered : r->ao);
+    GLuint bounce_out = g->k > 1 ? t->bounce_filtered : r->bounce;
+    /* A method that dispatches nothing (none) writes a constant: nothing to accumulate. */
+    const bool temporal = s->temporal && plan->impl->shader != NULL;
+    r->last_temporal = temporal;
+    if (temporal) {
+        err = ob_renderer_temporal_targets(r, t);
+        if (err != OB_OK) return err;
+        r->last_temporal_frames = s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
+        const GLuint main_accum = plan->rgb ? t->accum_rgb : t->accum;
+        if (s->temporal_at == OB_TEMPORAL_BEFORE_FILTER) {
+            ob_timer_begin(&r->timers, "temporal");
+            run_temporal(r, s, plan, t, main_in, main_accum, bounce_in, t->bounce_accum);
+            glMemoryBarrier(barrier);
+            main_in = main_accum;
+            bounce_in = t->bounce_accum;
+        } else {
+            main_out = main_accum;
+            bounce_out = t->bounce_accum;
+        }
+    } else {
+        r->history_valid = false;
+    }
+
     ob_timer_begin(&r->timers, "filter");
     void *fstate = ob_renderer_filter_state(r, s->filter, plan->rgb, &err);
     if (err != OB_OK) return err;
     const ob_filter_impl *filter = ob_filter_impl_at(s->filter);
     if (!plan->rgb) {
-        err = run_filter(filter, fstate, t, t->raw, g->k > 1 ? t->filtered : r->ao, t->scratch, false, 1.0f, s);
+        err = run_filter(filter, fstate, t, main_in, main_out, t->scratch, false, 1.0f, s);
     } else {
         /* M and the bounce through the same filter (seed 003 §5.3 smooths them separately); the
          * sky is 1 in M and 0 in the bounce. The barrier orders the shared scratch target. */
-        err = run_filter(filter, fstate, t, t->raw_rgb, g->k > 1 ? t->filtered_rgb : r->ao_rgb, t->scratch_rgb, true,
-                         1.0f, s);
+        err = run_filter(filter, fstate, t, main_in, main_out, t->scratch_rgb, true, 1.0f, s);
     }
     if (err == OB_OK && plan->bounce) {
         /* A bounce beside a scalar visibility (vbgi) takes the filter's RGB variant. */
         void *bstate = plan->rgb ? fstate : ob_renderer_filter_state(r, s->filter, true, &err);
         glMemoryBarrier(barrier);
-        if (err == OB_OK)
-            err = run_filter(filter, bstate, t, t->bounce_raw, g->k > 1 ? t->bounce_filtered : r->bounce,
-                             t->scratch_rgb, true, 0.0f, s);
+        if (err == OB_OK) err = run_filter(filter, bstate, t, bounce_in, bounce_out, t->scratch_rgb, true, 0.0f, s);
     }
     if (err == OB_OK && plan->bent) {
         /* The bent normal through the same filter's RGB variant (sky 0, no direction); compose
@@ -397,6 +468,13 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     }
     if (err != OB_OK) return err;
     glMemoryBarrier(barrier);
+    if (temporal && s->temporal_at == OB_TEMPORAL_AFTER_FILTER) {
+        ob_timer_begin(&r->timers, "temporal");
+        run_temporal(r, s, plan, t, main_out, plan->rgb ? (g->k > 1 ? t->filtered_rgb : r->ao_rgb)
+                                                        : (g->k > 1 ? t->filtered : r->ao),
+                     bounce_out, g->k > 1 ? t->bounce_filtered : r->bounce);
+        glMemoryBarrier(barrier);
+    }
     if (g->k > 1) {
         ob_timer_begin(&r->timers, "upsample");
         if (plan->bent)

@@ -96,6 +96,12 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
     case OB_IMAGE_EXTRA_RADIANCE_F32: return px * 3 * sizeof(float);
     case OB_IMAGE_SHADOW_F32:
     case OB_IMAGE_SECOND_DEPTH_F32: return px * sizeof(float);
+    case OB_IMAGE_HISTORY_AGE_F32:
+    case OB_IMAGE_MOTION_F32: {
+        const ob_ao_grid *g = &r->scales[r->last_scale].grid;
+        const ob_ao_grid v = ob_ao_grid_make(r->width, r->height, g->k > 0 ? g->k : 1);
+        return (size_t)v.width * (size_t)v.height * sizeof(float) * (kind == OB_IMAGE_MOTION_F32 ? 2 : 1);
+    }
     }
     return 0;
 }
@@ -178,6 +184,32 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
         else
             memset(dst, 0, need);
         break;
+    case OB_IMAGE_HISTORY_AGE_F32:
+    case OB_IMAGE_MOTION_F32: {
+        const ao_targets *t = &r->scales[r->last_scale];
+        if (!t->ready) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "no frame rendered yet");
+        if (!r->last_temporal || !t->temporal_ready) {
+            memset(dst, 0, need);
+            break;
+        }
+        /* The visible AO grid, as OB_IMAGE_AO_RAW_F32. The age is the history's .g (RG32F) or .a
+         * (RGBA16F); core GL reads neither alone, so through RGBA. */
+        const ob_ao_grid v = ob_ao_grid_make(r->width, r->height, t->grid.k);
+        const int o = r->guard / t->grid.k;
+        if (kind == OB_IMAGE_MOTION_F32) {
+            glGetTextureSubImage(t->motion, 0, o, o, 0, v.width, v.height, 1, GL_RG, GL_FLOAT, (GLsizei)need, dst);
+            break;
+        }
+        size_t n = (size_t)v.width * (size_t)v.height;
+        float *rgba = malloc(n * 4 * sizeof(float));
+        if (!rgba) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading an image");
+        GLuint h = r->last_rgb ? t->history_rgb[t->history_index] : t->history[t->history_index];
+        glGetTextureSubImage(h, 0, o, o, 0, v.width, v.height, 1, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
+        float *out = dst;
+        for (size_t i = 0; i < n; ++i) out[i] = rgba[4 * i + (r->last_rgb ? 3 : 1)];
+        free(rgba);
+        break;
+    }
     case OB_IMAGE_SHADOW_F32: {
         /* The key light's visibility is the direct-light target's alpha. */
         size_t n = (size_t)r->width * (size_t)r->height;

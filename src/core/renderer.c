@@ -18,6 +18,10 @@ static void release_scales(ob_renderer *r)
         GLuint rgb[7] = {t->raw_rgb, t->filtered_rgb, t->scratch_rgb, t->bounce_raw, t->bounce_filtered,
                          t->bent_raw, t->bent_filtered};
         glDeleteTextures(7, rgb);
+        GLuint temporal[12] = {t->accum, t->history[0], t->history[1], t->accum_rgb, t->history_rgb[0],
+                               t->history_rgb[1], t->bounce_accum, t->bounce_history[0], t->bounce_history[1],
+                               t->geometry[0], t->geometry[1], t->motion};
+        glDeleteTextures(12, temporal);
         if (t->grid.k > 1) {
             GLuint own[2] = {t->depth, t->normal};
             glDeleteTextures(2, own);
@@ -92,6 +96,7 @@ void ob_destroy_renderer(ob_renderer *r)
         glDeleteTextures(1, &r->extra_direct);
         glDeleteBuffers(1, &r->extra_ubo);
     }
+    if (r->temporal_ready) ob_temporal_destroy(&r->temporal);
     ob_gbuffer_destroy(&r->gbuffer);
     ob_compute_pass_destroy(&r->downsample);
     ob_compute_pass_destroy(&r->upsample);
@@ -216,6 +221,7 @@ ob_error ob_renderer_reshape(ob_renderer *r, int width, int height, int guard)
     r->bounce = 0;
     r->bent = 0;
     release_scales(r);
+    r->history_valid = false;
     r->last_scale = 0;
     r->width = width;
     r->height = height;
@@ -224,6 +230,11 @@ ob_error ob_renderer_reshape(ob_renderer *r, int width, int height, int guard)
     r->inner_height = inner_h;
     r->has_frame = false;
     return OB_OK;
+}
+
+void ob_renderer_reset_history(ob_renderer *r)
+{
+    if (r) r->history_valid = false;
 }
 
 ob_error ob_renderer_resize(ob_renderer *r, int width, int height)
@@ -318,6 +329,35 @@ ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t, bool directional
     }
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making the directional targets", e);
+    return OB_OK;
+}
+
+ob_error ob_renderer_temporal_targets(ob_renderer *r, ao_targets *t)
+{
+    if (!r->temporal_ready) {
+        if (ob_temporal_init(&r->temporal) != OB_OK) return ob_peek_error(NULL);
+        r->temporal_ready = true;
+    }
+    if (t->temporal_ready) return OB_OK;
+    int w = t->grid.width, h = t->grid.height;
+    /* All chains at once: a few AO-resolution textures, and a directional method switched on later
+     * finds its histories there. */
+    t->accum = ob_make_texture_2d(GL_R32F, w, h);
+    t->accum_rgb = ob_make_texture_2d(GL_RGBA16F, w, h);
+    t->bounce_accum = ob_make_texture_2d(GL_RGBA16F, w, h);
+    for (int i = 0; i < 2; ++i) {
+        t->history[i] = ob_make_texture_2d(GL_RG32F, w, h);
+        t->history_rgb[i] = ob_make_texture_2d(GL_RGBA16F, w, h);
+        t->bounce_history[i] = ob_make_texture_2d(GL_RGBA16F, w, h);
+    }
+    t->geometry[0] = ob_make_texture_2d(GL_RGBA16F, w, h);
+    t->geometry[1] = ob_make_texture_2d(GL_RGBA16F, w, h);
+    t->motion = ob_make_texture_2d(GL_RG16F, w, h);
+    t->history_index = 0;
+    t->temporal_ready = true;
+    r->history_valid = false; /* new textures hold no history */
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making the temporal targets", e);
     return OB_OK;
 }
 

@@ -23,8 +23,26 @@ typedef struct ao_targets {
     GLuint raw_rgb, filtered_rgb, scratch_rgb, bounce_raw, bounce_filtered;
     /* Methods that write a bent normal (OB_WRITES_BENT_NORMAL): RGBA16F, made with the above. */
     GLuint bent_raw, bent_filtered;
+    /* Temporal accumulation (ob_settings.temporal), made when a frame first asks for it: per chain
+     * the stage between accumulation and filter (the accumulation's output before the filter, the
+     * filter's before the accumulation) and two histories with the age, read and written in turn
+     * (history_index holds the last frame's); the last frame's depth and normals; the motion. */
+    GLuint accum, history[2];                 /* visibility: R32F; RG32F (value, age) */
+    GLuint accum_rgb, history_rgb[2];         /* M: RGBA16F; RGBA16F (rgb, age) */
+    GLuint bounce_accum, bounce_history[2];   /* the bounce: the same */
+    GLuint geometry[2];                       /* RGBA16F view normal, depth: [history_index] the last frame's */
+    GLuint motion;                            /* RG16F (offset in AO pixels) */
+    int history_index;
+    bool temporal_ready;
     bool ready;
 } ao_targets;
+
+/* What a history was accumulated under: the next frame reuses it only under the same (temporal.c). */
+typedef struct ob_history_key {
+    int method, scale, at;
+    int width, height;          /* the inner size */
+    bool rgb, bounce;
+} ob_history_key;
 
 enum { OB_AO_SCALES = 3 }; /* k = 1, 2, 4 */
 
@@ -91,6 +109,15 @@ struct ob_renderer {
     bool last_extra_view;      /* the last frame rendered the extra view */
     ob_frame_constants extra_constants;
     float extra_view[16], extra_proj[16], extra_from_view[16], extra_to_view[16];
+    /* Temporal accumulation: the pass (made on first use), the last frame's camera as the AO grid
+     * saw it and what its history was accumulated under (valid: the last frame accumulated). */
+    ob_temporal_pass temporal;
+    bool temporal_ready;
+    bool history_valid;
+    ob_history_key history_key;
+    float prev_view[16], prev_ao_proj[16];
+    bool last_temporal;        /* the last frame accumulated (the history_age view and read-backs) */
+    int last_temporal_frames;
 };
 
 /* renderer.c: the targets for a visible size and a guard band (px per side, a multiple of 4), made
@@ -106,6 +133,8 @@ void *ob_renderer_filter_state(ob_renderer *r, int index, bool rgb, ob_error *er
 ao_targets *ob_renderer_targets(ob_renderer *r, int scale_index);
 /* The RGBA16F chains, each made on first use: a directional method's M and bounce, a bent normal. */
 ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t, bool directional, bool bent);
+/* The temporal accumulation's targets at this scale (ao_targets), made on first use. */
+ob_error ob_renderer_temporal_targets(ob_renderer *r, ao_targets *t);
 
 /* frame.c: the per-frame block from the camera, the AO grid, the lights and the settings, as a
  * pure function (no GL): lights as lighting.glsl reads them (colour x intensity, unit directions,

@@ -140,6 +140,39 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
         s->guard = (int)px;
         return OB_OK;
     }
+    if (key_len > 8 && !strncmp(key, "temporal", 8) && !memchr(key, '.', key_len)) {
+        /* The frame's temporal accumulation, no prefix: temporal=on|off, temporal_at=before|after,
+         * temporal_frames=N. */
+        const char *v = eq + 1;
+        while (isspace((unsigned char)*v)) ++v;
+        if (key_len == strlen("temporal_at") && !strncmp(key, "temporal_at", key_len)) {
+            if (!strcmp(v, "before")) s->temporal_at = OB_TEMPORAL_BEFORE_FILTER;
+            else if (!strcmp(v, "after")) s->temporal_at = OB_TEMPORAL_AFTER_FILTER;
+            else return ob_set_error(OB_ERR_INVALID_ARGUMENT, "temporal_at expects before or after, got '%s'", eq + 1);
+            return OB_OK;
+        }
+        if (key_len == strlen("temporal_frames") && !strncmp(key, "temporal_frames", key_len)) {
+            char *end = NULL;
+            errno = 0;
+            long n = strtol(v, &end, 10);
+            if (end == v || *end != '\0' || errno == ERANGE)
+                return ob_set_error(OB_ERR_INVALID_ARGUMENT, "temporal_frames expects a whole number of frames, got '%s'",
+                                    eq + 1);
+            if (n < 1 || n > OB_TEMPORAL_FRAMES_MAX)
+                return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_frames = %s is out of range [1, %d] (frames)", eq + 1,
+                                    OB_TEMPORAL_FRAMES_MAX);
+            s->temporal_frames = (int)n;
+            return OB_OK;
+        }
+    }
+    if (key_len == strlen("temporal") && !strncmp(key, "temporal", key_len)) {
+        const char *v = eq + 1;
+        while (isspace((unsigned char)*v)) ++v;
+        if (!strcmp(v, "on") || !strcmp(v, "1")) s->temporal = true;
+        else if (!strcmp(v, "off") || !strcmp(v, "0")) s->temporal = false;
+        else return ob_set_error(OB_ERR_INVALID_ARGUMENT, "temporal expects on or off, got '%s'", eq + 1);
+        return OB_OK;
+    }
     const char *dot = memchr(key, '.', key_len);
     if (dot) {
         size_t mlen = (size_t)(dot - key);
@@ -201,6 +234,10 @@ float ob_settings_get(const ob_settings *s, const char *param)
     if (!m || !param) return NAN;
     if (!strcmp(param, "radius_scale")) return s->radius_scale > 0.0f ? s->radius_scale : 1.0f;
     if (!strcmp(param, "guard")) return (float)s->guard;
+    if (!strcmp(param, "temporal")) return s->temporal ? 1.0f : 0.0f;
+    if (!strcmp(param, "temporal_at")) return (float)s->temporal_at;
+    if (!strcmp(param, "temporal_frames"))
+        return (float)(s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT);
     int pi = find_param(m, param, strlen(param));
     return pi < 0 ? NAN : s->params[pi];
 }

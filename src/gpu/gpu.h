@@ -54,7 +54,7 @@ GLuint ob_make_texture_2d(GLenum internal_format, int w, int h);
 GLuint ob_make_rotation_noise_texture(void);
 
 /* ---- timers (timer.c) ----------------------------------------------------------------------- */
-#define OB_MAX_TIMED_PASSES 16
+#define OB_MAX_TIMED_PASSES 20
 /* Frames of queries in flight: results are read 1..OB_TIMER_RING frames late (timer.c says why). */
 #define OB_TIMER_RING 4
 

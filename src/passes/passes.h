@@ -9,6 +9,7 @@
 #include "lighting_params.h"
 #include "resample_params.h"
 #include "scene/scene.h"
+#include "temporal_params.h"
 
 /* ---- G-buffer (gbuffer.c, shaders/gbuffer.{vert,frag}.glsl): the one raster pass ------------ */
 typedef struct ob_gpu_mesh {
@@ -90,6 +91,30 @@ void ob_upsample_run_rgb(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_de
 /* Adaptive sample counts: a multiplier 1/2/3 per OB_EDGE_BLOCK^2 AO pixels (seed 003 §4.1). */
 ob_error ob_edges_init(ob_compute_pass *p);
 void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLuint ao_normal, GLuint multiplier);
+
+/* ---- temporal accumulation: temporal.c, shaders/temporal.glsl (issue 17) --------------------
+ * At the AO resolution, one dispatch per chain (visibility or M, then the bounce): reprojected
+ * history, disocclusion by depth and normal, a 3x3 clamp, a blend of history length N. The
+ * history textures carry the age (RG32F value, age; RGBA16F rgb, age). */
+typedef struct ob_temporal_pass {
+    ob_compute_pass scalar, rgb; /* temporal.glsl without / with OB_TEMPORAL_RGB */
+} ob_temporal_pass;
+/* The camera of the previous frame and the history rules (pure; no GL): prev_view and
+ * prev_ao_proj column-major, history_frames N >= 1. */
+void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const float prev_ao_proj[16],
+                      bool history_valid, int history_frames);
+ob_error ob_temporal_init(ob_temporal_pass *p);
+/* One chain: `current` (R32F or RGBA16F) and `history` (RG32F or RGBA16F, with the age) in,
+ * `result` and `next_history` out (the same formats), `motion` (RG16F) the reprojection offset.
+ * depth/normal are this frame's at the AO resolution; prev_geometry (RGBA16F normal xyz, depth w)
+ * the previous frame's, next_geometry this frame's for the next (a different texture). */
+typedef struct ob_temporal_chain {
+    GLuint current, history, result, next_history;
+    bool rgb;
+} ob_temporal_chain;
+void ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth, GLuint normal,
+                     GLuint prev_geometry, GLuint next_geometry, GLuint motion, const ob_temporal_chain *chain);
+void ob_temporal_destroy(ob_temporal_pass *p);
 
 /* ---- depth MIP prefilter: depth_mips.c, shaders/depth_mips.glsl (issue 13) -------------------
  * A MIP chain of linear view depth (R32F, positive along -Z, 0 = sky) built in one dispatch, for
@@ -345,6 +370,7 @@ typedef struct ob_view_inputs {
     int samples;          /* samples: the method's count, or the adaptive base with multiplier */
     int grid_k;           /* samples: full pixels per AO pixel */
     int max_samples;      /* samples: the most a pixel could take */
+    int history_frames;   /* history_age: the history length (white); 0 = no history, black */
 } ob_view_inputs;
 
 /* Draw the view into framebuffer's x, y, w, h (ob_present's contract: state restored). Errors:

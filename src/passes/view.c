@@ -88,6 +88,7 @@ static ob_error run_view(ob_view_pass *v, const ob_view_inputs *in)
     k.far_z = in->far_z > 0.0f ? in->far_z : 1.0f;
     k.inv_max_samples = in->max_samples > 0 ? 1.0f / (float)in->max_samples : 0.0f;
     k.offset = in->offset;
+    k.inv_history_frames = in->history_frames > 0 ? 1.0f / (float)in->history_frames : 0.0f;
     k.size[0] = in->width;
     k.size[1] = in->height;
 
@@ -161,6 +162,7 @@ const char *ob_view_name(ob_view view)
 {
     static const char *const names[OB_VIEW_COUNT] = {"final",    "ao",      "normals", "depth",
                                                      "shadow",   "radiance", "samples", "bounce",
-                                                     "bent_normals", "luminance", "second_depth", "extra"};
+                                                     "bent_normals", "luminance", "second_depth", "extra",
+                                                     "history_age"};
     return (int)view >= 0 && view < OB_VIEW_COUNT ? names[view] : "";
 }

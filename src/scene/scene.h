@@ -24,6 +24,15 @@ typedef struct ob_material {
 
 #define OB_MAX_CAMERAS 32
 
+/* A named camera path (sidecar "paths", scene/path.c). */
+typedef struct ob_camera_path {
+    char name[64];
+    int key_count;                 /* 2..OB_MAX_PATH_KEYS */
+    float time[OB_MAX_PATH_KEYS];  /* strictly increasing */
+    float eye[OB_MAX_PATH_KEYS][3], target[OB_MAX_PATH_KEYS][3];
+    float fov[OB_MAX_PATH_KEYS];   /* degrees */
+} ob_camera_path;
+
 struct ob_scene {
     char name[128];
     ob_mesh *meshes;
@@ -32,6 +41,8 @@ struct ob_scene {
     int material_count;
     ob_camera cameras[OB_MAX_CAMERAS]; /* [0] = "default", framing the bounds */
     int camera_count;
+    ob_camera_path paths[OB_MAX_PATHS];
+    int path_count;
     ob_light lights[OB_MAX_LIGHTS]; /* [0] = the key light */
     int light_count;
     float ao_radius;       /* suggested, world units */

@@ -23,6 +23,15 @@
  *         "fov": 50              vertical field of view in degrees, in (1, 179); default 60
  *       }
  *     ],
+ *     "paths": [                 named camera paths (issue 17; render/compare/bench --path NAME),
+ *       {                        up to 8, each 2..32 keyframes
+ *         "name": "walk",        required, 1-63 characters, unique
+ *         "keys": [              required; eye and target follow Catmull-Rom splines in time
+ *           {"time": 0, "eye": [x, y, z], "target": [x, y, z], "fov": 60},
+ *           ...                  time: required, strictly increasing; eye, target: required,
+ *         ]                      != each other; fov: (1, 179), default 60 (linear between keys)
+ *       }
+ *     ],
  *     "lights": [                up to 8; the first one is the scene's key light
  *       {
  *         "type": "directional", "directional" (default), "point" or "spot"
@@ -73,6 +82,8 @@ typedef struct sidecar {
     float ao_radius; /* 0 = not given */
     ob_camera cameras[OB_MAX_CAMERAS];
     int camera_count;
+    ob_camera_path paths[OB_MAX_PATHS];
+    int path_count;
     ob_light lights[OB_MAX_LIGHTS];
     int light_count;
     bool ground;          /* "ground" given */
@@ -226,6 +237,94 @@ static ob_error parse_camera(const char *path, int index, const cJSON *obj, ob_c
         return fail(path, "%s (\"%s\"): up is parallel to the view direction%s", where,
                     cam->name, has_up ? "" : " (give an \"up\")");
     }
+    return OB_OK;
+}
+
+/* One keyframe of paths[index].keys[k]. */
+static ob_error parse_key(const char *path, const char *where, const cJSON *obj, ob_camera_path *p, int k)
+{
+    if (!cJSON_IsObject(obj)) return fail(path, "%s: expected an object, got %s", where, json_type_name(obj));
+    bool has_time = false, has_eye = false, has_target = false;
+    p->fov[k] = 60.0f;
+    for (const cJSON *it = obj->child; it; it = it->next) {
+        const char *key = it->string;
+        char field[200] = "";
+        snprintf(field, sizeof field, "%s.%s", where, key);
+        if (is_comment_key(key)) continue;
+        if (seen_before(obj, it)) return fail(path, "%s: duplicate key", field);
+        ob_error err = OB_OK;
+        if (strcmp(key, "time") == 0) {
+            err = read_number(path, field, it, &p->time[k]);
+            has_time = true;
+        } else if (strcmp(key, "eye") == 0) {
+            err = read_vec3(path, field, it, p->eye[k]);
+            has_eye = true;
+        } else if (strcmp(key, "target") == 0) {
+            err = read_vec3(path, field, it, p->target[k]);
+            has_target = true;
+        } else if (strcmp(key, "fov") == 0) {
+            err = read_number(path, field, it, &p->fov[k]);
+            if (err == OB_OK && !(p->fov[k] > 1.0f && p->fov[k] < 179.0f))
+                return fail(path, "%s: %g degrees is outside (1, 179)", field, (double)p->fov[k]);
+        } else {
+            return fail(path, "%s: unknown key (expected time, eye, target, fov)", field);
+        }
+        if (err != OB_OK) return err;
+    }
+    if (!has_time) return fail(path, "%s: missing \"time\"", where);
+    if (!has_eye) return fail(path, "%s: missing \"eye\"", where);
+    if (!has_target) return fail(path, "%s: missing \"target\"", where);
+    float fwd[3] = {p->target[k][0] - p->eye[k][0], p->target[k][1] - p->eye[k][1], p->target[k][2] - p->eye[k][2]};
+    if (!(len3(fwd) > 0.0f)) return fail(path, "%s: eye == target", where);
+    /* Up is +Y along a path: a key looking straight up or down has no roll. */
+    if (sqrtf(fwd[0] * fwd[0] + fwd[2] * fwd[2]) < 1e-4f * len3(fwd))
+        return fail(path, "%s: looks straight up or down (a path's up is +Y)", where);
+    if (k > 0 && !(p->time[k] > p->time[k - 1]))
+        return fail(path, "%s: time %g is not after the previous key's %g", where, (double)p->time[k],
+                    (double)p->time[k - 1]);
+    return OB_OK;
+}
+
+static ob_error parse_path(const char *path, int index, const cJSON *obj, ob_camera_path *p)
+{
+    char where[96] = "";
+    snprintf(where, sizeof where, "paths[%d]", index);
+    if (!cJSON_IsObject(obj)) return fail(path, "%s: expected an object, got %s", where, json_type_name(obj));
+    memset(p, 0, sizeof *p);
+    bool has_name = false, has_keys = false;
+    for (const cJSON *it = obj->child; it; it = it->next) {
+        const char *key = it->string;
+        char field[160] = "";
+        snprintf(field, sizeof field, "%s.%s", where, key);
+        if (is_comment_key(key)) continue;
+        if (seen_before(obj, it)) return fail(path, "%s: duplicate key", field);
+        if (strcmp(key, "name") == 0) {
+            if (!cJSON_IsString(it)) return fail(path, "%s: expected a string, got %s", field, json_type_name(it));
+            size_t len = strlen(it->valuestring);
+            if (len == 0 || len >= sizeof p->name)
+                return fail(path, "%s: must be 1 to %zu characters", field, sizeof p->name - 1);
+            memcpy(p->name, it->valuestring, len + 1);
+            has_name = true;
+        } else if (strcmp(key, "keys") == 0) {
+            if (!cJSON_IsArray(it)) return fail(path, "%s: expected an array, got %s", field, json_type_name(it));
+            int n = cJSON_GetArraySize(it);
+            if (n < 2 || n > OB_MAX_PATH_KEYS)
+                return fail(path, "%s: %d keyframes, expected 2 to %d", field, n, OB_MAX_PATH_KEYS);
+            /* Every key is parsed before it is compared with the one before it. */
+            for (int k = 0; k < n; ++k) {
+                char kw[200] = "";
+                snprintf(kw, sizeof kw, "%s[%d]", field, k);
+                ob_error err = parse_key(path, kw, cJSON_GetArrayItem(it, k), p, k);
+                if (err != OB_OK) return err;
+            }
+            p->key_count = n;
+            has_keys = true;
+        } else {
+            return fail(path, "%s: unknown key (expected name, keys)", field);
+        }
+    }
+    if (!has_name) return fail(path, "%s: missing \"name\"", where);
+    if (!has_keys) return fail(path, "%s (\"%s\"): missing \"keys\"", where, p->name);
     return OB_OK;
 }
 
@@ -493,6 +592,23 @@ static ob_error parse_file(const char *path, sidecar *sc)
                 }
             }
             sc->camera_count = n;
+        } else if (strcmp(key, "paths") == 0) {
+            if (!cJSON_IsArray(it)) {
+                err = fail(path, "paths: expected an array, got %s", json_type_name(it));
+                break;
+            }
+            int n = cJSON_GetArraySize(it);
+            if (n > OB_MAX_PATHS) {
+                err = fail(path, "paths: %d paths, at most %d", n, OB_MAX_PATHS);
+                break;
+            }
+            for (int i = 0; i < n && err == OB_OK; ++i) {
+                err = parse_path(path, i, cJSON_GetArrayItem(it, i), &sc->paths[i]);
+                for (int j = 0; j < i && err == OB_OK; ++j)
+                    if (strcmp(sc->paths[j].name, sc->paths[i].name) == 0)
+                        err = fail(path, "paths[%d]: name \"%s\" already used by paths[%d]", i, sc->paths[i].name, j);
+            }
+            sc->path_count = n;
         } else if (strcmp(key, "lights") == 0) {
             if (!cJSON_IsArray(it)) {
                 err = fail(path, "lights: expected an array, got %s", json_type_name(it));
@@ -510,7 +626,7 @@ static ob_error parse_file(const char *path, sidecar *sc)
         } else if (strcmp(key, "ground") == 0) {
             err = parse_ground(path, it, sc);
         } else {
-            err = fail(path, "%s: unknown key (expected model, up, ao_radius, cameras, lights, "
+            err = fail(path, "%s: unknown key (expected model, up, ao_radius, cameras, paths, lights, "
                              "ground, or _comment)", key);
         }
     }
@@ -569,6 +685,11 @@ ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path)
         }
     }
     for (int i = 0; i < sc->camera_count; ++i) ob_scene_add_camera(s, &sc->cameras[i]);
+    /* A later sidecar replaces its paths as a whole (a scene has no other source of them). */
+    if (sc->path_count > 0) {
+        memcpy(s->paths, sc->paths, sizeof sc->paths);
+        s->path_count = sc->path_count;
+    }
     if (sc->ao_radius > 0.0f) s->ao_radius = sc->ao_radius;
     if (sc->light_count > 0) {
         memcpy(s->lights, sc->lights, sizeof sc->lights);

@@ -1,0 +1,240 @@
+/* Flicker metrics (issue 17): see flicker.h for what each number is. The reference along the path
+ * is ray traced once per path frame from that frame's own G-buffer points (and cached like every
+ * compare reference); the reprojection between frames is done here on the CPU from the G-buffer's
+ * depth and each frame's camera, independently of the temporal pass it grades. */
+#include "flicker.h"
+
+#include <cglm/cglm.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "reference_cache.h"
+
+/* A path frame: its G-buffer, camera and reference AO_R. */
+typedef struct path_frame {
+    cli_view_frame f;
+    mat4 view;
+    float *ref;
+} path_frame;
+
+/* Pixel centre (x, y) of frame a with linear depth d, as a world point. */
+static void world_point(const path_frame *a, int x, int y, float d, vec3 out)
+{
+    const cli_view_frame *f = &a->f;
+    float nx = ((float)x + 0.5f) / (float)f->width * 2.0f - 1.0f;
+    float ny = ((float)y + 0.5f) / (float)f->height * 2.0f - 1.0f;
+    vec4 v = {(nx + f->proj_info[2]) * d * f->proj_info[0], (ny + f->proj_info[3]) * d * f->proj_info[1], -d, 1.0f};
+    vec4 w;
+    glm_mat4_mulv((vec4 *)f->inv_view, v, w);
+    glm_vec3_copy(w, out);
+}
+
+/* Mean |cur - prev reprojected| over the pixels of frame a (now) whose point frame b (before) saw:
+ * the four depths of b around the reprojected point all within 2 % of the point's depth in b (an
+ * edge or an occluder there leaves the pixel out). prev is bilinear between those four. */
+static double warped_change(const path_frame *a, const path_frame *b, const float *cur, const float *prev)
+{
+    const int w = a->f.width, h = a->f.height;
+    const float *pi = b->f.proj_info;
+    double sum = 0.0;
+    long count = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = (size_t)y * (size_t)w + (size_t)x;
+            float d = a->f.depth[i];
+            if (d <= 0.0f) continue;
+            vec3 p;
+            world_point(a, x, y, d, p);
+            vec4 pw = {p[0], p[1], p[2], 1.0f}, v;
+            glm_mat4_mulv((vec4 *)b->view, pw, v);
+            float db = -v[2];
+            if (db <= 0.0f) continue;
+            /* ndc = (P00 X + P20 Z) / -Z with P00 = 1 / proj_info[0]. */
+            float nx = (v[0] / pi[0] + pi[2] * v[2]) / db, ny = (v[1] / pi[1] + pi[3] * v[2]) / db;
+            float qx = (nx * 0.5f + 0.5f) * (float)w - 0.5f, qy = (ny * 0.5f + 0.5f) * (float)h - 0.5f;
+            int x0 = (int)floorf(qx), y0 = (int)floorf(qy);
+            if (x0 < 0 || y0 < 0 || x0 + 1 >= w || y0 + 1 >= h) continue;
+            float tx = qx - (float)x0, ty = qy - (float)y0;
+            bool seen = true;
+            double value = 0.0;
+            for (int k = 0; k < 4 && seen; ++k) {
+                size_t j = (size_t)(y0 + (k >> 1)) * (size_t)w + (size_t)(x0 + (k & 1));
+                seen = fabsf(b->f.depth[j] - db) < 0.02f * db;
+                value += (double)((k & 1) ? tx : 1.0f - tx) * ((k >> 1) ? ty : 1.0f - ty) * prev[j];
+            }
+            if (!seen) continue;
+            sum += fabs((double)cur[i] - value);
+            ++count;
+        }
+    return count ? sum / (double)count : 0.0;
+}
+
+static double rmse(const float *ao, const float *ref, const float *depth, size_t px)
+{
+    double sum = 0.0;
+    size_t count = 0;
+    for (size_t i = 0; i < px; ++i)
+        if (depth[i] > 0.0f) {
+            double e = (double)ao[i] - (double)ref[i];
+            sum += e * e;
+            ++count;
+        }
+    return count ? sqrt(sum / (double)count) : 0.0;
+}
+
+static double pass_ms(ob_renderer *r, const char *name)
+{
+    ob_pass_timing t[24];
+    int n = ob_query_timings(r, t, 24);
+    for (int p = 0; p < n; ++p)
+        if (!strcmp(t[p].name, name)) return t[p].ms;
+    return 0.0;
+}
+
+/* One variant of one combination: the path, then the still camera. */
+static int run_variant(const cli_flicker_desc *d, const path_frame *frames, int count, const ob_settings *s,
+                       cli_flicker_variant *out, float *cur, float *prev, double *mean, double *m2, double *ms)
+{
+    const cli_common *c = d->common;
+    ob_renderer *r = d->renderer;
+    const int w = c->width, h = c->height;
+    const size_t px = (size_t)w * (size_t)h;
+    memset(out, 0, sizeof *out);
+    out->worst_ao = malloc(px * sizeof(float));
+    if (!out->worst_ao) return cli_fail(EXIT_RUNTIME, "out of memory");
+    ob_renderer_reset_history(r);
+    double warped = 0.0;
+    for (int t = 0; t < count; ++t) {
+        ob_camera cam;
+        int code = cli_common_path_camera(c, d->scene, &d->base, t, &cam);
+        if (code != EXIT_OK) return code;
+        if (ob_render_frame(r, &cam, s) != OB_OK) return cli_fail_from_library();
+        ob_read_image(r, OB_IMAGE_AO_F32, cur, px * sizeof(float));
+        ms[t] = pass_ms(r, "temporal");
+        double e = rmse(cur, frames[t].ref, frames[t].f.depth, px);
+        if (t == 0 || e > out->rmse_worst) {
+            out->rmse_worst = e;
+            out->worst_frame = t;
+            memcpy(out->worst_ao, cur, px * sizeof(float));
+        }
+        if (t == count - 1) out->rmse_last = e;
+        if (t > 0) warped += warped_change(&frames[t], &frames[t - 1], cur, prev);
+        memcpy(prev, cur, px * sizeof(float));
+    }
+    out->warped = warped / (double)(count - 1);
+    out->temporal_ms = cli_median(ms, count);
+    /* Still: warm-up of a history length (the on variant's history fills), then the measured frames
+     * (Welford's running mean and sum of squares per pixel). */
+    ob_renderer_reset_history(r);
+    ob_camera still;
+    int code = cli_common_path_camera(c, d->scene, &d->base, 0, &still);
+    if (code != EXIT_OK) return code;
+    const int warmup = s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
+    memset(mean, 0, px * sizeof(double));
+    memset(m2, 0, px * sizeof(double));
+    for (int f = 0; f < warmup + FLICKER_STILL_FRAMES; ++f) {
+        if (ob_render_frame(r, &still, s) != OB_OK) return cli_fail_from_library();
+        if (f < warmup) continue;
+        ob_read_image(r, OB_IMAGE_AO_F32, cur, px * sizeof(float));
+        const double n = (double)(f - warmup + 1);
+        for (size_t i = 0; i < px; ++i) {
+            double delta = (double)cur[i] - mean[i];
+            mean[i] += delta / n;
+            m2[i] += delta * ((double)cur[i] - mean[i]);
+        }
+    }
+    double sum = 0.0;
+    size_t geometry = 0;
+    for (size_t i = 0; i < px; ++i)
+        if (frames[0].f.depth[i] > 0.0f) {
+            sum += sqrt(m2[i] / (double)FLICKER_STILL_FRAMES);
+            ++geometry;
+        }
+    out->static_noise = geometry ? sum / (double)geometry : 0.0;
+    return EXIT_OK;
+}
+
+int cli_flicker_run(const cli_flicker_desc *d, const cli_config *configs, int count, cli_flicker_row *rows,
+                    cli_flicker_reference *ref)
+{
+    const cli_common *c = d->common;
+    const int w = c->width, h = c->height, n = c->path_frames;
+    const size_t px = (size_t)w * (size_t)h;
+    memset(rows, 0, (size_t)count * sizeof *rows);
+    memset(ref, 0, sizeof *ref);
+    path_frame *frames = calloc((size_t)n, sizeof *frames);
+    float *cur = malloc(px * sizeof(float)), *prev = malloc(px * sizeof(float));
+    double *mean = malloc(px * sizeof(double)), *m2 = malloc(px * sizeof(double)), *ms = malloc((size_t)n * sizeof(double));
+    int code = EXIT_OK;
+    if (!frames || !cur || !prev || !mean || !m2 || !ms) code = cli_fail(EXIT_RUNTIME, "out of memory");
+    /* The path's G-buffers and references, once for every combination. */
+    for (int t = 0; t < n && code == EXIT_OK; ++t) {
+        ob_camera cam;
+        if ((code = cli_common_path_camera(c, d->scene, &d->base, t, &cam)) != EXIT_OK) break;
+        /* A name per path frame: the reference cache's key. */
+        if (c->path) snprintf(cam.name, sizeof cam.name, "path %s %d/%d", c->path, t, n);
+        else snprintf(cam.name, sizeof cam.name, "%.24s orbit %g %d/%d", d->base.name, (double)c->orbit_deg, t, n);
+        if ((code = cli_view_frame_make(d->renderer, &cam, w, h, &frames[t].f)) != EXIT_OK) break;
+        glm_lookat(frames[t].f.cam.eye, frames[t].f.cam.target, frames[t].f.cam.up, frames[t].view);
+        frames[t].ref = malloc(px * sizeof(float));
+        if (!frames[t].ref) {
+            code = cli_fail(EXIT_RUNTIME, "out of memory");
+            break;
+        }
+        char key[900] = "";
+        cli_reference_key(c, d->scene_key, cam.name, key, sizeof key);
+        cli_reference_info info;
+        code = cli_reference_ao(d->scene, &frames[t].f, key, d->radius, d->spp, d->no_cache, c->verbose, frames[t].ref,
+                                &info);
+        if (code == EXIT_OK && t > 0) ref->warped += warped_change(&frames[t], &frames[t - 1], frames[t].ref, frames[t - 1].ref);
+    }
+    if (code == EXIT_OK) {
+        ref->frames = n;
+        ref->warped /= (double)(n - 1);
+    }
+    for (int k = 0; k < count && code == EXIT_OK; ++k) {
+        rows[k].config = &configs[k];
+        ob_settings s = configs[k].settings;
+        s.temporal = true;
+        if (s.temporal_frames <= 0) s.temporal_frames = OB_TEMPORAL_FRAMES_DEFAULT;
+        code = run_variant(d, frames, n, &s, &rows[k].on, cur, prev, mean, m2, ms);
+        /* Off: the same moving noise, a history of one frame (alpha = 1: nothing kept). */
+        s.temporal_frames = 1;
+        if (code == EXIT_OK) code = run_variant(d, frames, n, &s, &rows[k].off, cur, prev, mean, m2, ms);
+        rows[k].off.temporal_ms = 0.0;
+        rows[k].on.warped_excess = rows[k].on.warped - ref->warped;
+        rows[k].off.warped_excess = rows[k].off.warped - ref->warped;
+        if (code == EXIT_OK) {
+            const cli_flicker_variant *a = &rows[k].off, *b = &rows[k].on;
+            printf("flicker %s: static noise %.4f -> %.4f (%.1fx), warped error %.4f -> %.4f (%.1fx; reference %.4f), "
+                   "RMSE last %.4f -> %.4f, worst %.4f (frame %d) -> %.4f (frame %d)\n",
+                   configs[k].label, a->static_noise, b->static_noise,
+                   b->static_noise > 0.0 ? a->static_noise / b->static_noise : 0.0, a->warped, b->warped,
+                   b->warped > 0.0 ? a->warped / b->warped : 0.0, ref->warped, a->rmse_last,
+                   b->rmse_last, a->rmse_worst, a->worst_frame, b->rmse_worst, b->worst_frame);
+        }
+    }
+    for (int t = 0; frames && t < n; ++t) {
+        cli_view_frame_free(&frames[t].f);
+        free(frames[t].ref);
+    }
+    free(frames);
+    free(cur);
+    free(prev);
+    free(mean);
+    free(m2);
+    free(ms);
+    return code;
+}
+
+void cli_flicker_free(cli_flicker_row *rows, int count)
+{
+    for (int k = 0; rows && k < count; ++k) {
+        free(rows[k].off.worst_ao);
+        free(rows[k].on.worst_ao);
+        rows[k].off.worst_ao = rows[k].on.worst_ao = NULL;
+    }
+}

@@ -1,0 +1,23 @@
+/* Constants of the temporal accumulation pass (src/passes/temporal.c, shaders/temporal.glsl): the
+ * previous frame's camera as the AO grid saw it, and the history's rules. This frame's camera is the
+ * per-frame block's (frame_params.h). */
+#ifndef OB_TEMPORAL_PARAMS_H
+#define OB_TEMPORAL_PARAMS_H
+#include "frame_params.h"
+
+#define OB_TEMPORAL_GROUP_X 8
+#define OB_TEMPORAL_GROUP_Y 8
+
+OB_CONSTANTS_BEGIN(ob_temporal_constants, OB_BINDING_PASS)
+    OB_MAT4 prev_view;          /* world -> the previous frame's view space */
+    OB_MAT4 prev_ao_proj;       /* the previous frame's projection as seen from the AO grid */
+    OB_VEC4 prev_ao_proj_info;  /* 1/P00, 1/P11, P20, P21 of prev_ao_proj (common.glsl) */
+    OB_INT history_valid;       /* 0: no history (first frame, new method, size or scale): age 0 everywhere */
+    OB_FLOAT history_frames;    /* N: the blend never weighs the current frame below 1 / N */
+    OB_FLOAT plane_tolerance;   /* a history tap is the same surface when it lies within this x depth of
+                                   this point's tangent plane ... */
+    OB_FLOAT normal_cos;        /* ... and its normal is within acos(normal_cos) of this point's */
+OB_CONSTANTS_END(ob_temporal_constants, tp)
+OB_CONSTANTS_SIZE(ob_temporal_constants, 2 * 64 + 2 * 16);
+
+#endif

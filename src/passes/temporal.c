@@ -1,0 +1,66 @@
+/* Temporal accumulation (issue 17): the reprojection cache of Nehab et al. 2007 with Karis 2014's
+ * neighbourhood clamp, at the AO resolution. Shader: shaders/temporal.glsl (it says what each step
+ * does and what moving objects would need); the frame's use of it: src/core/frame.c. */
+#include <string.h>
+
+#include "core/error.h"
+#include "passes/passes.h"
+
+/* A history tap is this point's surface when it lies within 1 % of the depth from this point's
+ * tangent plane: on a plane the distance is 0 at any angle, so the only error it must absorb is
+ * depth's (R32F, exact here) and a curved surface's bulge over a pixel; a step of an object in
+ * front (the disocclusion to catch) is far more than 1 % of the depth at any of the test scenes'
+ * scales. */
+#define PLANE_TOLERANCE 0.01f
+/* ... and its normal within 25 degrees (cos 25 = 0.906), the edge pass's turn (edges.c): more
+ * than the normals of a tessellated curve turn in one pixel, less than any crease. */
+#define NORMAL_COS 0.906f
+
+void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const float prev_ao_proj[16],
+                      bool history_valid, int history_frames)
+{
+    memset(c, 0, sizeof *c);
+    memcpy(c->prev_view, prev_view, sizeof c->prev_view);
+    memcpy(c->prev_ao_proj, prev_ao_proj, sizeof c->prev_ao_proj);
+    /* 1/P00, 1/P11, P20, P21 (column-major), as ob_proj_info and common.glsl's ob_view_position. */
+    c->prev_ao_proj_info[0] = 1.0f / prev_ao_proj[0];
+    c->prev_ao_proj_info[1] = 1.0f / prev_ao_proj[5];
+    c->prev_ao_proj_info[2] = prev_ao_proj[8];
+    c->prev_ao_proj_info[3] = prev_ao_proj[9];
+    c->history_valid = history_valid ? 1 : 0;
+    c->history_frames = (float)(history_frames > 0 ? history_frames : 1);
+    c->plane_tolerance = PLANE_TOLERANCE;
+    c->normal_cos = NORMAL_COS;
+}
+
+ob_error ob_temporal_init(ob_temporal_pass *p)
+{
+    memset(p, 0, sizeof *p);
+    if (ob_compute_pass_init(&p->scalar, "temporal.glsl", NULL, sizeof(ob_temporal_constants)) != OB_OK)
+        return ob_peek_error(NULL);
+    if (ob_compute_pass_init(&p->rgb, "temporal.glsl", "#define OB_TEMPORAL_RGB 1\n", sizeof(ob_temporal_constants)) !=
+        OB_OK) {
+        ob_compute_pass_destroy(&p->scalar);
+        return ob_peek_error(NULL);
+    }
+    return OB_OK;
+}
+
+void ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth, GLuint normal,
+                     GLuint prev_geometry, GLuint next_geometry, GLuint motion, const ob_temporal_chain *chain)
+{
+    ob_compute_pass_use(chain->rgb ? &p->rgb : &p->scalar, c, sizeof *c);
+    const GLuint units[5] = {chain->current, chain->history, depth, normal, prev_geometry};
+    for (int i = 0; i < 5; ++i) glBindTextureUnit((GLuint)i, units[i]);
+    glBindImageTexture(3, next_geometry, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(0, chain->result, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_R32F);
+    glBindImageTexture(1, chain->next_history, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_RG32F);
+    glBindImageTexture(2, motion, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+    ob_dispatch_2d(g->width, g->height, OB_TEMPORAL_GROUP_X, OB_TEMPORAL_GROUP_Y);
+}
+
+void ob_temporal_destroy(ob_temporal_pass *p)
+{
+    ob_compute_pass_destroy(&p->scalar);
+    ob_compute_pass_destroy(&p->rgb);
+}

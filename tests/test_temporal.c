@@ -1,0 +1,340 @@
+/* Temporal accumulation (issue 17, ob_settings.temporal, passes/temporal.c):
+ *   - a still camera on `corner` with the noise advancing every frame converges: with temporal on
+ *     the frame-to-frame change of the AO falls, after the history length, below a tenth of what it
+ *     is with a one-frame history (the same moving noise through the spatial filter alone), for gtao (R2 jitters), ssao at 1/2 (the per-frame
+ *     rotation of its noise), the RGB chain of ssdo at 1/4, and with the pass after the filter;
+ *   - reprojection after a small camera move on `cornell` maps every pixel to within 0.5 px of the
+ *     same world point, checked against the G-buffer positions of both frames (the pass's motion
+ *     read back, the positions from each frame's depth through its own camera);
+ *   - a sideways move that uncovers floor and wall behind cornell's blocks resets the history's age
+ *     exactly where the previous frame's depth shows an occluder in front of the point, and keeps
+ *     it (N) where the point was visible;
+ *   - text settings and their errors. */
+#include <cglm/cglm.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "obscura/obscura.h"
+
+enum { W = 96, H = 72, N = 16 };
+
+static bool render(ob_renderer *r, const ob_camera *cam, const ob_settings *s)
+{
+    if (ob_render_frame(r, cam, s) == OB_OK) return true;
+    const char *msg = NULL;
+    ob_get_error(&msg);
+    fprintf(stderr, "render: %s\n", msg);
+    return false;
+}
+
+/* Mean |a - b| over pixels with geometry. */
+static double mean_change(const float *a, const float *b, const float *depth, int n)
+{
+    double sum = 0.0;
+    int count = 0;
+    for (int i = 0; i < n; ++i)
+        if (depth[i] > 0.0f) {
+            sum += fabs((double)a[i] - (double)b[i]);
+            ++count;
+        }
+    return count ? sum / count : 0.0;
+}
+
+/* The mean frame-to-frame change of the final AO over frames [from, to) of a still camera. */
+static double still_change(ob_renderer *r, const ob_camera *cam, const ob_settings *s, int from, int to)
+{
+    static float ao[2][W * H], depth[W * H];
+    double sum = 0.0;
+    int count = 0;
+    for (int f = 0; f < to; ++f) {
+        if (!render(r, cam, s)) return -1.0;
+        ob_read_image(r, OB_IMAGE_AO_F32, ao[f & 1], sizeof ao[0]);
+        if (f == 0) ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, sizeof depth);
+        if (f > from) {
+            sum += mean_change(ao[f & 1], ao[(f - 1) & 1], depth, W * H);
+            ++count;
+        }
+    }
+    return count ? sum / count : -1.0;
+}
+
+static void test_converges(ob_context *ctx, ob_scene *corner, const char *method, int divisor, int at)
+{
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
+    CHECK(r && ob_renderer_set_scene(r, corner) == OB_OK, "corner renderer");
+    if (!r) return;
+    /* Looking into the corner from the open side: the creases and the open floor. */
+    const ob_camera cam = {.eye = {2.6f, 1.9f, 2.6f}, .target = {0.4f, 0.2f, 0.4f}, .fov_y_deg = 60.0f};
+    ob_settings s;
+    ob_settings_init(&s, method);
+    ob_settings_set_ao_divisor(&s, divisor);
+    /* Under temporal the noise moves every frame by itself: gtao's R2 jitters, the others' rotation. */
+    s.temporal_frames = N;
+    s.temporal_at = at;
+    s.temporal = true;
+    double on = still_change(r, &cam, &s, 2 * N, 3 * N);
+    /* The baseline: the same moving noise with a history of one frame, i.e. the spatial filter alone. */
+    ob_settings one = s;
+    one.temporal_frames = 1;
+    double spatial = still_change(r, &cam, &one, 2, 2 + N);
+    printf("  %s ao/%d temporal %s: frame-to-frame change %.5f with a %d-frame history, %.5f with 1 frame\n", method,
+           divisor, at == OB_TEMPORAL_AFTER_FILTER ? "after" : "before", on, N, spatial);
+    CHECK(spatial > 5e-4, "%s: the noise moves from frame to frame without accumulation (%.5f)", method, spatial);
+    CHECK(on >= 0.0 && on < 0.1 * spatial, "%s ao/%d: after %d frames the change %.5f is below a tenth of %.5f",
+          method, divisor, N, on, spatial);
+    ob_destroy_renderer(r);
+}
+
+/* A camera's view and projection as ob_render_frame makes them (no guard band, no shift). */
+typedef struct cam_mats {
+    mat4 view, inv_view, proj;
+} cam_mats;
+
+static cam_mats mats(ob_camera c)
+{
+    cam_mats m;
+    vec3 up = {0.0f, 1.0f, 0.0f};
+    glm_lookat(c.eye, c.target, up, m.view);
+    glm_mat4_inv(m.view, m.inv_view);
+    glm_perspective(glm_rad(c.fov_y_deg), (float)W / (float)H, c.near_z, c.far_z, m.proj);
+    return m;
+}
+
+/* World position of pixel (x, y) (row 0 at the bottom) from its linear depth. */
+static void world_at(cam_mats *m, float x, float y, float d, vec3 out)
+{
+    float nx = (x + 0.5f) / (float)W * 2.0f - 1.0f, ny = (y + 0.5f) / (float)H * 2.0f - 1.0f;
+    vec4 v = {(nx + m->proj[2][0]) * d / m->proj[0][0], (ny + m->proj[2][1]) * d / m->proj[1][1], -d, 1.0f};
+    vec4 w;
+    glm_mat4_mulv(m->inv_view, v, w);
+    glm_vec3_copy(w, out);
+}
+
+/* Pixel (continuous, centres at + 0.5) and linear depth of a world point in a camera. */
+static void project(cam_mats *m, const vec3 p, float *x, float *y, float *d)
+{
+    vec4 w = {p[0], p[1], p[2], 1.0f}, v, c;
+    glm_mat4_mulv(m->view, w, v);
+    glm_mat4_mulv(m->proj, v, c);
+    *x = (c[0] / c[3] * 0.5f + 0.5f) * (float)W;
+    *y = (c[1] / c[3] * 0.5f + 0.5f) * (float)H;
+    *d = -v[2];
+}
+
+typedef struct frame_data {
+    float depth[W * H], normal[3 * W * H], motion[2 * W * H], age[W * H];
+} frame_data;
+
+static bool grab(ob_renderer *r, frame_data *f)
+{
+    return ob_read_image(r, OB_IMAGE_DEPTH_F32, f->depth, sizeof f->depth) == OB_OK &&
+           ob_read_image(r, OB_IMAGE_NORMAL_F32, f->normal, sizeof f->normal) == OB_OK &&
+           ob_read_image(r, OB_IMAGE_MOTION_F32, f->motion, sizeof f->motion) == OB_OK &&
+           ob_read_image(r, OB_IMAGE_HISTORY_AGE_F32, f->age, sizeof f->age) == OB_OK;
+}
+
+/* Pixel (x, y) of `a` and its three neighbours up and right all on one flat surface (same normal). */
+static bool flat_quad(const frame_data *a, int x, int y)
+{
+    if (x < 0 || y < 0 || x + 1 >= W || y + 1 >= H) return false;
+    const int i0 = y * W + x;
+    const int q[4] = {i0, i0 + 1, i0 + W, i0 + W + 1};
+    for (int k = 0; k < 4; ++k) {
+        if (a->depth[q[k]] <= 0.0f) return false;
+        float dot = 0.0f;
+        for (int c = 0; c < 3; ++c) dot += a->normal[3 * q[k] + c] * a->normal[3 * i0 + c];
+        if (dot < 0.9999f) return false;
+    }
+    return true;
+}
+
+/* Frame a's linear depth at continuous pixel (qx, qy), bilinear between the four centres around it
+ * (x0, y0 the lower left one). */
+static float depth_at(const frame_data *a, float qx, float qy, int x0, int y0)
+{
+    float tx = qx - 0.5f - (float)x0, ty = qy - 0.5f - (float)y0;
+    const float *d = a->depth;
+    return (1 - ty) * ((1 - tx) * d[y0 * W + x0] + tx * d[y0 * W + x0 + 1]) +
+           ty * ((1 - tx) * d[(y0 + 1) * W + x0] + tx * d[(y0 + 1) * W + x0 + 1]);
+}
+
+static void test_reprojection(ob_context *ctx, ob_scene *cornell)
+{
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
+    ob_camera a;
+    CHECK(r && ob_renderer_set_scene(r, cornell) == OB_OK && ob_find_camera(cornell, "front", &a) == OB_OK,
+          "cornell renderer");
+    if (!r) return;
+    a.near_z = 0.05f;
+    a.far_z = 10.0f;
+    if (a.fov_y_deg <= 0.0f) a.fov_y_deg = 60.0f;
+    /* A small move: sideways, up and turning a little (target moves less than the eye). */
+    ob_camera b = a;
+    b.eye[0] += 0.04f;
+    b.eye[1] += 0.02f;
+    b.target[0] += 0.015f;
+    ob_settings s;
+    ob_settings_init(&s, "ssao");
+    s.temporal = true;
+    static frame_data fa, fb;
+    bool ok = render(r, &a, &s) && grab(r, &fa) && render(r, &b, &s) && grab(r, &fb);
+    CHECK(ok, "two frames with temporal on");
+    if (!ok) {
+        ob_destroy_renderer(r);
+        return;
+    }
+    cam_mats ma = mats(a), mb = mats(b);
+    double worst = 0.0, moved = 0.0;
+    int checked = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const int i = y * W + x;
+            if (fb.depth[i] <= 0.0f) continue;
+            vec3 pb;
+            world_at(&mb, (float)x, (float)y, fb.depth[i], pb);
+            /* Where the pass says this point was, in frame a's pixels (continuous). */
+            float qx = (float)x + 0.5f + fb.motion[2 * i], qy = (float)y + 0.5f + fb.motion[2 * i + 1];
+            int x0 = (int)floorf(qx - 0.5f), y0 = (int)floorf(qy - 0.5f);
+            if (!flat_quad(&fa, x0, y0)) continue;
+            /* Only points that frame a saw: its depth where a's camera puts the point (the test's own
+             * projection, not the pass's) is the point's own. */
+            float cx = 0.0f, cy = 0.0f, cd = 0.0f;
+            project(&ma, pb, &cx, &cy, &cd);
+            int cx0 = (int)floorf(cx - 0.5f), cy0 = (int)floorf(cy - 0.5f);
+            if (!flat_quad(&fa, cx0, cy0) || fabsf(depth_at(&fa, cx, cy, cx0, cy0) - cd) > 0.005f * cd) continue;
+            /* Frame a's G-buffer position there: bilinear between its four pixel centres on one plane. */
+            float tx = qx - 0.5f - (float)x0, ty = qy - 0.5f - (float)y0;
+            vec3 p00, p10, p01, p11, pa;
+            world_at(&ma, (float)x0, (float)y0, fa.depth[y0 * W + x0], p00);
+            world_at(&ma, (float)x0 + 1, (float)y0, fa.depth[y0 * W + x0 + 1], p10);
+            world_at(&ma, (float)x0, (float)y0 + 1, fa.depth[(y0 + 1) * W + x0], p01);
+            world_at(&ma, (float)x0 + 1, (float)y0 + 1, fa.depth[(y0 + 1) * W + x0 + 1], p11);
+            for (int c = 0; c < 3; ++c)
+                pa[c] = (1 - ty) * ((1 - tx) * p00[c] + tx * p10[c]) + ty * ((1 - tx) * p01[c] + tx * p11[c]);
+            /* The world distance in frame a's pixels at that depth: one pixel spans 2 d / (P11 H). */
+            float px_size = 2.0f * fa.depth[y0 * W + x0] / (ma.proj[1][1] * (float)H);
+            double err = glm_vec3_distance(pa, pb) / px_size;
+            worst = fmax(worst, err);
+            moved = fmax(moved, hypot(fb.motion[2 * i], fb.motion[2 * i + 1]));
+            ++checked;
+        }
+    printf("  reprojection after a small move: %d px checked, motion up to %.2f px, worst %.3f px from the same "
+           "world point\n",
+           checked, moved, worst);
+    CHECK(checked > W * H / 3, "most pixels lie on flat quads of the previous frame (%d)", checked);
+    CHECK(moved > 1.0, "the camera move shifts pixels by more than a pixel (%.2f)", moved);
+    CHECK(worst < 0.5, "every pixel maps within 0.5 px of its world point (worst %.3f px)", worst);
+    ob_destroy_renderer(r);
+}
+
+static void test_disocclusion(ob_context *ctx, ob_scene *cornell)
+{
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
+    ob_camera a;
+    CHECK(r && ob_renderer_set_scene(r, cornell) == OB_OK && ob_find_camera(cornell, "front", &a) == OB_OK,
+          "cornell renderer");
+    if (!r) return;
+    a.near_z = 0.05f;
+    a.far_z = 10.0f;
+    if (a.fov_y_deg <= 0.0f) a.fov_y_deg = 60.0f;
+    /* A sideways step: the blocks slide across the back wall and floor more than those do. */
+    ob_camera b = a;
+    b.eye[0] += 0.15f;
+    b.target[0] += 0.15f;
+    ob_settings s;
+    ob_settings_init(&s, "ssao");
+    s.temporal = true;
+    s.temporal_frames = N;
+    static frame_data fa, fb;
+    bool ok = true;
+    for (int f = 0; f < N + 2 && ok; ++f) ok = render(r, &a, &s);
+    ok = ok && grab(r, &fa) && render(r, &b, &s) && grab(r, &fb);
+    CHECK(ok, "frames with temporal on");
+    if (!ok) {
+        ob_destroy_renderer(r);
+        return;
+    }
+    int still_full = 0, geometry = 0;
+    for (int i = 0; i < W * H; ++i) {
+        geometry += fa.depth[i] > 0.0f;
+        still_full += fa.depth[i] > 0.0f && fa.age[i] == (float)N;
+    }
+    CHECK(still_full == geometry, "a still camera fills every history to N (%d of %d)", still_full, geometry);
+    cam_mats ma = mats(a), mb = mats(b);
+    int hidden = 0, hidden_reset = 0, seen = 0, seen_kept = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const int i = y * W + x;
+            if (fb.depth[i] <= 0.0f) continue;
+            vec3 p;
+            world_at(&mb, (float)x, (float)y, fb.depth[i], p);
+            float qx = 0.0f, qy = 0.0f, d = 0.0f;
+            project(&ma, p, &qx, &qy, &d);
+            int x0 = (int)floorf(qx - 0.5f), y0 = (int)floorf(qy - 0.5f);
+            if (x0 < 0 || y0 < 0 || x0 + 1 >= W || y0 + 1 >= H) continue;
+            /* All four of frame a's pixels around the point in front of it by 5 % (an occluder), or a
+             * flat quad whose depth there is the point's within 0.5 % (seen). Anything between is an
+             * edge, left unjudged. */
+            int front = 0;
+            for (int k = 0; k < 4; ++k) {
+                float da = fa.depth[(y0 + (k >> 1)) * W + x0 + (k & 1)];
+                front += da > 0.0f && da < 0.95f * d;
+            }
+            if (front == 4) {
+                ++hidden;
+                hidden_reset += fb.age[i] == 1.0f;
+            } else if (flat_quad(&fa, x0, y0) && fabsf(depth_at(&fa, qx, qy, x0, y0) - d) < 0.005f * d) {
+                ++seen;
+                seen_kept += fb.age[i] == (float)N;
+            }
+        }
+    printf("  disocclusion: %d px uncovered (%d reset to age 1), %d px seen before (%d kept age %d)\n", hidden,
+           hidden_reset, seen, seen_kept, N);
+    CHECK(hidden >= 20, "the move uncovers pixels behind the blocks (%d)", hidden);
+    CHECK(hidden_reset == hidden, "every uncovered pixel starts its history again (%d of %d)", hidden_reset, hidden);
+    CHECK(seen > W * H / 3 && seen_kept >= seen * 99 / 100, "pixels seen before keep their history (%d of %d)",
+          seen_kept, seen);
+    ob_destroy_renderer(r);
+}
+
+static void test_settings(void)
+{
+    ob_settings s;
+    ob_settings_init(&s, "gtao");
+    CHECK(ob_settings_set(&s, "temporal=on") == OB_OK && s.temporal, "temporal=on");
+    CHECK(ob_settings_set(&s, "temporal_at=after") == OB_OK && s.temporal_at == OB_TEMPORAL_AFTER_FILTER,
+          "temporal_at=after");
+    CHECK(ob_settings_set(&s, "temporal_frames=8") == OB_OK && s.temporal_frames == 8, "temporal_frames=8");
+    CHECK(ob_settings_get(&s, "temporal_frames") == 8.0f && ob_settings_get(&s, "temporal") == 1.0f, "get");
+    CHECK(ob_settings_set(&s, "temporal=maybe") == OB_ERR_INVALID_ARGUMENT, "temporal=maybe refused");
+    CHECK(ob_settings_set(&s, "temporal_at=middle") == OB_ERR_INVALID_ARGUMENT, "temporal_at=middle refused");
+    CHECK(ob_settings_set(&s, "temporal_frames=0") == OB_ERR_OUT_OF_RANGE, "temporal_frames=0 refused");
+    CHECK(ob_settings_set(&s, "temporal_frames=1.5") == OB_ERR_INVALID_ARGUMENT, "temporal_frames=1.5 refused");
+    CHECK(ob_settings_set(&s, "temporal=off") == OB_OK && !s.temporal, "temporal=off");
+    /* gtao's own parameter is still its own. */
+    CHECK(ob_settings_set(&s, "gtao.temporal=1") == OB_OK, "gtao.temporal=1");
+}
+
+int main(void)
+{
+    test_settings();
+    ob_context *ctx = check_context();
+    if (!ctx) return 1;
+    ob_scene *cornell = ob_load_scene(&(ob_scene_desc){.name = "cornell"});
+    ob_scene *corner = ob_load_scene(&(ob_scene_desc){.name = "corner"});
+    CHECK(cornell && corner, "scenes");
+    if (cornell && corner) {
+        test_converges(ctx, corner, "gtao", 1, OB_TEMPORAL_BEFORE_FILTER);
+        test_converges(ctx, corner, "gtao", 1, OB_TEMPORAL_AFTER_FILTER);
+        test_converges(ctx, corner, "ssao", 2, OB_TEMPORAL_BEFORE_FILTER);
+        test_converges(ctx, corner, "ssdo", 4, OB_TEMPORAL_BEFORE_FILTER);
+        test_reprojection(ctx, cornell);
+        test_disocclusion(ctx, cornell);
+    }
+    ob_destroy_scene(cornell);
+    ob_destroy_scene(corner);
+    ob_destroy_context(ctx);
+    return check_finish("test_temporal");
+}

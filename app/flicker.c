@@ -174,9 +174,10 @@ int cli_flicker_run(const cli_flicker_desc *d, const cli_config *configs, int co
     for (int t = 0; t < n && code == EXIT_OK; ++t) {
         ob_camera cam;
         if ((code = cli_common_path_camera(c, d->scene, &d->base, t, &cam)) != EXIT_OK) break;
-        /* A name per path frame: the reference cache's key. */
-        if (c->path) snprintf(cam.name, sizeof cam.name, "path %s %d/%d", c->path, t, n);
-        else snprintf(cam.name, sizeof cam.name, "%.24s orbit %g %d/%d", d->base.name, (double)c->orbit_deg, t, n);
+        /* A name per path frame: the reference cache's key. The frame numbers first, so a long
+         * path or camera name cut to fit the 64 bytes can never make two frames share a key. */
+        if (c->path) snprintf(cam.name, sizeof cam.name, "%d/%d path %.32s", t, n, c->path);
+        else snprintf(cam.name, sizeof cam.name, "%d/%d orbit %.6g %.16s", t, n, (double)c->orbit_deg, d->base.name);
         if ((code = cli_view_frame_make(d->renderer, &cam, w, h, &frames[t].f)) != EXIT_OK) break;
         glm_lookat(frames[t].f.cam.eye, frames[t].f.cam.target, frames[t].f.cam.up, frames[t].view);
         frames[t].ref = malloc(px * sizeof(float));

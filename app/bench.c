@@ -446,12 +446,11 @@ static void git_commit(char *out, size_t n)
 
 static const char *method_name(int m) { return ob_method_at(m)->name; }
 
-/* --floor: the method's table again, each cell AO pass / floor (floor ms, its taps), rows N as
- * asked (the floor's N is the method's actual sample count). */
-static void print_floor_table(const bench_state *st, int camera, const cli_config *cfg, const int *ns, int nn,
-                              const float *rs, int rn)
+/* A table's parts, shared by the AO-pass table and the floor table: the header of the radius
+ * columns, a row's "N = ..." label, and the row measured at one cell. */
+static void print_radius_header(const float *rs, int rn)
 {
-    printf("%s: AO pass / floor (floor ms, taps)\n%-8s", cfg->label, "");
+    printf("%-8s", "");
     for (int q = 0; q < rn; ++q) {
         char h[32];
         if (rs[q] > 0.0f) snprintf(h, sizeof h, "r = %g", (double)rs[q]);
@@ -459,17 +458,37 @@ static void print_floor_table(const bench_state *st, int camera, const cli_confi
         printf(" %20s", h);
     }
     printf("\n");
+}
+
+static void print_samples_label(int n)
+{
+    char h[32];
+    if (n > 0) snprintf(h, sizeof h, "N = %d", n);
+    else snprintf(h, sizeof h, "N = -");
+    printf("%-8s", h);
+}
+
+static const bench_row *table_cell(const bench_state *st, int camera, const cli_config *cfg, int samples, float r)
+{
+    const bench_row *hit = NULL;
+    for (int i = 0; i < st->count; ++i) {
+        const bench_row *row = &st->rows[i];
+        if (row->camera == camera && row->cfg == cfg && row->samples == samples && row->r == r) hit = row;
+    }
+    return hit;
+}
+
+/* --floor: the method's table again, each cell AO pass / floor (floor ms, its taps), rows N as
+ * asked (the floor's N is the method's actual sample count). */
+static void print_floor_table(const bench_state *st, int camera, const cli_config *cfg, const int *ns, int nn,
+                              const float *rs, int rn)
+{
+    printf("%s: AO pass / floor (floor ms, taps)\n", cfg->label);
+    print_radius_header(rs, rn);
     for (int j = 0; j < nn; ++j) {
-        char h[32];
-        if (ns[j] > 0) snprintf(h, sizeof h, "N = %d", ns[j]);
-        else snprintf(h, sizeof h, "N = -");
-        printf("%-8s", h);
+        print_samples_label(ns[j]);
         for (int q = 0; q < rn; ++q) {
-            const bench_row *hit = NULL;
-            for (int i = 0; i < st->count; ++i) {
-                const bench_row *r = &st->rows[i];
-                if (r->camera == camera && r->cfg == cfg && r->samples == ns[j] && r->r == rs[q]) hit = r;
-            }
+            const bench_row *hit = table_cell(st, camera, cfg, ns[j], rs[q]);
             char cell[48] = "-";
             if (hit && hit->floor_taps > 0 && hit->floor_med > 0.0)
                 snprintf(cell, sizeof cell, "%.2fx (%.3f, %d)", hit->ao_ms / hit->floor_med, hit->floor_med,
@@ -499,7 +518,7 @@ static void print_tables(const bench_opts *o, const ob_scene *scene, const bench
             const cli_config *cfg = &configs[k];
             printf("\n%s: AO-pass ms / frame ms", cfg->label);
             if (o->stereo) printf(" (frame budget 11.1 ms at 90 Hz; * = over)");
-            printf("\n%-8s", "");
+            printf("\n");
             float rs[MAX_LIST];
             int rn = 0;
             int ns[MAX_LIST];
@@ -514,26 +533,13 @@ static void print_tables(const bench_opts *o, const ob_scene *scene, const bench
                 for (int q = 0; q < nn; ++q) seen = seen || ns[q] == r->samples;
                 if (!seen && nn < MAX_LIST) ns[nn++] = r->samples;
             }
-            for (int q = 0; q < rn; ++q) {
-                char h[32];
-                if (rs[q] > 0.0f) snprintf(h, sizeof h, "r = %g", (double)rs[q]);
-                else snprintf(h, sizeof h, "r = -");
-                printf(" %20s", h);
-            }
-            printf("\n");
+            print_radius_header(rs, rn);
             double sum_ratio = 0.0;
             int cells = 0;
             for (int j = 0; j < nn; ++j) {
-                char h[32];
-                if (ns[j] > 0) snprintf(h, sizeof h, "N = %d", ns[j]);
-                else snprintf(h, sizeof h, "N = -");
-                printf("%-8s", h);
+                print_samples_label(ns[j]);
                 for (int q = 0; q < rn; ++q) {
-                    const bench_row *hit = NULL;
-                    for (int i = 0; i < st->count; ++i) {
-                        const bench_row *r = &st->rows[i];
-                        if (r->camera == cams[c] && r->cfg == cfg && r->samples == ns[j] && r->r == rs[q]) hit = r;
-                    }
+                    const bench_row *hit = table_cell(st, cams[c], cfg, ns[j], rs[q]);
                     char cell[48];
                     const bench_row *none = hit && hit->baseline >= 0 ? &st->rows[hit->baseline] : NULL;
                     if (hit) {

@@ -49,19 +49,18 @@ static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_vi
         in->source = r->radiance;
         in->offset = 0;
         break;
+    /* Both at the G-buffer's (enlarged) size, so they carry the band like the main targets; the
+     * view pass shows black without one (directional = 0). */
     case OB_VIEW_EXTRA: {
-        /* At the G-buffer's (enlarged) size too, so it carries the band like the main direct light. */
-        bool has = r->last_extra_view && r->extra_gbuffer.width == r->gbuffer.width &&
-                   r->extra_gbuffer.height == r->gbuffer.height;
-        in->source = has ? r->extra_direct : r->direct;
-        in->directional = has;
+        GLuint extra = ob_renderer_extra_direct(r);
+        in->source = extra ? extra : r->direct;
+        in->directional = extra != 0;
         break;
     }
     case OB_VIEW_SECOND_DEPTH: {
-        /* The layer follows the G-buffer's (enlarged) size, so it carries the band too. */
-        bool has = r->last_second_layer && r->peel.width == r->gbuffer.width && r->peel.height == r->gbuffer.height;
-        in->source = has ? r->peel.linear_depth : r->gbuffer.linear_depth;
-        in->directional = has;
+        GLuint layer = ob_renderer_second_layer(r);
+        in->source = layer ? layer : r->gbuffer.linear_depth;
+        in->directional = layer != 0;
         break;
     }
     case OB_VIEW_SAMPLES: {

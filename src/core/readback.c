@@ -172,18 +172,13 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
     case OB_IMAGE_HDR_F32: glGetTextureImage(r->radiance, 0, GL_RGB, GL_FLOAT, (GLsizei)need, dst); break;
     case OB_IMAGE_ALBEDO_F32: read_visible(r, r->gbuffer.albedo, GL_RGB, GL_FLOAT, need, dst); break;
     case OB_IMAGE_EXTRA_RADIANCE_F32:
-        if (r->last_extra_view && r->extra_gbuffer.width == r->gbuffer.width &&
-            r->extra_gbuffer.height == r->gbuffer.height)
-            read_visible(r, r->extra_direct, GL_RGB, GL_FLOAT, need, dst);
-        else
-            memset(dst, 0, need);
+    case OB_IMAGE_SECOND_DEPTH_F32: {
+        bool extra = kind == OB_IMAGE_EXTRA_RADIANCE_F32;
+        GLuint tex = extra ? ob_renderer_extra_direct(r) : ob_renderer_second_layer(r);
+        if (tex) read_visible(r, tex, extra ? GL_RGB : GL_RED, GL_FLOAT, need, dst);
+        else memset(dst, 0, need);
         break;
-    case OB_IMAGE_SECOND_DEPTH_F32:
-        if (r->last_second_layer && r->peel.width == r->gbuffer.width && r->peel.height == r->gbuffer.height)
-            read_visible(r, r->peel.linear_depth, GL_RED, GL_FLOAT, need, dst);
-        else
-            memset(dst, 0, need);
-        break;
+    }
     case OB_IMAGE_HISTORY_AGE_F32:
     case OB_IMAGE_MOTION_F32: {
         const ao_targets *t = &r->scales[r->last_scale];

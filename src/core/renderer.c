@@ -361,6 +361,19 @@ ob_error ob_renderer_temporal_targets(ob_renderer *r, ao_targets *t)
     return OB_OK;
 }
 
+GLuint ob_renderer_second_layer(const ob_renderer *r)
+{
+    bool made = r->last_second_layer && r->peel.width == r->gbuffer.width && r->peel.height == r->gbuffer.height;
+    return made ? r->peel.linear_depth : 0;
+}
+
+GLuint ob_renderer_extra_direct(const ob_renderer *r)
+{
+    bool made = r->last_extra_view && r->extra_gbuffer.width == r->gbuffer.width &&
+                r->extra_gbuffer.height == r->gbuffer.height;
+    return made ? r->extra_direct : 0;
+}
+
 ao_targets *ob_renderer_targets(ob_renderer *r, int index)
 {
     ao_targets *t = &r->scales[index];

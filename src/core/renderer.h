@@ -131,6 +131,10 @@ int ob_guard_pixels(int guard, int k);
 void *ob_renderer_method_state(ob_renderer *r, int index, ob_error *err);
 void *ob_renderer_filter_state(ob_renderer *r, int index, bool rgb, ob_error *err);
 ao_targets *ob_renderer_targets(ob_renderer *r, int scale_index);
+/* The last frame's second depth layer and the extra view's direct light, each at the G-buffer's
+ * (enlarged) size, or 0 where that frame made none (read-back and the debug views). */
+GLuint ob_renderer_second_layer(const ob_renderer *r);
+GLuint ob_renderer_extra_direct(const ob_renderer *r);
 /* The RGBA16F chains, each made on first use: a directional method's M and bounce, a bent normal. */
 ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t, bool directional, bool bent);
 /* The temporal accumulation's targets at this scale (ao_targets), made on first use. */

@@ -46,8 +46,7 @@ static const ob_param_info gtao_params[P_COUNT] = {
     /* 1: the definition's height field. 2: a sample raises the horizon only where the current
      * horizon ray passes through the object under it, not behind its second layer (gtao.glsl);
      * measured worse than 1 on every view tried (docs/methods.md), so 1 stays the default. */
-    [P_LAYERS] = {"layers", OB_PARAM_INT, 1.0f, 2.0f, 1.0f, "count",
-                  "depth layers: 1 = the depth buffer alone (every occluder as the method assumes), 2 = also the second layer (depth peeling) behind it", false},
+    [P_LAYERS] = OB_LAYERS_PARAM,
 };
 
 typedef struct gtao_state {

@@ -56,6 +56,12 @@ void ob_method_kit_bind_multiplier(const ob_method_kit *kit, const ob_ao_inputs 
     glBindTextureUnit(3, in->sample_multiplier ? in->sample_multiplier : kit->noise);
 }
 
+GLuint ob_method_variant(GLuint *slot, const char *shader, const char *defines)
+{
+    if (!*slot) *slot = ob_make_compute_program(shader, defines);
+    return *slot;
+}
+
 void ob_method_kit_use(ob_method_kit *kit, const void *constants, size_t size, const ob_ao_inputs *in,
                        const ob_ao_outputs *out, GLenum format)
 {

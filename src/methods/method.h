@@ -152,6 +152,12 @@ typedef struct ob_sample_plan {
     bool adaptive;
 } ob_sample_plan;
 ob_sample_plan ob_method_sample_plan(const ob_ao_inputs *in, int samples, int sampling, int max);
+/* A program variant of a method's shader: the shader compiled with `defines` (a per-sample choice
+ * made at compile time, as gtao's depth MIPs and ssdo's second layer: llvmpipe runs both sides of a
+ * branch its lanes disagree on, and a variant keeps the code out of the default program), made into
+ * *slot the first time it is asked for. The program, or 0 with the error set. */
+GLuint ob_method_variant(GLuint *slot, const char *shader, const char *defines);
+
 /* Bind the multiplier of adaptive sampling to texture unit 3 (the noise tile when off, so the
  * sampler is always valid). */
 void ob_method_kit_bind_multiplier(const ob_method_kit *kit, const ob_ao_inputs *in);
@@ -161,6 +167,15 @@ void ob_method_kit_bind_multiplier(const ob_method_kit *kit, const ob_ao_inputs 
 extern const char *const ob_sampling_options[];  /* random, halton */
 extern const char *const ob_direction_options[]; /* uniform, cosine */
 extern const char *const ob_noise_options[];     /* texture4, ign */
+
+/* The `layers` parameter of every method that can read the second depth layer (gtao, vbao, vbgi,
+ * ssdo, ssdo_merged): 1 = the depth buffer alone, 2 = OB_READS_SECOND_LAYER too. What each makes of
+ * the layer is its own (docs/methods.md, "A second depth layer"). */
+#define OB_LAYERS_PARAM                                                                                       \
+    {"layers", OB_PARAM_INT, 1.0f, 2.0f, 1.0f, "count",                                                     \
+     "depth layers: 1 = the depth buffer alone (every occluder as the method assumes), 2 = also the second " \
+     "layer (depth peeling) behind it",                                                                      \
+     false}
 
 /* ---- the slice methods (slices.c): gtao, vbao and vbgi march the same slices ----------------
  * (shaders/slice_march.glsl); what their C sides share. */

@@ -64,10 +64,7 @@ void ob_slice_adaptive(const ob_ao_inputs *in, int slices, int *adaptive, int *b
 ob_error ob_slice_use(ob_method_kit *kit, GLuint *mips_program, const char *shader, bool mips, const void *constants,
                       size_t size, const ob_ao_inputs *in, const ob_ao_outputs *out)
 {
-    if (mips && !*mips_program) {
-        *mips_program = ob_make_compute_program(shader, "#define OB_MARCH_DEPTH_MIPS 1\n");
-        if (!*mips_program) return ob_peek_error(NULL);
-    }
+    if (mips && !ob_method_variant(mips_program, shader, "#define OB_MARCH_DEPTH_MIPS 1\n")) return ob_peek_error(NULL);
     ob_method_kit_use(kit, constants, size, in, out, GL_R32F);
     if (mips) glUseProgram(*mips_program);
     glBindTextureUnit(3, in->depth_mips ? in->depth_mips : in->linear_depth);

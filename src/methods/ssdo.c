@@ -41,8 +41,7 @@ static const ob_param_info ssdo_params[P_COUNT] = {
                 "lights become cosine lobes max(0, w.l)^k around their direction: k", false},
     /* 2: seed 000's test around Fig. 4.6: a sample behind the first layer occludes only while it
      * is in front of the second (inside the object); behind it the sample is free. */
-    [P_LAYERS] = {"layers", OB_PARAM_INT, 1.0f, 2.0f, 1.0f, "count",
-                  "depth layers: 1 = the depth buffer alone (every occluder as the method assumes), 2 = also the second layer (depth peeling) behind it", false},
+    [P_LAYERS] = OB_LAYERS_PARAM,
     /* Seed 000 §4.4: a sample hidden in this view but seen in front of the extra view's surface
      * is free, and a bounce comes from whichever view's surface lies nearer the sample. */
     [P_EXTRA_VIEW] = {"extra_view", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
@@ -166,13 +165,10 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     GLuint variant = 0;
     const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0);
     if (v) {
-        if (!s->variants[v]) {
-            static const char *const defines[4] = {NULL, "#define OB_SSDO_LAYERS 1\n", "#define OB_SSDO_EXTRA_VIEW 1\n",
-                                                   "#define OB_SSDO_LAYERS 1\n#define OB_SSDO_EXTRA_VIEW 1\n"};
-            s->variants[v] = ob_make_compute_program("ssdo.glsl", defines[v]);
-            if (!s->variants[v]) return ob_peek_error(NULL);
-        }
-        variant = s->variants[v];
+        static const char *const defines[4] = {NULL, "#define OB_SSDO_LAYERS 1\n", "#define OB_SSDO_EXTRA_VIEW 1\n",
+                                               "#define OB_SSDO_LAYERS 1\n#define OB_SSDO_EXTRA_VIEW 1\n"};
+        variant = ob_method_variant(&s->variants[v], "ssdo.glsl", defines[v]);
+        if (!variant) return ob_peek_error(NULL);
     }
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     const bool fused = params[P_FUSED] != 0.0f && bounce;

@@ -60,8 +60,7 @@ static const ob_param_info vb_params[P_COUNT] = {
                       "far steps read the prefiltered depth MIP chain instead of full resolution", false},
     /* 2: a sample's back is the second layer behind it (its true thickness); where there is none,
      * the constant thickness above. */
-    [P_LAYERS] = {"layers", OB_PARAM_INT, 1.0f, 2.0f, 1.0f, "count",
-                  "depth layers: 1 = the depth buffer alone (every occluder as the method assumes), 2 = also the second layer (depth peeling) behind it", false},
+    [P_LAYERS] = OB_LAYERS_PARAM,
     [P_EMITTER_COSINE] = {"emitter_cosine", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                           "a sender's radiance times its cosine toward P (the paper's); off: its radiance where it "
                           "faces P (the solid-angle form of the one-bounce integral)",

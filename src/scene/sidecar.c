@@ -116,6 +116,15 @@ static const char *json_type_name(const cJSON *item)
     return "an invalid value";
 }
 
+/* A top-level list (cameras, paths, lights): an array of at most `most` entries, counted in *n. */
+static ob_error array_entries(const char *path, const char *key, const cJSON *item, int most, const char *what, int *n)
+{
+    if (!cJSON_IsArray(item)) return fail(path, "%s: expected an array, got %s", key, json_type_name(item));
+    *n = cJSON_GetArraySize(item);
+    if (*n > most) return fail(path, "%s: %d %s, at most %d", key, *n, what, most);
+    return OB_OK;
+}
+
 static ob_error read_number(const char *path, const char *where, const cJSON *item, float *out)
 {
     if (!cJSON_IsNumber(item)) {
@@ -573,15 +582,8 @@ static ob_error parse_file(const char *path, sidecar *sc)
                 err = fail(path, "ao_radius: must be > 0, got %g", (double)sc->ao_radius);
             }
         } else if (strcmp(key, "cameras") == 0) {
-            if (!cJSON_IsArray(it)) {
-                err = fail(path, "cameras: expected an array, got %s", json_type_name(it));
-                break;
-            }
-            int n = cJSON_GetArraySize(it);
-            if (n > OB_MAX_CAMERAS - 1) {
-                err = fail(path, "cameras: %d presets, at most %d", n, OB_MAX_CAMERAS - 1);
-                break;
-            }
+            int n = 0;
+            if ((err = array_entries(path, key, it, OB_MAX_CAMERAS - 1, "presets", &n)) != OB_OK) break;
             for (int i = 0; i < n && err == OB_OK; ++i) {
                 err = parse_camera(path, i, cJSON_GetArrayItem(it, i), &sc->cameras[i]);
                 for (int j = 0; j < i && err == OB_OK; ++j) {
@@ -593,15 +595,8 @@ static ob_error parse_file(const char *path, sidecar *sc)
             }
             sc->camera_count = n;
         } else if (strcmp(key, "paths") == 0) {
-            if (!cJSON_IsArray(it)) {
-                err = fail(path, "paths: expected an array, got %s", json_type_name(it));
-                break;
-            }
-            int n = cJSON_GetArraySize(it);
-            if (n > OB_MAX_PATHS) {
-                err = fail(path, "paths: %d paths, at most %d", n, OB_MAX_PATHS);
-                break;
-            }
+            int n = 0;
+            if ((err = array_entries(path, key, it, OB_MAX_PATHS, "paths", &n)) != OB_OK) break;
             for (int i = 0; i < n && err == OB_OK; ++i) {
                 err = parse_path(path, i, cJSON_GetArrayItem(it, i), &sc->paths[i]);
                 for (int j = 0; j < i && err == OB_OK; ++j)
@@ -610,15 +605,8 @@ static ob_error parse_file(const char *path, sidecar *sc)
             }
             sc->path_count = n;
         } else if (strcmp(key, "lights") == 0) {
-            if (!cJSON_IsArray(it)) {
-                err = fail(path, "lights: expected an array, got %s", json_type_name(it));
-                break;
-            }
-            int n = cJSON_GetArraySize(it);
-            if (n > OB_MAX_LIGHTS) {
-                err = fail(path, "lights: %d lights, at most %d", n, OB_MAX_LIGHTS);
-                break;
-            }
+            int n = 0;
+            if ((err = array_entries(path, key, it, OB_MAX_LIGHTS, "lights", &n)) != OB_OK) break;
             for (int i = 0; i < n && err == OB_OK; ++i) {
                 err = parse_light(path, i, cJSON_GetArrayItem(it, i), &sc->lights[i]);
                 if (err == OB_OK) sc->light_count = i + 1;

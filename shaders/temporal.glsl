@@ -64,6 +64,7 @@ void main()
     }
     /* 3's box: this frame's geometry pixels around this one (the sky holds no AO). */
     vec3 lo = cur, hi = cur;
+#ifdef OB_TEMPORAL_RGB
     for (int y = -1; y <= 1; ++y)
         for (int x = -1; x <= 1; ++x) {
             ivec2 q = clamp(pix + ivec2(x, y), ivec2(0), size - 1);
@@ -72,6 +73,22 @@ void main()
             lo = min(lo, v);
             hi = max(hi, v);
         }
+#else
+    /* One value: the 3x3 is four 2x2 gathers of the value and four of the depth (8 fetches, not
+     * 18), the quads around the pixel's four corners; the edge clamp repeats the border. */
+    for (int i = 0; i < 4; ++i) {
+        vec2 corner = (vec2(pix) + vec2(i & 1, i >> 1)) * frame.ao_inv_size;
+        vec4 dq = textureGather(depth, corner, 0);
+        vec4 vq = textureGather(current, corner, 0);
+        for (int k = 0; k < 4; ++k)
+            if (dq[k] > 0.0) {
+                lo.r = min(lo.r, vq[k]);
+                hi.r = max(hi.r, vq[k]);
+            }
+    }
+    lo = lo.rrr;
+    hi = hi.rrr;
+#endif
     /* 1: the previous frame's view space and AO grid position (pixel centres at + 0.5). */
     vec3 p = ob_view_position(vec2(pix) + 0.5, d, frame.ao_inv_size, frame.ao_proj_info);
     vec3 world = (frame.inv_view * vec4(p, 1.0)).xyz;
@@ -84,9 +101,13 @@ void main()
     vec2 f = at - 0.5;
     ivec2 base = ivec2(floor(f));
     vec2 w = f - vec2(base);
-    vec4 sum = vec4(0.0);
     float weight = 0.0;
     float tolerance = tp.plane_tolerance * -pp.z;
+    /* One previous AO pixel's width at the point's previous depth (common.glsl's ob_view_position). */
+    float footprint = OB_TEMPORAL_NEAR_PIXELS * 2.0 * -pp.z *
+                      max(frame.ao_inv_size.x * tp.prev_ao_proj_info.x, frame.ao_inv_size.y * tp.prev_ao_proj_info.y);
+    /* 2: which of the four bilinear taps are this point's surface (their geometry alone). */
+    float tap_weight[4] = float[4](0.0, 0.0, 0.0, 0.0);
     for (int i = 0; i < 4 && tp.history_valid != 0 && clip.w > 0.0; ++i) {
         ivec2 o = ivec2(i & 1, i >> 1);
         ivec2 q = base + o;
@@ -94,15 +115,49 @@ void main()
         vec4 g = texelFetch(prev_geometry, q, 0);
         if (g.w <= 0.0) continue;
         vec3 qp = ob_view_position(vec2(q) + 0.5, g.w, frame.ao_inv_size, tp.prev_ao_proj_info);
-        if (abs(dot(qp - pp, np)) > tolerance) continue;
-        if (dot(g.xyz, np) < tp.normal_cos) continue;
-        float bw = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
-        sum += bw * texelFetch(history, q, 0);
-        weight += bw;
+        /* A tap within OB_TEMPORAL_NEAR_PIXELS footprints of the point in 3D is its neighbourhood
+         * whatever its plane: across a crease the other face's tap is as near as this face's, and
+         * rejecting it would leave only the taps away from the crease (brighter), biasing every
+         * crease brighter frame after frame. Farther taps must be the same surface. */
+        bool near = dot(qp - pp, qp - pp) <= footprint * footprint;
+        if (!near && (abs(dot(qp - pp, np)) > tolerance || dot(g.xyz, np) < tp.normal_cos)) continue;
+        tap_weight[i] = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
+        weight += tap_weight[i];
     }
-    /* A sliver of a tap (weight ~ 0) is no history: its value would be one tap's alone. */
+    vec4 h = vec4(0.0);
+    if (weight > 0.999) {
+        /* All four taps this point's neighbourhood: resample with Catmull-Rom (Karis 2014), not
+         * bilinear. Bilinear widens the history by a tent of variance w(1 - w) per axis at every
+         * frame, ~1/6 px^2 on average, so the ~16 resamplings an exponential history of length 16
+         * carries blur a one-pixel crease line away (sigma ~1.6 px); the cubic keeps it. Five
+         * bilinear fetches make the 4x4 cubic less its four corners (products of two small negative
+         * lobes): the middle two taps of each axis merge into one fetch at w2 / (w1 + w2) between
+         * them. The outer taps are not checked: the neighbourhood clamp (3) bounds what they bring.
+         * The age is the centre fetch's (bilinear between the four taps). */
+        vec2 w0 = w * (-0.5 + w * (1.0 - 0.5 * w));
+        vec2 w1 = 1.0 + w * w * (-2.5 + 1.5 * w);
+        vec2 w2 = w * (0.5 + w * (2.0 - 1.5 * w));
+        vec2 w3 = w * w * (-0.5 + 0.5 * w);
+        vec2 w12 = w1 + w2;
+        vec2 c1 = vec2(base) + 0.5; /* the centre of tap (0, 0) */
+        vec2 t0 = (c1 - 1.0) * frame.ao_inv_size;
+        vec2 t12 = (c1 + w2 / w12) * frame.ao_inv_size;
+        vec2 t3 = (c1 + 2.0) * frame.ao_inv_size;
+        vec4 centre = textureLod(history, t12, 0.0);
+        h = textureLod(history, vec2(t12.x, t0.y), 0.0) * (w12.x * w0.y) +
+            textureLod(history, vec2(t0.x, t12.y), 0.0) * (w0.x * w12.y) + centre * (w12.x * w12.y) +
+            textureLod(history, vec2(t3.x, t12.y), 0.0) * (w3.x * w12.y) +
+            textureLod(history, vec2(t12.x, t3.y), 0.0) * (w12.x * w3.y);
+        h /= w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y;
+        AGE(h) = AGE(centre);
+    } else if (weight > 1e-3) {
+        /* Some taps are another surface: bilinear over the rest. (A sliver of a tap, weight ~ 0,
+         * is no history: its value would be one tap's alone.) */
+        for (int i = 0; i < 4; ++i)
+            if (tap_weight[i] > 0.0) h += tap_weight[i] * texelFetch(history, base + ivec2(i & 1, i >> 1), 0);
+        h /= weight;
+    }
     bool kept = weight > 1e-3;
-    vec4 h = kept ? sum / weight : vec4(0.0);
     vec3 past = clamp(VALUE(h), lo, hi);
     float age = min((kept ? AGE(h) : 0.0) + 1.0, tp.history_frames);
     float alpha = max(1.0 / age, 1.0 / tp.history_frames);

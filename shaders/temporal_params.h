@@ -7,6 +7,10 @@
 
 #define OB_TEMPORAL_GROUP_X 8
 #define OB_TEMPORAL_GROUP_Y 8
+/* A history tap within this many pixel footprints (3D distance) of the reprojected point is kept on
+ * any plane: the bilinear taps lie within sqrt(2) px of the point on a surface facing the camera,
+ * and 2 leaves room for the grid's change of scale between two frames of a path. */
+#define OB_TEMPORAL_NEAR_PIXELS 2.0
 
 OB_CONSTANTS_BEGIN(ob_temporal_constants, OB_BINDING_PASS)
     OB_MAT4 prev_view;          /* world -> the previous frame's view space */

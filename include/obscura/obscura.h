@@ -506,7 +506,8 @@ ob_error ob_renderer_set_environment(ob_renderer *r, const char *hdr_path);
  * -> compose -> HDR (luminance, bloom, tone map), each pass timed. */
 ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *settings);
 /* Forget the temporal history (ob_settings.temporal): the next frame starts every pixel's history
- * again, as after a camera cut. NULL is a no-op. */
+ * again, as after a camera cut, and the frame index that moves the methods' noise starts again at
+ * 0. NULL is a no-op. */
 void ob_renderer_reset_history(ob_renderer *r);
 
 typedef enum ob_image_kind {

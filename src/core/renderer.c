@@ -234,7 +234,12 @@ ob_error ob_renderer_reshape(ob_renderer *r, int width, int height, int guard)
 
 void ob_renderer_reset_history(ob_renderer *r)
 {
-    if (r) r->history_valid = false;
+    if (!r) return;
+    r->history_valid = false;
+    /* The noise sequences (R2, golden ratio) start again with the history: a new history then
+     * averages the best-spread prefix of each, and two runs after a reset see the same noise (the
+     * flicker metric compares temporal on and off frame for frame). */
+    r->frame = 0;
 }
 
 ob_error ob_renderer_resize(ob_renderer *r, int width, int height)
@@ -349,6 +354,12 @@ ob_error ob_renderer_temporal_targets(ob_renderer *r, ao_targets *t)
         t->history[i] = ob_make_texture_2d(GL_RG32F, w, h);
         t->history_rgb[i] = ob_make_texture_2d(GL_RGBA16F, w, h);
         t->bounce_history[i] = ob_make_texture_2d(GL_RGBA16F, w, h);
+        /* Filtered: the temporal pass's Catmull-Rom resampling is five bilinear fetches. */
+        GLuint filtered[3] = {t->history[i], t->history_rgb[i], t->bounce_history[i]};
+        for (int k = 0; k < 3; ++k) {
+            glTextureParameteri(filtered[k], GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            glTextureParameteri(filtered[k], GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        }
     }
     t->geometry[0] = ob_make_texture_2d(GL_RGBA16F, w, h);
     t->geometry[1] = ob_make_texture_2d(GL_RGBA16F, w, h);

@@ -293,8 +293,8 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
             return cli_fail(EXIT_USAGE, "--target: expected X,Y,Z (finite numbers), got '%s'", v);
         c->has_target = true;
     } else if (!strcmp(a, "--fov")) {
-        if (!cli_parse_float(v, &c->fov) || c->fov <= 0.0f || c->fov >= 179.0f)
-            return cli_fail(EXIT_USAGE, "--fov: expected degrees in (0, 179), got '%s'", v);
+        if (!cli_parse_float(v, &c->fov) || c->fov < OB_MIN_FOV_DEG || c->fov >= 179.0f)
+            return cli_fail(EXIT_USAGE, "--fov: expected degrees in [%g, 179), got '%s'", (double)OB_MIN_FOV_DEG, v);
         c->has_fov = true;
     } else if (!strcmp(a, "--size")) {
         if (!cli_parse_size(v, &c->width, &c->height))

@@ -70,12 +70,14 @@ static bool replaceable_dir(const char *path)
 }
 
 /* Whether the directory of path takes a new file (or directory) of a name as long as the
- * temporary one: made and removed again. access() alone misses read-only file systems and
+ * temporary ones: made and removed again. access() alone misses read-only file systems and
  * names too long for the directory. */
 static bool dir_takes(const char *path, bool dir, int *err)
 {
+    /* As long as the longest name written: the library's atomic writers put their own temporary
+     * file (".tmp-XXXXXX") beside ours, so a name that fits only once would fail after the render. */
     char tmp[4200];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp-XXXXXX", path) >= (int)sizeof tmp) {
+    if (snprintf(tmp, sizeof tmp, "%s.tmp-000000.tmp-XXXXXX", path) >= (int)sizeof tmp) {
         *err = ENAMETOOLONG;
         return false;
     }

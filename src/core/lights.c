@@ -71,9 +71,12 @@ ob_error ob_parse_light(const char *text, ob_light *out)
     if (l.type != OB_LIGHT_DIRECTIONAL && !has_pos)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "light '%s': needs pos=x,y,z", text);
     if (ob_check_light(&l) != OB_OK) {
+        /* Copied: the message lives in the buffer the next ob_set_error writes. */
         const char *why = NULL;
         ob_get_error(&why);
-        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "light '%s': %s", text, why);
+        char msg[400];
+        snprintf(msg, sizeof msg, "%s", why ? why : "invalid");
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "light '%s': %s", text, msg);
     }
     *out = l;
     return OB_OK;

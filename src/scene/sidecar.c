@@ -185,7 +185,7 @@ static ob_error parse_camera(const char *path, int index, const cJSON *obj, ob_c
         return fail(path, "%s: expected an object, got %s", where, json_type_name(obj));
     }
     memset(cam, 0, sizeof *cam);
-    bool has_name = false, has_eye = false, has_target = false, has_up = false;
+    bool has_name = false, has_eye = false, has_target = false;
     for (const cJSON *it = obj->child; it; it = it->next) {
         const char *key = it->string;
         char field[160] = "";
@@ -212,7 +212,6 @@ static ob_error parse_camera(const char *path, int index, const cJSON *obj, ob_c
             has_target = true;
         } else if (strcmp(key, "up") == 0) {
             err = read_vec3(path, field, it, cam->up);
-            has_up = true;
         } else if (strcmp(key, "fov") == 0) {
             err = read_number(path, field, it, &cam->fov_y_deg);
             if (err == OB_OK && !(cam->fov_y_deg > 1.0f && cam->fov_y_deg < 179.0f)) {
@@ -234,8 +233,7 @@ static ob_error parse_camera(const char *path, int index, const cJSON *obj, ob_c
         ob_get_error(&why);
         char msg[400];
         snprintf(msg, sizeof msg, "%s", why ? why : "invalid");
-        return fail(path, "%s (\"%s\"): %s%s", where, cam->name, msg,
-                    !has_up && strstr(msg, "parallel") ? " (give an \"up\")" : "");
+        return fail(path, "%s (\"%s\"): %s", where, cam->name, msg);
     }
     return OB_OK;
 }

@@ -146,7 +146,7 @@ int cli_outputs_add(cli_outputs *s, const char *option, const char *path, unsign
     }
     int err = 0;
     if (code == EXIT_OK && !dir_takes(p, formats & CLI_FMT_DIR, &err))
-        code = cli_fail(EXIT_OUTPUT, "%s %s: its directory cannot take a new %s: %s", option, p,
+        code = cli_fail(EXIT_OUTPUT, "%s %s: cannot write a new %s in its directory: %s", option, p,
                         formats & CLI_FMT_DIR ? "directory" : "file", strerror(err));
     if (code == EXIT_OK && s->count == s->cap) {
         int cap = s->cap ? 2 * s->cap : 8;

@@ -43,14 +43,14 @@ expect 2 "^obscura: --out x.bmp: unsupported extension '.bmp'.*\.png, \.jpg.*\.p
 expect 2 "^obscura: --out x: no extension.*\.png" "x" -- "${R[@]}" --out x
 expect 2 "^obscura: --depth-out d.png: unsupported extension '.png'.*: \.pfm$" "o.png d.png" -- "${R[@]}" --out o.png --depth-out d.png
 expect 2 "^obscura: --out and --ao-png both name o.png" "o.png" -- "${R[@]}" --out o.png --ao-png o.png
-expect 4 "^obscura: --out nodir/o.png: its directory cannot take a new file" "nodir" -- "${R[@]}" --out nodir/o.png
+expect 4 "^obscura: --out nodir/o.png: cannot write a new file in its directory" "nodir" -- "${R[@]}" --out nodir/o.png
 expect 2 "^obscura: --out x.gif: unsupported extension" "x.gif" -- sheet --scene corner --size 32x24 --methods ssao --out x.gif
 expect 2 "^obscura: --json: expected a file name, got ''$" "b.csv" -- bench --scene corner --size 32x24 --json '' --csv b.csv
 expect 2 "^obscura: --report: expected a directory" "" -- compare --scene corner --size 32x24 --report ''
 # A name that fits the directory once but not with the writer's own temporary suffix: refused
 # before the render, not after it.
 long=$(printf 'n%.0s' $(seq 240)).png
-expect 4 "^obscura: --out n+\.png: its directory cannot take a new file: File name too long" "$long" -- "${R[@]}" --out "$long"
+expect 4 "^obscura: --out n+\.png: cannot write a new file in its directory: File name too long" "$long" -- "${R[@]}" --out "$long"
 
 # Outputs that exist and are not regular files are refused and left as they were.
 mkfifo fifo.png

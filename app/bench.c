@@ -882,6 +882,10 @@ static int bench_run(int argc, char **argv)
                                            .radius_world = rw, .width = c->width, .height = c->height,
                                            .triangles = ob_query_scene_stats(scene).triangles, .baseline = baseline};
                         code = measure(eyes, views, eye_count, &s, &o, scratch, row);
+                        /* Once per camera (its first row): timing an empty frame times nothing. */
+                        for (int e = 0; e < eye_count && code == EXIT_OK && row == &st.rows[base]; ++e)
+                            code = cli_check_visible(eyes[e], c->width, c->height, ob_query_scene_name(scene),
+                                                     views[e].name, c->allow_empty, EXIT_INPUT);
                         char what[512] = "";
                         snprintf(what, sizeof what, "%s %s N=%d r=%g", cam.name, cfg->label, n, (double)r);
                         if (code == EXIT_OK) progress(&st, what);

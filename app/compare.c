@@ -190,8 +190,9 @@ static void safe_name(char *out, size_t n, const char *in)
     out[k] = '\0';
 }
 
-/* What this run wrote into the report: removed again when a later step fails, so that a failed
- * run leaves no partial report (directories only when this run made them and they are empty). */
+/* What this run wrote into the report's temporary directory, emptied again when a later step
+ * fails. The temporary directory itself (cli_outputs_dir) is what keeps a failed run from touching
+ * --report; this list only keeps the tree small for cli_outputs_abort to remove. */
 typedef struct outputs {
     char **files, **dirs;
     int file_count, file_cap, dir_count, dir_cap;

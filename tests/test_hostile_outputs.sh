@@ -151,6 +151,8 @@ side '{"cameras": [{"name": "away", "eye": [0.5, 0.5, 5], "target": [0.5, 0.5, 1
 expect 3 "^obscura: nothing visible from this camera \(m:away\)" "o.png" -- "${R[@]}" --scene m.obj --camera away --out o.png
 expect 2 "^obscura: nothing visible from this camera \(cornell:explicit\)" "o.png" -- "${R[@]}" --out o.png --eye 0,0,100 --target 0,0,200
 expect 3 "^obscura: nothing visible from this camera \(m:away\)" "s.png" -- sheet --scene m.obj --camera away --size 32x24 --methods ssao --out s.png
+expect 3 "^obscura: nothing visible from this camera \(m:away\)" "e.json" -- bench --scene m.obj --cameras away --size 32x24 \
+    --frames 2 --warmup 0 --methods ssao --samples 12 --radius 4 --json e.json
 "$OBSCURA" "${R[@]}" --scene m.obj --camera away --out empty.png --allow-empty >/dev/null 2>&1 && [ -s empty.png ] &&
     ok || bad "--allow-empty did not write the empty frame"
 

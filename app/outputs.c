@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <ftw.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +19,79 @@
 
 /* JPEG quality: 90 keeps the AO's smooth gradients free of visible blocking. */
 enum { JPG_QUALITY = 90 };
+
+/* ---- an interrupted run leaves nothing behind either ----------------------------------------
+ * Ctrl-C (SIGINT), SIGTERM or SIGHUP during a long render or report: the temporary files and
+ * directories of the sets in use are removed, then the signal is raised again with its default
+ * action (the shell sees the usual 130/143). The handler uses only async-signal-safe calls:
+ * unlinkat, openat, getdents64, close. A signal the process ignores (nohup) stays ignored. */
+enum { MAX_ACTIVE = 4, MAX_DEPTH = 8 };
+static cli_outputs *volatile active[MAX_ACTIVE];
+
+static void unlink_tree_at(int parent, const char *name, int depth)
+{
+    if (unlinkat(parent, name, 0) == 0 || depth > MAX_DEPTH) return;
+    int fd = openat(parent, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW);
+    if (fd < 0) return;
+    /* Entries removed while the directory is read may shift the ones not read yet: read it
+     * again from the start until it is empty (a report tree is two levels of a few hundred
+     * files). */
+    for (int pass = 0; pass < 8 && unlinkat(parent, name, AT_REMOVEDIR) != 0; ++pass) {
+        lseek(fd, 0, SEEK_SET);
+        char buf[4096];
+        ssize_t n = 0;
+        while ((n = getdents64(fd, buf, sizeof buf)) > 0)
+            for (ssize_t off = 0; off < n;) {
+                const struct dirent64 *e = (const struct dirent64 *)(buf + off);
+                off += e->d_reclen;
+                if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0) unlink_tree_at(fd, e->d_name, depth + 1);
+            }
+    }
+    close(fd);
+}
+
+static void on_signal(int sig)
+{
+    for (int k = 0; k < MAX_ACTIVE; ++k) {
+        cli_outputs *s = active[k];
+        for (int i = 0; s && i < s->count; ++i)
+            if (s->items[i].tmp) unlink_tree_at(AT_FDCWD, s->items[i].tmp, 0);
+    }
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+static void watch(cli_outputs *s)
+{
+    static bool installed = false;
+    if (!installed) {
+        installed = true;
+        const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+        for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; ++i) {
+            struct sigaction old;
+            if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler == SIG_DFL) {
+                struct sigaction sa;
+                memset(&sa, 0, sizeof sa);
+                sa.sa_handler = on_signal;
+                sigemptyset(&sa.sa_mask);
+                sigaction(sigs[i], &sa, NULL);
+            }
+        }
+    }
+    for (int k = 0; k < MAX_ACTIVE; ++k)
+        if (active[k] == s) return;
+    for (int k = 0; k < MAX_ACTIVE; ++k)
+        if (!active[k]) {
+            active[k] = s;
+            return;
+        }
+}
+
+static void unwatch(cli_outputs *s)
+{
+    for (int k = 0; k < MAX_ACTIVE; ++k)
+        if (active[k] == s) active[k] = NULL;
+}
 
 unsigned cli_format_of(const char *path)
 {
@@ -150,6 +224,7 @@ int cli_outputs_add(cli_outputs *s, const char *option, const char *path, unsign
                         formats & CLI_FMT_DIR ? "directory" : "file", strerror(err));
     if (code == EXIT_OK && s->count == s->cap) {
         int cap = s->cap ? 2 * s->cap : 8;
+        unwatch(s); /* the handler must not read the items while realloc moves them */
         cli_output *items = realloc(s->items, (size_t)cap * sizeof *items);
         if (!items) code = cli_fail(EXIT_RUNTIME, "out of memory");
         else {
@@ -160,11 +235,13 @@ int cli_outputs_add(cli_outputs *s, const char *option, const char *path, unsign
     char *opt = code == EXIT_OK ? strdup(option) : NULL;
     if (code == EXIT_OK && !opt) code = cli_fail(EXIT_RUNTIME, "out of memory");
     if (code != EXIT_OK) {
+        if (s->count) watch(s);
         free(p);
         return code;
     }
     s->items[s->count] = (cli_output){.option = opt, .path = p, .tmp = NULL, .format = format};
     *index = s->count++;
+    watch(s);
     return EXIT_OK;
 }
 
@@ -299,6 +376,7 @@ static void remove_tree(const char *path)
 
 static void clear(cli_outputs *s)
 {
+    unwatch(s); /* before the items go: the handler reads them */
     for (int i = 0; i < s->count; ++i) {
         free(s->items[i].option);
         free(s->items[i].path);

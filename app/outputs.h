@@ -13,7 +13,8 @@
  * (a rename never crosses a file system) and only cli_outputs_commit renames them, after every
  * one of them was written: a failure leaves every existing output as it was and no temporary
  * file behind. A directory output (compare's report) is built in PATH.tmp-XXXXXX and replaces
- * PATH as a whole at the commit. */
+ * PATH as a whole at the commit. SIGINT, SIGTERM and SIGHUP (unless ignored) remove the temporary
+ * files and directories of the sets in use before the process dies of the signal. */
 #ifndef OB_CLI_OUTPUTS_H
 #define OB_CLI_OUTPUTS_H
 

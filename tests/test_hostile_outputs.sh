@@ -170,6 +170,22 @@ expect 3 "^obscura: nothing visible from this camera \(m:away\)" "" -- "${C[@]}"
     grep -q sphere rep/results.json && ! grep -q '"corner"' rep/results.json && ok || bad "a good compare did not replace the report: $(cat stderr)"
 no_tmp && ok || bad "compare left $(find . -name '*.tmp-*')"
 
+# An interrupted compare (SIGTERM while it traces the reference, 600 M rays: far longer than the
+# poll) removes its temporary report and dies of the signal.
+timeout 300 "$OBSCURA" compare --scene corner --size 64x48 --spp 200000 --methods ssao --filters none --report sig \
+    >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 1200); do ls -d sig.tmp-* >/dev/null 2>&1 && break; sleep 0.05; done
+if ls -d sig.tmp-* >/dev/null 2>&1; then
+    kill -TERM $pid
+    wait $pid
+    got=$?
+    [ "$got" -eq 143 ] && [ ! -e sig ] && no_tmp && ok || bad "an interrupted compare: exit $got, left $(ls -d sig* 2>/dev/null)"
+else
+    wait $pid
+    bad "compare made no temporary report"
+fi
+
 # ---- names are valid UTF-8 in JSON and HTML --------------------------------------------------------------------
 cp m.obj "$(printf 'bad\xff.obj')"
 printf '{"cameras": [{"name": "cam\xc3\x28\xed\xa0\x80", "eye": [2, 1.5, 2.5], "target": [0.5, 0.3, 0.5]}]}\n' >"$(printf 'bad\xff.obscura.json')"

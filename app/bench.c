@@ -11,6 +11,11 @@
 #include <unistd.h>
 
 #include "cli_options.h"
+#include "outputs.h"
+
+/* --json and --csv (outputs.h): added while parsing, committed by cmd_bench. */
+static cli_outputs bench_outs;
+static int bench_json = -1, bench_csv = -1;
 
 enum { MAX_PASSES = 20, MAX_LIST = CLI_MAX_LIST, MAX_CAMS = 32, MAX_SIZES = 16 };
 
@@ -203,10 +208,10 @@ static int parse(int argc, char **argv, bench_opts *o)
     for (int k = 0; k < c->method_count; ++k)
         if (strcmp(ob_method_at(c->methods[k])->name, "none")) c->methods[kept++] = c->methods[k];
     c->method_count = kept;
-    const char *outs[2] = {o->json, o->csv};
-    for (int i = 0; i < 2; ++i)
-        if (outs[i] && !cli_output_writable(outs[i]))
-            return cli_fail(EXIT_OUTPUT, "cannot write %s: its directory does not exist or is not writable", outs[i]);
+    /* Both checked before anything is measured; written only as a pair (outputs.h). */
+    if (o->json && (code = cli_outputs_add(&bench_outs, "--json", o->json, CLI_FMT_TEXT, &bench_json)) != EXIT_OK)
+        return code;
+    if (o->csv && (code = cli_outputs_add(&bench_outs, "--csv", o->csv, CLI_FMT_TEXT, &bench_csv)) != EXIT_OK) return code;
     return 0;
 }
 
@@ -650,7 +655,7 @@ static const bench_row *baseline_of(const bench_state *st, const bench_row *r)
     return r->baseline >= 0 ? &st->rows[r->baseline] : NULL;
 }
 
-static int write_csv(const char *path, const bench_state *st, const ob_scene *scene, int eyes)
+static int write_csv(int index, const bench_state *st, const ob_scene *scene, int eyes)
 {
     size_t cap = 4096 + (size_t)st->count * (MAX_PASSES + 1) * (300 + CLI_MAX_LABEL), len = 0;
     char *buf = malloc(cap);
@@ -701,9 +706,9 @@ static int write_csv(const char *path, const bench_state *st, const ob_scene *sc
                                     frame ? "frame" : r->pass[p], med, lo, hi, fps, minus, ratio, label, fms, fratio);
         }
     }
-    ob_error e = ob_write_text(path, buf);
+    int code = cli_outputs_write_text(&bench_outs, index, buf);
     free(buf);
-    return e == OB_OK ? EXIT_OK : cli_fail_library_as(EXIT_OUTPUT);
+    return code;
 }
 
 /* ---- scaling --------------------------------------------------------------------------------- */
@@ -754,7 +759,16 @@ static const char *floor_note(const bench_row *r)
 
 /* ---- the command ----------------------------------------------------------------------------- */
 
+static int bench_run(int argc, char **argv);
+
 int cmd_bench(int argc, char **argv)
+{
+    int code = bench_run(argc, argv);
+    /* --json and --csv both, or neither: a failure leaves the earlier files as they were. */
+    return cli_outputs_finish(&bench_outs, code);
+}
+
+static int bench_run(int argc, char **argv)
 {
     bench_opts o;
     int code = parse(argc, argv, &o);
@@ -868,6 +882,10 @@ int cmd_bench(int argc, char **argv)
                                            .radius_world = rw, .width = c->width, .height = c->height,
                                            .triangles = ob_query_scene_stats(scene).triangles, .baseline = baseline};
                         code = measure(eyes, views, eye_count, &s, &o, scratch, row);
+                        /* Once per camera (its first row): timing an empty frame times nothing. */
+                        for (int e = 0; e < eye_count && code == EXIT_OK && row == &st.rows[base]; ++e)
+                            code = cli_check_visible(eyes[e], c->width, c->height, ob_query_scene_name(scene),
+                                                     views[e].name, c->allow_empty, EXIT_INPUT);
                         char what[512] = "";
                         snprintf(what, sizeof what, "%s %s N=%d r=%g", cam.name, cfg->label, n, (double)r);
                         if (code == EXIT_OK) progress(&st, what);
@@ -958,6 +976,9 @@ int cmd_bench(int argc, char **argv)
     const double seconds = now_s() - t0;
     if (code == EXIT_OK) printf("\n%d configurations in %.0f s on %s\n", st.count, seconds, ob_query_renderer(ctx));
 
+    /* Into temporary files, the CSV first: cmd_bench renames the pair only when both were
+     * written, so a JSON that fails after it leaves neither. */
+    if (code == EXIT_OK && o.csv) code = write_csv(bench_csv, &st, scene, eye_count);
     if (code == EXIT_OK && o.json) {
         char cpu[256], commit[64], date[64];
         cpu_model(cpu, sizeof cpu);
@@ -1027,14 +1048,8 @@ int cmd_bench(int argc, char **argv)
         char *text = cJSON_Print(root);
         cJSON_Delete(root);
         if (!text) code = cli_fail(EXIT_RUNTIME, "out of memory");
-        else if (ob_write_text(o.json, text) != OB_OK) code = cli_fail_library_as(EXIT_OUTPUT);
+        else code = cli_outputs_write_text(&bench_outs, bench_json, text);
         free(text);
-    }
-    /* The CSV after the JSON: a failed CSV takes the JSON of this run away again, so that a failed
-     * run leaves no partial pair. */
-    if (code == EXIT_OK && o.csv) {
-        code = write_csv(o.csv, &st, scene, eye_count);
-        if (code != EXIT_OK && o.json) remove(o.json);
     }
 
 cleanup:

@@ -72,7 +72,8 @@ bool cli_parse_float(const char *text, float *out)
     char *end = NULL;
     errno = 0;
     double d = strtod(text, &end);
-    if (end == text || *end != '\0' || errno || !isfinite(d)) return false;
+    /* Finite as a float too: 1e39 is a finite double and an infinite float. */
+    if (end == text || *end != '\0' || errno || !isfinite(d) || !isfinite((float)d)) return false;
     *out = (float)d;
     return true;
 }
@@ -152,7 +153,7 @@ bool cli_parse_vec3(const char *text, float out[3])
         char *end = NULL;
         errno = 0;
         double d = strtod(p, &end);
-        if (end == p || errno || !isfinite(d)) return false;
+        if (end == p || errno || !isfinite(d) || !isfinite((float)d)) return false;
         out[i] = (float)d;
         if (i < 2) {
             if (*end != ',') return false;
@@ -172,4 +173,24 @@ bool cli_output_writable(const char *path)
     bool ok = access(dir, W_OK | X_OK) == 0;
     free(copy);
     return ok;
+}
+
+int cli_check_visible(ob_renderer *r, int w, int h, const char *scene, const char *camera, bool allow_empty, int code)
+{
+    if (allow_empty) return EXIT_OK;
+    /* Linear depth is 0 where no geometry is: one float per pixel read back, far less than the
+     * frame it checks. */
+    size_t px = (size_t)w * (size_t)h;
+    float *depth = malloc(px * sizeof(float));
+    if (!depth) return cli_fail(EXIT_RUNTIME, "out of memory");
+    if (ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, px * sizeof(float)) != OB_OK) {
+        free(depth);
+        return cli_fail_from_library();
+    }
+    size_t covered = 0;
+    for (size_t i = 0; i < px && !covered; ++i) covered += depth[i] > 0.0f;
+    free(depth);
+    if (covered) return EXIT_OK;
+    return cli_fail(code, "nothing visible from this camera (%s:%s): the frame covers no pixel; check the camera "
+                    "(or --allow-empty to write it anyway)", scene, camera);
 }

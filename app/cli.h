@@ -44,6 +44,11 @@ bool cli_parse_shadow(const char *text, ob_shadow_method *out); /* none, hard, p
 double cli_median(double *v, int n);
 /* Fail early when an output's directory cannot take a new file. */
 bool cli_output_writable(const char *path);
+/* Whether the frame r holds (w x h) covers any pixel: EXIT_OK, else "nothing visible from this
+ * camera (scene:camera)" and code (EXIT_USAGE for a camera of the options, EXIT_INPUT for one of a
+ * scene or sidecar). allow_empty (--allow-empty) skips the check. A silent empty image is a wrong
+ * result: a camera that looks away, or coordinates float depth cannot hold. */
+int cli_check_visible(ob_renderer *r, int w, int h, const char *scene, const char *camera, bool allow_empty, int code);
 
 int cmd_render(int argc, char **argv);
 int cmd_list(int argc, char **argv);

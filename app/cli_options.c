@@ -262,6 +262,10 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         c->verbose = true;
         return CLI_TAKEN;
     }
+    if (!strcmp(a, "--allow-empty")) {
+        c->allow_empty = true;
+        return CLI_TAKEN;
+    }
     bool mine = false;
     for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0] && !mine; ++k)
         mine = !strcmp(a, WITH_VALUE[k].name) && (WITH_VALUE[k].needs == 0 || takes(c, WITH_VALUE[k].needs));
@@ -289,8 +293,8 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
             return cli_fail(EXIT_USAGE, "--target: expected X,Y,Z (finite numbers), got '%s'", v);
         c->has_target = true;
     } else if (!strcmp(a, "--fov")) {
-        if (!cli_parse_float(v, &c->fov) || c->fov <= 0.0f || c->fov >= 179.0f)
-            return cli_fail(EXIT_USAGE, "--fov: expected degrees in (0, 179), got '%s'", v);
+        if (!cli_parse_float(v, &c->fov) || c->fov < OB_MIN_FOV_DEG || c->fov >= 179.0f)
+            return cli_fail(EXIT_USAGE, "--fov: expected degrees in [%g, 179), got '%s'", (double)OB_MIN_FOV_DEG, v);
         c->has_fov = true;
     } else if (!strcmp(a, "--size")) {
         if (!cli_parse_size(v, &c->width, &c->height))
@@ -466,6 +470,9 @@ void cli_common_usage(FILE *f, const cli_common *c)
               "  --path-frames N       frames along the path or orbit, 2..10000 (default 32)\n",
               f);
     fprintf(f, "  --size WxH            image size (default %dx%d)\n", c->width, c->height);
+    fputs("  --allow-empty         write a frame that covers no pixel (else: \"nothing visible from this\n"
+          "                        camera\", exit 2 for --eye/--target, 3 for a scene's camera)\n",
+          f);
     if (lists) {
         fprintf(f, "  --methods all|A,B     AO methods, see `obscura list` (default %s); --method A for one\n",
                 c->default_method ? c->default_method : "all");
@@ -804,11 +811,23 @@ int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *pr
         memcpy(cam->target, c->target, sizeof cam->target);
         cam->fov_y_deg = c->has_fov ? c->fov : 60.0f;
         snprintf(cam->name, sizeof cam->name, "explicit");
+        /* The check every camera passes (ob_check_camera), named by the options that gave it. */
+        if (ob_check_camera(cam) != OB_OK) {
+            const char *why = NULL;
+            ob_get_error(&why);
+            return cli_fail(EXIT_USAGE, "--eye/--target%s: %s", c->has_fov ? "/--fov" : "", why ? why : "invalid");
+        }
         return EXIT_OK;
     }
     const char *name = preset ? preset : c->camera ? c->camera : "default";
     if (ob_find_camera(scene, name, cam) != OB_OK) return cli_fail_from_library();
     if (c->has_fov) cam->fov_y_deg = c->fov;
+    if (ob_check_camera(cam) != OB_OK) {
+        const char *why = NULL;
+        ob_get_error(&why);
+        return cli_fail(c->has_fov ? EXIT_USAGE : EXIT_INPUT, "camera %s:%s: %s", ob_query_scene_name(scene), cam->name,
+                        why ? why : "invalid");
+    }
     return EXIT_OK;
 }
 

@@ -134,6 +134,7 @@ typedef struct cli_common {
 
     ob_gpu_kind gpu;
     bool verbose;
+    bool allow_empty;                         /* --allow-empty: write a frame that covers no pixel */
 } cli_common;
 
 /* One combination of the lists, with its settings. */

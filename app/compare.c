@@ -24,6 +24,7 @@
 
 #include "cli_options.h"
 #include "flicker.h"
+#include "outputs.h"
 #include "reference_cache.h"
 
 enum { MAX_VIEWS = 16, FRAMES = 5 };
@@ -37,6 +38,11 @@ typedef struct compare_opts {
     float radius;                 /* 0 = the scene's suggested radius */
     bool no_cache;
     double budget_ms;             /* --budget-ms: the equal-time shoot-out; 0 = none */
+    /* --report is built in a temporary directory beside it (report then names that one) and
+     * replaces it only when the whole report was written (outputs.h). */
+    const char *final_report;
+    cli_outputs *outs;
+    int report_index;
 } compare_opts;
 
 /* One row of a view's table: one combination of the lists. */
@@ -66,7 +72,9 @@ static void compare_usage(FILE *f, const cli_common *defaults)
           "  --scene S[:CAMERA]    a scene (see `obscura list`) and optionally a camera preset\n"
           "                        (default --camera, else 'default'); repeatable, one report section\n"
           "                        each; --sidecar, --up, --eye/--target/--fov apply to every scene\n"
-          "  --report DIR          where the report goes (created if missing)\n"
+          "  --report DIR          where the report goes: built beside it and put in place only when\n"
+          "                        whole; an existing DIR must be an earlier report or empty (it is\n"
+          "                        replaced as a whole)\n"
           "  --spp N               reference rays per pixel (default 512: mean standard error < 0.01)\n"
           "  --radius R            AO radius R in world units for every method and the reference\n"
           "                        (default: each scene's suggested radius; a --set M.radius=... wins\n"
@@ -83,9 +91,9 @@ static void compare_usage(FILE *f, const cli_common *defaults)
     cli_common_usage(f, defaults);
 }
 
-static int parse(int argc, char **argv, compare_opts *o)
+static int parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
 {
-    *o = (compare_opts){.spp = 512};
+    *o = (compare_opts){.spp = 512, .outs = outs, .report_index = -1};
     cli_common_init(&o->common, "compare", CLI_TAKES_CAMERA | CLI_TAKES_LISTS | CLI_TAKES_GPU | CLI_TAKES_PATH);
     o->common.default_method = NULL; /* every method */
     o->common.width = 320;
@@ -146,14 +154,18 @@ static int parse(int argc, char **argv, compare_opts *o)
     if (code != EXIT_OK) return code;
     if (o->common.ambient_mode != OB_AMBIENT_CONSTANT)
         return cli_fail(EXIT_USAGE, "--ambient: compare takes only 'constant' (the one-bounce reference has a constant ambient)");
-    return 0;
+    o->final_report = o->report;
+    return cli_outputs_add(o->outs, "--report", o->report, CLI_FMT_DIR, &o->report_index);
 }
 
 /* ---- small helpers ------------------------------------------------------------------------- */
 
-static void html_escape(FILE *f, const char *s)
+static void html_escape(FILE *f, const char *text)
 {
-    for (; *s; ++s) {
+    /* Names from models and sidecars are bytes: valid UTF-8 first (the page says utf-8). */
+    char *valid = cli_utf8_valid(text);
+    if (!valid) return;
+    for (const char *s = valid; *s; ++s) {
         switch (*s) {
         case '&': fputs("&amp;", f); break;
         case '<': fputs("&lt;", f); break;
@@ -163,6 +175,7 @@ static void html_escape(FILE *f, const char *s)
         default: fputc(*s, f);
         }
     }
+    free(valid);
 }
 
 /* A file-system-safe name for a view directory: letters, digits, '-' and '_' only. */
@@ -177,8 +190,9 @@ static void safe_name(char *out, size_t n, const char *in)
     out[k] = '\0';
 }
 
-/* What this run wrote into the report: removed again when a later step fails, so that a failed
- * run leaves no partial report (directories only when this run made them and they are empty). */
+/* What this run wrote into the report's temporary directory, emptied again when a later step
+ * fails. The temporary directory itself (cli_outputs_dir) is what keeps a failed run from touching
+ * --report; this list only keeps the tree small for cli_outputs_abort to remove. */
 typedef struct outputs {
     char **files, **dirs;
     int file_count, file_cap, dir_count, dir_cap;
@@ -364,7 +378,13 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     }
     ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, px * sizeof(float));
     ob_read_image(r, OB_IMAGE_NORMAL_F32, normals, px * 3 * sizeof(float));
-    for (size_t i = 0; i < px; ++i) mask[i] = depth[i] > 0.0f;
+    size_t covered = 0;
+    for (size_t i = 0; i < px; ++i) covered += mask[i] = depth[i] > 0.0f;
+    if (!covered && !c->allow_empty) {
+        code = cli_fail(c->has_eye ? EXIT_USAGE : EXIT_INPUT, "nothing visible from this camera (%s:%s): the frame "
+                        "covers no pixel; check the camera (or --allow-empty to report it anyway)", vr->scene, vr->camera);
+        goto done;
+    }
 
     /* The same camera matrices as the renderer (renderer.c): for the world points. */
     ob_camera cm = cam;
@@ -755,8 +775,12 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
         free(text);
         return cli_fail(EXIT_RUNTIME, "out of memory");
     }
-    ob_error e = ob_write_text(path, text);
+    /* Scene and camera names are bytes from files: valid UTF-8 before any parser sees them. */
+    char *valid = cli_utf8_valid(text);
     free(text);
+    if (!valid) return cli_fail(EXIT_RUNTIME, "out of memory writing results.json");
+    ob_error e = ob_write_text(path, valid);
+    free(valid);
     return e == OB_OK ? EXIT_OK : cli_fail_library_as(EXIT_OUTPUT);
 }
 
@@ -1099,11 +1123,28 @@ static int run_flicker(const compare_opts *o, ob_renderer *r, const view_input *
     return code;
 }
 
+static int compare_checked(const compare_opts *op);
+
 int cmd_compare(int argc, char **argv)
 {
     compare_opts o;
-    int code = parse(argc, argv, &o);
-    if (code != 0) return code < 0 ? EXIT_OK : code;
+    cli_outputs outs = {0};
+    int code = parse(argc, argv, &o, &outs);
+    if (code == 0) code = compare_checked(&o);
+    /* The report replaces --report only whole; a failure removes the temporary one. */
+    code = cli_outputs_finish(&outs, code < 0 ? EXIT_OK : code);
+    if (code == EXIT_OK && o.final_report) {
+        int n = (int)strlen(o.final_report);
+        while (n > 1 && o.final_report[n - 1] == '/') --n; /* "rep/" names rep/index.html */
+        printf("report: %.*s/index.html\n", n, o.final_report);
+    }
+    return code;
+}
+
+static int compare_checked(const compare_opts *op)
+{
+    compare_opts o = *op;
+    int code = EXIT_OK;
     const cli_common *c = &o.common;
 
     /* Everything is checked before the report directory is touched: the combinations and their
@@ -1140,7 +1181,11 @@ int cmd_compare(int argc, char **argv)
     }
     if ((code = cli_common_prepare(c, r)) != EXIT_OK) goto cleanup;
 
-    if ((code = make_report_dir(&out, o.report)) != EXIT_OK) goto cleanup;
+    /* The report is written into its temporary directory from here on. */
+    if (!(o.report = cli_outputs_dir(o.outs, o.report_index))) {
+        code = EXIT_OUTPUT;
+        goto cleanup;
+    }
     for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) {
         code = run_view(&o, r, &inputs[v], configs, count, &out, &views[v]);
         if (code == EXIT_OK && cli_common_moves(c)) code = run_flicker(&o, r, &inputs[v], configs, count, &out, &views[v]);
@@ -1150,7 +1195,6 @@ int cmd_compare(int argc, char **argv)
     }
     if (code == EXIT_OK) code = write_json(&o, ctx, views, done, &out);
     if (code == EXIT_OK) code = write_html(&o, ctx, views, done, &out);
-    if (code == EXIT_OK) printf("report: %s/index.html\n", o.report);
 cleanup:
     outputs_finish(&out, code != EXIT_OK);
     for (int v = 0; v < MAX_VIEWS && views; ++v) {

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "outputs.h"
 
 static const char *type_name(ob_param_type t)
 {
@@ -81,7 +82,10 @@ static int list_json(void)
     int n = named_scenes(names, 64);
     cJSON *named = cJSON_AddArrayToObject(root, "named_scenes");
     for (int i = 0; i < n; ++i) cJSON_AddItemToArray(named, cJSON_CreateString(names[i]));
-    char *text = cJSON_Print(root);
+    char *printed = cJSON_Print(root);
+    /* Names come from files (scene and camera names): valid UTF-8 for the JSON's readers. */
+    char *text = printed ? cli_utf8_valid(printed) : NULL;
+    free(printed);
     int code = text ? EXIT_OK : cli_fail(EXIT_RUNTIME, "out of memory");
     if (text) puts(text);
     free(text);

@@ -13,16 +13,18 @@
 #include <time.h>
 
 #include "cli_options.h"
+#include "outputs.h"
 #include "reference_cache.h"
 
 static void render_usage(FILE *f, const cli_common *defaults)
 {
-    fputs("usage: obscura render [options] --out FILE.png\n"
+    fputs("usage: obscura render [options] --out FILE.png|.jpg|.pfm\n"
           "\n"
           "One scene, one AO method, one camera: the final image, and optionally the AO map, depth\n"
           "and normals.\n"
           "\n"
-          "  --out FILE.png        the final image (required)\n"
+          "  --out FILE            the final image (required); the format follows the extension: .png,\n"
+          "                        .jpg (.jpeg: no alpha) or .pfm (the same pixels as floats, 0..1)\n"
           "  --view V              what --out shows: final (default), ao, normals, depth (grey, 1 - depth\n"
           "                        / far plane), shadow (the key light's visibility), radiance (direct\n"
           "                        light, tone mapped), samples (per pixel, grey, white = the most a\n"
@@ -35,8 +37,8 @@ static void render_usage(FILE *f, const cli_common *defaults)
           "                        extra_view=on), history_age (--temporal on: frames in each pixel's\n"
           "                        history / --temporal-frames; black where reset);\n"
           "                        for ssdo* ao shows the RGB modulation factor M\n"
-          "  --ao-out FILE.pfm     the AO map as exact floats (PFM, bottom row first)\n"
-          "  --ao-png FILE.png     the AO map as an 8-bit grey PNG\n"
+          "  --ao-out FILE.pfm     the AO map as exact floats (PFM, bottom row first; .png or .jpg: 8-bit)\n"
+          "  --ao-png FILE.png     the AO map as an 8-bit grey PNG (or .jpg)\n"
           "  --depth-out FILE.pfm  linear view depth; --normal-out FILE.pfm view-space normals\n"
           "  --frames N            render N frames (timings are medians over them; default 1)\n"
           "  --timings             print GPU time per pass (GL timestamp queries) and the wall-clock\n"
@@ -72,11 +74,17 @@ typedef struct render_opts {
     const char *headset;
     float ipd, convergence; /* 0 = default */
     int reference_spp;      /* 0 = no reference */
+    /* Every output, checked before anything is rendered and written all or nothing: --out (each
+     * frame's along a path, frame_outs[f]) and the others' indices in outs, -1 when not asked. */
+    cli_outputs *outs;
+    int out_index, ao_out_index, ao_png_index, depth_index, normal_index;
+    int *frame_outs;
 } render_opts;
 
 static void render_defaults(render_opts *o)
 {
-    *o = (render_opts){.view = OB_VIEW_FINAL, .frames = 1, .warmup = -1};
+    *o = (render_opts){.view = OB_VIEW_FINAL, .frames = 1, .warmup = -1, .out_index = -1, .ao_out_index = -1,
+                       .ao_png_index = -1, .depth_index = -1, .normal_index = -1};
     cli_common_init(&o->common, "render", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_GPU | CLI_TAKES_PATH);
     o->common.scene = "cornell";
     /* The method closest to the ray-traced AO_R on every graded view (docs/compare.md). */
@@ -85,9 +93,44 @@ static void render_defaults(render_opts *o)
     o->common.height = 480;
 }
 
-static int parse(int argc, char **argv, render_opts *o)
+static void numbered(const char *path, int f, char *out, size_t n);
+
+/* Every output checked and added to o->outs (outputs.h): a bad one fails before the render. Along
+ * a path --out is numbered per frame; the other outputs are the last frame's. */
+static int add_outputs(render_opts *o)
+{
+    static const unsigned f32 = CLI_FMT_IMAGE, pfm = CLI_FMT_PFM;
+    const struct { const char *option, *path; unsigned formats; int *index; } outs[] = {
+        {"--ao-out", o->ao_out, f32, &o->ao_out_index},
+        {"--ao-png", o->ao_png, CLI_FMT_PNG | CLI_FMT_JPG, &o->ao_png_index},
+        /* Depth and normals are measurements: 8 bits would lose them. */
+        {"--depth-out", o->depth_out, pfm, &o->depth_index},
+        {"--normal-out", o->normal_out, pfm, &o->normal_index}};
+    int code = EXIT_OK;
+    if (cli_common_moves(&o->common)) {
+        const int frames = o->common.path_frames;
+        o->frame_outs = calloc((size_t)frames, sizeof *o->frame_outs);
+        if (!o->frame_outs) return cli_fail(EXIT_RUNTIME, "out of memory");
+        /* The extension first, once, before the numbered names repeat it. */
+        if (!(cli_format_of(o->out) & CLI_FMT_IMAGE) || !*o->out)
+            code = cli_outputs_add(o->outs, "--out", o->out, CLI_FMT_IMAGE, &o->out_index);
+        for (int f = 0; f < frames && code == EXIT_OK; ++f) {
+            char name[1100];
+            numbered(o->out, f, name, sizeof name);
+            code = cli_outputs_add(o->outs, "--out", name, CLI_FMT_IMAGE, &o->frame_outs[f]);
+        }
+    } else {
+        code = cli_outputs_add(o->outs, "--out", o->out, CLI_FMT_IMAGE, &o->out_index);
+    }
+    for (size_t i = 0; i < sizeof outs / sizeof outs[0] && code == EXIT_OK; ++i)
+        if (outs[i].path) code = cli_outputs_add(o->outs, outs[i].option, outs[i].path, outs[i].formats, outs[i].index);
+    return code;
+}
+
+static int parse(int argc, char **argv, render_opts *o, cli_outputs *outs)
 {
     render_defaults(o);
+    o->outs = outs;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -151,7 +194,7 @@ static int parse(int argc, char **argv, render_opts *o)
             o->reference_spp = (int)n;
         }
     }
-    if (!o->out) return cli_fail(EXIT_USAGE, "--out FILE.png is required (see obscura render --help)");
+    if (!o->out) return cli_fail(EXIT_USAGE, "--out FILE is required (see obscura render --help)");
     if (o->stereo && (o->common.path || o->common.has_orbit))
         return cli_fail(EXIT_USAGE, "--stereo and --path/--orbit exclude each other");
     if (o->frames != 1 && (o->common.path || o->common.has_orbit))
@@ -172,43 +215,7 @@ static int parse(int argc, char **argv, render_opts *o)
     int code = cli_common_finish(&o->common);
     if (code != EXIT_OK) return code;
     if (o->warmup < 0) o->warmup = o->timings || o->frames > 1 ? 3 : 0;
-    const char *outs[5] = {o->out, o->ao_out, o->ao_png, o->depth_out, o->normal_out};
-    for (int i = 0; i < 5; ++i)
-        if (outs[i] && !cli_output_writable(outs[i]))
-            return cli_fail(EXIT_OUTPUT, "cannot write %s: its directory does not exist or is not writable", outs[i]);
-    return 0;
-}
-
-static void flip_rows_to_grey(const float *ao, int w, int h, unsigned char *out)
-{
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            float v = ao[(size_t)(h - 1 - y) * (size_t)w + (size_t)x];
-            v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
-            out[(size_t)y * (size_t)w + (size_t)x] = (unsigned char)lrintf(v * 255.0f);
-        }
-}
-
-/* Outputs written so far in this run: removed again if a later one fails, so a failed run
- * leaves no partial set of files behind. */
-static const char *written[8];
-static int written_count;
-
-static ob_error track(ob_error err, const char *path)
-{
-    if (err == OB_OK && written_count < 8) written[written_count++] = path;
-    return err;
-}
-
-static int write_outputs_tracked(ob_renderer *const *eyes, int n, const render_opts *o);
-
-static int write_outputs(ob_renderer *const *eyes, int n, const render_opts *o)
-{
-    written_count = 0;
-    int code = write_outputs_tracked(eyes, n, o);
-    if (code != EXIT_OK)
-        for (int i = 0; i < written_count; ++i) remove(written[i]);
-    return code;
+    return add_outputs(o);
 }
 
 /* One image of each of the n eyes side by side, n W x H: each eye's rows are read whole and
@@ -230,7 +237,9 @@ static ob_error read_side_by_side(ob_renderer *const *eyes, int n, int w, int h,
     return OB_OK;
 }
 
-static int write_outputs_tracked(ob_renderer *const *eyes, int n, const render_opts *o)
+/* The outputs of the frame the eyes hold into o->outs' temporary files (committed by the caller):
+ * what --view shows into out_index, the others when asked (with_rest). */
+static int write_outputs(ob_renderer *const *eyes, int n, render_opts *o, int out_index, bool with_rest)
 {
     /* Mirror: both eyes side by side in every output; single: the left eye's alone. */
     const int ew = o->common.width, h = o->common.height, w = ew * n;
@@ -238,66 +247,36 @@ static int write_outputs_tracked(ob_renderer *const *eyes, int n, const render_o
     int code = EXIT_OK;
     unsigned char *rgba = malloc(px * 4);
     float *buf = malloc(px * 3 * sizeof(float));
-    unsigned char *grey = malloc(px);
     void *scratch = malloc((size_t)ew * (size_t)h * 3 * sizeof(float) + (size_t)ew * (size_t)h * 4);
-    if (!rgba || !buf || !grey || !scratch) {
+    if (!rgba || !buf || !scratch) {
         code = cli_fail(EXIT_RUNTIME, "out of memory for %dx%d outputs", w, h);
         goto done;
     }
-    if (o->view == OB_VIEW_FINAL) {
-        if (read_side_by_side(eyes, n, ew, h, -1, OB_IMAGE_FINAL_RGBA8, 4, rgba, scratch) != OB_OK) {
-            code = cli_fail_from_library();
-            goto done;
-        }
-        if (track(ob_write_png(o->out, w, h, 4, rgba), o->out) != OB_OK) {
-            code = cli_fail_library_as(EXIT_OUTPUT);
-            goto done;
-        }
-    } else {
-        /* The library's view pass, the one the viewer shows (ob_present); the debug views are
-         * written without alpha, as they always were. */
-        if (read_side_by_side(eyes, n, ew, h, (int)o->view, OB_IMAGE_FINAL_RGBA8, 4, rgba, scratch) != OB_OK) {
-            code = cli_fail_from_library();
-            goto done;
-        }
+    /* final: the library's own image; the others through its view pass, the one the viewer shows
+     * (ob_present), written without alpha as they always were. */
+    const bool final = o->view == OB_VIEW_FINAL;
+    if (read_side_by_side(eyes, n, ew, h, final ? -1 : (int)o->view, OB_IMAGE_FINAL_RGBA8, 4, rgba, scratch) != OB_OK) {
+        code = cli_fail_from_library();
+        goto done;
+    }
+    if (!final)
         for (size_t i = 0; i < px; ++i) memmove(rgba + 3 * i, rgba + 4 * i, 3);
-        if (track(ob_write_png(o->out, w, h, 3, rgba), o->out) != OB_OK) {
-            code = cli_fail_library_as(EXIT_OUTPUT);
-            goto done;
-        }
-    }
-    if (o->ao_out || o->ao_png) {
-        if (read_side_by_side(eyes, n, ew, h, -1, OB_IMAGE_AO_F32, sizeof(float), buf, scratch) != OB_OK) {
+    if ((code = cli_outputs_write_rgb8(o->outs, out_index, w, h, final ? 4 : 3, rgba)) != EXIT_OK) goto done;
+    if (!with_rest) goto done;
+    const struct { int index; ob_image_kind kind; int channels; } rest[] = {
+        {o->ao_out_index, OB_IMAGE_AO_F32, 1}, {o->ao_png_index, OB_IMAGE_AO_F32, 1},
+        {o->depth_index, OB_IMAGE_DEPTH_F32, 1}, {o->normal_index, OB_IMAGE_NORMAL_F32, 3}};
+    for (size_t k = 0; k < sizeof rest / sizeof rest[0] && code == EXIT_OK; ++k) {
+        if (rest[k].index < 0) continue;
+        if (read_side_by_side(eyes, n, ew, h, -1, rest[k].kind, (size_t)rest[k].channels * sizeof(float), buf, scratch) !=
+            OB_OK)
             code = cli_fail_from_library();
-            goto done;
-        }
-        if (o->ao_out && track(ob_write_pfm(o->ao_out, w, h, 1, buf), o->ao_out) != OB_OK) {
-            code = cli_fail_library_as(EXIT_OUTPUT);
-            goto done;
-        }
-        if (o->ao_png) {
-            flip_rows_to_grey(buf, w, h, grey);
-            if (track(ob_write_png(o->ao_png, w, h, 1, grey), o->ao_png) != OB_OK) {
-                code = cli_fail_library_as(EXIT_OUTPUT);
-                goto done;
-            }
-        }
-    }
-    if (o->depth_out && (read_side_by_side(eyes, n, ew, h, -1, OB_IMAGE_DEPTH_F32, sizeof(float), buf, scratch) != OB_OK ||
-                         track(ob_write_pfm(o->depth_out, w, h, 1, buf), o->depth_out) != OB_OK)) {
-        code = cli_fail_library_as(EXIT_OUTPUT);
-        goto done;
-    }
-    if (o->normal_out &&
-        (read_side_by_side(eyes, n, ew, h, -1, OB_IMAGE_NORMAL_F32, 3 * sizeof(float), buf, scratch) != OB_OK ||
-         track(ob_write_pfm(o->normal_out, w, h, 3, buf), o->normal_out) != OB_OK)) {
-        code = cli_fail_library_as(EXIT_OUTPUT);
-        goto done;
+        else
+            code = cli_outputs_write_f32(o->outs, rest[k].index, w, h, rest[k].channels, buf);
     }
 done:
     free(rgba);
     free(buf);
-    free(grey);
     free(scratch);
     return code;
 }
@@ -378,25 +357,23 @@ static void numbered(const char *path, int f, char *out, size_t n)
 }
 
 /* --path / --orbit: the frames along it, --out numbered per frame (what --view shows), the other
- * outputs of the last frame; --timings as medians over the path. A failure removes every frame
- * written. */
+ * outputs of the last frame; --timings as medians over the path. Written all or nothing by the
+ * caller's commit. */
 static int render_path(ob_renderer *r, const ob_camera *base, const ob_scene *scene, const ob_settings *settings,
-                       const render_opts *o)
+                       render_opts *o)
 {
     const cli_common *c = &o->common;
     const int frames = c->path_frames;
-    char (*names)[1100] = calloc((size_t)frames, sizeof *names);
     double *ms = calloc((size_t)frames, sizeof(double));
     double *ao_ms = calloc((size_t)frames, sizeof(double));
     double *temporal_ms = calloc((size_t)frames, sizeof(double));
-    if (!names || !ms || !ao_ms || !temporal_ms) {
-        free(names);
+    if (!ms || !ao_ms || !temporal_ms) {
         free(ms);
         free(ao_ms);
         free(temporal_ms);
         return cli_fail(EXIT_RUNTIME, "out of memory");
     }
-    int code = EXIT_OK, done = 0;
+    int code = EXIT_OK;
     for (int f = 0; f < frames && code == EXIT_OK; ++f) {
         ob_camera cam;
         if ((code = cli_common_path_camera(c, scene, base, f, &cam)) != EXIT_OK) break;
@@ -404,6 +381,11 @@ static int render_path(ob_renderer *r, const ob_camera *base, const ob_scene *sc
             code = cli_fail_from_library();
             break;
         }
+        char which[96];
+        snprintf(which, sizeof which, "%s frame %d", cam.name, f);
+        if ((code = cli_check_visible(r, c->width, c->height, ob_query_scene_name(scene), which, c->allow_empty,
+                                      EXIT_USAGE)) != EXIT_OK)
+            break;
         ob_pass_timing t[20];
         int n = ob_query_timings(r, t, 20);
         for (int p = 0; p < n; ++p) {
@@ -411,36 +393,41 @@ static int render_path(ob_renderer *r, const ob_camera *base, const ob_scene *sc
             if (!strcmp(t[p].name, "ao")) ao_ms[f] = t[p].ms;
             if (!strcmp(t[p].name, "temporal")) temporal_ms[f] = t[p].ms;
         }
-        render_opts fo = *o;
-        numbered(o->out, f, names[f], sizeof names[f]);
-        fo.out = names[f];
-        if (f < frames - 1) fo.ao_out = fo.ao_png = fo.depth_out = fo.normal_out = NULL;
         ob_renderer *one[1] = {r};
-        code = write_outputs(one, 1, &fo);
-        if (code == EXIT_OK) done = f + 1;
+        code = write_outputs(one, 1, o, o->frame_outs[f], f == frames - 1);
     }
-    if (code != EXIT_OK)
-        for (int f = 0; f < done; ++f) remove(names[f]);
     if (code == EXIT_OK) {
-        if (c->path) printf("%d frames along path %s: %s .. %s\n", frames, c->path, names[0], names[frames - 1]);
-        else printf("%d frames along an orbit of %g degrees: %s .. %s\n", frames, (double)c->orbit_deg, names[0],
-                    names[frames - 1]);
+        const char *first = o->outs->items[o->frame_outs[0]].path, *last = o->outs->items[o->frame_outs[frames - 1]].path;
+        if (c->path) printf("%d frames along path %s: %s .. %s\n", frames, c->path, first, last);
+        else printf("%d frames along an orbit of %g degrees: %s .. %s\n", frames, (double)c->orbit_deg, first, last);
         if (o->timings)
             printf("frame %.3f ms, ao %.3f ms, temporal %.3f ms (GPU medians over the path)\n", cli_median(ms, frames),
                    cli_median(ao_ms, frames), cli_median(temporal_ms, frames));
     }
-    free(names);
     free(ms);
     free(ao_ms);
     free(temporal_ms);
     return code;
 }
 
+static int render_checked(render_opts *op);
+
 int cmd_render(int argc, char **argv)
 {
     render_opts o;
-    int code = parse(argc, argv, &o);
-    if (code != 0) return code < 0 ? EXIT_OK : code;
+    cli_outputs outs = {0};
+    int code = parse(argc, argv, &o, &outs);
+    if (code == 0) code = render_checked(&o);
+    /* Every output or none: the temporary files are renamed only when all were written. */
+    code = cli_outputs_finish(&outs, code < 0 ? EXIT_OK : code);
+    free(o.frame_outs);
+    return code;
+}
+
+static int render_checked(render_opts *op)
+{
+    render_opts o = *op; /* o.outs is the caller's set */
+    int code = EXIT_OK;
     const cli_common *c = &o.common;
 
     /* Everything that can be checked without a GPU is checked first. */
@@ -577,7 +564,10 @@ int cmd_render(int argc, char **argv)
         if (code == EXIT_OK)
             code = report_consistency(eyes, cams, &o, settings.method, reference, ob_query_scene_ao_radius(scene));
     }
-    if (code == EXIT_OK) code = write_outputs(eyes, o.stereo == STEREO_MIRROR ? 2 : 1, &o);
+    for (int e = 0; e < eye_count && code == EXIT_OK; ++e)
+        code = cli_check_visible(eyes[e], c->width, c->height, ob_query_scene_name(scene), cams[e].name, c->allow_empty,
+                                 c->has_eye ? EXIT_USAGE : EXIT_INPUT);
+    if (code == EXIT_OK) code = write_outputs(eyes, o.stereo == STEREO_MIRROR ? 2 : 1, &o, o.out_index, true);
 cleanup:
     free(samples);
     free(reference);

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "cli_options.h"
+#include "outputs.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -41,13 +42,14 @@ static const uint8_t TEXT_RGB[3] = {16, 16, 16};
 
 static void sheet_usage(FILE *f, const cli_common *defaults)
 {
-    fputs("usage: obscura sheet --scene NAME --out FILE.png [options]\n"
+    fputs("usage: obscura sheet --scene NAME --out FILE.png|.jpg|.pfm [options]\n"
           "\n"
           "A contact sheet: one row per AO method (per combination of the lists), the final image and\n"
           "the AO map side by side, each row labelled with its settings and the median GPU time of\n"
           "its AO pass (3 frames). --size is the size of each tile.\n"
           "\n"
-          "  --out FILE.png        the sheet (required)\n",
+          "  --out FILE            the sheet (required); the format follows the extension: .png, .jpg\n"
+          "                        (.jpeg) or .pfm (the same pixels as floats, 0..1)\n",
           f);
     cli_common_usage(f, defaults);
 }
@@ -55,11 +57,13 @@ static void sheet_usage(FILE *f, const cli_common *defaults)
 typedef struct sheet_opts {
     cli_common common;
     const char *out;
+    cli_outputs *outs; /* --out, checked before anything is rendered, written only whole */
+    int out_index;
 } sheet_opts;
 
-static int parse(int argc, char **argv, sheet_opts *o)
+static int parse(int argc, char **argv, sheet_opts *o, cli_outputs *outs)
 {
-    *o = (sheet_opts){.out = NULL};
+    *o = (sheet_opts){.out = NULL, .outs = outs, .out_index = -1};
     cli_common_init(&o->common, "sheet", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_LISTS | CLI_TAKES_GPU);
     o->common.default_method = NULL; /* every method */
     o->common.width = 320;
@@ -78,12 +82,10 @@ static int parse(int argc, char **argv, sheet_opts *o)
         o->out = argv[++i];
     }
     if (!o->common.scene) return cli_fail(EXIT_USAGE, "--scene NAME is required (see obscura sheet --help)");
-    if (!o->out) return cli_fail(EXIT_USAGE, "--out FILE.png is required (see obscura sheet --help)");
+    if (!o->out) return cli_fail(EXIT_USAGE, "--out FILE is required (see obscura sheet --help)");
     int code = cli_common_finish(&o->common);
     if (code != EXIT_OK) return code;
-    if (!cli_output_writable(o->out))
-        return cli_fail(EXIT_OUTPUT, "cannot write %s: its directory does not exist or is not writable", o->out);
-    return 0;
+    return cli_outputs_add(o->outs, "--out", o->out, CLI_FMT_IMAGE, &o->out_index);
 }
 
 /* ---- compositing ------------------------------------------------------------------------------ */
@@ -181,11 +183,22 @@ static int render_row(ob_renderer *r, const ob_camera *cam, const cli_config *cf
     return EXIT_OK;
 }
 
+static int sheet_checked(const sheet_opts *op);
+
 int cmd_sheet(int argc, char **argv)
 {
     sheet_opts o;
-    int code = parse(argc, argv, &o);
-    if (code != 0) return code < 0 ? EXIT_OK : code;
+    cli_outputs outs = {0};
+    int code = parse(argc, argv, &o, &outs);
+    if (code == 0) code = sheet_checked(&o);
+    /* The sheet is written only whole (outputs.h). */
+    return cli_outputs_finish(&outs, code < 0 ? EXIT_OK : code);
+}
+
+static int sheet_checked(const sheet_opts *op)
+{
+    const sheet_opts o = *op;
+    int code = EXIT_OK;
     const cli_common *c = &o.common;
 
     /* Everything that can be checked without a GPU is checked first. */
@@ -240,9 +253,12 @@ int cmd_sheet(int argc, char **argv)
     for (int i = 0; i < count && code == EXIT_OK; ++i) {
         cli_config_label(c, &configs[i], ", ", names[i], sizeof names[i]);
         code = render_row(r, &cam, &configs[i], names[i], &img, i, c, rgba, ao, &ao_ms[i]);
+        /* Every row has the same camera: the first tells whether it sees anything. */
+        if (code == EXIT_OK && i == 0)
+            code = cli_check_visible(r, c->width, c->height, ob_query_scene_name(scene), cam.name, c->allow_empty,
+                                     c->has_eye ? EXIT_USAGE : EXIT_INPUT);
     }
-    if (code == EXIT_OK && ob_write_png(o.out, img.w, img.h, 3, img.rgb) != OB_OK)
-        code = cli_fail_library_as(EXIT_OUTPUT);
+    if (code == EXIT_OK) code = cli_outputs_write_rgb8(o.outs, o.out_index, img.w, img.h, 3, img.rgb);
     if (code == EXIT_OK)
         for (int i = 0; i < count; ++i) {
             if (isnan(ao_ms[i])) printf("%-10s ao        - ms\n", names[i]);

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "cli_options.h"
+#include "outputs.h"
 #include "reference_cache.h"
 #include "settings_file.h"
 
@@ -45,6 +46,8 @@ typedef struct tune_view {
 typedef struct tune_opts {
     cli_common common;
     const char *params_text, *out;
+    cli_outputs *outs; /* --out, checked before the search and written only at its end */
+    int out_index;
     const char *train[MAX_VIEWS], *validate[MAX_VIEWS];
     int train_count, validate_count;
     int passes, steps, spp;
@@ -94,9 +97,9 @@ static int add_views(const char *opt, char *v, const char **list, int *count)
     return EXIT_OK;
 }
 
-static int parse(int argc, char **argv, tune_opts *o)
+static int parse(int argc, char **argv, tune_opts *o, cli_outputs *outs)
 {
-    *o = (tune_opts){.passes = 3, .steps = 9, .spp = 512};
+    *o = (tune_opts){.passes = 3, .steps = 9, .spp = 512, .outs = outs, .out_index = -1};
     cli_common_init(&o->common, "tune", CLI_TAKES_GPU);
     o->common.width = 320;
     o->common.height = 240;
@@ -142,8 +145,7 @@ static int parse(int argc, char **argv, tune_opts *o)
             if (!strcmp(o->train[i], o->train[j])) return cli_fail(EXIT_USAGE, "--train %s is given twice", o->train[i]);
     int code = cli_common_finish(&o->common);
     if (code != EXIT_OK) return code;
-    if (!cli_output_writable(o->out)) return cli_fail(EXIT_OUTPUT, "--out %s: the directory cannot take the file", o->out);
-    return EXIT_OK;
+    return cli_outputs_add(o->outs, "--out", o->out, CLI_FMT_TEXT, &o->out_index);
 }
 
 /* "M.P" or "M.P=LO:HI" -> p, checked against the method's table. */
@@ -314,13 +316,17 @@ static int load_view(const tune_opts *o, ob_context *ctx, const char *spec, tune
     v->ref = malloc(px * sizeof(float));
     if (!v->ref) return cli_fail(EXIT_RUNTIME, "out of memory");
     v->radius = ob_query_scene_ao_radius(v->scene);
+    /* Before the reference is traced: a view with nothing in it has no error to tune against
+     * (--allow-empty does not apply). */
+    for (size_t i = 0; i < px; ++i) v->pixels += v->frame.depth[i] > 0.0f;
+    if (v->pixels == 0)
+        return cli_fail(c->has_eye ? EXIT_USAGE : EXIT_INPUT, "%s: nothing visible from this camera (%s:%s)", spec,
+                        ob_query_scene_name(v->scene), v->cam.name);
     char key[900];
     cli_reference_key(c, v->name, v->cam.name, key, sizeof key);
     cli_reference_info info;
     if ((code = cli_reference_ao(v->scene, &v->frame, key, v->radius, o->spp, o->no_cache, c->verbose, v->ref, &info)) != EXIT_OK)
         return code;
-    for (size_t i = 0; i < px; ++i) v->pixels += v->frame.depth[i] > 0.0f;
-    if (v->pixels == 0) return cli_fail(EXIT_USAGE, "%s: the view shows no geometry", spec);
     if (px > *max_px) *max_px = px;
     return EXIT_OK;
 }
@@ -376,11 +382,23 @@ static double mean_of(const double *v, int n)
     return n ? s / n : 0.0;
 }
 
+static int tune_checked(const tune_opts *op);
+
 int cmd_tune(int argc, char **argv)
 {
     tune_opts o;
-    int code = parse(argc, argv, &o);
-    if (code != EXIT_OK) return code < 0 ? EXIT_OK : code;
+    cli_outputs outs = {0};
+    int code = parse(argc, argv, &o, &outs);
+    if (code == EXIT_OK) code = tune_checked(&o);
+    code = cli_outputs_finish(&outs, code < 0 ? EXIT_OK : code);
+    if (code == EXIT_OK && o.out) printf("\nwrote %s\n", o.out);
+    return code;
+}
+
+static int tune_checked(const tune_opts *op)
+{
+    const tune_opts o = *op;
+    int code = EXIT_OK;
     const cli_common *c = &o.common;
     const char *method = ob_method_at(c->methods[0])->name;
     tune_param ps[MAX_TUNE];
@@ -547,8 +565,8 @@ int cmd_tune(int argc, char **argv)
         json[jl] = '\n';
         json[jl + 1] = '\0';
     }
-    if (!cli_write_file_atomic(o.out, json)) code = cli_fail(EXIT_OUTPUT, "--out %s: cannot write it", o.out);
-    else printf("\nwrote %s\n", o.out);
+    /* Committed by cmd_tune, which prints "wrote" only then. */
+    code = cli_outputs_write_text(o.outs, o.out_index, json);
 done:
     free(json);
     free(t.ao);

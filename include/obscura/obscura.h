@@ -139,6 +139,18 @@ typedef struct ob_camera {
 
 /* ---- stereo: the two eyes of a headset (seed 000 §5.2) -------------------------------------- */
 
+/* Checks a camera as every source must have it (the CLI's options, sidecars, built-in presets, a
+ * host's own), so that no frame renders nothing or NaN from a camera: eye, target, up and shift
+ * finite, each coordinate within +-OB_MAX_COORDINATE (its squares still fit a float); eye !=
+ * target; up (zero = +Y) not parallel to the view direction (the roll would be undefined:
+ * lookAt's cross product vanishes); fov_y_deg 0 (= 60) or in [OB_MIN_FOV_DEG, 179); near_z and
+ * far_z both 0 (fitted to the scene) or 0 < near_z < far_z, finite. Pure CPU, thread-safe.
+ * Errors: OB_ERR_INVALID_ARGUMENT with what is wrong ("up is parallel to the view direction"); the
+ * caller names where the camera came from. */
+#define OB_MAX_COORDINATE 1e18f
+#define OB_MIN_FOV_DEG 0.01f
+ob_error ob_check_camera(const ob_camera *cam);
+
 typedef struct ob_headset {
     const char *name;        /* "vive" */
     const char *description;
@@ -193,6 +205,20 @@ typedef struct ob_light {
     float range;         /* point, spot: smooth cut-off distance; 0 = pure 1/d^2 */
     float spot_inner_deg, spot_outer_deg; /* spot: half-angles, full inside inner, 0 outside outer */
 } ob_light;
+
+/* Checks a light as every source must have it (--light, sidecars, models, a host's own): colour,
+ * intensity, position, range and cone finite; a directional or spot light's direction finite and
+ * not zero (it need not be unit: the renderer uses it as given, so callers normalise it, as
+ * ob_parse_light and the sidecar do); colour >= 0, intensity >= 0; position within
+ * +-OB_MAX_COORDINATE; the brightest channel's colour x intensity at most OB_MAX_DIRECTIONAL for a
+ * directional light and OB_MAX_POINT for a point or spot light (falling off as 1/d^2, 1e12 gives
+ * 1 at 10^6 units). Why a ceiling: the frame's radiance targets are 16-bit floats (largest 65504),
+ * so a sun above about 6e4 overflows to infinity at the first lit pixel and the tone mapper makes
+ * the whole image white; the point light's ceiling leaves six orders of magnitude of scene scale
+ * (shipped sidecars use up to 2.25e6). Errors: OB_ERR_INVALID_ARGUMENT naming the field. */
+#define OB_MAX_DIRECTIONAL 1e4f
+#define OB_MAX_POINT 1e12f
+ob_error ob_check_light(const ob_light *light);
 
 /* A light from text, as the CLI's --light takes it: a type, then key=value pairs separated by
  * spaces, e.g. "directional dir=0.3,1,0.2 color=1,0.9,0.8 intensity=2",
@@ -688,6 +714,9 @@ ob_error ob_compute_ao_filtered(ob_renderer *r, uint32_t linear_depth_tex, uint3
 /* ---- image files (written atomically: temporary file, then rename) -------------------------- */
 /* Top-row-first RGBA8 or grey (channels 1, 3 or 4). */
 ob_error ob_write_png(const char *path, int width, int height, int channels, const uint8_t *px);
+/* Baseline JPEG of the same top-row-first pixels (channels 1, 3 or 4; a fourth is dropped: JPEG
+ * has no alpha), quality 1..100. Errors: OB_ERR_INVALID_ARGUMENT, OB_ERR_OUT_OF_RANGE, OB_ERR_IO. */
+ob_error ob_write_jpg(const char *path, int width, int height, int channels, const uint8_t *px, int quality);
 /* PFM: bottom-row-first floats, channels 1 (Pf) or 3 (PF), little-endian. */
 ob_error ob_write_pfm(const char *path, int width, int height, int channels, const float *px);
 /* A text file (JSON, HTML), written atomically like the images. */

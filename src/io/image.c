@@ -1,4 +1,4 @@
-/* PNG and PFM files, written atomically: a temporary file in the same directory, then rename, so
+/* PNG, JPEG and PFM files, written atomically: a temporary file in the same directory, then rename, so
  * a failure never leaves a half-written output behind. */
 #include <errno.h>
 #include <math.h>
@@ -71,6 +71,20 @@ ob_error ob_write_png(const char *path, int width, int height, int channels, con
     ob_error err = atomic_open(&a, path);
     if (err != OB_OK) return err;
     int ok = stbi_write_png_to_func(write_to_file, &a, width, height, channels, px, width * channels);
+    return atomic_close(&a, ok && !ferror(a.f));
+}
+
+ob_error ob_write_jpg(const char *path, int width, int height, int channels, const uint8_t *px, int quality)
+{
+    if (width <= 0 || height <= 0 || !px || (channels != 1 && channels != 3 && channels != 4))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_write_jpg: bad image");
+    if (quality < 1 || quality > 100)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "ob_write_jpg: quality %d is outside 1..100", quality);
+    atomic_file a;
+    ob_error err = atomic_open(&a, path);
+    if (err != OB_OK) return err;
+    /* stb's baseline JPEG drops a fourth (alpha) channel itself: JPEG has none. */
+    int ok = stbi_write_jpg_to_func(write_to_file, &a, width, height, channels, px, quality);
     return atomic_close(&a, ok && !ferror(a.f));
 }
 

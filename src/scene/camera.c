@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "core/error.h"
+
 #define OB_PI_F 3.14159265358979f
 
 /* Used when a caller passes no field of view: a natural-looking lens, not a wide angle. */
@@ -80,4 +82,49 @@ void ob_camera_fit_planes(ob_camera *cam, const float bmin[3], const float bmax[
     if (!isfinite(far_z) || !(far_z > near_z)) far_z = 2.0f * near_z + r;
     cam->near_z = near_z;
     cam->far_z = far_z;
+}
+
+static bool coordinates_ok(const float *v, int n)
+{
+    for (int i = 0; i < n; ++i)
+        if (!isfinite(v[i]) || fabsf(v[i]) > OB_MAX_COORDINATE) return false;
+    return true;
+}
+
+ob_error ob_check_camera(const ob_camera *cam)
+{
+    if (!cam) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_check_camera: NULL camera");
+    if (!coordinates_ok(cam->eye, 3))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "eye (%g, %g, %g) is not finite or beyond +-%g",
+                            (double)cam->eye[0], (double)cam->eye[1], (double)cam->eye[2], (double)OB_MAX_COORDINATE);
+    if (!coordinates_ok(cam->target, 3))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "target (%g, %g, %g) is not finite or beyond +-%g",
+                            (double)cam->target[0], (double)cam->target[1], (double)cam->target[2],
+                            (double)OB_MAX_COORDINATE);
+    if (!coordinates_ok(cam->up, 3) || !isfinite(cam->shift[0]) || !isfinite(cam->shift[1]))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "up or lens shift is not finite");
+    /* Within +-1e18 every difference and its squares stay finite in float. */
+    float f[3] = {cam->target[0] - cam->eye[0], cam->target[1] - cam->eye[1], cam->target[2] - cam->eye[2]};
+    float fl = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    if (!(fl > 0.0f)) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "eye and target are the same point");
+    float u[3] = {cam->up[0], cam->up[1], cam->up[2]};
+    if (u[0] == 0.0f && u[1] == 0.0f && u[2] == 0.0f) u[1] = 1.0f; /* zero = world up */
+    /* Scaled by the largest component first: a huge up vector's squares would overflow. */
+    float m = fmaxf(fabsf(u[0]), fmaxf(fabsf(u[1]), fabsf(u[2])));
+    for (int i = 0; i < 3; ++i) u[i] /= m;
+    float ul = sqrtf(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    float c[3] = {f[1] * u[2] - f[2] * u[1], f[2] * u[0] - f[0] * u[2], f[0] * u[1] - f[1] * u[0]};
+    /* sin(angle) below 1e-4 (0.006 degrees): lookAt's side vector is then mostly rounding. */
+    if (!(sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) >= 1e-4f * fl * ul))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "up (%g, %g, %g) is parallel to the view direction: the camera's "
+                            "roll is undefined (move the eye sideways or give another up)",
+                            (double)u[0] * (double)m, (double)u[1] * (double)m, (double)u[2] * (double)m);
+    if (cam->fov_y_deg != 0.0f && !(cam->fov_y_deg >= OB_MIN_FOV_DEG && cam->fov_y_deg < 179.0f))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "fov %g degrees is outside [%g, 179)", (double)cam->fov_y_deg,
+                            (double)OB_MIN_FOV_DEG);
+    if ((cam->near_z != 0.0f || cam->far_z != 0.0f) &&
+        !(cam->near_z > 0.0f && cam->far_z > cam->near_z && isfinite(cam->far_z)))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "near %g and far %g planes: expected both 0 (fitted) or 0 < near < far",
+                            (double)cam->near_z, (double)cam->far_z);
+    return OB_OK;
 }

@@ -57,6 +57,8 @@ int ob_scene_add_material(ob_scene *s, const char *name, float r, float g, float
 /* Add a camera preset after "default", replacing a preset of the same name ("default" itself
  * included). Returns false (and sets no error) when all OB_MAX_CAMERAS slots are in use. */
 bool ob_scene_add_camera(ob_scene *s, const ob_camera *cam);
+/* v scaled to unit length without overflow (src/core/lights.c); false for a zero or non-finite v. */
+bool ob_normalize_direction(float v[3]);
 /* After the meshes are in: bounds, default camera, default light and radius if unset. */
 void ob_scene_finish(ob_scene *s);
 

@@ -185,7 +185,7 @@ static ob_error parse_camera(const char *path, int index, const cJSON *obj, ob_c
         return fail(path, "%s: expected an object, got %s", where, json_type_name(obj));
     }
     memset(cam, 0, sizeof *cam);
-    bool has_name = false, has_eye = false, has_target = false, has_up = false;
+    bool has_name = false, has_eye = false, has_target = false;
     for (const cJSON *it = obj->child; it; it = it->next) {
         const char *key = it->string;
         char field[160] = "";
@@ -212,7 +212,6 @@ static ob_error parse_camera(const char *path, int index, const cJSON *obj, ob_c
             has_target = true;
         } else if (strcmp(key, "up") == 0) {
             err = read_vec3(path, field, it, cam->up);
-            has_up = true;
         } else if (strcmp(key, "fov") == 0) {
             err = read_number(path, field, it, &cam->fov_y_deg);
             if (err == OB_OK && !(cam->fov_y_deg > 1.0f && cam->fov_y_deg < 179.0f)) {
@@ -228,23 +227,13 @@ static ob_error parse_camera(const char *path, int index, const cJSON *obj, ob_c
     if (!has_eye) return fail(path, "%s (\"%s\"): missing \"eye\"", where, cam->name);
     if (!has_target) return fail(path, "%s (\"%s\"): missing \"target\"", where, cam->name);
 
-    float fwd[3] = {cam->target[0] - cam->eye[0], cam->target[1] - cam->eye[1],
-                    cam->target[2] - cam->eye[2]};
-    float fwd_len = len3(fwd);
-    if (!(fwd_len > 0.0f)) return fail(path, "%s (\"%s\"): eye == target", where, cam->name);
-    float up[3] = {0.0f, 1.0f, 0.0f};
-    if (has_up) {
-        float up_len = len3(cam->up);
-        if (!(up_len > 0.0f)) return fail(path, "%s (\"%s\"): up is zero", where, cam->name);
-        for (int i = 0; i < 3; ++i) up[i] = cam->up[i] / up_len;
-    }
-    /* Parallel up and view direction leave the camera's roll undefined. */
-    float cx = (fwd[1] * up[2] - fwd[2] * up[1]) / fwd_len;
-    float cy = (fwd[2] * up[0] - fwd[0] * up[2]) / fwd_len;
-    float cz = (fwd[0] * up[1] - fwd[1] * up[0]) / fwd_len;
-    if (sqrtf(cx * cx + cy * cy + cz * cz) < 1e-4f) {
-        return fail(path, "%s (\"%s\"): up is parallel to the view direction%s", where,
-                    cam->name, has_up ? "" : " (give an \"up\")");
+    /* The same check as a camera from the options or a host (ob_check_camera), named here. */
+    if (ob_check_camera(cam) != OB_OK) {
+        const char *why = NULL;
+        ob_get_error(&why);
+        char msg[400];
+        snprintf(msg, sizeof msg, "%s", why ? why : "invalid");
+        return fail(path, "%s (\"%s\"): %s", where, cam->name, msg);
     }
     return OB_OK;
 }
@@ -285,6 +274,16 @@ static ob_error parse_key(const char *path, const char *where, const cJSON *obj,
     if (!has_target) return fail(path, "%s: missing \"target\"", where);
     float fwd[3] = {p->target[k][0] - p->eye[k][0], p->target[k][1] - p->eye[k][1], p->target[k][2] - p->eye[k][2]};
     if (!(len3(fwd) > 0.0f)) return fail(path, "%s: eye == target", where);
+    const ob_camera probe = {.eye = {p->eye[k][0], p->eye[k][1], p->eye[k][2]},
+                             .target = {p->target[k][0], p->target[k][1], p->target[k][2]},
+                             .fov_y_deg = p->fov[k]};
+    if (ob_check_camera(&probe) != OB_OK) {
+        const char *why = NULL;
+        ob_get_error(&why);
+        char msg[400];
+        snprintf(msg, sizeof msg, "%s", why ? why : "invalid");
+        return fail(path, "%s: %s", where, msg);
+    }
     /* Up is +Y along a path: a key looking straight up or down has no roll. */
     if (sqrtf(fwd[0] * fwd[0] + fwd[2] * fwd[2]) < 1e-4f * len3(fwd))
         return fail(path, "%s: looks straight up or down (a path's up is +Y)", where);
@@ -374,11 +373,7 @@ static ob_error parse_light(const char *path, int index, const cJSON *obj, ob_li
                 return fail(path, "%s: need 0 <= inner <= outer < 90 degrees", field);
         } else if (strcmp(key, "direction") == 0) {
             err = read_vec3(path, field, it, l.direction);
-            if (err == OB_OK) {
-                float len = len3(l.direction);
-                if (!(len > 0.0f)) return fail(path, "%s: direction is zero", field);
-                for (int i = 0; i < 3; ++i) l.direction[i] /= len;
-            }
+            if (err == OB_OK && !ob_normalize_direction(l.direction)) return fail(path, "%s: direction is zero", field);
             has_direction = true;
         } else if (strcmp(key, "color") == 0) {
             err = read_vec3(path, field, it, l.color);
@@ -398,6 +393,14 @@ static ob_error parse_light(const char *path, int index, const cJSON *obj, ob_li
     }
     if (!has_direction && l.type != OB_LIGHT_POINT) return fail(path, "%s: missing \"direction\"", where);
     if (!has_position && l.type != OB_LIGHT_DIRECTIONAL) return fail(path, "%s: missing \"position\"", where);
+    /* The same check as --light and a host's lights (ob_check_light), named here. */
+    if (ob_check_light(&l) != OB_OK) {
+        const char *why = NULL;
+        ob_get_error(&why);
+        char msg[400];
+        snprintf(msg, sizeof msg, "%s", why ? why : "invalid");
+        return fail(path, "%s: %s", where, msg);
+    }
     *light = l;
     return OB_OK;
 }

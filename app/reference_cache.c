@@ -97,6 +97,11 @@ int cli_reference_ao(const ob_scene *scene, const cli_view_frame *f, const char 
     key = fnv1a(&spp, sizeof spp, key);
     key = fnv1a(&w, sizeof w, key);
     key = fnv1a(&h, sizeof h, key);
+    /* The geometry too: a named scene's sidecar (a ground added under a model) changes what the
+     * rays hit without changing the view key, and a stale reference would grade every method
+     * against the old scene. */
+    ob_scene_stats stats = ob_query_scene_stats(scene);
+    key = fnv1a(&stats, sizeof stats, key);
     const char *cdir = cache_dir(dir, sizeof dir);
     if (cdir) snprintf(path, sizeof path, "%s/reference-%016llx.pfm", cdir, (unsigned long long)key);
     if (cdir && !no_cache) {

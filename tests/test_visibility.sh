@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# make demo's visibility numbers (issue 20) at a small size: with the default method (gtao) the
+# final image differs from the no-AO frame where the reference AO_R is low, and much less where it
+# is high, on the demo's three report views; and scripts/ao_visibility.py itself fails when the AO
+# does not show and refuses bad input with one line and exit 2.
+set -u
+OBSCURA=$1
+SCRIPTS=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+export XDG_CACHE_HOME="$dir/cache"
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); }
+bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
+vis() { python3 "$SCRIPTS/ao_visibility.py" "$@"; }
+
+# The demo's lights (the scenes' own, the default constant ambient) and its report views, at 128x96.
+if "$OBSCURA" compare --scene cornell:front --scene bunny:front --scene fzk-haus:stair --methods gtao,none \
+    --size 128x96 --spp 64 --report "$dir/report" >"$dir/stdout" 2>"$dir/stderr"; then ok
+else bad "compare failed: $(tail -2 "$dir/stderr")"; fi
+
+# At least 20 % of the pixels with AO_R < 0.75 change by more than 8 levels, and they change more
+# on average than the open ones (AO_R > 0.95). Cornell, lit by its lamp with its own interreflection
+# as the ambient, also meets issue 20's mean of 4/255 over the whole frame (5.1 measured at 320x240).
+for view in cornell_front bunny_front fzk-haus_stair; do
+    v="$dir/report/$view"
+    extra=()
+    [ "$view" = cornell_front ] && extra=(--min-mean 4)
+    if out=$(vis --label "$view" --min-share 20 --contrast "${extra[@]}" "$v/gtao_final.png" "$v/none_final.png" \
+        "$v/reference_ao.png" 2>&1); then ok; echo "  $out"
+    else bad "$out"; fi
+done
+
+# The measure can fail: none against itself changes nothing (exit 1, the line still printed).
+v="$dir/report/cornell_front"
+vis --min-share 20 "$v/none_final.png" "$v/none_final.png" "$v/reference_ao.png" >"$dir/stdout" 2>"$dir/stderr"
+code=$?
+[ $code -eq 1 ] && grep -q "0.0 % of pixels" "$dir/stdout" && grep -q "share 0.0 % < 20" "$dir/stderr" && ok ||
+    bad "none against none: exit $code, $(cat "$dir/stdout" "$dir/stderr")"
+vis --contrast "$v/none_final.png" "$v/none_final.png" "$v/reference_ao.png" >/dev/null 2>&1
+[ $? -eq 1 ] && ok || bad "--contrast passed with no change at all"
+
+# Bad input: one line on stderr naming what is wrong, exit 2; side_by_side.py leaves no file.
+expect2() {
+    local pattern=$1
+    shift
+    "$@" >"$dir/stdout" 2>"$dir/stderr"
+    local code=$?
+    if [ $code -ne 2 ] || [ "$(wc -l <"$dir/stderr")" -ne 1 ] || ! grep -qE -e "$pattern" "$dir/stderr"; then
+        bad "$* exited $code: $(cat "$dir/stderr") (want 2 and /$pattern/)"
+    else ok; fi
+}
+printf 'not a png' >"$dir/text.png"
+"$OBSCURA" render --scene corner --size 32x24 --method none --out "$dir/small.png" 2>/dev/null
+expect2 "text.png: not a PNG" vis "$dir/text.png" "$v/none_final.png" "$v/reference_ao.png"
+expect2 "missing.png: cannot read" vis "$dir/missing.png" "$v/none_final.png" "$v/reference_ao.png"
+expect2 "differ in size" vis "$dir/small.png" "$v/none_final.png" "$v/reference_ao.png"
+expect2 "--min-share: expected a number, got 'x'" vis --min-share x "$v/none_final.png" "$v/none_final.png" "$v/reference_ao.png"
+expect2 "unknown option '--nope'" vis --nope "$v/none_final.png" "$v/none_final.png" "$v/reference_ao.png"
+expect2 "^usage" vis "$v/none_final.png"
+expect2 "small.png is 32x24" python3 "$SCRIPTS/side_by_side.py" "$dir/sbs.png" "$v/none_final.png" "$dir/small.png"
+[ -e "$dir/sbs.png" ] && bad "side_by_side.py left $dir/sbs.png after an error" || ok
+
+# The strip: three 128x96 images and two 4-px gaps, the middle one the with-AO image.
+if python3 "$SCRIPTS/side_by_side.py" "$dir/sbs.png" "$v/none_final.png" "$v/gtao_final.png" "$v/gtao_ao.png"; then
+    if python3 - "$SCRIPTS" "$dir/sbs.png" "$v/gtao_final.png" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[1])
+from ao_visibility import colour, read_png
+strip, final = read_png(sys.argv[2]), read_png(sys.argv[3])
+assert strip[:3] == (3 * 128 + 2 * 4, 96, 3), strip[:3]
+s, f = colour(strip), colour(final)
+for y in (0, 47, 95):
+    for x in range(128):
+        assert s[y * strip[0] + 132 + x] == f[y * 128 + x], (x, y)
+    assert s[y * strip[0] + 128] == b"\x80\x80\x80", "grey gap"
+PY
+    then ok; else bad "side-by-side strip layout"; fi
+else bad "side_by_side.py failed"; fi
+
+echo "visibility: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -299,7 +299,8 @@ static void start(viewer *v, view_reference *R)
     }
     R->job = j;
     R->job_start = wall_seconds();
-    say(v, false, "reference: tracing AO_R at %dx%d, %d rays per pixel, R = %.4g", pw, ph, spp, (double)radius);
+    say(v, false, "reference: AO_R of this camera at %dx%d, %d rays per pixel, R = %.4g (the cache or a trace)", pw, ph,
+        spp, (double)radius);
 }
 
 /* A finished trace becomes the reference shown. */
@@ -521,7 +522,17 @@ bool view_reference_frame(viewer *v, int w, int h)
     blit(R, 0, 0, h - ph, pw, ph);
     if (R->have) blit(R, 1, pw, h - ph, pw, ph);
     if (R->have && R->tex[2]) blit(R, 2, 0, h - 2 * ph, pw, ph);
-    return ob_present(R->r, v->view, 0, pw, h - 2 * ph, pw, ph) == OB_OK;
+    bool ok = ob_present(R->r, v->view, 0, pw, h - 2 * ph, pw, ph) == OB_OK;
+    /* A 2 px seam between the panes: white open surfaces would otherwise run into each other. */
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glEnable(GL_SCISSOR_TEST);
+    glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+    glScissor(pw - 1, 0, 2, h);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glScissor(0, h - ph - 1, w, 2);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
+    return ok;
 }
 
 /* ---- labels, overlay and panel ------------------------------------------------------------- */

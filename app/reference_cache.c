@@ -84,13 +84,12 @@ static const char *cache_dir(char *buf, size_t n)
 
 static bool make_dir(const char *path) { return mkdir(path, 0777) == 0 || errno == EEXIST; }
 
-int cli_reference_ao(const ob_scene *scene, const cli_view_frame *f, const char *view_key, float radius, int spp,
-                     bool no_cache, bool verbose, float *ref, cli_reference_info *info)
+/* The cache file of a view's reference: its name hashes (view key, camera, radius, spp, size).
+ * False when there is no cache directory ($XDG_CACHE_HOME and $HOME unset). */
+static bool cache_path(const ob_scene *scene, const cli_view_frame *f, const char *view_key, float radius, int spp,
+                       char *dir, size_t dn, char *path, size_t pn)
 {
-    memset(info, 0, sizeof *info);
     int w = f->width, h = f->height;
-    size_t px = (size_t)w * (size_t)h;
-    char dir[512], path[700];
     uint64_t key = fnv1a(view_key, strlen(view_key), 1469598103934665603ull);
     key = fnv1a(&f->cam, sizeof f->cam, key);
     key = fnv1a(&radius, sizeof radius, key);
@@ -102,27 +101,74 @@ int cli_reference_ao(const ob_scene *scene, const cli_view_frame *f, const char 
      * against the old scene. */
     ob_scene_stats stats = ob_query_scene_stats(scene);
     key = fnv1a(&stats, sizeof stats, key);
-    const char *cdir = cache_dir(dir, sizeof dir);
-    if (cdir) snprintf(path, sizeof path, "%s/reference-%016llx.pfm", cdir, (unsigned long long)key);
-    if (cdir && !no_cache) {
-        int cw = 0, ch = 0, cc = 0;
-        float *cached = NULL;
-        if (access(path, R_OK) == 0 && ob_read_pfm(path, &cw, &ch, &cc, &cached) == OB_OK && cw == w && ch == h &&
-            cc == 3) {
-            /* Channels: AO, standard error, unused. */
-            double se = 0.0;
-            size_t n = 0;
-            for (size_t i = 0; i < px; ++i) {
-                ref[i] = cached[3 * i];
-                if (f->depth[i] > 0.0f) se += cached[3 * i + 1], ++n;
-            }
-            free(cached);
-            info->cached = true;
-            info->stderr_mean = n ? se / (double)n : 0.0;
-            return EXIT_OK;
+    if (!cache_dir(dir, dn)) return false;
+    snprintf(path, pn, "%s/reference-%016llx.pfm", dir, (unsigned long long)key);
+    return true;
+}
+
+bool cli_reference_cache_load(const ob_scene *scene, const cli_view_frame *f, const char *view_key, float radius,
+                              int spp, float *ref, double *stderr_mean)
+{
+    char dir[512], path[700];
+    if (!cache_path(scene, f, view_key, radius, spp, dir, sizeof dir, path, sizeof path)) return false;
+    size_t px = (size_t)f->width * (size_t)f->height;
+    int cw = 0, ch = 0, cc = 0;
+    float *cached = NULL;
+    if (access(path, R_OK) == 0 && ob_read_pfm(path, &cw, &ch, &cc, &cached) == OB_OK && cw == f->width &&
+        ch == f->height && cc == 3) {
+        /* Channels: AO, standard error, unused. */
+        double se = 0.0;
+        size_t n = 0;
+        for (size_t i = 0; i < px; ++i) {
+            ref[i] = cached[3 * i];
+            if (f->depth[i] > 0.0f) se += cached[3 * i + 1], ++n;
         }
         free(cached);
-        ob_clear_error(); /* a missing or stale cache entry is not an error */
+        *stderr_mean = n ? se / (double)n : 0.0;
+        return true;
+    }
+    free(cached);
+    ob_clear_error(); /* a missing or stale cache entry is not an error */
+    return false;
+}
+
+void cli_reference_cache_store(const ob_scene *scene, const cli_view_frame *f, const char *view_key, float radius,
+                               int spp, const float *ref, const float *se, bool verbose)
+{
+    char dir[512], path[700];
+    if (!cache_path(scene, f, view_key, radius, spp, dir, sizeof dir, path, sizeof path)) return;
+    size_t px = (size_t)f->width * (size_t)f->height;
+    float *rgb = malloc(px * 3 * sizeof(float));
+    if (!rgb) return; /* a failure to cache is not a failure of the command */
+    char parent[520];
+    snprintf(parent, sizeof parent, "%s", dir);
+    char *slash = strrchr(parent, '/');
+    if (slash) {
+        *slash = '\0';
+        make_dir(parent);
+    }
+    make_dir(dir);
+    for (size_t i = 0; i < px; ++i) {
+        rgb[3 * i] = ref[i];
+        rgb[3 * i + 1] = se[i];
+        rgb[3 * i + 2] = 0.0f;
+    }
+    if (ob_write_pfm(path, f->width, f->height, 3, rgb) != OB_OK) {
+        ob_clear_error();
+        if (verbose) fprintf(stderr, "obscura: note: could not cache the reference in %s\n", path);
+    }
+    free(rgb);
+}
+
+int cli_reference_ao(const ob_scene *scene, const cli_view_frame *f, const char *view_key, float radius, int spp,
+                     bool no_cache, bool verbose, float *ref, cli_reference_info *info)
+{
+    memset(info, 0, sizeof *info);
+    int w = f->width, h = f->height;
+    size_t px = (size_t)w * (size_t)h;
+    if (!no_cache && cli_reference_cache_load(scene, f, view_key, radius, spp, ref, &info->stderr_mean)) {
+        info->cached = true;
+        return EXIT_OK;
     }
     float *pos = malloc(px * 3 * sizeof(float)), *nrm = malloc(px * 3 * sizeof(float));
     float *se = malloc(px * sizeof(float));
@@ -149,25 +195,7 @@ int cli_reference_ao(const ob_scene *scene, const cli_view_frame *f, const char 
             if (f->depth[i] > 0.0f) sum += se[i], ++n;
         info->stderr_mean = n ? sum / (double)n : 0.0;
         /* Cache: a failure to cache is not a failure of the command. */
-        if (cdir) {
-            char parent[520];
-            snprintf(parent, sizeof parent, "%s", dir);
-            char *slash = strrchr(parent, '/');
-            if (slash) {
-                *slash = '\0';
-                make_dir(parent);
-            }
-            make_dir(dir);
-            for (size_t i = 0; i < px; ++i) {
-                pos[3 * i] = ref[i];
-                pos[3 * i + 1] = se[i];
-                pos[3 * i + 2] = 0.0f;
-            }
-            if (ob_write_pfm(path, w, h, 3, pos) != OB_OK) {
-                ob_clear_error();
-                if (verbose) fprintf(stderr, "obscura: note: could not cache the reference in %s\n", path);
-            }
-        }
+        cli_reference_cache_store(scene, f, view_key, radius, spp, ref, se, verbose);
     }
     free(pos);
     free(nrm);

@@ -29,6 +29,16 @@ void cli_view_frame_free(cli_view_frame *f);
  * --sidecar/--up when given (they change the geometry the reference sees). */
 void cli_reference_key(const cli_common *c, const char *scene_name, const char *camera_name, char *key, size_t n);
 
+/* The cache alone, for a host that traces the reference itself (the viewer, on a worker thread):
+ * load fills ref (width x height) and the mean standard error over the geometry pixels and returns
+ * true when the cache has this (view key, camera, radius, spp, size, scene geometry); store writes ref and its
+ * standard error se (a failure to cache is a note with verbose, not an error). Both are safe on any
+ * thread: no GL, no global state but the library's thread-local error. */
+bool cli_reference_cache_load(const ob_scene *scene, const cli_view_frame *f, const char *key, float radius, int spp,
+                              float *ref, double *stderr_mean);
+void cli_reference_cache_store(const ob_scene *scene, const cli_view_frame *f, const char *key, float radius,
+                               int spp, const float *ref, const float *se, bool verbose);
+
 typedef struct cli_reference_info {
     bool cached;
     double seconds;        /* ray tracing time (0 from the cache) */

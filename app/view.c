@@ -95,7 +95,9 @@ void save_screenshot(viewer *v, const char *path)
     glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px);
     for (int y = 0; y < h; ++y) memcpy(flipped + (size_t)y * row, px + (size_t)(h - 1 - y) * row, row);
     for (size_t i = 3; i < row * (size_t)h; i += 4) flipped[i] = 255; /* the window's alpha is not the image's */
-    mkdir(v->shot_dir, 0777); /* the default directory; a --shots or script path's must exist */
+    /* Only the default name's directory is made, and only now: a viewer that takes no screenshot
+     * leaves nothing behind, and a script's or --shots path's directory must exist. */
+    if (path == default_path) mkdir(v->shot_dir, 0777);
     if (ob_write_png(path, w, h, 4, flipped) != OB_OK) {
         const char *msg = "";
         ob_get_error(&msg);
@@ -212,17 +214,10 @@ int view_timings(viewer *v, bool wait, ob_pass_timing *t, double eye_ms[2], long
     return n;
 }
 
-static bool frame(viewer *v, double dt)
+/* The scene as the window shows it: mono, both eyes, or the reference view's panes. */
+static bool draw_image(viewer *v, int w, int h)
 {
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(v->window, &w, &h);
-    if (w <= 0 || h <= 0) return true; /* minimised: nothing to draw */
-    v->fb_width = w;
-    v->fb_height = h;
-    if (v->events) run_script_events(v);
-    if (!fit_renderers(v, w, h)) return false;
-    move_camera(v, dt);
-    follow_path(v);
+    if (view_reference_on(v)) return view_reference_frame(v, w, h);
     ob_camera cam = current_camera(v);
     /* Stereo: the eyes of the fly camera (parallel axes, frusta converging at its target). */
     ob_camera eyes[2] = {cam, cam};
@@ -238,6 +233,21 @@ static bool frame(viewer *v, double dt)
         else
             ok = ob_present(v->r, v->view, 0, 0, 0, w, h) == OB_OK;
     }
+    return ok;
+}
+
+static bool frame(viewer *v, double dt)
+{
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(v->window, &w, &h);
+    if (w <= 0 || h <= 0) return true; /* minimised: nothing to draw */
+    v->fb_width = w;
+    v->fb_height = h;
+    if (v->events) run_script_events(v);
+    if (!fit_renderers(v, w, h)) return false;
+    move_camera(v, dt);
+    follow_path(v);
+    bool ok = draw_image(v, w, h);
     if (!ok) {
         /* A setting the renderer refuses (e.g. the environment ambient with no map): say so and
          * show the background rather than a stale frame. */
@@ -251,10 +261,18 @@ static bool frame(viewer *v, double dt)
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, w, h);
+    /* `screenshot`: the image alone, before the panel and the messages are drawn over it. */
+    if (v->events) script_screenshot(v, false);
     build_gui(v);
-    if (v->events) script_screenshot(v);
+    /* `screenshot_ui`, P, F12 and the panel's button: the window as it shows. */
+    if (v->events) script_screenshot(v, true);
+    if (v->shot_requested) {
+        v->shot_requested = false;
+        save_screenshot(v, NULL);
+    }
     glfwSwapBuffers(v->window);
-    if (ok) {
+    /* The reference view renders the panes' renderer, not these: no timings of theirs to add. */
+    if (ok && !view_reference_on(v)) {
         ob_pass_timing timings[MAX_PASSES];
         double eye_ms[2] = {0.0, 0.0};
         long long timed = -1, rendered = -1;
@@ -278,8 +296,9 @@ static int run(viewer *v)
         double now = glfwGetTime();
         double wall_dt = now - last;
         last = now;
-        /* A script replays on a simulated clock: 1/30 s per frame, whatever the frame took. */
-        double dt = v->events ? 1.0 / 30.0 : (first ? 0.0 : wall_dt);
+        /* A script replays on a simulated clock: 1/30 s per frame, whatever the frame took; it
+         * stands still while the reference is traced, so what follows sees it finished. */
+        double dt = v->events ? (view_reference_busy(v) ? 0.0 : 1.0 / 30.0) : (first ? 0.0 : wall_dt);
         if (!first) v->last_frame_ms = 1000.0 * wall_dt;
         bool ok = frame(v, dt);
         if (first && !ok) {
@@ -289,6 +308,10 @@ static int run(viewer *v)
         }
         first = false;
         v->clock += dt;
+        /* While the reference is traced, five frames a second keep the panel and the progress
+         * line alive and leave the cores to the tracer: on llvmpipe every frame is drawn on those
+         * same cores. */
+        if (view_reference_busy(v)) glfwWaitEventsTimeout(0.2);
         ++v->fps_window_frames;
         double window = glfwGetTime() - v->fps_window_start;
         if (window >= 0.5) {
@@ -378,6 +401,7 @@ int cmd_view(int argc, char **argv)
 close_gui:
     gui_shutdown();
 close:
+    view_reference_free(v);
     ob_destroy_renderer(v->right);
     ob_destroy_renderer(v->r);
     ob_destroy_context(v->ctx);

@@ -11,6 +11,7 @@
 
 #include "cli.h"
 #include "cli_options.h"
+#include "view_gui.h"
 
 /* Fixed capacities: registry sizes, timed passes, scene presets and --cycles' upper bound. */
 enum { MAX_METHODS = 32, MAX_PASSES = 16, MAX_CAMERAS = 64, MAX_CYCLES = 100 };
@@ -65,6 +66,7 @@ typedef struct profiler {
 /* ---- the viewer ------------------------------------------------------------------------------ */
 typedef struct script_event script_event; /* view_script.c */
 typedef struct test_run test_run;         /* view_testmode.c */
+typedef struct view_reference view_reference; /* view_reference.c */
 
 typedef struct viewer {
     view_opts o;
@@ -105,6 +107,9 @@ typedef struct viewer {
     bool quit;
     int exit_code;
     const char *shot_dir;
+    bool shot_requested;    /* P, F12 or the panel's button: the window, once this frame is drawn */
+    gui_mouse script_mouse; /* a script's mouse, which ImGui sees instead of the system's */
+    view_reference *ref;    /* the reference view (G): NULL until first used */
     script_event *events;
     int event_count, next_event;
     test_run *test;
@@ -116,7 +121,9 @@ typedef struct viewer {
 void say(viewer *v, bool error, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 /* The window's title names the scene, the method and whether a debug view shows. */
 void update_title(viewer *v);
-/* The window's back buffer (image and panel) as PNG; path NULL: a new name in the shot directory. */
+/* The window's back buffer as PNG, as it is now (take it before the GUI is drawn for the image
+ * alone, after for the window as shown); path NULL: a new name in the shot directory, which is
+ * made then (never before a screenshot is taken). */
 void save_screenshot(viewer *v, const char *path);
 /* Development builds: a new renderer from the shaders on disk, the old one kept if it fails. */
 void reload_shaders(viewer *v);
@@ -157,8 +164,9 @@ void handle_scroll(viewer *v, double dy);
 int load_script(const char *path, script_event **out, int *count);
 /* Apply the events due on the clock, stopping at a screenshot (see script_screenshot). */
 void run_script_events(viewer *v);
-/* Take the screenshot due now, once the frame is on the back buffer. */
-void script_screenshot(viewer *v);
+/* Take the screenshots due now, once the frame is on the back buffer: with_ui false before the
+ * GUI is drawn (`screenshot`: the image alone), true after (`screenshot_ui`: the window). */
+void script_screenshot(viewer *v, bool with_ui);
 
 /* ---- view.c ---------------------------------------------------------------------------------- */
 /* The newest timed frame's passes (both eyes summed in stereo, each eye's sum in eye_ms) and its
@@ -182,6 +190,27 @@ void panel_profiler(viewer *v);
 /* ---- view_panel.c ---------------------------------------------------------------------------- */
 /* The overlay and the panel for this frame, drawn into the current framebuffer. */
 void build_gui(viewer *v);
+
+/* ---- view_reference.c: the reference view (G) ------------------------------------------------ */
+/* Whether the reference view is on (then view_reference_frame draws the window's image). */
+bool view_reference_on(const viewer *v);
+/* Turn the reference view on (tracing AO_R for the current camera unless it is the one shown) or
+ * off (stopping a trace under way). */
+void view_reference_toggle(viewer *v);
+/* A trace is under way on its worker thread (a script's clock waits for it). */
+bool view_reference_busy(const viewer *v);
+/* The four panes of a w x h window: the method's AO, the reference, the signed error and the
+ * current view, each half the window each way. False with the library's error in v->message. */
+bool view_reference_frame(viewer *v, int w, int h);
+/* The panes' labels (ImGui; drawn even with the panel hidden) and the panel's section. */
+void view_reference_labels(viewer *v);
+void panel_reference(viewer *v);
+/* One line for the overlay while a trace is under way or the view is on. */
+void view_reference_overlay(const viewer *v);
+/* The AO radius R the current method is graded at (its radius, else the scene's). */
+float view_ao_radius(const viewer *v);
+/* Stop any trace, free the renderer and the GL objects (the context still current). */
+void view_reference_free(viewer *v);
 
 /* ---- view_testmode.c: every camera x method, timed ------------------------------------------- */
 /* Check --methods and the screenshot directory and start the first slot; 0 or the exit code. */

@@ -146,7 +146,12 @@ void handle_key(viewer *v, int key, int action, int mods)
         v->vsync = !v->vsync;
         glfwSwapInterval(v->vsync ? 1 : 0);
     } else if (key == GLFW_KEY_P || key == GLFW_KEY_F12) {
-        save_screenshot(v, NULL);
+        v->shot_requested = true; /* taken once the next frame is drawn (the back buffer holds it) */
+    } else if (key == GLFW_KEY_G) {
+        view_reference_toggle(v);
+    } else if (key == GLFW_KEY_X) {
+        v->s.textures_off = !v->s.textures_off;
+        say(v, false, "albedo textures %s", v->s.textures_off ? "off (each material's diffuse colour)" : "on");
     } else if (key == GLFW_KEY_R) reload_shaders(v);
     else if (key == GLFW_KEY_SPACE && cli_common_moves(&v->o.common)) {
         v->path_playing = !v->path_playing;

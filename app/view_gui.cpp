@@ -1,6 +1,8 @@
 // The C interface of app/view_gui.h over Dear ImGui 1.86 (Debian's libimgui-dev) with its GLFW
 // and OpenGL 3 backends. Kept to forwarding calls: the panel is built in C (app/view.c).
 #include <cstdarg>
+#include <cfloat>
+#include <cmath>
 #include <cstdio>
 
 #include <imgui.h>
@@ -10,6 +12,9 @@
 #include "view_gui.h"
 
 static bool gui_ready = false;
+static ImGuiStyle base_style; // the style at scale 1, scaled from afresh on every change
+static float gui_current_scale = 1.0f;
+static bool gui_framed = false; // a frame has started: the backend's GL objects exist
 
 bool gui_init(GLFWwindow *window)
 {
@@ -20,6 +25,9 @@ bool gui_init(GLFWwindow *window)
     ImGui::StyleColorsDark();
     ImGui::GetStyle().WindowRounding = 2.0f;
     ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 0.88f; // the image shows through a little
+    base_style = ImGui::GetStyle();
+    gui_current_scale = 1.0f;
+    gui_framed = false;
     // true: ImGui's callbacks are installed in front of the viewer's and call them in turn.
     if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) return false;
     if (!ImGui_ImplOpenGL3_Init("#version 450 core")) {
@@ -39,10 +47,43 @@ void gui_shutdown(void)
     gui_ready = false;
 }
 
-void gui_new_frame(void)
+void gui_set_scale(float scale)
+{
+    if (!gui_ready || scale == gui_current_scale) return;
+    ImGuiIO &io = ImGui::GetIO();
+    // The font rasterised at the scaled size rather than io.FontGlobalScale: a 13 px bitmap
+    // stretched by 1.5 blurs, the same font drawn at 19.5 px does not.
+    io.Fonts->Clear();
+    ImFontConfig cfg;
+    cfg.SizePixels = 13.0f * scale;
+    io.Fonts->AddFontDefault(&cfg);
+    // Before the first frame the backend has no GL objects yet and makes the font texture itself.
+    if (gui_framed) {
+        ImGui_ImplOpenGL3_DestroyFontsTexture();
+        ImGui_ImplOpenGL3_CreateFontsTexture();
+    }
+    ImGui::GetStyle() = base_style;
+    ImGui::GetStyle().ScaleAllSizes(scale);
+    gui_current_scale = scale;
+}
+
+void gui_new_frame(gui_mouse *scripted)
 {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
+    gui_framed = true;
+    if (scripted) {
+        // After the backend polled the system's cursor and buttons, before ImGui reads them.
+        ImGuiIO &io = ImGui::GetIO();
+        io.MousePos = scripted->known ? ImVec2((float)scripted->x, (float)scripted->y) : ImVec2(-FLT_MAX, -FLT_MAX);
+        for (int b = 0; b < 2; ++b) {
+            io.MouseDown[b] = scripted->down[b] || scripted->pressed[b];
+            scripted->pressed[b] = false;
+        }
+        io.MouseWheel = scripted->wheel;
+        io.MouseWheelH = 0.0f;
+        scripted->wheel = 0.0f;
+    }
     ImGui::NewFrame();
 }
 
@@ -55,12 +96,18 @@ void gui_render(void)
 bool gui_wants_mouse(void) { return gui_ready && ImGui::GetIO().WantCaptureMouse; }
 bool gui_wants_keyboard(void) { return gui_ready && ImGui::GetIO().WantCaptureKeyboard; }
 
-bool gui_begin(const char *title, float x, float y, float w, float h)
+bool gui_begin(const char *title, float x, float y, float w, float h, bool place)
 {
-    ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(w, h), ImGuiCond_FirstUseEver);
+    const ImGuiCond when = place ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+    ImGui::SetNextWindowPos(ImVec2(x, y), when);
+    ImGui::SetNextWindowSize(ImVec2(w, h), when);
     return ImGui::Begin(title);
 }
+
+void gui_push_item_width(float w) { ImGui::PushItemWidth(w); }
+void gui_pop_item_width(void) { ImGui::PopItemWidth(); }
+
+void gui_progress(float fraction, const char *text) { ImGui::ProgressBar(fraction, ImVec2(-FLT_MIN, 0.0f), text); }
 
 bool gui_begin_overlay(const char *id, float x, float y)
 {
@@ -73,6 +120,22 @@ bool gui_begin_overlay(const char *id, float x, float y)
 }
 
 void gui_end(void) { ImGui::End(); }
+
+void gui_label(float x, float y, float r, float g, float b, const char *fmt, ...)
+{
+    char text[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    // The background list: drawn before every window, so a label never hides the panel.
+    ImDrawList *draw = ImGui::GetBackgroundDrawList();
+    const ImVec2 pad = ImGui::GetStyle().WindowPadding;
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    const ImVec2 lo(x, y - size.y - 2.0f * pad.y), hi(x + size.x + 2.0f * pad.x, y);
+    draw->AddRectFilled(lo, hi, IM_COL32(0, 0, 0, 150), ImGui::GetStyle().WindowRounding);
+    draw->AddText(ImVec2(lo.x + pad.x, lo.y + pad.y), ImGui::GetColorU32(ImVec4(r, g, b, 1.0f)), text);
+}
 
 bool gui_header(const char *label, bool default_open)
 {
@@ -118,7 +181,15 @@ void gui_text_colored(float r, float g, float b, const char *fmt, ...)
 
 void gui_tooltip(const char *text)
 {
-    if (text && *text && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+    if (!text || !*text || !ImGui::IsItemHovered()) return;
+    // Wrapped at 35 em, and never wider than the window, so a small window shows it whole.
+    const float em = ImGui::GetFontSize();
+    const float wrap = fminf(35.0f * em, ImGui::GetIO().DisplaySize.x - 2.0f * em);
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(wrap > 4.0f * em ? wrap : 4.0f * em);
+    ImGui::TextUnformatted(text);
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
 }
 
 bool gui_combo(const char *label, int *index, const char *const *items, int count)

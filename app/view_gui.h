@@ -16,7 +16,23 @@ typedef struct GLFWwindow GLFWwindow;
  * them and pass every event on. */
 bool gui_init(GLFWwindow *window);
 void gui_shutdown(void);
-void gui_new_frame(void);
+/* The mouse as a script plays it (view_script.c): in a script run it replaces the system cursor,
+ * which ImGui's GLFW backend would otherwise read every frame, so that scripted clicks reach the
+ * panel and a run does not depend on where the X cursor happens to be. */
+typedef struct gui_mouse {
+    double x, y;
+    bool known;      /* a move has placed it (before: off the window) */
+    bool down[2];    /* left, right */
+    bool pressed[2]; /* pressed since the last frame: held for that frame even if released, so a
+                        click shorter than a frame still counts (as the GLFW backend does) */
+    float wheel;     /* scroll since the last frame */
+} gui_mouse;
+/* Scale the font and the style's sizes by `scale` (1 = ImGui's 13 px font); a no-op when it is
+ * the scale already in use. Call outside gui_new_frame .. gui_render. */
+void gui_set_scale(float scale);
+/* scripted: NULL for the system's mouse; else the script's (its pressed flags and wheel are
+ * consumed). */
+void gui_new_frame(gui_mouse *scripted);
 /* Draw what was built since gui_new_frame into the current framebuffer. */
 void gui_render(void);
 /* ImGui wants the mouse (the cursor is over a window or a widget is active) or the keyboard
@@ -24,12 +40,22 @@ void gui_render(void);
 bool gui_wants_mouse(void);
 bool gui_wants_keyboard(void);
 
-/* A window at (x, y) of size (w, h) on first use; returns whether it is expanded. Always pair
- * with gui_end. */
-bool gui_begin(const char *title, float x, float y, float w, float h);
+/* A window at (x, y) of size (w, h) on first use, and again whenever `place` is true (the
+ * framebuffer changed size); returns whether it is expanded (its title bar collapses it). Always
+ * pair with gui_end. */
+bool gui_begin(const char *title, float x, float y, float w, float h, bool place);
+/* Widgets this wide until the pop (negative: the content width minus that much, which is left to
+ * the labels). */
+void gui_push_item_width(float w);
+void gui_pop_item_width(void);
+/* A bar filled to fraction (0..1) with text on it. */
+void gui_progress(float fraction, const char *text);
 /* A small undecorated overlay at (x, y) that takes no input (FPS, camera, messages). */
 bool gui_begin_overlay(const char *id, float x, float y);
 void gui_end(void);
+/* Text (lines split by \n) on a dark box whose bottom-left corner is at (x, y), behind every
+ * window (the panel and the overlay cover it), in colour r, g, b. */
+void gui_label(float x, float y, float r, float g, float b, const char *fmt, ...) __attribute__((format(printf, 6, 7)));
 bool gui_header(const char *label, bool default_open);
 /* A square plot of n points (x, y in [-1, 1], +y up) inside the unit circle, size px wide; point i
  * takes colour group i / period (period 0: one colour), so a kernel's repeats show. */

@@ -40,14 +40,19 @@ static void view_usage(FILE *f, const cli_common *c)
           "      camera, M / Shift+M next / previous method, V / Shift+V next / previous view,\n"
           "      F1 or H panel on/off, F3 vsync, P or F12 screenshot, R reload shaders (development\n"
           "      builds), T temporal accumulation on/off, Space play/pause --path/--orbit (starts\n"
-          "      playing), Esc quit\n"
+          "      playing), G reference view (the Embree AO_R of this camera beside the method's AO\n"
+          "      and the signed error, with the RMSE; cached), X albedo textures on/off, Esc quit\n"
           "\n"
           "script lines: TIME EVENT ARGS, TIME in seconds on a clock that advances 1/30 s per frame\n"
           "  key NAME down|up|press       NAME: A-Z, 0-9, TAB, ESCAPE, SPACE, LEFT_SHIFT, F1-F12\n"
           "  mouse left|right down|up     move X Y (cursor, pixels)    scroll DY\n"
+          "                               (the panel gets them first, as a person's mouse)\n"
           "  method NAME   filter NAME   set M.P=V   camera NAME|INDEX   view NAME\n"
           "  stereo mono|mirror|single\n"
-          "  resize W H   screenshot FILE.png   quit (as Esc)   close (as the window's close button)\n",
+          "  resize W H   quit (as Esc)   close (as the window's close button)\n"
+          "  screenshot FILE.png      the image alone (no panel, overlay or messages)\n"
+          "  screenshot_ui FILE.png   the window as it shows, panel and overlay included\n"
+          "  The clock stands still while the reference view traces, so what follows sees it done.\n",
           f);
 }
 

@@ -236,8 +236,6 @@ static void panel_lights(viewer *v)
     }
     gui_checkbox("AO darkens all light", &v->s.ao_all_light);
     gui_checkbox("multi-bounce AO (Jimenez 2016)", &v->s.multibounce);
-    bool textures = !v->s.textures_off;
-    if (gui_checkbox("textures", &textures)) v->s.textures_off = !textures;
 }
 
 static void panel_hdr(viewer *v)
@@ -287,23 +285,67 @@ static void panel_display(viewer *v)
                 "rendered, each with its own G-buffer and AO)");
     if (v->stereo != VIEW_MONO)
         gui_slider_float("ipd", &v->o.ipd, 0.001f * v->scene_size, 0.2f * v->scene_size, "%.4g", true);
-    if (gui_button("screenshot (P)")) {
-        save_screenshot(v, NULL);
-    }
+    if (gui_button("screenshot (P)")) v->shot_requested = true;
 #ifdef OB_VIEW_SHADER_RELOAD
     gui_same_line();
     if (gui_button("reload shaders (R)")) reload_shaders(v);
 #endif
 }
 
+/* The GUI's scale for a framebuffer: 1 (ImGui's 13 px font) up to 1280x720, growing with the
+ * smaller of the two ratios beyond (1.5 at 1920x1080), in quarter steps so that a window being
+ * dragged does not rebuild the font every frame. Never below 1: smaller text is unreadable, so
+ * on a small window the panel gets a larger share of the width instead (view_panel_rect). */
+static float gui_scale_for(int w, int h)
+{
+    float s = fminf((float)w / 1280.0f, (float)h / 720.0f);
+    s = floorf(s * 4.0f) / 4.0f;
+    return s < 1.0f ? 1.0f : s > 3.0f ? 3.0f : s;
+}
+
+/* The panel: 30 % of the width on the right, at least 270 px x scale (its labels' room), at most
+ * half the window; the full height less a margin. */
+static void panel_rect(int w, int h, float scale, float r[4])
+{
+    float margin = 10.0f * scale;
+    float pw = fmaxf(0.3f * (float)w, 270.0f * scale);
+    pw = fminf(pw, 0.5f * (float)w);
+    r[0] = fmaxf((float)w - pw - margin, 0.0f);
+    r[1] = margin;
+    r[2] = pw;
+    r[3] = fmaxf((float)h - 2.0f * margin, 40.0f);
+}
+
+/* The switches a person reaches for most, above the sections: each has a key too. */
+static void panel_switches(viewer *v, float width, float scale)
+{
+    bool on = view_reference_on(v);
+    if (gui_checkbox("reference view (G)", &on)) view_reference_toggle(v);
+    gui_tooltip("the Embree ground truth AO_R of this camera beside the method's AO and the signed error, with "
+                "the RMSE (section Reference)");
+    if (width >= 330.0f * scale) gui_same_line(); /* both on one line where they fit whole */
+    bool textures = !v->s.textures_off;
+    if (gui_checkbox("textures (X)", &textures)) v->s.textures_off = !textures;
+    gui_tooltip("albedo textures; off: every material's diffuse colour alone (--textures off)");
+}
+
 void build_gui(viewer *v)
 {
-    gui_new_frame();
+    float scale = gui_scale_for(v->fb_width, v->fb_height);
+    gui_set_scale(scale);
+    gui_new_frame(v->events ? &v->script_mouse : NULL);
+    /* The panel follows the framebuffer when it changes size (or the scale does); between
+     * changes it stays where it was dragged. */
+    static int placed_w = 0, placed_h = 0;
+    bool place = placed_w != v->fb_width || placed_h != v->fb_height;
+    placed_w = v->fb_width;
+    placed_h = v->fb_height;
+    view_reference_labels(v);
     if (v->gui_visible) {
         /* The overlay: what a screenshot should say about itself (seed 004 §2.7). */
         if (gui_begin_overlay("##overlay", 10.0f, 10.0f)) {
-            gui_text("%.1f FPS  %.1f ms   %dx%d   %s", v->fps, v->last_frame_ms, v->fb_width, v->fb_height,
-                     ob_query_renderer(v->ctx));
+            gui_text("%.1f FPS  %.1f ms   %dx%d", v->fps, v->last_frame_ms, v->fb_width, v->fb_height);
+            gui_text("%s", ob_query_renderer(v->ctx));
             gui_text("%s  %s  %s%s", ob_query_scene_name(v->scene), ob_method_at(v->s.method)->name,
                      ob_view_name(v->view), v->camera_locked ? "  [camera locked]" : "");
             gui_text("camera %.2f %.2f %.2f  fov %.1f", (double)v->eye[0], (double)v->eye[1], (double)v->eye[2],
@@ -311,6 +353,7 @@ void build_gui(viewer *v)
             if (v->stereo != VIEW_MONO)
                 gui_text("stereo %s, %dx%d per eye, ipd %.3g", view_stereo_names[v->stereo], v->eye_width,
                          v->eye_height, (double)v->o.ipd);
+            view_reference_overlay(v);
             if (v->test) test_overlay(v);
             if (v->message[0] && v->clock < v->message_until) {
                 if (v->message_error) gui_text_colored(1.0f, 0.4f, 0.4f, "%s", v->message);
@@ -318,10 +361,16 @@ void build_gui(viewer *v)
             }
         }
         gui_end();
-        float panel_w = 380.0f, x = (float)v->fb_width - panel_w - 10.0f;
-        if (gui_begin("Obscura", x > 0.0f ? x : 0.0f, 10.0f, panel_w, (float)v->fb_height - 20.0f)) {
+        float r[4];
+        panel_rect(v->fb_width, v->fb_height, scale, r);
+        if (gui_begin("Obscura", r[0], r[1], r[2], r[3], place)) {
+            /* Widgets take what the labels leave: 40 % of the panel for a label, at least 150 px x
+             * scale (21 characters, e.g. "sigma_plane (x depth)"), at most 55 %. */
+            gui_push_item_width(-fminf(fmaxf(150.0f * scale, 0.4f * r[2]), 0.55f * r[2]));
+            panel_switches(v, r[2], scale);
             /* Stereo opens with the profiler and the stereo control in view, the method closed. */
             if (gui_header("Method and filter", v->stereo == VIEW_MONO)) panel_method(v);
+            if (gui_header("Reference", view_reference_on(v))) panel_reference(v);
             if (gui_header("Kernel", false)) panel_kernel(v);
             if (gui_header("Profiler", true)) panel_profiler(v);
             if (gui_header("Camera and display", v->stereo != VIEW_MONO)) panel_display(v);
@@ -329,8 +378,9 @@ void build_gui(viewer *v)
             if (gui_header("HDR", false)) panel_hdr(v);
             if (gui_header("Keys", false))
                 gui_text("WASD move, Q/E down/up, Shift faster\nright mouse: look, scroll: zoom\n1-9, Tab: "
-                         "camera presets, L: lock camera\nM: method, V: view, F1/H: panel\nF3: vsync, P/F12: "
-                         "screenshot\nR: reload shaders, Esc: quit");
+                         "camera presets, L: lock camera\nM: method, V: view, F1/H: panel\nG: reference view, "
+                         "X: textures, T: temporal\nF3: vsync, P/F12: screenshot\nR: reload shaders, Esc: quit");
+            gui_pop_item_width();
         }
         gui_end();
     }

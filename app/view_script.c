@@ -9,12 +9,13 @@
 #include <string.h>
 
 #include "view.h"
+#include "view_gui.h"
 
 enum { MAX_EVENTS = 4096 }; /* one allocation holds a whole script */
 
 typedef enum event_kind {
     EV_KEY, EV_MOUSE, EV_MOVE, EV_SCROLL, EV_METHOD, EV_FILTER, EV_SET, EV_CAMERA, EV_VIEW, EV_SCREENSHOT, EV_QUIT, EV_CLOSE, EV_RESIZE,
-    EV_STEREO
+    EV_STEREO, EV_SCREENSHOT_UI
 } event_kind;
 
 typedef struct script_event {
@@ -109,7 +110,8 @@ int load_script(const char *path, script_event **out, int *count)
         } else {
             static const struct { const char *name; event_kind kind; } with_arg[] = {
                 {"method", EV_METHOD}, {"filter", EV_FILTER}, {"set", EV_SET}, {"camera", EV_CAMERA},
-                {"view", EV_VIEW}, {"screenshot", EV_SCREENSHOT}, {"stereo", EV_STEREO}};
+                {"view", EV_VIEW}, {"screenshot", EV_SCREENSHOT}, {"screenshot_ui", EV_SCREENSHOT_UI},
+                {"stereo", EV_STEREO}};
             ok = false;
             for (size_t k = 0; k < sizeof with_arg / sizeof with_arg[0]; ++k)
                 if (!strcmp(kind, with_arg[k].name) && fields >= 1) {
@@ -148,9 +150,25 @@ void run_script_events(viewer *v)
                 handle_key(v, e->code, e->action, mods);
             }
             break;
-        case EV_MOUSE: handle_mouse_button(v, e->code, e->action); break;
-        case EV_MOVE: handle_cursor(v, e->x, e->y); break;
-        case EV_SCROLL: handle_scroll(v, e->y); break;
+        /* The mouse goes to the panel as a person's does (ImGui sees it first, view_gui.h) and on
+         * to the camera unless the panel keeps it, as the GLFW callbacks decide (view_camera.c). */
+        case EV_MOUSE: {
+            int b = e->code == GLFW_MOUSE_BUTTON_LEFT ? 0 : 1;
+            v->script_mouse.down[b] = e->action == GLFW_PRESS;
+            if (e->action == GLFW_PRESS) v->script_mouse.pressed[b] = true;
+            if (!(gui_wants_mouse() && e->action == GLFW_PRESS)) handle_mouse_button(v, e->code, e->action);
+            break;
+        }
+        case EV_MOVE:
+            v->script_mouse.x = e->x;
+            v->script_mouse.y = e->y;
+            v->script_mouse.known = true;
+            handle_cursor(v, e->x, e->y);
+            break;
+        case EV_SCROLL:
+            v->script_mouse.wheel += (float)e->y;
+            if (!gui_wants_mouse()) handle_scroll(v, e->y);
+            break;
         case EV_METHOD: select_method_by_name(v, e->arg); break;
         case EV_FILTER:
             if (ob_settings_set_filter(&v->s, e->arg) != OB_OK) say(v, true, "unknown filter '%s'", e->arg);
@@ -197,22 +215,26 @@ void run_script_events(viewer *v)
             if (!found) say(v, true, "unknown view '%s'", e->arg);
             break;
         }
-        case EV_SCREENSHOT: break; /* taken after the frame is drawn: see script_screenshot */
+        case EV_SCREENSHOT:
+        case EV_SCREENSHOT_UI: break; /* taken once the frame is drawn: see script_screenshot */
         case EV_QUIT: v->quit = true; break;
         case EV_CLOSE: glfwSetWindowShouldClose(v->window, GLFW_TRUE); break; /* as the close button */
         case EV_RESIZE: glfwSetWindowSize(v->window, (int)e->x, (int)e->y); break; /* as dragging its edge */
         }
-        if (e->kind == EV_SCREENSHOT) {
+        if (e->kind == EV_SCREENSHOT || e->kind == EV_SCREENSHOT_UI) {
             --v->next_event; /* script_screenshot takes it once this frame is on the back buffer */
             return;
         }
     }
 }
 
-void script_screenshot(viewer *v)
+void script_screenshot(viewer *v, bool with_ui)
 {
-    if (v->next_event < v->event_count && v->events[v->next_event].kind == EV_SCREENSHOT &&
-        v->events[v->next_event].t <= v->clock + 1e-9) {
+    /* Several due at once are taken in the script's order: an image-alone one after a window one
+     * waits for the next frame (the panel is on this one's back buffer already). */
+    event_kind want = with_ui ? EV_SCREENSHOT_UI : EV_SCREENSHOT;
+    while (v->next_event < v->event_count && v->events[v->next_event].kind == want &&
+           v->events[v->next_event].t <= v->clock + 1e-9) {
         save_screenshot(v, v->events[v->next_event].arg);
         ++v->next_event;
     }

@@ -2,7 +2,10 @@
 # obscura view under Xvfb (Debian's xvfb; Mesa's llvmpipe through GLX): the viewer starts and
 # renders, its screenshot is not blank and shows the panel, a scripted run moves the camera and
 # switches methods (the frames differ accordingly), test mode writes one CSV row and one
-# screenshot per camera x method, and bad input or a closed window exits cleanly.
+# screenshot per camera x method, the reference view shows its panes (and comes from the cache
+# the second time), `screenshot` leaves the panel out where `screenshot_ui` keeps it, a scripted
+# click reaches the panel, no screenshots/ appears unless a screenshot goes there, and bad input
+# or a closed window exits cleanly.
 set -u
 OBSCURA=$1
 IMGCHECK=$2
@@ -26,11 +29,11 @@ gt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a > b) }'; }
 lt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a < b) }'; }
 
 # ---- a scripted run: panel, camera movement, method switch, debug view ------------------------
-# 640x360: the panel (380 px wide, on the right) and the image (left) both have room. The clock
+# 640x360: the panel (270 px wide, on the right) and the image (left) both have room. The clock
 # advances 1/30 s per frame, so W held for 0.5 s is 15 frames of movement on any machine.
 cat >"$dir/walk.txt" <<EOF
 # time  event
-0.0   screenshot $dir/gui.png
+0.0   screenshot_ui $dir/gui.png
 0.1   key F1 press
 0.2   screenshot $dir/start.png
 0.25  key W down
@@ -57,11 +60,11 @@ if [ -f "$dir/start.png" ]; then
     if [ "$w" = 640 ] && [ "$h" = 360 ]; then ok; else bad "screenshot is ${w}x$h, want 640x360"; fi
 fi
 if [ -f "$dir/gui.png" ] && [ -f "$dir/start.png" ]; then
-    # The panel covers the right side (x 250..630): with it the region is ImGui's dark window
+    # The panel covers the right side (x 360..630): with it the region is ImGui's dark window
     # and differs from the same region without it; the image's left edge, outside the panel and
     # the overlay, stays the same.
-    read -r _ _ panel_mean _ < <("$IMGCHECK" region 300 60 300 250 "$dir/gui.png")
-    read -r _ _ bare_mean _ < <("$IMGCHECK" region 300 60 300 250 "$dir/start.png")
+    read -r _ _ panel_mean _ < <("$IMGCHECK" region 370 60 250 250 "$dir/gui.png")
+    read -r _ _ bare_mean _ < <("$IMGCHECK" region 370 60 250 250 "$dir/start.png")
     if lt "$panel_mean" 90 && gt "$(awk -v a="$bare_mean" -v b="$panel_mean" 'BEGIN { print a - b }')" 30; then ok
     else bad "no panel: the right side's mean is $panel_mean with the GUI and $bare_mean without"; fi
     "$IMGCHECK" region 0 300 200 60 "$dir/gui.png" >"$dir/l1"
@@ -109,6 +112,80 @@ done
 read -r w h _ < <("$IMGCHECK" "$dir/resized.png" 2>/dev/null)
 read -r _ _ _ sd < <("$IMGCHECK" region 0 0 240 200 "$dir/resized.png" 2>/dev/null)
 if [ "${w:-0}" = 240 ] && [ "${h:-0}" = 200 ] && gt "${sd:-0}" 5; then ok; else bad "resize: screenshot ${w:-?}x${h:-?}, stddev ${sd:-?}"; fi
+
+# ---- the reference view, screenshots with and without the panel, a scripted click --------------
+# The reference is cached under XDG_CACHE_HOME: here, so the run neither reads nor fills the user's.
+# The click: the panel's first control, "reference view (G)", sits at 640x360 at x 360 (640 - 270
+# - 10 margin) + 8 padding + 9 (half the 19 px box), y 10 + 19 title + 8 padding + 9 = (377, 46).
+# The script's clock stands still while the reference is traced, so ref.png shows it finished.
+mkdir -p "$dir/cwd1" "$dir/cache"
+cat >"$dir/ref.txt" <<EOF
+0.0   screenshot $dir/plain.png
+0.0   screenshot_ui $dir/plain_ui.png
+0.1   move 377 46
+0.2   mouse left down
+0.3   mouse left up
+0.5   screenshot $dir/ref.png
+0.55  key W down
+0.7   key W up
+0.8   screenshot_ui $dir/stale_ui.png
+0.85  quit
+EOF
+if (cd "$dir/cwd1" && XDG_CACHE_HOME="$dir/cache" xrun 300 "$OBSCURA" view --scene corner --method ssao --size 640x360 \
+    --script "$dir/ref.txt" >/dev/null 2>"$dir/ref.err"); then ok; else bad "reference run failed: $(tail -3 "$dir/ref.err")"; fi
+# The click reached the panel's checkbox (nothing else turns the view on in this script) ...
+if grep -q "reference view on" "$dir/ref.err" && grep -q "reference: traced in" "$dir/ref.err"; then ok
+else bad "the scripted click did not turn the reference view on: $(cat "$dir/ref.err")"; fi
+# ... and moving the camera makes the reference stale.
+if grep -q "reference: stale" "$dir/ref.err"; then ok; else bad "moving the camera did not mark the reference stale"; fi
+# The panes, each 320x180: the method's AO (top left), the reference (top right) and the signed
+# error (bottom left) each show the corner's walls (not one flat colour), the two AO panes agree
+# roughly (ssao against AO_R) while the error pane (white where they agree, grey sky) is another
+# image; the window-sized screenshot holds all four.
+if [ -f "$dir/ref.png" ]; then
+    read -r w h _ < <("$IMGCHECK" "$dir/ref.png")
+    if [ "$w" = 640 ] && [ "$h" = 360 ]; then ok; else bad "reference screenshot is ${w}x$h, want 640x360"; fi
+    for pane in "method 0 0" "reference 320 0" "error 0 180" "view 320 180"; do
+        set -- $pane
+        read -r lo hi _ sd < <("$IMGCHECK" region "$2" "$3" 320 180 "$dir/ref.png")
+        if gt "$sd" 5 && gt "$hi" "$lo"; then ok; else bad "reference view: the $1 pane is flat (stddev $sd, $lo..$hi)"; fi
+    done
+    read -r _ _ m_method _ < <("$IMGCHECK" region 0 0 320 180 "$dir/ref.png")
+    read -r _ _ m_ref _ < <("$IMGCHECK" region 320 0 320 180 "$dir/ref.png")
+    read -r _ _ m_err _ < <("$IMGCHECK" region 0 180 320 180 "$dir/ref.png")
+    if lt "$(awk -v a="$m_method" -v b="$m_ref" 'BEGIN { d = a - b; print d < 0 ? -d : d }')" 10 &&
+        gt "$(awk -v a="$m_err" -v b="$m_ref" 'BEGIN { d = a - b; print d < 0 ? -d : d }')" 20; then ok
+    else bad "reference view panes: means method $m_method, reference $m_ref, error $m_err"; fi
+else
+    bad "no reference screenshot"
+fi
+# `screenshot` is the image alone, `screenshot_ui` the window: the same frame, so they differ only
+# where the panel (x 360..630) and the overlay (top left) are drawn.
+if [ -f "$dir/plain.png" ] && [ -f "$dir/plain_ui.png" ]; then
+    "$IMGCHECK" region 0 200 350 160 "$dir/plain.png" >"$dir/r1"
+    "$IMGCHECK" region 0 200 350 160 "$dir/plain_ui.png" >"$dir/r2"
+    if cmp -s "$dir/r1" "$dir/r2"; then ok; else bad "outside the panel the two screenshots differ: $(cat "$dir/r1") vs $(cat "$dir/r2")"; fi
+    read -r _ _ with_mean _ < <("$IMGCHECK" region 370 60 250 250 "$dir/plain_ui.png")
+    read -r _ _ without_mean _ < <("$IMGCHECK" region 370 60 250 250 "$dir/plain.png")
+    if gt "$(awk -v a="$without_mean" -v b="$with_mean" 'BEGIN { print a - b }')" 30; then ok
+    else bad "screenshot_ui has no panel or screenshot has one: means $with_mean (ui) vs $without_mean"; fi
+else
+    bad "no plain.png / plain_ui.png"
+fi
+# No screenshots/ where the viewer ran: every screenshot above went to a named path.
+if [ ! -e "$dir/cwd1/screenshots" ]; then ok; else bad "an empty screenshots/ appeared in the working directory"; fi
+
+# The same camera again, by the key this time: from the cache, at once. P takes a screenshot with
+# the default name, which makes screenshots/ (only then).
+mkdir -p "$dir/cwd2"
+printf '0.1 key G press\n0.2 screenshot %s\n0.25 key P press\n0.35 quit\n' "$dir/ref2.png" >"$dir/ref2.txt"
+if (cd "$dir/cwd2" && XDG_CACHE_HOME="$dir/cache" xrun 300 "$OBSCURA" view --scene corner --method ssao --size 640x360 \
+    --script "$dir/ref2.txt" >/dev/null 2>"$dir/ref2.err") && grep -q "reference: from the cache" "$dir/ref2.err"; then ok
+else bad "the second reference did not come from the cache: $(cat "$dir/ref2.err")"; fi
+if [ -f "$dir/ref.png" ] && [ -f "$dir/ref2.png" ] && ! gt "$("$IMGCHECK" diff "$dir/ref.png" "$dir/ref2.png")" 0.5; then ok
+else bad "the cached reference view differs from the traced one"; fi
+if [ "$(ls "$dir/cwd2/screenshots"/*.png 2>/dev/null | wc -l)" -eq 1 ]; then ok
+else bad "P did not write one screenshot to screenshots/: $(ls -la "$dir/cwd2" 2>&1)"; fi
 
 # ---- test mode: every camera x the given methods, tiny times ----------------------------------
 mkdir -p "$dir/t"

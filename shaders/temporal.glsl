@@ -5,13 +5,15 @@
  *      previous frame's AO grid (tp.prev_view, tp.prev_ao_proj). The scene is static, so the camera
  *      alone moves a point; a moving object would need its own per-object motion vector (its
  *      previous model matrix through the G-buffer), which this pass would add to the camera's;
- *   2. reject disocclusions per bilinear tap: a tap of the previous frame counts only when its
- *      point lies on this point's tangent plane (|dot(q - p, n)| <= plane_tolerance x depth, which
- *      stays exact on planes seen at grazing angles where a depth ratio would not) and its normal
+ *   2. reject disocclusions per bilinear tap: a tap of the previous frame counts when its point lies
+ *      within OB_TEMPORAL_NEAR_PIXELS footprints of this point in 3D (any plane: a crease's other
+ *      face), or else on this point's tangent plane (|dot(q - p, n)| <= plane_tolerance x depth,
+ *      exact on planes seen at grazing angles where a depth ratio would not) with a normal that
  *      agrees (dot >= normal_cos); no tap left -> the history's age starts again at 0;
- *   3. clamp the history to the min/max of this frame's 3x3 neighbourhood (what the history may
+ *   3. resample: Catmull-Rom when all four taps count, else bilinear over those that do;
+ *   4. clamp the history to the min/max of this frame's 4x4 neighbourhood (what the history may
  *      still hold of a surface that moved away or of a changed light);
- *   4. blend: age' = min(age + 1, N), out = mix(history, current, max(1 / age', 1 / N)), so a new
+ *   5. blend: age' = min(age + 1, N), out = mix(history, current, max(1 / age', 1 / N)), so a new
  *      history is the plain mean of its first N frames, then an exponential of length N.
  * The history carries its age: RG32F (value, age) for visibility, RGBA16F (rgb, age) for RGB (M,
  * bounce; OB_TEMPORAL_RGB). A sky pixel passes through with age 0. `motion` gets the reprojection
@@ -62,11 +64,16 @@ void main()
         imageStore(motion, pix, vec4(0.0));
         return;
     }
-    /* 3's box: this frame's geometry pixels around this one (the sky holds no AO). */
+    /* 4's box: this frame's geometry pixels (the sky holds no AO) in the 4x4 window at offsets -1..2
+     * around this one: one whole period of every method's 4x4 noise tile, so the box holds a value
+     * of every rotation or jitter the tile gives here. A 3x3 box sees 9 of the 16, and with a
+     * skewed per-pixel estimate (ssao's occlusion is a count of 16 samples: mostly near the mode,
+     * rarely far darker) its min/max misses the rare side and clamps the history's mean toward the
+     * mode, frame after frame: ssao's accumulated AO came out brighter than any single frame. */
     vec3 lo = cur, hi = cur;
 #ifdef OB_TEMPORAL_RGB
-    for (int y = -1; y <= 1; ++y)
-        for (int x = -1; x <= 1; ++x) {
+    for (int y = -1; y <= 2; ++y)
+        for (int x = -1; x <= 2; ++x) {
             ivec2 q = clamp(pix + ivec2(x, y), ivec2(0), size - 1);
             if (texelFetch(depth, q, 0).r <= 0.0) continue;
             vec3 v = VALUE(texelFetch(current, q, 0));
@@ -74,10 +81,10 @@ void main()
             hi = max(hi, v);
         }
 #else
-    /* One value: the 3x3 is four 2x2 gathers of the value and four of the depth (8 fetches, not
-     * 18), the quads around the pixel's four corners; the edge clamp repeats the border. */
+    /* One value: four 2x2 gathers of the value and four of the depth (8 fetches, not 32); the
+     * edge clamp repeats the border. */
     for (int i = 0; i < 4; ++i) {
-        vec2 corner = (vec2(pix) + vec2(i & 1, i >> 1)) * frame.ao_inv_size;
+        vec2 corner = (vec2(pix) + 2.0 * vec2(i & 1, i >> 1)) * frame.ao_inv_size;
         vec4 dq = textureGather(depth, corner, 0);
         vec4 vq = textureGather(current, corner, 0);
         for (int k = 0; k < 4; ++k)
@@ -97,13 +104,14 @@ void main()
     vec2 at = (clip.xy / clip.w * 0.5 + 0.5) * frame.ao_size;
     imageStore(motion, pix, vec4(at - (vec2(pix) + 0.5), 0.0, 0.0));
     vec3 np = mat3(tp.prev_view) * (mat3(frame.inv_view) * n);
-    /* 2: the four bilinear taps, each kept only on this point's surface. */
+    /* The four bilinear taps around it. */
     vec2 f = at - 0.5;
     ivec2 base = ivec2(floor(f));
     vec2 w = f - vec2(base);
     float weight = 0.0;
     float tolerance = tp.plane_tolerance * -pp.z;
-    /* One previous AO pixel's width at the point's previous depth (common.glsl's ob_view_position). */
+    /* OB_TEMPORAL_NEAR_PIXELS previous AO pixels' width at the point's previous depth (common.glsl's
+     * ob_view_position). */
     float footprint = OB_TEMPORAL_NEAR_PIXELS * 2.0 * -pp.z *
                       max(frame.ao_inv_size.x * tp.prev_ao_proj_info.x, frame.ao_inv_size.y * tp.prev_ao_proj_info.y);
     /* 2: which of the four bilinear taps are this point's surface (their geometry alone). */
@@ -126,13 +134,13 @@ void main()
     }
     vec4 h = vec4(0.0);
     if (weight > 0.999) {
-        /* All four taps this point's neighbourhood: resample with Catmull-Rom (Karis 2014), not
+        /* 3: all four taps this point's neighbourhood: resample with Catmull-Rom (Karis 2014), not
          * bilinear. Bilinear widens the history by a tent of variance w(1 - w) per axis at every
          * frame, ~1/6 px^2 on average, so the ~16 resamplings an exponential history of length 16
          * carries blur a one-pixel crease line away (sigma ~1.6 px); the cubic keeps it. Five
          * bilinear fetches make the 4x4 cubic less its four corners (products of two small negative
          * lobes): the middle two taps of each axis merge into one fetch at w2 / (w1 + w2) between
-         * them. The outer taps are not checked: the neighbourhood clamp (3) bounds what they bring.
+         * them. The outer taps are not checked: the neighbourhood clamp (4) bounds what they bring.
          * The age is the centre fetch's (bilinear between the four taps). */
         vec2 w0 = w * (-0.5 + w * (1.0 - 0.5 * w));
         vec2 w1 = 1.0 + w * w * (-2.5 + 1.5 * w);

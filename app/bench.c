@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli_options.h"
+#include "progress.h"
 
 enum { MAX_PASSES = 20, MAX_LIST = CLI_MAX_LIST, MAX_CAMS = 32, MAX_SIZES = 16 };
 
@@ -58,6 +59,7 @@ typedef struct bench_state {
     int count, cap;
     int done, total;      /* progress */
     double start;
+    ob_progress bar;
 } bench_state;
 
 static void bench_usage(FILE *f, const cli_common *defaults)
@@ -235,21 +237,12 @@ static bool method_has_param(int method, const char *name)
     return false;
 }
 
+/* One configuration measured (app/progress.h: a bar on a terminal, lines at 0/25/50/75/100 % in a
+ * log). */
 static void progress(bench_state *st, const char *what)
 {
     ++st->done;
-    double el = now_s() - st->start;
-    double eta = st->done > 0 ? el / st->done * (st->total - st->done) : 0.0;
-    int width = 30, fill = st->total > 0 ? st->done * width / st->total : width;
-    char bar[64];
-    for (int i = 0; i < width; ++i) bar[i] = i < fill ? '#' : '.';
-    bar[width] = '\0';
-    /* A terminal gets one bar redrawn in place; a log gets a line per configuration. */
-    bool tty = isatty(STDERR_FILENO);
-    fprintf(stderr, "%sbench [%s] %d/%d %-28.28s elapsed %dm%02ds ETA %dm%02ds%s", tty ? "\r" : "", bar, st->done,
-            st->total, what, (int)el / 60, (int)el % 60, (int)eta / 60, (int)eta % 60,
-            tty ? (st->done == st->total ? "\n" : "") : "\n");
-    fflush(stderr);
+    ob_progress_advance(&st->bar, 1, what);
 }
 
 static bench_row *new_row(bench_state *st)
@@ -829,6 +822,7 @@ int cmd_bench(int argc, char **argv)
 
     if (!o.scaling) {
         st.total = per_cam * cam_count;
+        ob_progress_begin(&st.bar, "bench", st.total);
         for (int e = 0; e < eye_count && code == EXIT_OK; ++e) {
             eyes[e] = ob_make_renderer(ctx, &(ob_renderer_desc){.width = c->width, .height = c->height});
             if (!eyes[e] || ob_renderer_set_scene(eyes[e], scene) != OB_OK) code = cli_fail_from_library();
@@ -879,6 +873,7 @@ int cmd_bench(int argc, char **argv)
         /* Scaling: the first camera, the first N and r of the lists. */
         ob_camera cam = ob_query_camera(scene, cams[0]);
         st.total = count * (o.size_count + 3);
+        ob_progress_begin(&st.bar, "bench", st.total);
         for (int z = 0; z < o.size_count && code == EXIT_OK; ++z) {
             ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.sizes[z][0], .height = o.sizes[z][1]});
             if (!r || ob_renderer_set_scene(r, scene) != OB_OK) code = cli_fail_from_library();
@@ -955,6 +950,7 @@ int cmd_bench(int argc, char **argv)
             }
         }
     }
+    ob_progress_end(&st.bar);
     const double seconds = now_s() - t0;
     if (code == EXIT_OK) printf("\n%d configurations in %.0f s on %s\n", st.count, seconds, ob_query_renderer(ctx));
 
@@ -1038,6 +1034,7 @@ int cmd_bench(int argc, char **argv)
     }
 
 cleanup:
+    ob_progress_end(&st.bar); /* a failed run's bar line ends before the shell prompt */
     free(scratch);
     free(st.rows);
     for (int e = 0; e < 2; ++e) ob_destroy_renderer(eyes[e]);

@@ -24,6 +24,7 @@
 
 #include "cli_options.h"
 #include "flicker.h"
+#include "progress.h"
 #include "reference_cache.h"
 
 enum { MAX_VIEWS = 16, FRAMES = 5 };
@@ -1118,6 +1119,7 @@ int cmd_compare(int argc, char **argv)
     ob_renderer *r = NULL;
     outputs out = {0};
     int done = 0;
+    ob_progress bar = {0};
     if (!views) {
         code = cli_fail(EXIT_RUNTIME, "out of memory");
         goto cleanup;
@@ -1141,17 +1143,28 @@ int cmd_compare(int argc, char **argv)
     if ((code = cli_common_prepare(c, r)) != EXIT_OK) goto cleanup;
 
     if ((code = make_report_dir(&out, o.report)) != EXIT_OK) goto cleanup;
+    /* One unit per view (the reference inside reports its own rays); the bar is wiped while a view
+     * runs so that the reference's bar and -v's lines start at column 0. */
+    ob_progress_begin(&bar, "compare", o.view_count);
     for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) {
+        ob_progress_break(&bar);
         code = run_view(&o, r, &inputs[v], configs, count, &out, &views[v]);
         if (code == EXIT_OK && cli_common_moves(c)) code = run_flicker(&o, r, &inputs[v], configs, count, &out, &views[v]);
         if (code == EXIT_OK) mark_pareto(&views[v]);
         if (code == EXIT_OK) code = write_chart(&o, &views[v], &out);
         if (code == EXIT_OK) ++done;
+        if (code == EXIT_OK) {
+            char what[160];
+            snprintf(what, sizeof what, "%s/%s", views[v].scene, views[v].camera);
+            ob_progress_advance(&bar, 1, what);
+        }
     }
+    ob_progress_end(&bar);
     if (code == EXIT_OK) code = write_json(&o, ctx, views, done, &out);
     if (code == EXIT_OK) code = write_html(&o, ctx, views, done, &out);
     if (code == EXIT_OK) printf("report: %s/index.html\n", o.report);
 cleanup:
+    ob_progress_end(&bar);
     outputs_finish(&out, code != EXIT_OK);
     for (int v = 0; v < MAX_VIEWS && views; ++v) {
         free(views[v].methods);

@@ -20,9 +20,10 @@ static const double VR_BUDGET_MS = 1000.0 / 90.0;
 /* What `obscura bench` with no options measures: every method once against none, on the first
  * camera preset, at N = 24 (seed 000's "medium") and r = 4 (the scene's suggested radius), 20
  * frames after 3, with the shadow maps rendered once (the scene and lights are static, as in the
- * viewer). On the 2-core llvmpipe machine an 800x600 Cornell frame costs about 0.5 s, 0.25 s of it
- * the point light's 2048^2 cube map: the seed table (2 presets x 4 N x 3 r x 10 methods x 55
- * frames, maps every frame) took hours there, this takes about 2 minutes. --full is the table. */
+ * viewer). On the 2-core llvmpipe machine an 800x600 Cornell frame took 0.5-0.9 s, 0.26 s of it
+ * the point light's 2048^2 cube map: the old default, seed 000's table (both of Cornell's
+ * identical presets x 4 N x 3 r x 10 methods x 55 frames, maps every frame), runs for hours
+ * there; the quick run is 10 configurations of 23 frames. --full is the table. */
 enum { QUICK_SAMPLES = 24, QUICK_FRAMES = 20, QUICK_WARMUP = 3, FULL_FRAMES = 50, FULL_WARMUP = 5 };
 static const float QUICK_RADIUS = 4.0f;
 static const int FULL_SAMPLES[] = {12, 24, 36, 64};
@@ -37,7 +38,7 @@ typedef struct bench_opts {
     int frames, warmup;
     bool stereo, scaling;
     bool floor;                   /* --floor: time the bare N-tap kernel beside each AO pass */
-    bool full;                    /* --full: the whole seed table (see QUICK_* below) */
+    bool full;                    /* --full: the whole seed table (see QUICK_* above) */
     bool keep_shadows;            /* render the shadow maps once, not every frame (the quick run) */
     float ipd;
     int sizes[MAX_SIZES][2], size_count;
@@ -84,7 +85,7 @@ static void bench_usage(FILE *f, const cli_common *defaults)
           "no-AO ('none') frame of the same camera, filter and AO scale: the tables of seed 000 §5.1-5.2.\n"
           "Each combination of --methods, --filters and --ao-scales is its own table.\n"
           "\n"
-          "With no options it is a quick run (about 2 minutes on 2 cores with llvmpipe): every method\n"
+          "With no options it is a quick run (under 3 minutes on 2 cores with llvmpipe): every method\n"
           "once, first camera preset, N = 24, r = 4, 20 frames after 3, shadow maps rendered once.\n"
           "  --full                seed 000's whole table: every camera preset (identical presets\n"
           "                        once), N = 12,24,36,64, r = 2,4,8, 50 frames after 5, shadow maps\n"

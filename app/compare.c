@@ -1155,7 +1155,7 @@ int cmd_compare(int argc, char **argv)
         if (code == EXIT_OK) ++done;
         if (code == EXIT_OK) {
             char what[160];
-            snprintf(what, sizeof what, "%s/%s", views[v].scene, views[v].camera);
+            snprintf(what, sizeof what, "%.90s/%.60s", views[v].scene, views[v].camera); /* a label: cut, not fail */
             ob_progress_advance(&bar, 1, what);
         }
     }

@@ -223,7 +223,7 @@ void test_step(viewer *v)
         free(px);
     }
     char what[160];
-    snprintf(what, sizeof what, "%s %s", ob_query_camera(v->scene, t->camera).name,
+    snprintf(what, sizeof what, "%.63s %.64s", ob_query_camera(v->scene, t->camera).name,
              ob_method_at(t->methods[t->method])->name);
     ob_progress_advance(&t->bar, 1, what);
     if (++t->method == t->method_count) {

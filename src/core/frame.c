@@ -311,35 +311,9 @@ static void run_temporal(ob_renderer *r, const ob_settings *s, const method_plan
     memcpy(r->prev_ao_proj, r->frame_constants.ao_proj, sizeof r->prev_ao_proj);
 }
 
-/* Compose (direct + ambient x AO [+ bounce]) and the HDR passes, from the full-size AO targets. */
-static ob_error run_compose(ob_renderer *r, const ob_settings *s, const method_plan *plan)
-{
-    const GLbitfield barrier = GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
-    const ob_compose_inputs ci = {.linear_depth = r->gbuffer.linear_depth,
-                                  .normal = r->gbuffer.normal,
-                                  .albedo = r->gbuffer.albedo,
-                                  .ao = plan->rgb ? r->ao_rgb : r->ao,
-                                  .direct = r->direct,
-                                  .environment = r->environment.texture,
-                                  .directional = plan->rgb,
-                                  .bounce = plan->bounce ? r->bounce : 0,
-                                  .bent_normal = plan->bent ? r->bent : 0,
-                                  .width = r->width,
-                                  .height = r->height,
-                                  .guard = r->guard,
-                                  .ao_all_light = s->ao_all_light,
-                                  .multibounce = s->multibounce};
-    ob_timer_begin(&r->timers, "compose");
-    ob_compose_run(&r->compose, &ci, r->radiance);
-    glMemoryBarrier(barrier);
-    ob_hdr_run(&r->hdr, r->radiance, &s->hdr, r->final, &r->timers);
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | barrier);
-    return OB_OK;
-}
-
-/* none: its run clears the raw target (what the raw-AO read-back shows) and the full-size one
- * compose reads is set to 1 beside it; two clears, no timer of their own. */
-static ob_error run_without_ao(ob_renderer *r, const ob_settings *s, const method_plan *plan, ao_targets *t)
+/* none: its run clears the raw target (what the raw-AO read-back shows) and the full-size one that
+ * compose reads is set to 1 beside it: two clears, no pass or timer of their own. */
+static ob_error run_without_ao(ob_renderer *r, const method_plan *plan, ao_targets *t)
 {
     const ob_ao_inputs in = {.frame = &r->frame_constants, .width = t->grid.width, .height = t->grid.height};
     const ob_ao_outputs out = {.visibility = t->raw};
@@ -348,10 +322,9 @@ static ob_error run_without_ao(ob_renderer *r, const ob_settings *s, const metho
     r->last_temporal = false;
     r->history_valid = false;
     ob_error err = run_method(r, plan, &in, &out);
-    if (err != OB_OK) return err;
     const float one = 1.0f;
-    glClearTexImage(r->ao, 0, GL_RED, GL_FLOAT, &one);
-    return run_compose(r, s, plan);
+    if (err == OB_OK) glClearTexImage(r->ao, 0, GL_RED, GL_FLOAT, &one);
+    return err;
 }
 
 /* Every pass of the frame, stopping at the first failure; the caller closes the timers. */
@@ -377,8 +350,13 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     glMemoryBarrier(barrier);
     /* A method that dispatches nothing (none) is the cost baseline: AO 1 straight into the
      * full-size target that compose reads, with no AO-grid pass, filter, accumulation or upsample
-     * (a filter over a constant changes nothing and would only count as overhead of no AO). */
-    if (!plan->impl->shader) return run_without_ao(r, s, plan, t);
+     * (a filter over a constant changes nothing and would only count as overhead of no AO). The
+     * jump skips only the AO chain's locals; compose reads none of them. */
+    if (!plan->impl->shader) {
+        err = run_without_ao(r, plan, t);
+        if (err != OB_OK) return err;
+        goto compose;
+    }
     if (g->k > 1) {
         ob_timer_begin(&r->timers, "downsample");
         ob_downsample_run(&r->downsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal);
@@ -545,7 +523,27 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         glClearTexImage(r->bounce, 0, GL_RGBA, GL_FLOAT, zero);
     }
 
-    return run_compose(r, s, plan);
+compose:;
+    const ob_compose_inputs ci = {.linear_depth = r->gbuffer.linear_depth,
+                                  .normal = r->gbuffer.normal,
+                                  .albedo = r->gbuffer.albedo,
+                                  .ao = plan->rgb ? r->ao_rgb : r->ao,
+                                  .direct = r->direct,
+                                  .environment = r->environment.texture,
+                                  .directional = plan->rgb,
+                                  .bounce = plan->bounce ? r->bounce : 0,
+                                  .bent_normal = plan->bent ? r->bent : 0,
+                                  .width = r->width,
+                                  .height = r->height,
+                                  .guard = r->guard,
+                                  .ao_all_light = s->ao_all_light,
+                                  .multibounce = s->multibounce};
+    ob_timer_begin(&r->timers, "compose");
+    ob_compose_run(&r->compose, &ci, r->radiance);
+    glMemoryBarrier(barrier);
+    ob_hdr_run(&r->hdr, r->radiance, &s->hdr, r->final, &r->timers);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | barrier);
+    return OB_OK;
 }
 
 static int scale_index(int divisor) { return divisor == 2 ? 1 : divisor == 4 ? 2 : 0; }

@@ -12,6 +12,7 @@
 
 #include "cli_options.h"
 #include "outputs.h"
+#include "progress.h"
 
 /* --json and --csv (outputs.h): added while parsing, committed by cmd_bench. */
 static cli_outputs bench_outs;
@@ -20,6 +21,18 @@ static int bench_json = -1, bench_csv = -1;
 enum { MAX_PASSES = 20, MAX_LIST = CLI_MAX_LIST, MAX_CAMS = 32, MAX_SIZES = 16 };
 
 static const double VR_BUDGET_MS = 1000.0 / 90.0;
+
+/* What `obscura bench` with no options measures: every method once against none, on the first
+ * camera preset, at N = 24 (seed 000's "medium") and r = 4 (the scene's suggested radius), 20
+ * frames after 3, with the shadow maps rendered once (the scene and lights are static, as in the
+ * viewer). On the 2-core llvmpipe machine an 800x600 Cornell frame took 0.5-0.9 s, 0.26 s of it
+ * the point light's 2048^2 cube map: the old default, seed 000's table (both of Cornell's
+ * identical presets x 4 N x 3 r x 10 methods x 55 frames, maps every frame), runs for hours
+ * there; the quick run is 10 configurations of 23 frames. --full is the table. */
+enum { QUICK_SAMPLES = 24, QUICK_FRAMES = 20, QUICK_WARMUP = 3, FULL_FRAMES = 50, FULL_WARMUP = 5 };
+static const float QUICK_RADIUS = 4.0f;
+static const int FULL_SAMPLES[] = {12, 24, 36, 64};
+static const float FULL_RADII[] = {2.0f, 4.0f, 8.0f};
 
 typedef struct bench_opts {
     cli_common common;            /* scene, methods, filters, AO scales, lighting, ... */
@@ -30,6 +43,8 @@ typedef struct bench_opts {
     int frames, warmup;
     bool stereo, scaling;
     bool floor;                   /* --floor: time the bare N-tap kernel beside each AO pass */
+    bool full;                    /* --full: the whole seed table (see QUICK_* above) */
+    bool keep_shadows;            /* render the shadow maps once, not every frame (the quick run) */
     float ipd;
     int sizes[MAX_SIZES][2], size_count;
 } bench_opts;
@@ -63,6 +78,7 @@ typedef struct bench_state {
     int count, cap;
     int done, total;      /* progress */
     double start;
+    ob_progress bar;
 } bench_state;
 
 static void bench_usage(FILE *f, const cli_common *defaults)
@@ -74,15 +90,20 @@ static void bench_usage(FILE *f, const cli_common *defaults)
           "no-AO ('none') frame of the same camera, filter and AO scale: the tables of seed 000 §5.1-5.2.\n"
           "Each combination of --methods, --filters and --ao-scales is its own table.\n"
           "\n"
-          "  --cameras A,B         camera presets by name or index (default: every preset)\n"
+          "With no options it is a quick run (under 3 minutes on 2 cores with llvmpipe): every method\n"
+          "once, first camera preset, N = 24, r = 4, 20 frames after 3, shadow maps rendered once.\n"
+          "  --full                seed 000's whole table: every camera preset (identical presets\n"
+          "                        once), N = 12,24,36,64, r = 2,4,8, 50 frames after 5, shadow maps\n"
+          "                        rendered every frame; the options below still override it\n"
+          "  --cameras A,B         camera presets by name or index (default: the first; --full every one)\n"
           "  --samples 12,24,36,64 the sweep's samples per pixel N (methods without a count run once);\n"
-          "                        --quality low,high names them by preset instead\n"
+          "                        --quality low,high names them by preset instead (default 24)\n"
           "  --radius 2,4,8        r as a multiple of a quarter of the scene's suggested radius:\n"
           "                        radius = r x suggested / 4, so r = 4 is the suggested radius and\n"
           "                        2/4/8 are half/1x/2x (seed 000's r are metres on one scene); N and r\n"
-          "                        are set after --set\n"
-          "  --frames N            measured frames per configuration (default 50)\n"
-          "  --warmup N            frames rendered first and not measured (default 5)\n"
+          "                        are set after --set (default 4)\n"
+          "  --frames N            measured frames per configuration (default 20; --full 50)\n"
+          "  --warmup N            frames rendered first and not measured (default 3; --full 5)\n"
           "  --stereo              two eyes (one renderer each), eye offset +-ipd/2 along the\n"
           "                        camera's right vector, parallel views with off-axis frusta that\n"
           "                        converge at the camera's target (ob_stereo_cameras);\n"
@@ -145,7 +166,8 @@ static bool parse_size_list(const char *v, int sizes[][2], int *count)
 
 static int parse(int argc, char **argv, bench_opts *o)
 {
-    *o = (bench_opts){.frames = 50, .warmup = 5, .ipd = 0.064f, .radii = {2.0f, 4.0f, 8.0f}, .radius_count = 3,
+    /* frames, warmup and radii 0: not given (resolved after the loop, by --full). */
+    *o = (bench_opts){.frames = 0, .warmup = -1, .ipd = 0.064f, .radius_count = 0,
                       .sizes = {{640, 480}, {1280, 720}, {1920, 1080}, {2560, 1440}, {3840, 2160}}, .size_count = 5};
     cli_common *c = &o->common;
     cli_common_init(c, "bench", CLI_TAKES_SCENE | CLI_TAKES_LISTS | CLI_TAKES_GPU | CLI_TAKES_PATH);
@@ -162,6 +184,7 @@ static int parse(int argc, char **argv, bench_opts *o)
         if (!strcmp(a, "--stereo")) { o->stereo = true; continue; }
         if (!strcmp(a, "--scaling")) { o->scaling = true; continue; }
         if (!strcmp(a, "--floor")) { o->floor = true; continue; }
+        if (!strcmp(a, "--full")) { o->full = true; continue; }
         int taken = cli_common_option(c, argc, argv, &i);
         if (taken == CLI_TAKEN) continue;
         if (taken != CLI_NOT_MINE) return taken;
@@ -199,10 +222,25 @@ static int parse(int argc, char **argv, bench_opts *o)
     }
     /* The sample counts are the sweep's rows (set per configuration by configure), not a list of
      * the combinations: they leave the common lists. */
-    static const int default_samples[] = {12, 24, 36, 64};
-    o->sample_count = c->sample_count > 0 ? c->sample_count : 4;
-    for (int k = 0; k < o->sample_count; ++k) o->samples[k] = c->sample_count > 0 ? c->samples[k].count : default_samples[k];
+    if (c->sample_count > 0) {
+        o->sample_count = c->sample_count;
+        for (int k = 0; k < o->sample_count; ++k) o->samples[k] = c->samples[k].count;
+    } else if (o->full) {
+        o->sample_count = (int)(sizeof FULL_SAMPLES / sizeof FULL_SAMPLES[0]);
+        memcpy(o->samples, FULL_SAMPLES, sizeof FULL_SAMPLES);
+    } else {
+        o->sample_count = 1;
+        o->samples[0] = QUICK_SAMPLES;
+    }
     c->sample_count = 0;
+    if (o->radius_count == 0) {
+        o->radius_count = o->full ? (int)(sizeof FULL_RADII / sizeof FULL_RADII[0]) : 1;
+        if (o->full) memcpy(o->radii, FULL_RADII, sizeof FULL_RADII);
+        else o->radii[0] = QUICK_RADIUS;
+    }
+    if (o->frames == 0) o->frames = o->full ? FULL_FRAMES : QUICK_FRAMES;
+    if (o->warmup < 0) o->warmup = o->full ? FULL_WARMUP : QUICK_WARMUP;
+    o->keep_shadows = !o->full;
     /* none is always measured, as the baseline of each filter and AO scale. */
     int kept = 0;
     for (int k = 0; k < c->method_count; ++k)
@@ -240,21 +278,12 @@ static bool method_has_param(int method, const char *name)
     return false;
 }
 
+/* One configuration measured (app/progress.h: a bar on a terminal, lines at 0/25/50/75/100 % in a
+ * log). */
 static void progress(bench_state *st, const char *what)
 {
     ++st->done;
-    double el = now_s() - st->start;
-    double eta = st->done > 0 ? el / st->done * (st->total - st->done) : 0.0;
-    int width = 30, fill = st->total > 0 ? st->done * width / st->total : width;
-    char bar[64];
-    for (int i = 0; i < width; ++i) bar[i] = i < fill ? '#' : '.';
-    bar[width] = '\0';
-    /* A terminal gets one bar redrawn in place; a log gets a line per configuration. */
-    bool tty = isatty(STDERR_FILENO);
-    fprintf(stderr, "%sbench [%s] %d/%d %-28.28s elapsed %dm%02ds ETA %dm%02ds%s", tty ? "\r" : "", bar, st->done,
-            st->total, what, (int)el / 60, (int)el % 60, (int)eta / 60, (int)eta % 60,
-            tty ? (st->done == st->total ? "\n" : "") : "\n");
-    fflush(stderr);
+    ob_progress_advance(&st->bar, 1, what);
 }
 
 static bench_row *new_row(bench_state *st)
@@ -391,8 +420,23 @@ static int camera_list(const bench_opts *o, const ob_scene *scene, int *idx, int
         idx[(*count)++] = 0;
         return EXIT_OK;
     }
+    if (!o->cameras && !o->full) {
+        idx[(*count)++] = 0;
+        return EXIT_OK;
+    }
     if (!o->cameras) {
-        for (int i = 0; i < ob_query_camera_count(scene) && *count < MAX_CAMS; ++i) idx[(*count)++] = i;
+        /* Every preset, once per view: Cornell's "default" is its "front", timed twice before. */
+        for (int i = 0; i < ob_query_camera_count(scene) && *count < MAX_CAMS; ++i) {
+            ob_camera ci = ob_query_camera(scene, i);
+            bool seen = false;
+            for (int j = 0; j < *count && !seen; ++j) {
+                ob_camera cj = ob_query_camera(scene, idx[j]);
+                seen = !memcmp(ci.eye, cj.eye, sizeof ci.eye) && !memcmp(ci.target, cj.target, sizeof ci.target) &&
+                       !memcmp(ci.up, cj.up, sizeof ci.up) && ci.fov_y_deg == cj.fov_y_deg &&
+                       !memcmp(ci.shift, cj.shift, sizeof ci.shift);
+            }
+            if (!seen) idx[(*count)++] = i;
+        }
         return EXIT_OK;
     }
     char buf[512];
@@ -408,6 +452,28 @@ static int camera_list(const bench_opts *o, const ob_scene *scene, int *idx, int
             }
     }
     return EXIT_OK;
+}
+
+/* After a run without --full: how to run seed 000's whole table, and what it would cost at this
+ * run's pace per frame (a lower bound: the full table also renders the shadow maps every frame). */
+static void full_table_hint(const bench_opts *o, const ob_scene *scene, const bool *has_samples, const bool *has_radius,
+                            int count, int base_count, int measured, double seconds)
+{
+    bench_opts full = *o;
+    full.full = true;
+    full.cameras = NULL;
+    int cams[MAX_CAMS], cam_count = 0;
+    if (o->common.path || camera_list(&full, scene, cams, &cam_count) != EXIT_OK) cam_count = 1;
+    const int ns = (int)(sizeof FULL_SAMPLES / sizeof FULL_SAMPLES[0]), rs = (int)(sizeof FULL_RADII / sizeof FULL_RADII[0]);
+    int per_cam = base_count;
+    for (int k = 0; k < count; ++k) per_cam += (has_samples[k] ? ns : 1) * (has_radius[k] ? rs : 1);
+    const int configs = per_cam * cam_count;
+    const double per_frame = measured > 0 ? seconds / ((double)measured * (o->frames + o->warmup)) : 0.0;
+    const double minutes = per_frame * configs * (FULL_FRAMES + FULL_WARMUP) / 60.0;
+    printf("\nThis was a quick run (%d configurations, %d frames each, shadow maps rendered once).\n"
+           "Seed 000's whole table: add --full (every camera preset, N = 12,24,36,64, r = 2,4,8, %d frames\n"
+           "after %d, shadow maps every frame): %d configurations, over %.0f min at this run's pace.\n",
+           measured, o->frames, FULL_FRAMES, FULL_WARMUP, configs, minutes);
 }
 
 /* ---- run info -------------------------------------------------------------------------------- */
@@ -805,6 +871,10 @@ static int bench_run(int argc, char **argv)
         has_radius[k] = method_has_param(configs[k].method, "radius");
     }
     if (code != EXIT_OK) goto cleanup;
+    /* The quick run renders the shadow maps once (see QUICK_*); --full every frame, as the
+     * recorded tables do. */
+    for (int b = 0; b < base_count; ++b) bases[b].settings.shadow.reuse = o.keep_shadows;
+    for (int k = 0; k < count; ++k) configs[k].settings.shadow.reuse = o.keep_shadows;
 
     scene = cli_common_load_scene(c, NULL);
     if (!scene) {
@@ -843,6 +913,7 @@ static int bench_run(int argc, char **argv)
 
     if (!o.scaling) {
         st.total = per_cam * cam_count;
+        ob_progress_begin(&st.bar, "bench", st.total);
         for (int e = 0; e < eye_count && code == EXIT_OK; ++e) {
             eyes[e] = ob_make_renderer(ctx, &(ob_renderer_desc){.width = c->width, .height = c->height});
             if (!eyes[e] || ob_renderer_set_scene(eyes[e], scene) != OB_OK) code = cli_fail_from_library();
@@ -897,6 +968,7 @@ static int bench_run(int argc, char **argv)
         /* Scaling: the first camera, the first N and r of the lists. */
         ob_camera cam = ob_query_camera(scene, cams[0]);
         st.total = count * (o.size_count + 3);
+        ob_progress_begin(&st.bar, "bench", st.total);
         for (int z = 0; z < o.size_count && code == EXIT_OK; ++z) {
             ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = o.sizes[z][0], .height = o.sizes[z][1]});
             if (!r || ob_renderer_set_scene(r, scene) != OB_OK) code = cli_fail_from_library();
@@ -973,6 +1045,9 @@ static int bench_run(int argc, char **argv)
             }
         }
     }
+    ob_progress_end(&st.bar);
+    if (code == EXIT_OK && !o.full && !o.scaling) full_table_hint(&o, scene, has_samples, has_radius, count, base_count,
+                                                                  st.count, now_s() - t0);
     const double seconds = now_s() - t0;
     if (code == EXIT_OK) printf("\n%d configurations in %.0f s on %s\n", st.count, seconds, ob_query_renderer(ctx));
 
@@ -1053,6 +1128,7 @@ static int bench_run(int argc, char **argv)
     }
 
 cleanup:
+    ob_progress_end(&st.bar); /* a failed run's bar line ends before the shell prompt */
     free(scratch);
     free(st.rows);
     for (int e = 0; e < 2; ++e) ob_destroy_renderer(eyes[e]);

@@ -136,6 +136,11 @@ static int parse_ao_scales(cli_common *c, bool list, const char *opt, const char
     return CLI_TAKEN;
 }
 
+/* --samples' bound: the most any method takes (gtao, vbao and vbgi: 2 x 32 slices x 32 steps).
+ * Each method's own maximum (256 for the per-sample methods, 1024 for hbao) is checked by
+ * ob_settings_set_samples, whose error names it. */
+enum { CLI_MAX_SAMPLES = 2048 };
+
 /* --quality and --samples: sample counts, each list free of repeats. */
 static int parse_samples(cli_common *c, bool quality, const char *opt, const char *v)
 {
@@ -158,10 +163,10 @@ static int parse_samples(cli_common *c, bool quality, const char *opt, const cha
         } else {
             char *end = NULL;
             long x = strtol(items[k], &end, 10);
-            if (end == items[k] || *end || x < 1 || x > 4096) {
+            if (end == items[k] || *end || x < 1 || x > CLI_MAX_SAMPLES) {
                 if (takes(c, CLI_TAKES_LISTS))
-                    return cli_fail(EXIT_USAGE, "%s: expected a comma list of 1..4096, got '%s'", opt, v);
-                return cli_fail(EXIT_USAGE, "%s: expected 1..4096, got '%s'", opt, v);
+                    return cli_fail(EXIT_USAGE, "%s: expected a comma list of 1..%d, got '%s'", opt, CLI_MAX_SAMPLES, v);
+                return cli_fail(EXIT_USAGE, "%s: expected 1..%d, got '%s'", opt, CLI_MAX_SAMPLES, v);
             }
             s.count = (int)x;
         }
@@ -482,7 +487,8 @@ void cli_common_usage(FILE *f, const cli_common *c)
               "                        upsampling (default 1); --ao-scale S for one\n"
               "  --quality Q,Q         low|medium|high|ultra = 12/24/36/64 samples per pixel (seed 000);\n"
               "                        HBAO as directions x steps, gtao as 2 x slices x steps\n"
-              "  --samples N,N         samples per pixel (instead of --quality)\n"
+              "  --samples N,N         samples per pixel (instead of --quality), 1..2048; each method stops\n"
+              "                        at its own maximum: 256 (ssao, crytek, alchemy, ssdo*), 1024 (hbao)\n"
               "                        Each combination of these lists is one row, labelled with the\n"
               "                        values that vary (e.g. 'hbao · filter none · ao 0.5'); a method\n"
               "                        that takes no sample count runs once\n",
@@ -496,7 +502,8 @@ void cli_common_usage(FILE *f, const cli_common *c)
               "                        upsampling (default 1)\n"
               "  --quality Q           low|medium|high|ultra = 12/24/36/64 samples per pixel (seed 000);\n"
               "                        HBAO as directions x steps, gtao as 2 x slices x steps\n"
-              "  --samples N           samples per pixel, overriding --quality\n",
+              "  --samples N           samples per pixel, overriding --quality, 1..2048; each method stops\n"
+              "                        at its own maximum: 256 (ssao, crytek, alchemy, ssdo*), 1024 (hbao)\n",
               f);
     }
     fputs("  --set M.P=V           set a parameter of method or filter M, validated (repeatable; after\n"
@@ -538,7 +545,8 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "                        (the moments' precision, default 32; seed 003 Fig. 6.5)\n"
           "  --hdr on|off          tone mapping (Reinhard, auto key, bloom) or a plain clamp (default on)\n"
           "  --exposure E          linear scale before tone mapping (default 1)\n"
-          "  --key A               Reinhard key (0.045..0.9); default automatic from the log-average\n"
+          "  --key A               Reinhard key, 0.001..10 (0.18 = middle grey); default automatic from\n"
+          "                        the log-average (0.03 for black, toward 1.03 for bright)\n"
           "  --white L             L_white: the scaled luminance mapped to white (0 = eq. 2.3)\n"
           "  --bloom S             bloom strength (0 = off); --bloom-threshold T\n",
           f);

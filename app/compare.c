@@ -25,6 +25,7 @@
 #include "cli_options.h"
 #include "flicker.h"
 #include "outputs.h"
+#include "progress.h"
 #include "reference_cache.h"
 
 enum { MAX_VIEWS = 16, FRAMES = 5 };
@@ -1159,6 +1160,7 @@ static int compare_checked(const compare_opts *op)
     ob_renderer *r = NULL;
     outputs out = {0};
     int done = 0;
+    ob_progress bar = {0};
     if (!views) {
         code = cli_fail(EXIT_RUNTIME, "out of memory");
         goto cleanup;
@@ -1186,16 +1188,27 @@ static int compare_checked(const compare_opts *op)
         code = EXIT_OUTPUT;
         goto cleanup;
     }
+    /* One unit per view (the reference inside reports its own rays); the bar is wiped while a view
+     * runs so that the reference's bar and -v's lines start at column 0. */
+    ob_progress_begin(&bar, "compare", o.view_count);
     for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) {
+        ob_progress_break(&bar);
         code = run_view(&o, r, &inputs[v], configs, count, &out, &views[v]);
         if (code == EXIT_OK && cli_common_moves(c)) code = run_flicker(&o, r, &inputs[v], configs, count, &out, &views[v]);
         if (code == EXIT_OK) mark_pareto(&views[v]);
         if (code == EXIT_OK) code = write_chart(&o, &views[v], &out);
         if (code == EXIT_OK) ++done;
+        if (code == EXIT_OK) {
+            char what[160];
+            snprintf(what, sizeof what, "%.90s/%.60s", views[v].scene, views[v].camera); /* a label: cut, not fail */
+            ob_progress_advance(&bar, 1, what);
+        }
     }
+    ob_progress_end(&bar);
     if (code == EXIT_OK) code = write_json(&o, ctx, views, done, &out);
     if (code == EXIT_OK) code = write_html(&o, ctx, views, done, &out);
 cleanup:
+    ob_progress_end(&bar);
     outputs_finish(&out, code != EXIT_OK);
     for (int v = 0; v < MAX_VIEWS && views; ++v) {
         free(views[v].methods);

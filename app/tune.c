@@ -19,6 +19,7 @@
 
 #include "cli_options.h"
 #include "outputs.h"
+#include "progress.h"
 #include "reference_cache.h"
 #include "settings_file.h"
 
@@ -249,6 +250,7 @@ typedef struct tune_run {
     float *ao;
     int evaluations, total;
     double start;
+    ob_progress bar;
 } tune_run;
 
 static double now_s(void)
@@ -258,21 +260,14 @@ static double now_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static void progress(tune_run *t, const char *what, double best)
+/* One evaluation done (app/progress.h). The total counts every candidate a pass may try, and a pass
+ * whose range has shrunk tries fewer: the last evaluation completes the job. */
+static void progress(tune_run *t, const char *what, double best, bool last)
 {
     ++t->evaluations;
-    double el = now_s() - t->start;
-    double eta = el / t->evaluations * (t->total - t->evaluations);
-    int width = 30, fill = t->total > 0 ? t->evaluations * width / t->total : width;
-    if (fill > width) fill = width;
-    char bar[64];
-    for (int i = 0; i < width; ++i) bar[i] = i < fill ? '#' : '.';
-    bar[width] = '\0';
-    bool tty = isatty(STDERR_FILENO);
-    fprintf(stderr, "%stune [%s] %d/%d %-30.30s best RMSE %.4f elapsed %dm%02ds ETA %dm%02ds%s", tty ? "\r" : "", bar,
-            t->evaluations, t->total, what, sqrt(best), (int)el / 60, (int)el % 60, (int)eta / 60, (int)eta % 60,
-            tty ? "\x1b[K" : "\n");
-    fflush(stderr);
+    char text[200];
+    snprintf(text, sizeof text, "%s, best RMSE %.4f", what, sqrt(best));
+    ob_progress_advance(&t->bar, last ? t->bar.total - t->bar.done : 1, text);
 }
 
 /* Mean MSE over a set of views, and each view's RMSE into rmse (may be NULL). */
@@ -453,12 +448,13 @@ static int tune_checked(const tune_opts *op)
     for (int pass = 0; pass < o.passes; ++pass)
         for (int k = 0; k < pcount; ++k) t.total += ps[k].type == OB_PARAM_ENUM ? (int)(ps[k].hi - ps[k].lo) + 1 : o.steps + 1;
     t.start = now_s();
+    ob_progress_begin(&t.bar, "tune", t.total);
     double best_mse = 0.0, val_mse = 0.0;
     if ((code = mean_mse(&t, train, o.train_count, ps, pcount, &best_mse, train_before)) != EXIT_OK) goto done;
-    progress(&t, "defaults, training views", best_mse);
+    progress(&t, "defaults, training views", best_mse, false);
     if (o.validate_count && (code = mean_mse(&t, validate, o.validate_count, ps, pcount, &val_mse, val_before)) != EXIT_OK)
         goto done;
-    progress(&t, "defaults, validation views", best_mse);
+    progress(&t, "defaults, validation views", best_mse, false);
     memcpy(best, ps, sizeof best);
     for (int pass = 0; pass < o.passes && code == EXIT_OK; ++pass) {
         for (int k = 0; k < pcount && code == EXIT_OK; ++k) {
@@ -479,7 +475,7 @@ static int tune_checked(const tune_opts *op)
                 char what[160], v[32];
                 value_text(&best[k], cand[j], v, sizeof v);
                 snprintf(what, sizeof what, "pass %d %.60s=%.30s", pass + 1, best[k].name, v);
-                progress(&t, what, best_mse);
+                progress(&t, what, best_mse, false);
             }
             best[k].value = chosen;
             if (best[k].type != OB_PARAM_ENUM) {
@@ -497,7 +493,8 @@ static int tune_checked(const tune_opts *op)
     double val_after_mse = 0.0;
     if (o.validate_count && (code = mean_mse(&t, validate, o.validate_count, best, pcount, &val_after_mse, val_after)) != EXIT_OK)
         goto done;
-    progress(&t, "tuned, validation views", best_mse);
+    progress(&t, "tuned, validation views", best_mse, true);
+    ob_progress_end(&t.bar);
     double seconds = now_s() - t.start;
 
     /* The table on stdout. */
@@ -568,6 +565,7 @@ static int tune_checked(const tune_opts *op)
     /* Committed by cmd_tune, which prints "wrote" only then. */
     code = cli_outputs_write_text(o.outs, o.out_index, json);
 done:
+    ob_progress_end(&t.bar);
     free(json);
     free(t.ao);
     free(rmse);

@@ -1,5 +1,6 @@
 /* obscura view --test-mode (seed 004 §3.5): every camera preset x every method, each slot timed
- * for --seconds and repeated --cycles times, then a summary table on stdout, a CSV log (one row
+ * for --seconds and repeated --cycles times: a table on stdout (a camera's row as soon as its last
+ * cycle is measured), progress on stderr (core/progress.h), then a CSV log (one row
  * per camera x method, ms per pass in frame order) and one screenshot per slot. */
 #include <ctype.h>
 #include <math.h>
@@ -8,6 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "progress.h"
 #include "view.h"
 #include "view_gui.h"
 
@@ -38,6 +40,7 @@ typedef struct test_run {
     test_cell *cells;               /* camera_count x method_count */
     char dir[4096];                 /* screenshots go here */
     bool done;
+    ob_progress bar;                /* one unit per slot, on stderr */
 } test_run;
 
 static int pass_column(const char *name)
@@ -69,6 +72,7 @@ static void test_apply_slot(viewer *v)
 int test_finish(viewer *v)
 {
     test_run *t = v->test;
+    ob_progress_end(&t->bar);
     if (!t->done) return cli_fail(EXIT_RUNTIME, "test mode stopped before the end: no log written");
     size_t cap = 4096 + (size_t)t->camera_count * (size_t)t->method_count * 512;
     char *csv = malloc(cap);
@@ -79,18 +83,9 @@ int test_finish(viewer *v)
     /* Stereo (seed 000 §5.2): the pass columns above are both eyes summed; these are each eye's
      * GPU sum, both, and whether both fit the 11.1 ms of 90 Hz (empty in mono). */
     n += (size_t)snprintf(csv + n, cap - n, ",stereo,left_gpu_ms,right_gpu_ms,stereo_gpu_ms,within_90hz\n");
-    printf("obscura view --test-mode: %s, %dx%d, %d cycle(s) of %.2f s per camera x method, %s\n",
-           ob_query_scene_name(v->scene), v->fb_width, v->fb_height, v->o.cycles, (double)v->o.seconds,
-           ob_query_renderer(v->ctx));
-    if (v->stereo != VIEW_MONO)
-        printf("stereo %s, %dx%d per eye: FPS (both eyes' GPU ms, * = over the 11.1 ms of 90 Hz)\n",
-               view_stereo_names[v->stereo], v->eye_width, v->eye_height);
-    printf("%-16s", "FPS");
-    for (int m = 0; m < t->method_count; ++m) printf(" %12s", ob_method_at(t->methods[m])->name);
-    printf("\n");
+    /* The table's rows went to stdout as each camera finished (print_row). */
     for (int c = 0; c < t->camera_count; ++c) {
         ob_camera cam = ob_query_camera(v->scene, c);
-        printf("%-16.16s", cam.name);
         for (int m = 0; m < t->method_count; ++m) {
             const test_cell *cell = &t->cells[(size_t)c * (size_t)t->method_count + (size_t)m];
             double lo = INFINITY, hi = 0.0;
@@ -99,7 +94,6 @@ int test_finish(viewer *v)
                 hi = cell->fps[k] > hi ? cell->fps[k] : hi;
             }
             double fps = cell->seconds > 0.0 ? (double)cell->frames / cell->seconds : 0.0;
-            printf(" %12.2f", fps);
             n += (size_t)snprintf(csv + n, cap - n, "%s,%s,%s,%d,%d,%d,%ld,%.4f,%.3f,%.3f,%.3f,%.3f",
                                   ob_query_scene_name(v->scene), cam.name, ob_method_at(t->methods[m])->name,
                                   v->fb_width, v->fb_height, v->o.cycles, cell->frames, cell->seconds, fps, lo, hi,
@@ -114,18 +108,50 @@ int test_finish(viewer *v)
                 double l = cell->eye_ms[0] / (double)cell->eye_frames, r = cell->eye_ms[1] / (double)cell->eye_frames;
                 n += (size_t)snprintf(csv + n, cap - n, ",%s,%.4f,%.4f,%.4f,%d\n", view_stereo_names[v->stereo], l, r,
                                       l + r, l + r <= VIEW_VR_BUDGET_MS);
-                printf(" (%.2f ms%s)", l + r, l + r <= VIEW_VR_BUDGET_MS ? "" : "*");
             } else {
                 n += (size_t)snprintf(csv + n, cap - n, ",mono,,,,\n");
             }
         }
-        printf("\n");
     }
     int code = EXIT_OK;
     if (ob_write_text(v->o.log, csv) != OB_OK) code = cli_fail_library_as(EXIT_OUTPUT);
     else printf("log: %s; screenshots: %s/\n", v->o.log, t->dir);
     free(csv);
     return code;
+}
+
+/* The table's header on stdout, before the first slot: the rows follow as each camera finishes. */
+static void print_header(const viewer *v)
+{
+    const test_run *t = v->test;
+    printf("obscura view --test-mode: %s, %dx%d, %d cycle(s) of %.2f s per camera x method, %s\n",
+           ob_query_scene_name(v->scene), v->fb_width, v->fb_height, v->o.cycles, (double)v->o.seconds,
+           ob_query_renderer(v->ctx));
+    if (v->stereo != VIEW_MONO)
+        printf("stereo %s, %dx%d per eye: FPS (both eyes' GPU ms, * = over the 11.1 ms of 90 Hz)\n",
+               view_stereo_names[v->stereo], v->eye_width, v->eye_height);
+    printf("%-16s", "FPS");
+    for (int m = 0; m < t->method_count; ++m) printf(" %12s", ob_method_at(t->methods[m])->name);
+    printf("\n");
+    fflush(stdout);
+}
+
+/* Camera c's row, once its last cycle is measured (average FPS over the cycles). */
+static void print_row(viewer *v, int c)
+{
+    test_run *t = v->test;
+    ob_progress_break(&t->bar);
+    printf("%-16.16s", ob_query_camera(v->scene, c).name);
+    for (int m = 0; m < t->method_count; ++m) {
+        const test_cell *cell = &t->cells[(size_t)c * (size_t)t->method_count + (size_t)m];
+        printf(" %12.2f", cell->seconds > 0.0 ? (double)cell->frames / cell->seconds : 0.0);
+        if (cell->eye_frames > 0) {
+            double l = cell->eye_ms[0] / (double)cell->eye_frames, r = cell->eye_ms[1] / (double)cell->eye_frames;
+            printf(" (%.2f ms%s)", l + r, l + r <= VIEW_VR_BUDGET_MS ? "" : "*");
+        }
+    }
+    printf("\n");
+    fflush(stdout);
 }
 
 /* One timed frame's passes into the slot's cell, once per frame and only a frame of this slot: the
@@ -196,8 +222,13 @@ void test_step(viewer *v)
         }
         free(px);
     }
+    char what[160];
+    snprintf(what, sizeof what, "%.63s %.64s", ob_query_camera(v->scene, t->camera).name,
+             ob_method_at(t->methods[t->method])->name);
+    ob_progress_advance(&t->bar, 1, what);
     if (++t->method == t->method_count) {
         t->method = 0;
+        if (t->cycle == v->o.cycles - 1) print_row(v, t->camera);
         if (++t->camera == t->camera_count) {
             t->camera = 0;
             if (++t->cycle == v->o.cycles) {
@@ -245,6 +276,8 @@ int test_init(viewer *v)
     if (stat(t->dir, &st) != 0 || !S_ISDIR(st.st_mode))
         return cli_fail(EXIT_OUTPUT, "cannot write screenshots to %s: not a directory", t->dir);
     v->vsync = false; /* frame rates, not the display's refresh */
+    print_header(v);
+    ob_progress_begin(&t->bar, "test mode", (long long)v->o.cycles * t->camera_count * t->method_count);
     test_apply_slot(v);
     return 0;
 }
@@ -258,6 +291,7 @@ void test_overlay(const viewer *v)
 
 void test_free(test_run *t)
 {
+    if (t) ob_progress_end(&t->bar);
     if (t) free(t->cells);
     free(t);
 }

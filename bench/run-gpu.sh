@@ -29,7 +29,7 @@ ldd "$B" | grep "not found" && { echo "run-gpu: missing libraries (run scripts/p
 "$B" render --scene corner --size 64x48 --gpu hw -v --out "$out/smoke.png" || exit 1
 run() { local name=$1; shift; "$B" bench --gpu hw -v "$@" --json "$out/$name.json" --csv "$out/$name.csv" >"$out/$name.txt" 2>"$out/$name.err"; echo "$name: exit $?"; }
 case $what in quick | all) run quick --scene cornell --cameras front --frames 10 --warmup 2 ;; esac
-case $what in sweep | all) run sweep --scene cornell --size 800x600 --frames 50 --warmup 5 ;; esac
-case $what in stereo | all) run stereo --scene cornell --stereo --frames 50 --warmup 5 ;; esac
+case $what in sweep | all) run sweep --full --scene cornell --size 800x600 --frames 50 --warmup 5 ;; esac
+case $what in stereo | all) run stereo --full --scene cornell --stereo --frames 50 --warmup 5 ;; esac
 case $what in scaling | all) run scaling --scene cornell --cameras front --scaling --frames 50 --warmup 5 ;; esac
 exit 0

@@ -311,6 +311,22 @@ static void run_temporal(ob_renderer *r, const ob_settings *s, const method_plan
     memcpy(r->prev_ao_proj, r->frame_constants.ao_proj, sizeof r->prev_ao_proj);
 }
 
+/* none: its run clears the raw target (what the raw-AO read-back shows) and the full-size one that
+ * compose reads is set to 1 beside it: two clears, no pass or timer of their own. */
+static ob_error run_without_ao(ob_renderer *r, const method_plan *plan, ao_targets *t)
+{
+    const ob_ao_inputs in = {.frame = &r->frame_constants, .width = t->grid.width, .height = t->grid.height};
+    const ob_ao_outputs out = {.visibility = t->raw};
+    r->last_rgb = r->last_bounce = r->last_bent = false;
+    r->last_second_layer = r->last_extra_view = false;
+    r->last_temporal = false;
+    r->history_valid = false;
+    ob_error err = run_method(r, plan, &in, &out);
+    const float one = 1.0f;
+    if (err == OB_OK) glClearTexImage(r->ao, 0, GL_RED, GL_FLOAT, &one);
+    return err;
+}
+
 /* Every pass of the frame, stopping at the first failure; the caller closes the timers. */
 static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_plan *plan, ao_targets *t,
                            const ob_light *lights, int light_count)
@@ -332,6 +348,15 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     ob_lighting_run(&r->lighting, r->inner_width, r->inner_height, r->gbuffer.linear_depth, r->gbuffer.normal, r->gbuffer.albedo,
                     r->direct);
     glMemoryBarrier(barrier);
+    /* A method that dispatches nothing (none) is the cost baseline: AO 1 straight into the
+     * full-size target that compose reads, with no AO-grid pass, filter, accumulation or upsample
+     * (a filter over a constant changes nothing and would only count as overhead of no AO). The
+     * jump skips only the AO chain's locals; compose reads none of them. */
+    if (!plan->impl->shader) {
+        err = run_without_ao(r, plan, t);
+        if (err != OB_OK) return err;
+        goto compose;
+    }
     if (g->k > 1) {
         ob_timer_begin(&r->timers, "downsample");
         ob_downsample_run(&r->downsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal);
@@ -498,6 +523,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         glClearTexImage(r->bounce, 0, GL_RGBA, GL_FLOAT, zero);
     }
 
+compose:;
     const ob_compose_inputs ci = {.linear_depth = r->gbuffer.linear_depth,
                                   .normal = r->gbuffer.normal,
                                   .albedo = r->gbuffer.albedo,

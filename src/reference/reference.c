@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "core/progress.h"
 #include "sampling/sampling.h"
 #include "scene/scene.h"
 
@@ -262,29 +263,10 @@ struct ref_job {
     float *ao_out, *stderr_out, *rgb_out;
     ref_point_fn fn;
     bool progress;
+    const char *what;     /* the progress label: "reference AO" or "reference bounce" */
+    ob_progress bar;
     atomic_size_t next_chunk;
-    atomic_size_t done_points;
-    atomic_int shown_percent;
 };
-
-static void show_progress(ref_job *job)
-{
-    size_t done = atomic_load(&job->done_points);
-    int pct = job->count ? (int)((done * 100u) / job->count) : 100;
-    int shown = atomic_load(&job->shown_percent);
-    /* Only the thread that moves the shown percentage prints, so the bar is drawn once per step. */
-    while (pct > shown) {
-        if (atomic_compare_exchange_weak(&job->shown_percent, &shown, pct)) {
-            char bar[41];
-            int fill = pct * 40 / 100;
-            for (int i = 0; i < 40; ++i) bar[i] = i < fill ? '#' : '.';
-            bar[40] = '\0';
-            fprintf(stderr, "\rreference [%s] %3d%%%s", bar, pct, pct >= 100 ? "\n" : "");
-            fflush(stderr);
-            break;
-        }
-    }
-}
 
 static void *worker(void *arg)
 {
@@ -299,8 +281,7 @@ static void *worker(void *arg)
             ob_reference_point_rng(&rng, job->seed, i);
             job->fn(job, i, &rng);
         }
-        atomic_fetch_add(&job->done_points, end - c * REF_CHUNK);
-        if (job->progress) show_progress(job);
+        if (job->progress) ob_progress_advance(&job->bar, (long long)(end - c * REF_CHUNK), NULL);
     }
     return NULL;
 }
@@ -314,11 +295,13 @@ static ob_error run_job(ref_job *job, int threads)
     size_t chunks = (job->count + REF_CHUNK - 1) / REF_CHUNK;
     if ((size_t)threads > chunks) threads = chunks > 0 ? (int)chunks : 1;
     atomic_init(&job->next_chunk, 0);
-    atomic_init(&job->done_points, 0);
-    atomic_init(&job->shown_percent, -1);
-    if (job->progress) show_progress(job);
     pthread_t *tids = calloc((size_t)threads, sizeof *tids);
     if (!tids) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "reference: no memory for %d threads", threads);
+    if (job->progress) {
+        char label[96];
+        snprintf(label, sizeof label, "%s (%zu points x %d rays)", job->what, job->count, job->spp);
+        ob_progress_begin(&job->bar, label, (long long)job->count);
+    }
     int started = 0;
     /* The calling thread works too; extra threads that fail to start only cost speed. */
     for (int t = 1; t < threads; ++t) {
@@ -327,6 +310,7 @@ static ob_error run_job(ref_job *job, int threads)
     }
     worker(job);
     for (int t = 0; t < started; ++t) pthread_join(tids[t], NULL);
+    if (job->progress) ob_progress_end(&job->bar);
     free(tids);
     return OB_OK;
 }
@@ -414,6 +398,7 @@ ob_error ob_reference_ao(const ob_scene *scene, const float *positions, const fl
         .stderr_out = stderr_out,
         .fn = ao_point,
         .progress = desc->progress,
+        .what = "reference AO",
     };
     err = run_job(&job, desc->threads);
     bvh_destroy(&bvh);
@@ -538,6 +523,7 @@ ob_error ob_reference_bounce(const ob_scene *scene, const ob_light *lights, int 
         .rgb_out = rgb_out,
         .fn = bounce_point,
         .progress = desc->progress,
+        .what = "reference bounce",
     };
     err = run_job(&job, desc->threads);
     bvh_destroy(&bvh);

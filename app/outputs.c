@@ -247,10 +247,9 @@ int cli_outputs_add(cli_outputs *s, const char *option, const char *path, unsign
 
 /* The output's temporary file, made (empty) on first use: the library's writers replace it
  * atomically. NULL with the line printed. */
-static const char *tmp_file(cli_outputs *s, int index)
+/* "PATH.tmp-XXXXXX", the template mkstemp/mkdtemp fill in; NULL with the line printed. */
+static char *tmp_template(const cli_output *o)
 {
-    cli_output *o = &s->items[index];
-    if (o->tmp) return o->tmp;
     size_t n = strlen(o->path) + 16;
     char *t = malloc(n);
     if (!t) {
@@ -258,6 +257,15 @@ static const char *tmp_file(cli_outputs *s, int index)
         return NULL;
     }
     snprintf(t, n, "%s.tmp-XXXXXX", o->path);
+    return t;
+}
+
+static const char *tmp_file(cli_outputs *s, int index)
+{
+    cli_output *o = &s->items[index];
+    if (o->tmp) return o->tmp;
+    char *t = tmp_template(o);
+    if (!t) return NULL;
     int fd = mkstemp(t);
     if (fd < 0) {
         cli_fail(EXIT_OUTPUT, "%s %s: cannot write it: %s", o->option, o->path, strerror(errno));
@@ -339,13 +347,8 @@ const char *cli_outputs_dir(cli_outputs *s, int index)
 {
     cli_output *o = &s->items[index];
     if (o->tmp) return o->tmp;
-    size_t n = strlen(o->path) + 16;
-    char *t = malloc(n);
-    if (!t) {
-        cli_fail(EXIT_RUNTIME, "out of memory");
-        return NULL;
-    }
-    snprintf(t, n, "%s.tmp-XXXXXX", o->path);
+    char *t = tmp_template(o);
+    if (!t) return NULL;
     if (!mkdtemp(t)) {
         cli_fail(EXIT_OUTPUT, "%s %s: cannot create a directory beside it: %s", o->option, o->path, strerror(errno));
         free(t);

@@ -105,6 +105,17 @@ static ob_error fail(const char *path, const char *fmt, ...)
     return ob_set_error(OB_ERR_SIDECAR, "%s: %s", path, msg);
 }
 
+/* The failed ob_check_camera/ob_check_light's message, named by the sidecar and the entry. Copied
+ * first: it lives in the buffer the next ob_set_error writes. */
+static ob_error fail_check(const char *path, const char *where)
+{
+    const char *why = NULL;
+    ob_get_error(&why);
+    char msg[400];
+    snprintf(msg, sizeof msg, "%s", why ? why : "invalid");
+    return fail(path, "%s: %s", where, msg);
+}
+
 static const char *json_type_name(const cJSON *item)
 {
     if (cJSON_IsNumber(item)) return "a number";
@@ -229,11 +240,9 @@ static ob_error parse_camera(const char *path, int index, const cJSON *obj, ob_c
 
     /* The same check as a camera from the options or a host (ob_check_camera), named here. */
     if (ob_check_camera(cam) != OB_OK) {
-        const char *why = NULL;
-        ob_get_error(&why);
-        char msg[400];
-        snprintf(msg, sizeof msg, "%s", why ? why : "invalid");
-        return fail(path, "%s (\"%s\"): %s", where, cam->name, msg);
+        char named[200]; /* where (96) + name (64) + quotes */
+        snprintf(named, sizeof named, "%s (\"%s\")", where, cam->name);
+        return fail_check(path, named);
     }
     return OB_OK;
 }
@@ -277,13 +286,7 @@ static ob_error parse_key(const char *path, const char *where, const cJSON *obj,
     const ob_camera probe = {.eye = {p->eye[k][0], p->eye[k][1], p->eye[k][2]},
                              .target = {p->target[k][0], p->target[k][1], p->target[k][2]},
                              .fov_y_deg = p->fov[k]};
-    if (ob_check_camera(&probe) != OB_OK) {
-        const char *why = NULL;
-        ob_get_error(&why);
-        char msg[400];
-        snprintf(msg, sizeof msg, "%s", why ? why : "invalid");
-        return fail(path, "%s: %s", where, msg);
-    }
+    if (ob_check_camera(&probe) != OB_OK) return fail_check(path, where);
     /* Up is +Y along a path: a key looking straight up or down has no roll. */
     if (sqrtf(fwd[0] * fwd[0] + fwd[2] * fwd[2]) < 1e-4f * len3(fwd))
         return fail(path, "%s: looks straight up or down (a path's up is +Y)", where);
@@ -394,13 +397,7 @@ static ob_error parse_light(const char *path, int index, const cJSON *obj, ob_li
     if (!has_direction && l.type != OB_LIGHT_POINT) return fail(path, "%s: missing \"direction\"", where);
     if (!has_position && l.type != OB_LIGHT_DIRECTIONAL) return fail(path, "%s: missing \"position\"", where);
     /* The same check as --light and a host's lights (ob_check_light), named here. */
-    if (ob_check_light(&l) != OB_OK) {
-        const char *why = NULL;
-        ob_get_error(&why);
-        char msg[400];
-        snprintf(msg, sizeof msg, "%s", why ? why : "invalid");
-        return fail(path, "%s: %s", where, msg);
-    }
+    if (ob_check_light(&l) != OB_OK) return fail_check(path, where);
     *light = l;
     return OB_OK;
 }

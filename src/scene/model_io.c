@@ -87,7 +87,7 @@ static bool inside_root(const ob_model_fs *fs, const char *real)
 static void refuse(ob_model_fs *fs, const char *reference, const char *why)
 {
     if (fs->refused[0]) return; /* the first refusal is the one to fix first */
-    snprintf(fs->refused, sizeof fs->refused, "'%s' %s", reference, why);
+    snprintf(fs->refused, sizeof fs->refused, "'%s'%s", reference, why);
 }
 
 FILE *ob_model_fs_open(ob_model_fs *fs, const char *path, const char *reference)
@@ -101,12 +101,12 @@ FILE *ob_model_fs_open(ob_model_fs *fs, const char *path, const char *reference)
     if (!fs->allow_external) {
         char real[PATH_MAX] = "";
         if (reference && reference[0] == '/') {
-            refuse(fs, ref, "is an absolute path (--allow-external-files allows it)");
+            refuse(fs, ref, ", an absolute path (--allow-external-files allows it)");
             return NULL;
         }
         if (!realpath(path, real)) return NULL;
         if (!inside_root(fs, real)) {
-            snprintf(why, sizeof why, "resolves to %s, outside the model's directory %s (--allow-external-files allows it)",
+            snprintf(why, sizeof why, ", which resolves to %s, outside the model's directory %s (--allow-external-files allows it)",
                      real, fs->root);
             refuse(fs, ref, why);
             return NULL;
@@ -114,7 +114,7 @@ FILE *ob_model_fs_open(ob_model_fs *fs, const char *path, const char *reference)
     }
     /* Never lifted: a FIFO would block the import, /dev/zero would fill the memory. */
     if (!S_ISREG(st.st_mode)) {
-        snprintf(why, sizeof why, "is %s, not a regular file", file_kind(st.st_mode));
+        snprintf(why, sizeof why, ", which is %s, not a regular file", file_kind(st.st_mode));
         refuse(fs, ref, why);
         return NULL;
     }
@@ -124,7 +124,7 @@ FILE *ob_model_fs_open(ob_model_fs *fs, const char *path, const char *reference)
     struct stat st2 = {0};
     if (fstat(fd, &st2) != 0 || !S_ISREG(st2.st_mode) || st2.st_ino != st.st_ino || st2.st_dev != st.st_dev) {
         close(fd);
-        refuse(fs, ref, "changed while it was being opened");
+        refuse(fs, ref, ", which changed while it was being opened");
         return NULL;
     }
     int flags = fcntl(fd, F_GETFL);
@@ -175,7 +175,7 @@ static struct aiFile *ai_open(struct aiFileIO *io, const char *path, const char 
 {
     ob_model_fs *fs = (ob_model_fs *)io->UserData;
     if (!mode || strpbrk(mode, "wa+")) {
-        refuse(fs, path, "was to be opened for writing");
+        refuse(fs, path, ", opened for writing");
         return NULL;
     }
     FILE *f = ob_model_fs_open(fs, path, NULL);
@@ -220,7 +220,13 @@ uint64_t ob_model_estimate_peak(uint64_t vertices, uint64_t face_indices)
     return vertices * OB_BYTES_PER_VERTEX + face_indices * OB_BYTES_PER_INDEX;
 }
 
-static double gib(uint64_t bytes) { return (double)bytes / (double)(1ull << 30); }
+/* "1.50 GiB", "20.0 MiB": for the messages. */
+static const char *human(uint64_t bytes, char *buf, size_t n)
+{
+    if (bytes >= (1ull << 30)) snprintf(buf, n, "%.2f GiB", (double)bytes / (double)(1ull << 30));
+    else snprintf(buf, n, "%.1f MiB", (double)bytes / (double)(1ull << 20));
+    return buf;
+}
 
 /* ---- PLY ------------------------------------------------------------------------------------- */
 
@@ -403,7 +409,11 @@ static bool beside_model(const char *model, const char *uri, char *out, size_t n
 static int gltf_external(ob_model_fs *fs, const char *what, int index, const char *uri, uint64_t *bytes)
 {
     char path[OB_MODEL_PATH_MAX] = "";
-    if (!beside_model(fs->model, uri, path, sizeof path)) {
+    /* Assimp would join an absolute URI to the model's directory (and miss it); what the author
+     * meant is the absolute path, so that is what gets refused. */
+    if (!strncmp(uri, "file://", 7)) uri += 7;
+    if (uri[0] == '/') snprintf(path, sizeof path, "%s", uri);
+    else if (!beside_model(fs->model, uri, path, sizeof path)) {
         ob_set_error(OB_ERR_MODEL, "%s: %s %d has a URI too long", fs->model, what, index);
         return -1;
     }
@@ -546,8 +556,11 @@ static bool check_gltf(ob_model_fs *fs, FILE *f, uint64_t size, bool glb, uint64
         if (size < 20 || fread(h, 1, 20, f) != 20 || memcmp(h, "glTF", 4) != 0) return true; /* Assimp says */
         uint32_t version = le32(h + 4), length = le32(h + 8);
         if (version != 2) {
-            *estimate = size * OB_BYTES_PER_FILE_BYTE;
-            return true;
+            /* Assimp 5.2 reads glTF 1 only as .gltf text; its answer here would be "No suitable
+             * reader found". */
+            ob_set_error(OB_ERR_MODEL, "%s: a glTF %u binary (.glb version %u); only glTF 2 .glb files can be read",
+                         fs->model, version, version);
+            return false;
         }
         json_len = le32(h + 12);
         if (length > size || le32(h + 16) != 0x4E4F534Au || json_len > (uint64_t)length - 20u) {
@@ -614,8 +627,9 @@ bool ob_model_precheck(ob_model_fs *fs, uint64_t max_memory)
     else if (has_ext(fs->model, ".obj")) ok = check_obj(f, size, &estimate);
     fclose(f);
     if (ok && estimate > max_memory) {
-        ob_set_error(OB_ERR_MODEL, "%s: importing it would take about %.2f GiB, more than the limit of %.2f GiB (--max-memory)",
-                     fs->model, gib(estimate), gib(max_memory));
+        char a[32] = "", b[32] = "";
+        ob_set_error(OB_ERR_MODEL, "%s: importing it would take about %s, more than the limit of %s (--max-memory)", fs->model,
+                     human(estimate, a, sizeof a), human(max_memory, b, sizeof b));
         return false;
     }
     return ok;

@@ -46,7 +46,9 @@ fuzz:
 	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_model fuzz_sidecar
 	@mkdir -p $(FUZZ_BUILD)/corpus-model $(FUZZ_BUILD)/corpus-sidecar
 	@cd $(FUZZ_BUILD) && ./fuzz_sidecar -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=2048 corpus-sidecar ../scenes
-	@cd $(FUZZ_BUILD) && ./fuzz_model -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=2048 -max_len=65536 corpus-model
+	@# -detect_leaks=0: Assimp 5.2.5 leaks on some malformed ASCII STL files (its error path, not
+	@# ours), which would stop the run at the first one; our C code's leaks show in make test-asan.
+	@cd $(FUZZ_BUILD) && ./fuzz_model -max_total_time=$(FUZZ_SECONDS) -detect_leaks=0 -rss_limit_mb=2048 -max_len=65536 corpus-model
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD)

@@ -97,7 +97,7 @@ FILE *ob_model_fs_open(ob_model_fs *fs, const char *path, const char *reference)
     /* A missing file is no refusal: importers probe for optional companions (an OBJ's default
      * MTL), and nothing is read from a file that is not there. */
     if (!path || !*path || stat(path, &st) != 0) return NULL;
-    char why[OB_MODEL_PATH_MAX + 96] = "";
+    char why[2 * PATH_MAX + 200] = ""; /* two paths and the words between them */
     if (!fs->allow_external) {
         char real[PATH_MAX] = "";
         if (reference && reference[0] == '/') {

@@ -21,7 +21,7 @@ typedef struct ob_model_fs {
     bool allow_external;
     /* The first refusal, "REFERENCE: why"; empty when nothing was refused. A refusal is fatal to
      * the import even where Assimp would go on without the file (OBJ without its MTL). */
-    char refused[OB_MODEL_PATH_MAX + 128];
+    char refused[3 * OB_MODEL_PATH_MAX + 256];
 } ob_model_fs;
 
 /* False (error set: OB_ERR_IO naming the model) when the model's directory cannot be resolved. */

@@ -245,7 +245,7 @@ static const struct {
     const char *name;
     unsigned needs;
 } WITH_VALUE[] = {
-    {"--scene", CLI_TAKES_SCENE},  {"--sidecar", 0},     {"--up", 0},
+    {"--scene", CLI_TAKES_SCENE},  {"--sidecar", 0},     {"--up", 0},          {"--max-memory", 0},
     {"--camera", CLI_TAKES_CAMERA}, {"--eye", CLI_TAKES_CAMERA}, {"--target", CLI_TAKES_CAMERA},
     {"--fov", CLI_TAKES_CAMERA},   {"--size", 0},        {"--method", 0},
     {"--methods", CLI_TAKES_LISTS}, {"--set", 0},        {"--quality", 0},
@@ -271,6 +271,10 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         c->allow_empty = true;
         return CLI_TAKEN;
     }
+    if (!strcmp(a, "--allow-external-files")) {
+        c->allow_external_files = true;
+        return CLI_TAKEN;
+    }
     bool mine = false;
     for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0] && !mine; ++k)
         mine = !strcmp(a, WITH_VALUE[k].name) && (WITH_VALUE[k].needs == 0 || takes(c, WITH_VALUE[k].needs));
@@ -287,6 +291,20 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
 
     if (!strcmp(a, "--scene")) c->scene = v;
     else if (!strcmp(a, "--sidecar")) c->sidecar = v;
+    else if (!strcmp(a, "--max-memory")) {
+        /* BYTES, or a number with K, M or G (binary units; "GiB" and "GB" read the same). */
+        char *end = NULL;
+        double n = strtod(v, &end);
+        double unit = 1.0;
+        if (end && (*end == 'K' || *end == 'k')) unit = 1024.0, ++end;
+        else if (end && (*end == 'M' || *end == 'm')) unit = 1024.0 * 1024.0, ++end;
+        else if (end && (*end == 'G' || *end == 'g')) unit = 1024.0 * 1024.0 * 1024.0, ++end;
+        if (end && unit > 1.0 && (!strcmp(end, "iB") || !strcmp(end, "B"))) end += strlen(end);
+        double bytes = n * unit;
+        if (end == v || !end || *end || !(bytes >= 1024.0 * 1024.0) || bytes > 1e18)
+            return cli_fail(EXIT_USAGE, "--max-memory: expected a size of at least 1M such as 512M or 4G, got '%s'", v);
+        c->max_memory = (uint64_t)bytes;
+    }
     else if (!strcmp(a, "--up")) {
         if (!cli_parse_up(v, &c->up)) return cli_fail(EXIT_USAGE, "--up: expected y or z, got '%s'", v);
     } else if (!strcmp(a, "--camera")) c->camera = v;
@@ -462,7 +480,11 @@ void cli_common_usage(FILE *f, const cli_common *c)
         else fputs("                        (required)\n", f);
     }
     fputs("  --sidecar FILE        scene sidecar JSON (default: MODEL.obscura.json beside the model)\n"
-          "  --up y|z              the model's up axis (overrides the sidecar)\n",
+          "  --up y|z              the model's up axis (overrides the sidecar)\n"
+          "  --allow-external-files  let the model read files outside its directory (absolute paths,\n"
+          "                        '..'; off: untrusted models are confined, README 'Untrusted models')\n"
+          "  --max-memory SIZE     the most memory a model import may take, e.g. 512M, 8G (default:\n"
+          "                        4G or half the physical memory, whichever is less)\n",
           f);
     if (takes(c, CLI_TAKES_CAMERA))
         fputs("  --camera NAME|INDEX   a camera preset of the scene (default: 'default', which frames the\n"
@@ -808,7 +830,9 @@ int cli_common_configs(const cli_common *c, cli_config **configs, int *count)
 
 ob_scene *cli_common_load_scene(const cli_common *c, const char *name)
 {
-    return ob_load_scene(&(ob_scene_desc){.name = name ? name : c->scene, .sidecar = c->sidecar, .up = c->up});
+    return ob_load_scene(&(ob_scene_desc){.name = name ? name : c->scene, .sidecar = c->sidecar, .up = c->up,
+                                          .allow_external_files = c->allow_external_files,
+                                          .max_memory = c->max_memory});
 }
 
 int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *preset, ob_camera *cam)

@@ -80,6 +80,8 @@ typedef struct cli_common {
     /* scene and camera */
     const char *scene, *sidecar;
     ob_up_axis up;
+    bool allow_external_files; /* --allow-external-files */
+    uint64_t max_memory;       /* --max-memory, bytes; 0 = the library's default */
     const char *camera;
     bool has_eye, has_target, has_fov;
     float eye[3], target[3], fov;

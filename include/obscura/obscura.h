@@ -120,6 +120,15 @@ typedef struct ob_scene_desc {
     const char *name;
     const char *sidecar; /* explicit sidecar JSON; default: MODEL.obscura.json beside the model */
     ob_up_axis up;       /* overrides the sidecar's up axis */
+    /* Untrusted models (README "Untrusted models"): every file a model refers to (glTF buffers
+     * and images, OBJ's MTL and textures, ...) must resolve into the model's directory tree and
+     * not be an absolute path, else OB_ERR_MODEL naming the reference; true lifts that. Device
+     * files, FIFOs and directories are refused either way. */
+    bool allow_external_files;
+    /* The most memory, in bytes, an import may take, estimated from the counts the file declares
+     * before Assimp allocates and again from the raw scene before post-processing; a model over
+     * it is OB_ERR_MODEL. 0 = 4 GiB or half the physical memory, whichever is less. */
+    uint64_t max_memory;
 } ob_scene_desc;
 
 typedef struct ob_camera {

@@ -12,7 +12,9 @@
 #include <string.h>
 #include <strings.h>
 
+#include <assimp/cfileio.h>
 #include <assimp/cimport.h>
+#include <assimp/importerdesc.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -20,6 +22,7 @@
 #include <stb/stb_image.h>
 
 #include "core/error.h"
+#include "scene/model_io.h"
 
 #define OB_PI_F 3.14159265358979f
 
@@ -44,6 +47,8 @@ typedef struct mat_slot {
 
 typedef struct importer {
     const char *path;
+    ob_model_fs *fs;    /* every external file goes through it (model_io.c) */
+    uint64_t max_memory;
     char dir[OB_PATH_MAX];
     const struct aiScene *ai;
     ob_scene *s;
@@ -185,26 +190,36 @@ static void load_texture(importer *im, const struct aiMaterial *mat, ob_material
         }
     }
     if (!px && name[0] != '*') {
-        /* External file: relative to the model, with Windows separators made portable. */
+        /* External file, through the confinement (model_io.c), with Windows separators made
+         * portable. Exporters often store an absolute path from the author's machine: the file
+         * name beside the model is tried first for those, and the absolute path (refused unless
+         * --allow-external-files, when it exists) only after. */
         for (char *c = name; *c; ++c) {
             if (*c == '\\') *c = '/';
         }
+        const char *base = strrchr(name, '/');
         char full[OB_PATH_MAX * 2] = "";
-        int comp = 0;
+        const char *tries[2] = {name, NULL};
         if (name[0] == '/') {
-            snprintf(full, sizeof full, "%s", name);
-        } else {
-            snprintf(full, sizeof full, "%s/%s", im->dir, name);
+            tries[0] = base + 1;
+            tries[1] = name;
+        } else if (base) {
+            tries[1] = base + 1;
         }
-        px = stbi_load(full, &w, &h, &comp, 4);
-        if (!px) {
-            /* Exporters often store an absolute path from the author's machine: try the file
-             * name beside the model. */
-            const char *base = strrchr(name, '/');
-            if (base) {
-                snprintf(full, sizeof full, "%s/%s", im->dir, base + 1);
-                px = stbi_load(full, &w, &h, &comp, 4);
+        for (int t = 0; t < 2 && tries[t] && !px && !im->fs->refused[0]; ++t) {
+            if (tries[t][0] == '/') snprintf(full, sizeof full, "%s", tries[t]);
+            else snprintf(full, sizeof full, "%s/%s", im->dir, tries[t]);
+            FILE *f = ob_model_fs_open(im->fs, full, tries[t]);
+            if (!f) continue;
+            int comp = 0;
+            /* The header's size first: a 100-byte PNG may claim 60000 x 60000 texels. */
+            if (stbi_info_from_file(f, &w, &h, &comp) && (uint64_t)w * (uint64_t)h * 4u > im->max_memory) {
+                snprintf(im->fs->refused, sizeof im->fs->refused, "'%s', a %dx%d texture over the memory limit (--max-memory)",
+                         tries[t], w, h);
+            } else {
+                px = stbi_load_from_file(f, &w, &h, &comp, 4);
             }
+            fclose(f);
         }
     }
     if (px && w > 0 && h > 0) {
@@ -610,18 +625,72 @@ static ob_scene *import_scene(importer *im, ob_up_axis up)
     return im->s;
 }
 
-ob_scene *ob_scene_import(const char *path, ob_up_axis up)
+/* Assimp's message (raw) with what failed: the importer (format) and the file. */
+static void fail_assimp(const char *path, const ob_model_fs *fs, const char *raw)
+{
+    if (fs->refused[0]) {
+        ob_set_error(OB_ERR_MODEL, "%s: refers to %s", path, fs->refused);
+        return;
+    }
+    const char *ext = strrchr(path, '.');
+    const struct aiImporterDesc *desc = ext && !strchr(ext, '/') ? aiGetImporterDesc(ext + 1) : NULL;
+    char who[160] = "";
+    if (desc && desc->mName) snprintf(who, sizeof who, "Assimp's %s", desc->mName);
+    else snprintf(who, sizeof who, "Assimp");
+    if (raw && strstr(raw, "bad_alloc")) {
+        ob_set_error(OB_ERR_MODEL, "%s: %s ran out of memory reading it (corrupt counts?)", path, who);
+    } else {
+        ob_set_error(OB_ERR_MODEL, "%s: %s could not import it: %s", path, who, raw && raw[0] ? raw : "no reason given");
+    }
+}
+
+/* A raw scene (no post-processing): finite positions (Assimp's FindInvalidData drops a mesh with
+ * a NaN and then reports "No meshes remaining"), and the memory post-processing and our copy
+ * take, from the counts Assimp actually read (model_io.c cannot see into pk3 archives). */
+static bool check_raw_scene(const struct aiScene *ai, const char *path, uint64_t max_memory)
+{
+    uint64_t vertices = 0, indices = 0;
+    for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
+        const struct aiMesh *mesh = ai->mMeshes[m];
+        if (!mesh) continue;
+        vertices += mesh->mNumVertices;
+        for (unsigned f = 0; mesh->mFaces && f < mesh->mNumFaces; ++f) indices += mesh->mFaces[f].mNumIndices;
+        for (unsigned v = 0; mesh->mVertices && v < mesh->mNumVertices; ++v) {
+            const struct aiVector3D *p = &mesh->mVertices[v];
+            if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->z)) {
+                ob_set_error(OB_ERR_MODEL, "%s: mesh %u ('%s') vertex %u has a non-finite coordinate (%g, %g, %g)", path,
+                             m, mesh->mName.data, v, (double)p->x, (double)p->y, (double)p->z);
+                return false;
+            }
+        }
+    }
+    uint64_t need = ob_model_estimate_peak(vertices, indices);
+    if (need > max_memory) {
+        ob_set_error(OB_ERR_MODEL, "%s: its %llu vertices would take about %.2f GiB to import, more than the limit of %.2f GiB (--max-memory)",
+                     path, (unsigned long long)vertices, (double)need / (double)(1ull << 30),
+                     (double)max_memory / (double)(1ull << 30));
+        return false;
+    }
+    return true;
+}
+
+ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_files, uint64_t max_memory)
 {
     if (!path) {
         ob_set_error(OB_ERR_INVALID_ARGUMENT, "model path is NULL");
         return NULL;
     }
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        ob_set_error(OB_ERR_IO, "%s: cannot open model file", path);
+    /* Heap, not stack: it holds two paths. */
+    ob_model_fs *fs = malloc(sizeof *fs);
+    if (!fs) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
         return NULL;
     }
-    fclose(f);
+    if (max_memory == 0) max_memory = ob_model_default_max_memory();
+    if (!ob_model_fs_init(fs, path, allow_external_files) || !ob_model_precheck(fs, max_memory)) {
+        free(fs);
+        return NULL;
+    }
 
     struct aiPropertyStore *props = aiCreatePropertyStore();
     aiSetImportPropertyFloat(props, AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, OB_CREASE_ANGLE_DEG);
@@ -631,38 +700,67 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up)
     unsigned flags = aiProcess_Triangulate | aiProcess_GenSmoothNormals |
                      aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
                      aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
+    /* Through the confinement (fs). Assimp's C API catches the C++ exceptions of the import
+     * and its steps (std::bad_alloc included) and reports them as a NULL scene with a message.
+     * One call with every step: aiApplyPostProcessing on a raw scene would be the place to check
+     * that scene first, but Assimp 5.2.5 frees the scene twice when a step fails there. */
     const struct aiScene *ai = NULL;
     if (is_q3bsp(path)) {
         /* Read raw, repair the indices and winding, then post-process the repaired scene (the
          * importer keeps the properties above for aiApplyPostProcessing). Validation stays off:
-         * Assimp 5.2.5 still rejects the repaired map (it crashes releasing the scene when
-         * validation fails after import), and repair_q3bsp has checked the indices itself. The
-         * file's vertex normals are replaced: q3map2 smooths them across wall corners, which
-         * leaves a third of the flat faces with bent normals; regenerated with the crease angle
-         * flat walls come out flat. */
-        ai = aiImportFileExWithProperties(path, 0, NULL, props);
+         * Assimp 5.2.5 still rejects the repaired map (the double free above), and repair_q3bsp
+         * has checked the indices itself. The file's vertex normals are replaced: q3map2 smooths
+         * them across wall corners, which leaves a third of the flat faces with bent normals;
+         * regenerated with the crease angle flat walls come out flat. */
+        ai = aiImportFileExWithProperties(path, 0, &fs->io, props);
+        if (ai && (fs->refused[0] || !check_raw_scene(ai, path, max_memory) || !repair_q3bsp((struct aiScene *)ai, path))) {
+            if (fs->refused[0]) ob_set_error(OB_ERR_MODEL, "%s: refers to %s", path, fs->refused);
+            aiReleaseImport(ai);
+            aiReleasePropertyStore(props);
+            free(fs);
+            return NULL;
+        }
         if (ai) {
-            if (!repair_q3bsp((struct aiScene *)ai, path)) {
-                aiReleaseImport(ai);
-                aiReleasePropertyStore(props);
-                return NULL;
-            }
             unsigned q3_flags = (flags & ~(unsigned)aiProcess_ValidateDataStructure) |
                                 aiProcess_ForceGenNormals;
             /* On failure Assimp has already released the scene. */
             ai = aiApplyPostProcessing(ai, q3_flags);
         }
     } else {
-        ai = aiImportFileExWithProperties(path, flags, NULL, props);
+        ai = aiImportFileExWithProperties(path, flags, &fs->io, props);
+    }
+    if (!ai && !fs->refused[0]) {
+        /* Say why when the raw file is the cause: FindInvalidData drops a mesh with a NaN and
+         * Assimp then reports only "No meshes remaining". Only failed imports pay for this
+         * second, raw read. */
+        char why[1024] = "";
+        snprintf(why, sizeof why, "%s", aiGetErrorString());
+        const struct aiScene *raw = aiImportFileExWithProperties(path, 0, &fs->io, props);
+        bool explained = raw && !check_raw_scene(raw, path, max_memory);
+        if (raw) aiReleaseImport(raw);
+        if (explained) {
+            aiReleasePropertyStore(props);
+            free(fs);
+            return NULL;
+        }
+        fail_assimp(path, fs, why);
+        aiReleasePropertyStore(props);
+        free(fs);
+        return NULL;
     }
     aiReleasePropertyStore(props);
-    if (!ai) {
-        ob_set_error(OB_ERR_MODEL, "%s: %s", path, aiGetErrorString());
+    if (!ai || fs->refused[0]) {
+        /* Refused: even where Assimp went on without the file (an OBJ without its MTL), the
+         * user would not know the model was cut. */
+        ob_set_error(OB_ERR_MODEL, "%s: refers to %s", path, fs->refused);
+        if (ai) aiReleaseImport(ai);
+        free(fs);
         return NULL;
     }
     if (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) {
         ob_set_error(OB_ERR_MODEL, "%s: incomplete scene (no meshes?)", path);
         aiReleaseImport(ai);
+        free(fs);
         return NULL;
     }
 
@@ -675,6 +773,8 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up)
 
     importer im = {0};
     im.path = path;
+    im.fs = fs;
+    im.max_memory = max_memory;
     im.ai = ai;
     if (slash) {
         size_t len = (size_t)(slash - path);
@@ -699,7 +799,13 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up)
         for (unsigned k = 0; k < nmat; ++k) im.mat_map[k] = -1;
         result = import_scene(&im, up);
     }
+    if (result && fs->refused[0]) {
+        ob_set_error(OB_ERR_MODEL, "%s: refers to %s", path, fs->refused);
+        result = NULL;
+    }
+    if (result && !ob_scene_check_bounds(result, path)) result = NULL;
     if (!result) ob_destroy_scene(im.s);
+    free(fs);
     free(im.mat_map);
     free(im.slots);
     aiReleaseImport(ai);

@@ -188,6 +188,57 @@ void ob_scene_finish(ob_scene *s)
     }
 }
 
+/* ---- bounds ---------------------------------------------------------------------------------- */
+
+/* The range a scene must lie in, from float (24-bit significand, normal range 1.2e-38..3.4e38):
+ * - Size: the passes square distances and divide by squared radii (falloffs 1/d^2, r^2 in the AO
+ *   kernels, projection terms near*far), and products of two such terms occur: d^4 must stay a
+ *   normal float with room to spare. A diagonal in [1e-6, 1e8] keeps d^4 in [1e-24, 1e32].
+ *   Outside it a model is almost surely in the wrong unit (or hostile: 3e37 and 1e-30 rendered
+ *   empty frames).
+ * - Offset: positions are float, so a vertex at distance C from the origin is only known to
+ *   C * 2^-23 (1.2e-7 C). Screen-space AO compares depths at a twentieth of the scene's size;
+ *   an error of a tenth of that (5e-3 of the diagonal) is where it starts to show as noise, so
+ *   C may be at most 5e-3 / 1.2e-7, about 4e4 diagonals: 1e4 leaves a margin for the view
+ *   transform's own rounding.
+ * A scene outside these is an error, not a rescale: sidecar cameras and lights are written in
+ * the model's units and would no longer match. */
+#define OB_SCENE_MIN_SIZE 1e-6
+#define OB_SCENE_MAX_SIZE 1e8
+#define OB_SCENE_MAX_OFFSET 1e4
+
+bool ob_scene_check_bounds(const ob_scene *s, const char *source)
+{
+    for (int m = 0; m < s->mesh_count; ++m) {
+        const ob_mesh *mesh = &s->meshes[m];
+        for (uint32_t k = 0; k < 3u * mesh->vertex_count; ++k) {
+            if (!isfinite(mesh->positions[k])) {
+                ob_set_error(OB_ERR_MODEL, "%s: vertex %u has a non-finite coordinate (%g) after its node transforms",
+                             source, k / 3u, (double)mesh->positions[k]);
+                return false;
+            }
+        }
+    }
+    double d2 = 0.0, far = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        double e = (double)s->bounds_max[i] - (double)s->bounds_min[i];
+        d2 += e * e;
+        far = fmax(far, fmax(fabs((double)s->bounds_min[i]), fabs((double)s->bounds_max[i])));
+    }
+    double size = sqrt(d2);
+    if (!(size >= OB_SCENE_MIN_SIZE) || !(size <= OB_SCENE_MAX_SIZE)) {
+        ob_set_error(OB_ERR_MODEL, "%s: the model is %g units across; Obscura renders %g to %g (float depth and lighting): wrong unit?",
+                     source, size, OB_SCENE_MIN_SIZE, OB_SCENE_MAX_SIZE);
+        return false;
+    }
+    if (far > OB_SCENE_MAX_OFFSET * size) {
+        ob_set_error(OB_ERR_MODEL, "%s: the model lies %g units from the origin but is only %g across; float positions lose its detail beyond %g times its size: move it nearer the origin",
+                     source, far, size, OB_SCENE_MAX_OFFSET);
+        return false;
+    }
+    return true;
+}
+
 /* ---- ob_load_scene --------------------------------------------------------------------------- */
 
 static bool is_regular_file(const char *path)
@@ -252,10 +303,10 @@ static ob_scene *path_too_long(const char *what)
 }
 
 /* Import a model, then apply up to two sidecars in order (either may be NULL). */
-static ob_scene *import_with_sidecars(const char *model, ob_up_axis up, const char *sidecar_a,
-                                      const char *sidecar_b, const char *scene_name)
+static ob_scene *import_with_sidecars(const ob_scene_desc *desc, const char *model, ob_up_axis up,
+                                      const char *sidecar_a, const char *sidecar_b, const char *scene_name)
 {
-    ob_scene *s = ob_scene_import(model, up);
+    ob_scene *s = ob_scene_import(model, up, desc->allow_external_files, desc->max_memory);
     if (!s) return NULL;
     const char *sidecars[2] = {sidecar_a, sidecar_b};
     for (int i = 0; i < 2; ++i) {
@@ -323,11 +374,24 @@ ob_scene *ob_load_scene(const ob_scene_desc *desc)
                         : explicit_up != OB_UP_DEFAULT ? explicit_up
                         : named_up != OB_UP_DEFAULT    ? named_up
                                                        : OB_UP_Y;
-        return import_with_sidecars(model, up, named, explicit_sidecar, name);
+        return import_with_sidecars(desc, model, up, named, explicit_sidecar, name);
     }
 
     /* 3. A model path. */
     if (!is_regular_file(name)) {
+        /* Something that exists but is no file (a directory, a FIFO, /dev/null) says what it is:
+         * "no such file" would send the user looking for a typo. */
+        struct stat st = {0};
+        if (stat(name, &st) == 0) {
+            const char *kind = S_ISDIR(st.st_mode)    ? "a directory"
+                               : S_ISFIFO(st.st_mode) ? "a FIFO"
+                               : S_ISCHR(st.st_mode)  ? "a character device"
+                               : S_ISBLK(st.st_mode)  ? "a block device"
+                               : S_ISSOCK(st.st_mode) ? "a socket"
+                                                      : "not a regular file";
+            ob_set_error(OB_ERR_IO, "cannot read model '%s': it is %s, not a model file", name, kind);
+            return NULL;
+        }
         /* Something that looks like a path is a missing model; a bare word is an unknown name. */
         if (strchr(name, '/') || strchr(name, '.'))
             ob_set_error(OB_ERR_IO, "cannot read model '%s': no such file", name);
@@ -364,7 +428,7 @@ ob_scene *ob_load_scene(const ob_scene_desc *desc)
     ob_up_axis up = desc->up != OB_UP_DEFAULT      ? desc->up
                     : sidecar_up != OB_UP_DEFAULT ? sidecar_up
                                                   : OB_UP_Y;
-    return import_with_sidecars(name, up, sidecar, NULL, stem);
+    return import_with_sidecars(desc, name, up, sidecar, NULL, stem);
 }
 
 void ob_destroy_scene(ob_scene *scene)

@@ -64,7 +64,11 @@ void ob_scene_finish(ob_scene *s);
 
 /* Builders: return NULL with the error set (ob_peek_error) on failure. */
 ob_scene *ob_scene_builtin(const char *name); /* NULL + OB_ERR_UNKNOWN_SCENE if not built in */
-ob_scene *ob_scene_import(const char *path, ob_up_axis up); /* assimp */
+/* assimp; with desc's allow_external_files and max_memory (0 = the default). */
+ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_files, uint64_t max_memory);
+/* After ob_scene_finish: false (OB_ERR_MODEL naming source) when the bounds are not finite or
+ * outside the range float depth and lighting handle (scene.c says why). */
+bool ob_scene_check_bounds(const ob_scene *s, const char *source);
 /* Apply a sidecar JSON (cameras, lights, ao_radius, ground) to a loaded scene. */
 ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path);
 

@@ -1,0 +1,636 @@
+/* Opening untrusted models (issue 19).
+ *
+ * Confinement: the model and every file it refers to (glTF buffers and images, OBJ's MTL, the
+ * textures import.c loads itself) are opened by ob_model_fs_open, which Assimp reaches through
+ * its C file-system hooks (aiFileIO). A reference must resolve (realpath: ".." and symlinks) into
+ * the model's directory tree and be a regular file; a model downloaded from anywhere then cannot
+ * read ~/.ssh or /dev/zero by naming it.
+ *
+ * Bounds before allocation: Assimp sizes its arrays from the counts a file declares (a 431-byte
+ * PLY declaring 10^9 vertices reached 11.7 GB before failing). The checks here compare each
+ * declared count with the bytes that can hold it, and the memory an import would take with the
+ * limit, before Assimp sees the file. */
+#include "scene/model_io.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cjson/cJSON.h>
+
+#include "core/error.h"
+
+/* Peak bytes per element of an import, measured with Assimp 5.2.5 and our post-processing flags
+ * (peak RSS over the raw-scene element counts): a 33 MB OBJ of 2.94 M face corners peaked at
+ * 611 MB (208 B per corner, our copy not included); a binary PLY of 0.49 M vertices and 0.98 M
+ * faces at 378 MB (Assimp's PLY reader keeps a DOM of every element: about 256 B each). Rounded
+ * up, so that the estimate errs towards refusing. */
+#define OB_BYTES_PER_VERTEX 256u
+#define OB_BYTES_PER_INDEX 48u
+#define OB_BYTES_PER_PLY_ELEMENT 256u
+/* A format without a check of its own: the STL, OFF and OBJ cases above cost 15-20 bytes per file
+ * byte; 24 leaves a margin. Compressed formats (FBX's zlib arrays, pk3) can exceed it: the check on
+ * the raw scene in import.c catches those before post-processing. */
+#define OB_BYTES_PER_FILE_BYTE 24u
+
+static struct aiFile *ai_open(struct aiFileIO *io, const char *path, const char *mode);
+static void ai_close(struct aiFileIO *io, struct aiFile *a);
+
+/* ---- confinement ----------------------------------------------------------------------------- */
+
+static const char *file_kind(mode_t m)
+{
+    if (S_ISDIR(m)) return "a directory";
+    if (S_ISFIFO(m)) return "a FIFO";
+    if (S_ISCHR(m)) return "a character device";
+    if (S_ISBLK(m)) return "a block device";
+    if (S_ISSOCK(m)) return "a socket";
+    return "not a regular file";
+}
+
+bool ob_model_fs_init(ob_model_fs *fs, const char *model, bool allow_external)
+{
+    memset(fs, 0, sizeof *fs);
+    fs->model = model;
+    fs->allow_external = allow_external;
+    char real[PATH_MAX] = "";
+    if (!realpath(model, real)) {
+        ob_set_error(OB_ERR_IO, "%s: cannot resolve the model's path: %s", model, strerror(errno));
+        return false;
+    }
+    char *slash = strrchr(real, '/');
+    if (!slash || slash == real) {
+        snprintf(fs->root, sizeof fs->root, "/");
+    } else {
+        *slash = '\0';
+        snprintf(fs->root, sizeof fs->root, "%s", real);
+    }
+    fs->io.OpenProc = ai_open;
+    fs->io.CloseProc = ai_close;
+    fs->io.UserData = (aiUserData)fs;
+    return true;
+}
+
+static bool inside_root(const ob_model_fs *fs, const char *real)
+{
+    size_t n = strlen(fs->root);
+    if (n == 1 && fs->root[0] == '/') return true;
+    return strncmp(real, fs->root, n) == 0 && (real[n] == '/' || real[n] == '\0');
+}
+
+static void refuse(ob_model_fs *fs, const char *reference, const char *why)
+{
+    if (fs->refused[0]) return; /* the first refusal is the one to fix first */
+    snprintf(fs->refused, sizeof fs->refused, "'%s'%s", reference, why);
+}
+
+FILE *ob_model_fs_open(ob_model_fs *fs, const char *path, const char *reference)
+{
+    const char *ref = reference ? reference : path;
+    struct stat st = {0};
+    /* A missing file is no refusal: importers probe for optional companions (an OBJ's default
+     * MTL), and nothing is read from a file that is not there. */
+    if (!path || !*path || stat(path, &st) != 0) return NULL;
+    char why[2 * PATH_MAX + 200] = ""; /* two paths and the words between them */
+    if (!fs->allow_external) {
+        char real[PATH_MAX] = "";
+        if (reference && reference[0] == '/') {
+            refuse(fs, ref, ", an absolute path (--allow-external-files allows it)");
+            return NULL;
+        }
+        if (!realpath(path, real)) return NULL;
+        if (!inside_root(fs, real)) {
+            snprintf(why, sizeof why, ", which resolves to %s, outside the model's directory %s (--allow-external-files allows it)",
+                     real, fs->root);
+            refuse(fs, ref, why);
+            return NULL;
+        }
+    }
+    /* Never lifted: a FIFO would block the import, /dev/zero would fill the memory. */
+    if (!S_ISREG(st.st_mode)) {
+        snprintf(why, sizeof why, ", which is %s, not a regular file", file_kind(st.st_mode));
+        refuse(fs, ref, why);
+        return NULL;
+    }
+    /* O_NONBLOCK: should the path have become a FIFO since the stat, open must not hang on it. */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return NULL;
+    struct stat st2 = {0};
+    if (fstat(fd, &st2) != 0 || !S_ISREG(st2.st_mode) || st2.st_ino != st.st_ino || st2.st_dev != st.st_dev) {
+        close(fd);
+        refuse(fs, ref, ", which changed while it was being opened");
+        return NULL;
+    }
+    int flags = fcntl(fd, F_GETFL);
+    if (flags >= 0) (void)fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+    FILE *f = fdopen(fd, "rb");
+    if (!f) close(fd);
+    return f;
+}
+
+/* ---- Assimp's file system -------------------------------------------------------------------- */
+
+static size_t ai_read(struct aiFile *a, char *buf, size_t size, size_t count)
+{
+    return fread(buf, size, count, (FILE *)a->UserData);
+}
+
+static size_t ai_write(struct aiFile *a, const char *buf, size_t size, size_t count)
+{
+    (void)a;
+    (void)buf;
+    (void)size;
+    (void)count;
+    return 0; /* importers only read */
+}
+
+static size_t ai_tell(struct aiFile *a)
+{
+    off_t t = ftello((FILE *)a->UserData);
+    return t < 0 ? 0 : (size_t)t;
+}
+
+static size_t ai_size(struct aiFile *a)
+{
+    struct stat st = {0};
+    return fstat(fileno((FILE *)a->UserData), &st) == 0 ? (size_t)st.st_size : 0;
+}
+
+static enum aiReturn ai_seek(struct aiFile *a, size_t offset, enum aiOrigin origin)
+{
+    int whence = origin == aiOrigin_CUR ? SEEK_CUR : origin == aiOrigin_END ? SEEK_END : SEEK_SET;
+    /* Assimp passes backward offsets as size_t: two's complement gives them back their sign. */
+    return fseeko((FILE *)a->UserData, (off_t)(int64_t)offset, whence) == 0 ? aiReturn_SUCCESS : aiReturn_FAILURE;
+}
+
+static void ai_flush(struct aiFile *a) { (void)a; }
+
+static struct aiFile *ai_open(struct aiFileIO *io, const char *path, const char *mode)
+{
+    ob_model_fs *fs = (ob_model_fs *)io->UserData;
+    if (!mode || strpbrk(mode, "wa+")) {
+        refuse(fs, path, ", opened for writing");
+        return NULL;
+    }
+    FILE *f = ob_model_fs_open(fs, path, NULL);
+    if (!f) return NULL;
+    struct aiFile *a = calloc(1, sizeof *a);
+    if (!a) {
+        fclose(f);
+        return NULL;
+    }
+    a->ReadProc = ai_read;
+    a->WriteProc = ai_write;
+    a->TellProc = ai_tell;
+    a->FileSizeProc = ai_size;
+    a->SeekProc = ai_seek;
+    a->FlushProc = ai_flush;
+    a->UserData = (aiUserData)f;
+    return a;
+}
+
+static void ai_close(struct aiFileIO *io, struct aiFile *a)
+{
+    (void)io;
+    if (!a) return;
+    fclose((FILE *)a->UserData);
+    free(a);
+}
+
+
+/* ---- memory ---------------------------------------------------------------------------------- */
+
+uint64_t ob_model_default_max_memory(void)
+{
+    const uint64_t four_gib = 4ull << 30;
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    if (pages <= 0 || page <= 0) return four_gib;
+    uint64_t half = (uint64_t)pages * (uint64_t)page / 2u;
+    return half < four_gib ? half : four_gib;
+}
+
+uint64_t ob_model_estimate_peak(uint64_t vertices, uint64_t face_indices)
+{
+    return vertices * OB_BYTES_PER_VERTEX + face_indices * OB_BYTES_PER_INDEX;
+}
+
+/* "1.50 GiB", "20.0 MiB": for the messages. */
+static const char *human(uint64_t bytes, char *buf, size_t n)
+{
+    if (bytes >= (1ull << 30)) snprintf(buf, n, "%.2f GiB", (double)bytes / (double)(1ull << 30));
+    else snprintf(buf, n, "%.1f MiB", (double)bytes / (double)(1ull << 20));
+    return buf;
+}
+
+/* ---- PLY ------------------------------------------------------------------------------------- */
+
+/* Bytes of a PLY scalar type; 0 for an unknown one. */
+static unsigned ply_type_size(const char *t)
+{
+    static const struct {
+        const char *name;
+        unsigned size;
+    } types[] = {{"char", 1},   {"uchar", 1},  {"int8", 1},   {"uint8", 1},   {"short", 2},  {"ushort", 2},
+                 {"int16", 2},  {"uint16", 2}, {"int", 4},    {"uint", 4},    {"int32", 4},  {"uint32", 4},
+                 {"float", 4},  {"float32", 4}, {"double", 8}, {"float64", 8}};
+    for (size_t k = 0; k < sizeof types / sizeof types[0]; ++k)
+        if (!strcmp(t, types[k].name)) return types[k].size;
+    return 0;
+}
+
+/* One header line (without the newline) into buf; false at EOF or for a line too long. */
+static bool read_line(FILE *f, char *buf, size_t n)
+{
+    size_t len = 0;
+    int c = 0;
+    while ((c = getc(f)) != EOF && c != '\n') {
+        if (len + 1 >= n) return false;
+        buf[len++] = (char)c;
+    }
+    if (c == EOF && len == 0) return false;
+    while (len > 0 && (buf[len - 1] == '\r' || buf[len - 1] == ' ')) --len;
+    buf[len] = '\0';
+    return true;
+}
+
+static bool check_ply(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimate)
+{
+    enum { MAX_ELEMENTS = 64, HEADER_MAX = 1 << 16 };
+    struct {
+        char name[64];
+        uint64_t count, min_bytes;
+    } el[MAX_ELEMENTS];
+    int n = 0;
+    bool ascii = true;
+    char line[1024] = "";
+    if (!read_line(f, line, sizeof line) || strcmp(line, "ply") != 0) return true; /* Assimp says */
+    for (;;) {
+        if (ftello(f) > HEADER_MAX || !read_line(f, line, sizeof line)) {
+            ob_set_error(OB_ERR_MODEL, "%s: PLY header has no end_header within %d bytes", fs->model, HEADER_MAX);
+            return false;
+        }
+        char kw[32] = "", a[64] = "", b[64] = "", c[64] = "";
+        int got = sscanf(line, "%31s %63s %63s %63s", kw, a, b, c);
+        if (got < 1) continue;
+        if (!strcmp(kw, "end_header")) break;
+        if (!strcmp(kw, "format") && got >= 2) {
+            ascii = !strcmp(a, "ascii");
+        } else if (!strcmp(kw, "element") && got >= 3) {
+            if (n == MAX_ELEMENTS) {
+                ob_set_error(OB_ERR_MODEL, "%s: PLY header declares more than %d elements", fs->model, MAX_ELEMENTS);
+                return false;
+            }
+            char *end = NULL;
+            errno = 0;
+            unsigned long long count = strtoull(b, &end, 10);
+            if (b[0] == '-' || !end || *end || errno || count > UINT32_MAX) {
+                ob_set_error(OB_ERR_MODEL, "%s: PLY element '%s' has a bad count '%s'", fs->model, a, b);
+                return false;
+            }
+            snprintf(el[n].name, sizeof el[n].name, "%s", a);
+            el[n].count = count;
+            el[n].min_bytes = 0;
+            ++n;
+        } else if (!strcmp(kw, "property") && got >= 3 && n > 0) {
+            /* The fewest bytes one value can take: its size in binary; a digit and a separator in
+             * ASCII. A list may be empty: its count alone. */
+            bool list = !strcmp(a, "list");
+            unsigned sz = ply_type_size(a);
+            if (list) sz = ply_type_size(b);
+            if (sz == 0) {
+                ob_set_error(OB_ERR_MODEL, "%s: PLY property '%s' has an unknown type", fs->model, line);
+                return false;
+            }
+            if (el[n - 1].min_bytes < 4096u) el[n - 1].min_bytes += ascii ? 2u : sz;
+        }
+    }
+    off_t header = ftello(f);
+    uint64_t left = header >= 0 && (uint64_t)header <= size ? size - (uint64_t)header : 0;
+    uint64_t need = 0, est = size;
+    for (int k = 0; k < n; ++k) {
+        /* count <= 2^32 and min_bytes < 2^13: no overflow in 64 bits over 64 elements. */
+        need += el[k].count * el[k].min_bytes;
+        if (need > left) {
+            ob_set_error(OB_ERR_MODEL,
+                         "%s: PLY header declares %llu '%s' elements, which need at least %llu bytes; only %llu bytes follow the header (truncated or corrupt)",
+                         fs->model, (unsigned long long)el[k].count, el[k].name, (unsigned long long)need,
+                         (unsigned long long)left);
+            return false;
+        }
+        est += el[k].count * OB_BYTES_PER_PLY_ELEMENT;
+    }
+    *estimate = est;
+    return true;
+}
+
+/* ---- OBJ ------------------------------------------------------------------------------------- */
+
+/* Assimp's OBJ reader makes one vertex per face corner: count them. Counts come from the text
+ * itself, so they cannot exceed the file; the scan is for the memory estimate. */
+static bool check_obj(FILE *f, uint64_t size, uint64_t *estimate)
+{
+    uint64_t corners = 0;
+    int c = 0, prev = '\n';
+    bool in_face = false, in_token = false;
+    while ((c = getc(f)) != EOF) {
+        if (prev == '\n' && c == 'f') {
+            int next = getc(f);
+            in_face = next == ' ' || next == '\t';
+            if (next == EOF) break;
+            c = next;
+            in_token = false;
+        } else if (c == '\n') {
+            in_face = false;
+        } else if (in_face) {
+            bool space = c == ' ' || c == '\t' || c == '\r';
+            if (!space && !in_token) ++corners;
+            in_token = !space;
+        }
+        prev = c;
+    }
+    *estimate = size + ob_model_estimate_peak(corners, corners);
+    return true;
+}
+
+/* ---- glTF ------------------------------------------------------------------------------------ */
+
+static bool json_u64(const cJSON *obj, const char *key, uint64_t *out, bool required)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!v) {
+        *out = 0;
+        return !required;
+    }
+    /* 2^53: the largest count a JSON number holds exactly. */
+    if (!cJSON_IsNumber(v) || !(v->valuedouble >= 0.0) || v->valuedouble > 9007199254740992.0 ||
+        v->valuedouble != (double)(uint64_t)v->valuedouble)
+        return false;
+    *out = (uint64_t)v->valuedouble;
+    return true;
+}
+
+static unsigned gltf_component_size(uint64_t type)
+{
+    switch (type) {
+    case 5120: case 5121: return 1;
+    case 5122: case 5123: return 2;
+    case 5125: case 5126: return 4;
+    default: return 0;
+    }
+}
+
+static unsigned gltf_type_count(const char *t)
+{
+    static const struct {
+        const char *name;
+        unsigned n;
+    } types[] = {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}, {"MAT2", 4}, {"MAT3", 9}, {"MAT4", 16}};
+    for (size_t k = 0; t && k < sizeof types / sizeof types[0]; ++k)
+        if (!strcmp(t, types[k].name)) return types[k].n;
+    return 0;
+}
+
+/* path = the model's directory (as given) + "/" + uri. */
+static bool beside_model(const char *model, const char *uri, char *out, size_t n)
+{
+    const char *slash = strrchr(model, '/');
+    int len = slash ? snprintf(out, n, "%.*s/%s", (int)(slash - model), model, uri) : snprintf(out, n, "%s", uri);
+    return len >= 0 && (size_t)len < n;
+}
+
+/* Open an external glTF file through the confinement: -1 = refused (error set), 0 = missing
+ * (Assimp will say so), 1 = *bytes set. */
+static int gltf_external(ob_model_fs *fs, const char *what, int index, const char *uri, uint64_t *bytes)
+{
+    char path[OB_MODEL_PATH_MAX] = "";
+    /* Assimp would join an absolute URI to the model's directory (and miss it); what the author
+     * meant is the absolute path, so that is what gets refused. */
+    if (!strncmp(uri, "file://", 7)) uri += 7;
+    if (uri[0] == '/') snprintf(path, sizeof path, "%s", uri);
+    else if (!beside_model(fs->model, uri, path, sizeof path)) {
+        ob_set_error(OB_ERR_MODEL, "%s: %s %d has a URI too long", fs->model, what, index);
+        return -1;
+    }
+    FILE *f = ob_model_fs_open(fs, path, uri);
+    if (!f) {
+        if (!fs->refused[0]) return 0;
+        ob_set_error(OB_ERR_MODEL, "%s: %s %d refers to %s", fs->model, what, index, fs->refused);
+        return -1;
+    }
+    struct stat st = {0};
+    *bytes = fstat(fileno(f), &st) == 0 ? (uint64_t)st.st_size : 0;
+    fclose(f);
+    return 1;
+}
+
+static bool check_gltf_json(ob_model_fs *fs, const cJSON *root, uint64_t bin_bytes, bool glb, uint64_t size,
+                            uint64_t *estimate)
+{
+    const cJSON *asset = cJSON_GetObjectItemCaseSensitive(root, "asset");
+    const cJSON *version = asset ? cJSON_GetObjectItemCaseSensitive(asset, "version") : NULL;
+    if (cJSON_IsString(version) && version->valuestring[0] == '1') {
+        /* glTF 1: Assimp's older importer, with its own layout; the generic estimate only. */
+        *estimate = size * OB_BYTES_PER_FILE_BYTE;
+        return true;
+    }
+    const cJSON *buffers = cJSON_GetObjectItemCaseSensitive(root, "buffers");
+    const cJSON *views = cJSON_GetObjectItemCaseSensitive(root, "bufferViews");
+    const cJSON *accessors = cJSON_GetObjectItemCaseSensitive(root, "accessors");
+    const cJSON *images = cJSON_GetObjectItemCaseSensitive(root, "images");
+    int nb = cJSON_GetArraySize(buffers), nv = cJSON_GetArraySize(views);
+    uint64_t *buf_len = calloc((size_t)nb + 1u, sizeof *buf_len);
+    uint64_t *view_len = calloc((size_t)nv + 1u, sizeof *view_len);
+    bool ok = buf_len && view_len;
+    if (!ok) ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory checking the glTF", fs->model);
+    uint64_t est = size;
+
+    for (int i = 0; ok && i < nb; ++i) {
+        const cJSON *b = cJSON_GetArrayItem(buffers, i);
+        const cJSON *uri = cJSON_GetObjectItemCaseSensitive(b, "uri");
+        uint64_t declared = 0, have = 0;
+        if (!json_u64(b, "byteLength", &declared, true)) {
+            ok = false;
+            ob_set_error(OB_ERR_MODEL, "%s: buffer %d has no valid byteLength", fs->model, i);
+            break;
+        }
+        bool known = true;
+        if (!cJSON_IsString(uri)) {
+            have = glb && i == 0 ? bin_bytes : 0;
+        } else if (!strncmp(uri->valuestring, "data:", 5)) {
+            const char *comma = strchr(uri->valuestring, ',');
+            have = comma ? (uint64_t)strlen(comma + 1) * 3u / 4u : 0;
+        } else {
+            int r = gltf_external(fs, "buffer", i, uri->valuestring, &have);
+            if (r < 0) {
+                ok = false;
+                break;
+            }
+            known = r > 0;
+        }
+        if (known && declared > have) {
+            ok = false;
+            ob_set_error(OB_ERR_MODEL, "%s: buffer %d declares %llu bytes, but its data holds %llu (truncated or corrupt)",
+                         fs->model, i, (unsigned long long)declared, (unsigned long long)have);
+            break;
+        }
+        buf_len[i] = declared;
+        est += declared;
+    }
+    for (int i = 0; ok && i < nv; ++i) {
+        const cJSON *v = cJSON_GetArrayItem(views, i);
+        uint64_t buffer = 0, offset = 0, length = 0;
+        if (!json_u64(v, "buffer", &buffer, true) || buffer >= (uint64_t)nb || !json_u64(v, "byteOffset", &offset, false) ||
+            !json_u64(v, "byteLength", &length, true) || offset + length > buf_len[buffer]) {
+            ok = false;
+            ob_set_error(OB_ERR_MODEL, "%s: bufferView %d lies outside its buffer (or names none)", fs->model, i);
+            break;
+        }
+        view_len[i] = length;
+    }
+    for (int i = 0; ok && i < cJSON_GetArraySize(accessors); ++i) {
+        const cJSON *a = cJSON_GetArrayItem(accessors, i);
+        uint64_t count = 0, ctype = 0, view = 0, offset = 0, stride = 0;
+        const cJSON *type = cJSON_GetObjectItemCaseSensitive(a, "type");
+        unsigned comp = json_u64(a, "componentType", &ctype, true) ? gltf_component_size(ctype) : 0;
+        unsigned n = gltf_type_count(cJSON_IsString(type) ? type->valuestring : NULL);
+        if (!json_u64(a, "count", &count, true) || comp == 0 || n == 0 || !json_u64(a, "byteOffset", &offset, false)) {
+            ok = false;
+            ob_set_error(OB_ERR_MODEL, "%s: accessor %d has no valid count, componentType or type", fs->model, i);
+            break;
+        }
+        uint64_t elem = (uint64_t)comp * n;
+        const cJSON *has_view = cJSON_GetObjectItemCaseSensitive(a, "bufferView");
+        if (has_view) {
+            if (!json_u64(a, "bufferView", &view, true) || view >= (uint64_t)nv) {
+                ok = false;
+                ob_set_error(OB_ERR_MODEL, "%s: accessor %d names a bufferView that does not exist", fs->model, i);
+                break;
+            }
+            const cJSON *v = cJSON_GetArrayItem(views, (int)view);
+            if (!json_u64(v, "byteStride", &stride, false) || stride == 0) stride = elem;
+            /* count < 2^53 but stride may be up to 2^53 too: compare by division, not product. */
+            uint64_t room = view_len[view] > offset ? view_len[view] - offset : 0;
+            if (count > 0 && (room < elem || (count - 1u) > (room - elem) / stride)) {
+                ok = false;
+                ob_set_error(OB_ERR_MODEL,
+                             "%s: accessor %d declares %llu elements of %llu bytes, more than bufferView %llu holds (%llu bytes)",
+                             fs->model, i, (unsigned long long)count, (unsigned long long)elem, (unsigned long long)view,
+                             (unsigned long long)view_len[view]);
+                break;
+            }
+        }
+        /* Without a bufferView the accessor is zeros that Assimp allocates: only the limit
+         * bounds it. 8: Assimp's copy, post-processing's and ours, at float size. */
+        if (count > (UINT64_MAX / 64u) / elem) count = (UINT64_MAX / 64u) / elem;
+        est += 8u * count * elem;
+    }
+    for (int i = 0; ok && i < cJSON_GetArraySize(images); ++i) {
+        const cJSON *uri = cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(images, i), "uri");
+        uint64_t bytes = 0;
+        if (cJSON_IsString(uri) && strncmp(uri->valuestring, "data:", 5) != 0 &&
+            gltf_external(fs, "image", i, uri->valuestring, &bytes) < 0)
+            ok = false;
+    }
+    free(buf_len);
+    free(view_len);
+    *estimate = est;
+    return ok;
+}
+
+static uint32_t le32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static bool check_gltf(ob_model_fs *fs, FILE *f, uint64_t size, bool glb, uint64_t *estimate)
+{
+    uint64_t json_at = 0, json_len = size, bin_len = 0;
+    if (glb) {
+        unsigned char h[20] = {0};
+        if (size < 20 || fread(h, 1, 20, f) != 20 || memcmp(h, "glTF", 4) != 0) return true; /* Assimp says */
+        uint32_t version = le32(h + 4), length = le32(h + 8);
+        if (version != 2) {
+            /* Assimp 5.2 reads glTF 1 only as .gltf text; its answer here would be "No suitable
+             * reader found". */
+            ob_set_error(OB_ERR_MODEL, "%s: a glTF %u binary (.glb version %u); only glTF 2 .glb files can be read",
+                         fs->model, version, version);
+            return false;
+        }
+        json_len = le32(h + 12);
+        if (length > size || le32(h + 16) != 0x4E4F534Au || json_len > (uint64_t)length - 20u) {
+            ob_set_error(OB_ERR_MODEL, "%s: glb header declares %u bytes and a %llu-byte JSON chunk; the file has %llu (truncated or corrupt)",
+                         fs->model, length, (unsigned long long)json_len, (unsigned long long)size);
+            return false;
+        }
+        json_at = 20;
+        uint64_t bin_at = 20u + ((json_len + 3u) & ~3ull);
+        unsigned char c[8] = {0};
+        if (bin_at + 8u <= length && fseeko(f, (off_t)bin_at, SEEK_SET) == 0 && fread(c, 1, 8, f) == 8 &&
+            le32(c + 4) == 0x004E4942u) {
+            bin_len = le32(c);
+            if (bin_len > (uint64_t)length - bin_at - 8u) {
+                ob_set_error(OB_ERR_MODEL, "%s: glb BIN chunk declares %llu bytes; only %llu follow (truncated or corrupt)",
+                             fs->model, (unsigned long long)bin_len, (unsigned long long)(length - bin_at - 8u));
+                return false;
+            }
+        }
+    }
+    char *text = malloc(json_len + 1u);
+    if (!text) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory reading the glTF JSON", fs->model);
+        return false;
+    }
+    bool read = fseeko(f, (off_t)json_at, SEEK_SET) == 0 && fread(text, 1, json_len, f) == json_len;
+    text[read ? json_len : 0] = '\0';
+    cJSON *root = read ? cJSON_ParseWithLength(text, json_len) : NULL;
+    free(text);
+    bool ok = true;
+    if (root) ok = check_gltf_json(fs, root, bin_len, glb, size, estimate);
+    else *estimate = size * OB_BYTES_PER_FILE_BYTE; /* not JSON: Assimp's message names the fault */
+    cJSON_Delete(root);
+    return ok;
+}
+
+/* ---- entry ----------------------------------------------------------------------------------- */
+
+static bool has_ext(const char *path, const char *ext)
+{
+    const char *dot = strrchr(path, '.');
+    const char *slash = strrchr(path, '/');
+    return dot && (!slash || dot > slash) && !strcasecmp(dot, ext);
+}
+
+bool ob_model_precheck(ob_model_fs *fs, uint64_t max_memory)
+{
+    FILE *f = ob_model_fs_open(fs, fs->model, NULL);
+    if (!f) {
+        if (fs->refused[0]) ob_set_error(OB_ERR_IO, "%s: cannot read the model: %s", fs->model, fs->refused);
+        else ob_set_error(OB_ERR_IO, "%s: cannot open the model: %s", fs->model, strerror(errno));
+        return false;
+    }
+    struct stat st = {0};
+    uint64_t size = fstat(fileno(f), &st) == 0 ? (uint64_t)st.st_size : 0;
+    char magic[4] = {0};
+    size_t got = fread(magic, 1, 4, f);
+    rewind(f);
+    uint64_t estimate = size * OB_BYTES_PER_FILE_BYTE;
+    bool ok = true;
+    if (got == 4 && !memcmp(magic, "ply", 3) && isspace((unsigned char)magic[3])) ok = check_ply(fs, f, size, &estimate);
+    else if (got == 4 && !memcmp(magic, "glTF", 4)) ok = check_gltf(fs, f, size, true, &estimate);
+    else if (has_ext(fs->model, ".gltf")) ok = check_gltf(fs, f, size, false, &estimate);
+    else if (has_ext(fs->model, ".obj")) ok = check_obj(f, size, &estimate);
+    fclose(f);
+    if (ok && estimate > max_memory) {
+        char a[32] = "", b[32] = "";
+        ob_set_error(OB_ERR_MODEL, "%s: importing it would take about %s, more than the limit of %s (--max-memory)", fs->model,
+                     human(estimate, a, sizeof a), human(max_memory, b, sizeof b));
+        return false;
+    }
+    return ok;
+}

@@ -1,0 +1,269 @@
+#!/usr/bin/env python3
+"""Hostile model and environment files for tests/test_hostile_models.sh (issue 19).
+
+Usage: make_corpus.py OUTDIR
+
+Writes every case into OUTDIR (all small: nothing large is committed or generated) and
+OUTDIR/cases.tsv, one case per line, tab-separated:
+
+    NAME  EXIT  GROUP  ARG...
+
+EXIT is the documented exit code (README: 3 = missing, unreadable or corrupt model or sidecar),
+GROUP is "cpu" (fails before any GL context: runs in the ASan build too) or "gpu" (needs a
+context: an environment map, or a positive control that renders), ARG... are the arguments to
+`obscura render` after the output options the test adds. The message on stderr must name the
+file given as NAME's target, which is the first ARG naming a file in OUTDIR.
+
+Other hostile-input harnesses (command lines, outputs, sidecars: tests/test_hostile_outputs.sh)
+can add their own cases with add_case() and the same runner.
+Python 3 standard library only.
+"""
+import base64
+import json
+import os
+import struct
+import sys
+
+OUT = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else "hostile-corpus")
+CASES = []
+
+
+def path(*parts):
+    p = os.path.join(OUT, *parts)
+    os.makedirs(os.path.dirname(p), exist_ok=True)
+    return p
+
+
+def write(rel, data):
+    p = path(rel)
+    with open(p, "wb") as f:
+        f.write(data if isinstance(data, bytes) else data.encode())
+    return p
+
+
+def add_case(name, exit_code, group, *args):
+    CASES.append((name, str(exit_code), group) + tuple(str(a) for a in args))
+
+
+# ---- shared pieces -------------------------------------------------------------------------------
+
+# One triangle: 3 float VEC3 positions (36 bytes) and 3 ushort indices (6 bytes, padded to 8).
+TRI_POS = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+TRI_IDX = struct.pack("<3H", 0, 1, 2) + b"\0\0"
+TRI_BIN = TRI_POS + TRI_IDX
+# A 1x1 PNG (grey), written by hand so no image library is needed.
+PNG_1X1 = base64.b64decode(
+    "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAAAAAA6fptVAAAACklEQVR4nGNoAAAAggCBd81ytgAAAABJRU5ErkJggg==")
+
+
+def gltf(buffer_uri, byte_length=len(TRI_BIN), pos_count=3, image_uri=None, version="2.0"):
+    doc = {
+        "asset": {"version": version},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "buffers": [{"byteLength": byte_length}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                        {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": pos_count, "type": "VEC3",
+             "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+    }
+    if buffer_uri is not None:
+        doc["buffers"][0]["uri"] = buffer_uri
+    if image_uri is not None:
+        doc["images"] = [{"uri": image_uri}]
+        doc["textures"] = [{"source": 0}]
+        doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+        doc["meshes"][0]["primitives"][0]["material"] = 0
+    return json.dumps(doc)
+
+
+def data_uri(data):
+    return "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+
+
+def obj_tri(coords):
+    lines = ["v %s %s %s" % c for c in coords]
+    return "\n".join(lines) + "\nf 1 2 3\n"
+
+
+# ---- confinement ---------------------------------------------------------------------------------
+
+# The "secret" files a hostile model reaches for: outside every model directory below, and valid
+# data, so that with --allow-external-files the same model imports (the positive control).
+SECRET_BIN = write("secret/secret.bin", TRI_BIN)
+SECRET_PNG = write("secret/secret.png", PNG_1X1)
+write("secret/secret.mtl", "newmtl m\nKd 1 0 0\n")
+
+m = write("models/a/b/buffer_escape.gltf", gltf("../../../secret/secret.bin"))
+add_case("gltf_buffer_dotdot", 3, "cpu", "--scene", m)
+add_case("gltf_buffer_dotdot_allowed", 0, "gpu", "--scene", m, "--allow-external-files")
+m = write("models/buffer_absolute.gltf", gltf(SECRET_BIN))
+add_case("gltf_buffer_absolute", 3, "cpu", "--scene", m)
+m = write("models/buffer_file_uri.gltf", gltf("file://" + SECRET_BIN))
+add_case("gltf_buffer_file_uri", 3, "cpu", "--scene", m)
+m = write("models/image_escape.gltf", gltf(data_uri(TRI_BIN), image_uri="../secret/secret.png"))
+add_case("gltf_image_dotdot", 3, "cpu", "--scene", m)
+m = write("models/image_absolute.gltf", gltf(data_uri(TRI_BIN), image_uri=SECRET_PNG))
+add_case("gltf_image_absolute", 3, "cpu", "--scene", m)
+
+tri = obj_tri([(0, 0, 0), (1, 0, 0), (0, 1, 0)])
+m = write("models/mtl_escape.obj", "mtllib ../secret/secret.mtl\nusemtl m\n" + tri)
+add_case("obj_mtl_dotdot", 3, "cpu", "--scene", m)
+write("models/tex/inside.mtl", "newmtl m\nKd 1 1 1\nmap_Kd ../../secret/secret.png\n")
+m = write("models/tex/texture_escape.obj", "mtllib inside.mtl\nusemtl m\n" + tri)
+add_case("obj_texture_dotdot", 3, "cpu", "--scene", m)
+write("models/texabs/inside.mtl", "newmtl m\nKd 1 1 1\nmap_Kd %s\n" % SECRET_PNG)
+m = write("models/texabs/texture_absolute.obj", "mtllib inside.mtl\nusemtl m\n" + tri)
+add_case("obj_texture_absolute", 3, "cpu", "--scene", m)
+
+# A symlink inside the model's directory that points out of it.
+link = path("models/link/secret.bin")
+if os.path.lexists(link):
+    os.remove(link)
+os.symlink(SECRET_BIN, link)
+m = write("models/link/symlink_escape.gltf", gltf("secret.bin"))
+add_case("gltf_buffer_symlink_escape", 3, "cpu", "--scene", m)
+# A FIFO inside the directory: would block a plain open() forever.
+fifo = path("models/fifo/buffer.bin")
+if not os.path.exists(fifo):
+    os.mkfifo(fifo)
+m = write("models/fifo/fifo_buffer.gltf", gltf("buffer.bin"))
+add_case("gltf_buffer_fifo", 3, "cpu", "--scene", m)
+# A device through a symlink inside the directory: outside the tree and not a regular file.
+dev = path("models/dev/zero.bin")
+if os.path.lexists(dev):
+    os.remove(dev)
+os.symlink("/dev/zero", dev)
+m = write("models/dev/device_buffer.gltf", gltf("zero.bin", byte_length=1 << 30))
+add_case("gltf_buffer_dev_zero", 3, "cpu", "--scene", m)
+add_case("gltf_buffer_dev_zero_allowed", 3, "cpu", "--scene", m, "--allow-external-files")
+
+# Positive control: the same layout inside the tree renders.
+write("models/ok/tri.bin", TRI_BIN)
+m = write("models/ok/inside.gltf", gltf("tri.bin"))
+add_case("gltf_inside_control", 0, "gpu", "--scene", m)
+
+# ---- bounds before allocation --------------------------------------------------------------------
+
+PLY_HEAD = "ply\nformat %s 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\n" \
+           "element face %d\nproperty list uchar int vertex_indices\nend_header\n"
+m = write("models/ply_1e9_vertices.ply", PLY_HEAD % ("ascii", 10**9, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+add_case("ply_1e9_vertices_ascii", 3, "cpu", "--scene", m)
+m = write("models/ply_2e9_faces.ply", (PLY_HEAD % ("binary_little_endian", 3, 2 * 10**9)).encode() + TRI_POS +
+          struct.pack("<B3i", 3, 0, 1, 2))
+add_case("ply_2e9_faces_binary", 3, "cpu", "--scene", m)
+m = write("models/ply_count_overflow.ply", PLY_HEAD % ("ascii", 3, 2**40) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+add_case("ply_count_over_2e32", 3, "cpu", "--scene", m)
+m = write("models/ply_truncated.ply", (PLY_HEAD % ("binary_little_endian", 1000, 1)).encode() + TRI_POS)
+add_case("ply_truncated_binary", 3, "cpu", "--scene", m)
+m = write("models/ply_no_end_header.ply", "ply\nformat ascii 1.0\nelement vertex 3\n" + "comment x\n" * 8000)
+add_case("ply_header_never_ends", 3, "cpu", "--scene", m)
+
+m = write("models/gltf_accessor_1e9.gltf", gltf(data_uri(TRI_BIN), pos_count=10**9))
+add_case("gltf_accessor_count_1e9", 3, "cpu", "--scene", m)
+m = write("models/gltf_buffer_short.gltf", gltf(data_uri(TRI_BIN), byte_length=10**9))
+add_case("gltf_buffer_bytelength_1e9", 3, "cpu", "--scene", m)
+m = write("models/gltf_not_json.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [")
+add_case("gltf_truncated_json", 3, "cpu", "--scene", m)
+
+
+def glb(json_doc, bin_data, version=2, declared=None):
+    j = json_doc.encode()
+    j += b" " * (-len(j) % 4)
+    body = struct.pack("<I4s", len(j), b"JSON") + j
+    if bin_data is not None:
+        b = bin_data + b"\0" * (-len(bin_data) % 4)
+        body += struct.pack("<I4s", len(b), b"BIN\0") + b
+    total = 12 + len(body)
+    return struct.pack("<4sII", b"glTF", version, declared if declared is not None else total) + body
+
+
+m = write("models/glb_truncated.glb", glb(gltf(None), TRI_BIN)[:60])
+add_case("glb_truncated", 3, "cpu", "--scene", m)
+m = write("models/glb_bin_short.glb", glb(gltf(None, byte_length=10**8), TRI_BIN))
+add_case("glb_bin_chunk_short", 3, "cpu", "--scene", m)
+m = write("models/glb_version1.glb", glb(gltf(None, version="1.0"), TRI_BIN, version=1))
+add_case("glb_gltf1", 3, "cpu", "--scene", m)
+
+m = write("models/stl_truncated.stl", b"\0" * 80 + struct.pack("<I", 1000) + b"\0" * 50)
+add_case("stl_truncated", 3, "cpu", "--scene", m)
+m = write("models/garbage.fbx", b"Kaydara FBX Binary  \0\x1a\0" + b"\xff" * 64)
+add_case("fbx_garbage", 3, "cpu", "--scene", m)
+
+# Memory ceiling: a legitimate 100x100 grid (60 000 face corners) over a 16 MiB limit.
+n = 100
+grid = ["v %d %d 0" % (i, j) for j in range(n + 1) for i in range(n + 1)]
+for j in range(n):
+    for i in range(n):
+        a = j * (n + 1) + i + 1
+        grid.append("f %d %d %d\nf %d %d %d" % (a, a + 1, a + n + 2, a, a + n + 2, a + n + 1))
+m = write("models/grid.obj", "\n".join(grid) + "\n")
+add_case("obj_over_max_memory", 3, "cpu", "--scene", m, "--max-memory", "16M")
+add_case("obj_under_max_memory_control", 0, "gpu", "--scene", m, "--max-memory", "1G")
+
+# ---- scene sanity --------------------------------------------------------------------------------
+
+for name, coords in [
+        ("nan", [(0, 0, 0), ("nan", 0, 0), (0, 1, 0)]),
+        ("inf", [(0, 0, 0), ("inf", 0, 0), (0, 1, 0)]),
+        ("huge_3e37", [(0, 0, 0), (3e37, 0, 0), (0, 3e37, 0)]),
+        ("tiny_1e-30", [(0, 0, 0), (1e-30, 0, 0), (0, 1e-30, 0)]),
+        ("far_offset", [(1e9, 0, 0), (1e9 + 1, 0, 0), (1e9, 1, 0)]),
+        ("overflow_1e39", [(0, 0, 0), ("1e39", 0, 0), (0, 1, 0)])]:
+    m = write("models/coords_%s.obj" % name, obj_tri(coords))
+    add_case("obj_coords_" + name, 3, "cpu", "--scene", m)
+# A glTF whose node matrix carries the vertices out of range (valid JSON has no NaN).
+doc = json.loads(gltf(data_uri(TRI_BIN)))
+doc["nodes"][0]["scale"] = [1e38, 1e38, 1e38]
+m = write("models/node_scale_1e38.gltf", json.dumps(doc))
+add_case("gltf_node_scale_1e38", 3, "cpu", "--scene", m)
+
+# Not a file at all.
+os.makedirs(path("models/a_directory.obj"), exist_ok=True)
+add_case("model_is_directory", 3, "cpu", "--scene", path("models/a_directory.obj"))
+fifo = path("models/model_fifo.obj")
+if not os.path.exists(fifo):
+    os.mkfifo(fifo)
+add_case("model_is_fifo", 3, "cpu", "--scene", fifo)
+add_case("model_is_dev_null", 3, "cpu", "--scene", "/dev/null")
+m = write("models/empty.obj", "")
+add_case("model_empty", 3, "cpu", "--scene", m)
+
+# ---- environment maps (need a GL context: gpu) ---------------------------------------------------
+
+
+def hdr_header(w, h):
+    return ("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n" % (h, w)).encode()
+
+
+m = write("env/truncated_10000.hdr", hdr_header(10000, 10000) + b"\x02\x02\x27\x10" + b"\x80" * 40)
+add_case("hdr_claims_10000x10000", 3, "gpu", "--scene", "corner", "--env", m, "--ambient", "env")
+# 64x32 flat, half the pixels missing: passes the size bound, stb would zero-fill the rest.
+m = write("env/truncated_half.hdr", hdr_header(64, 32) + b"\x80\x80\x80\x81" * (64 * 16))
+add_case("hdr_truncated_half", 3, "gpu", "--scene", "corner", "--env", m, "--ambient", "env")
+# Wider than any GL_MAX_TEXTURE_SIZE we meet (llvmpipe 16384, GPUs 16384-32768), yet small:
+# one run-length scanline.
+w = 40000
+line = b"\x02\x02" + struct.pack(">H", w & 0xFFFF)
+runs = b""
+left = w
+while left > 0:
+    k = min(127, left)
+    runs += bytes([128 + k, 0x80])
+    left -= k
+m = write("env/too_wide.hdr", hdr_header(w, 1) + line + runs * 4)
+add_case("hdr_wider_than_max_texture", 3, "gpu", "--scene", "corner", "--env", m, "--ambient", "env")
+m = write("env/not_hdr.hdr", b"P6\n2 2\n255\n" + b"\0" * 12)
+add_case("hdr_not_radiance", 3, "gpu", "--scene", "corner", "--env", m, "--ambient", "env")
+add_case("hdr_is_directory", 3, "gpu", "--scene", "corner", "--env", path("env"), "--ambient", "env")
+m = write("env/ok.hdr", hdr_header(8, 4) + b"\x80\x80\x80\x81" * 32)
+add_case("hdr_control", 0, "gpu", "--scene", "corner", "--env", m, "--ambient", "env")
+
+with open(os.path.join(OUT, "cases.tsv"), "w") as f:
+    for c in CASES:
+        f.write("\t".join(c) + "\n")
+print(len(CASES))

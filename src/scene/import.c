@@ -647,7 +647,7 @@ static void fail_assimp(const char *path, const ob_model_fs *fs, const char *raw
 /* A raw scene (no post-processing): finite positions (Assimp's FindInvalidData drops a mesh with
  * a NaN and then reports "No meshes remaining"), and the memory post-processing and our copy
  * take, from the counts Assimp actually read (model_io.c cannot see into pk3 archives). */
-static bool check_raw_scene(const struct aiScene *ai, const char *path, uint64_t max_memory)
+static bool check_raw_scene(const struct aiScene *ai, const char *path, uint64_t max_memory, bool check_faces)
 {
     uint64_t vertices = 0, indices = 0;
     for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
@@ -655,6 +655,27 @@ static bool check_raw_scene(const struct aiScene *ai, const char *path, uint64_t
         if (!mesh) continue;
         vertices += mesh->mNumVertices;
         for (unsigned f = 0; mesh->mFaces && f < mesh->mNumFaces; ++f) indices += mesh->mFaces[f].mNumIndices;
+        /* Debian's Assimp keeps its assertions: a face with no corner (a PLY whose face lines
+         * are cut short, found by tests/fuzz/fuzz_model.c) aborts the process in
+         * TriangulateProcess before ValidateDataStructure can refuse it. */
+        if (check_faces && ((mesh->mNumFaces && !mesh->mFaces) || (mesh->mNumVertices && !mesh->mVertices))) {
+            ob_set_error(OB_ERR_MODEL, "%s: mesh %u has no face or vertex array (corrupt file)", path, m);
+            return false;
+        }
+        for (unsigned f = 0; check_faces && f < mesh->mNumFaces; ++f) {
+            const struct aiFace *face = &mesh->mFaces[f];
+            if (face->mNumIndices == 0 || !face->mIndices) {
+                ob_set_error(OB_ERR_MODEL, "%s: mesh %u face %u has no vertices (corrupt or cut-short file)", path, m, f);
+                return false;
+            }
+            for (unsigned k = 0; k < face->mNumIndices; ++k) {
+                if (face->mIndices[k] >= mesh->mNumVertices) {
+                    ob_set_error(OB_ERR_MODEL, "%s: mesh %u face %u names vertex %u of %u (corrupt file)", path, m, f,
+                                 face->mIndices[k], mesh->mNumVertices);
+                    return false;
+                }
+            }
+        }
         for (unsigned v = 0; mesh->mVertices && v < mesh->mNumVertices; ++v) {
             const struct aiVector3D *p = &mesh->mVertices[v];
             if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->z)) {
@@ -702,8 +723,8 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_f
                      aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
     /* Through the confinement (fs). Assimp's C API catches the C++ exceptions of the import
      * and its steps (std::bad_alloc included) and reports them as a NULL scene with a message.
-     * One call with every step: aiApplyPostProcessing on a raw scene would be the place to check
-     * that scene first, but Assimp 5.2.5 frees the scene twice when a step fails there. */
+     * The raw scene is checked through a raw import of its own, not by aiApplyPostProcessing on
+     * it: Assimp 5.2.5 frees the scene twice when a step fails there. */
     const struct aiScene *ai = NULL;
     if (is_q3bsp(path)) {
         /* Read raw, repair the indices and winding, then post-process the repaired scene (the
@@ -713,7 +734,7 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_f
          * them across wall corners, which leaves a third of the flat faces with bent normals;
          * regenerated with the crease angle flat walls come out flat. */
         ai = aiImportFileExWithProperties(path, 0, &fs->io, props);
-        if (ai && (fs->refused[0] || !check_raw_scene(ai, path, max_memory) || !repair_q3bsp((struct aiScene *)ai, path))) {
+        if (ai && (fs->refused[0] || !check_raw_scene(ai, path, max_memory, false) || !repair_q3bsp((struct aiScene *)ai, path))) {
             if (fs->refused[0]) ob_set_error(OB_ERR_MODEL, "%s: refers to %s", path, fs->refused);
             aiReleaseImport(ai);
             aiReleasePropertyStore(props);
@@ -727,23 +748,23 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_f
             ai = aiApplyPostProcessing(ai, q3_flags);
         }
     } else {
-        ai = aiImportFileExWithProperties(path, flags, &fs->io, props);
-    }
-    if (!ai && !fs->refused[0]) {
-        /* Say why when the raw file is the cause: FindInvalidData drops a mesh with a NaN and
-         * Assimp then reports only "No meshes remaining". Only failed imports pay for this
-         * second, raw read. */
-        char why[1024] = "";
-        snprintf(why, sizeof why, "%s", aiGetErrorString());
+        /* First raw, to check what post-processing would otherwise trust (the NaNs that
+         * FindInvalidData turns into "No meshes remaining", faces that abort Triangulate, the
+         * memory its copies take), then released before the real import so that the two never
+         * coexist: peak memory stays that of one import, the time is about one import more. */
         const struct aiScene *raw = aiImportFileExWithProperties(path, 0, &fs->io, props);
-        bool explained = raw && !check_raw_scene(raw, path, max_memory);
-        if (raw) aiReleaseImport(raw);
-        if (explained) {
+        if (!raw || fs->refused[0] || !check_raw_scene(raw, path, max_memory, true)) {
+            if (!raw || fs->refused[0]) fail_assimp(path, fs, aiGetErrorString());
+            if (raw) aiReleaseImport(raw);
             aiReleasePropertyStore(props);
             free(fs);
             return NULL;
         }
-        fail_assimp(path, fs, why);
+        aiReleaseImport(raw);
+        ai = aiImportFileExWithProperties(path, flags, &fs->io, props);
+    }
+    if (!ai && !fs->refused[0]) {
+        fail_assimp(path, fs, aiGetErrorString());
         aiReleasePropertyStore(props);
         free(fs);
         return NULL;

@@ -160,6 +160,11 @@ m = write("models/ply_count_overflow.ply", PLY_HEAD % ("ascii", 3, 2**40) + "0 0
 add_case("ply_count_over_2e32", 3, "cpu", "--scene", m)
 m = write("models/ply_truncated.ply", (PLY_HEAD % ("binary_little_endian", 1000, 1)).encode() + TRI_POS)
 add_case("ply_truncated_binary", 3, "cpu", "--scene", m)
+# Found by tests/fuzz/fuzz_model.c: two faces declared, the face line cut into the last vertex's;
+# Assimp makes faces with no corner and its Triangulate step aborts the process (ai_assert).
+m = write("models/ply_faces_cut_short.ply", (PLY_HEAD % ("ascii", 3, 2)).encode() +
+          b"0 0 0\n1 0 0\n0 1 0\xfe\xcc 0 1 2\n")
+add_case("ply_faces_cut_short", 3, "cpu", "--scene", m)
 m = write("models/ply_no_end_header.ply", "ply\nformat ascii 1.0\nelement vertex 3\n" + "comment x\n" * 8000)
 add_case("ply_header_never_ends", 3, "cpu", "--scene", m)
 

@@ -282,6 +282,12 @@ static bool check_ply(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimat
             ob_set_error(OB_ERR_MODEL, "%s: PLY header has no end_header within %d bytes", fs->model, HEADER_MAX);
             return false;
         }
+        for (const char *p = line; *p; ++p) {
+            if ((unsigned char)*p < 0x20 && *p != '\t') {
+                ob_set_error(OB_ERR_MODEL, "%s: PLY header holds control bytes (corrupt, or not PLY)", fs->model);
+                return false;
+            }
+        }
         char kw[32] = "", a[64] = "", b[64] = "", c[64] = "";
         int got = sscanf(line, "%31s %63s %63s %63s", kw, a, b, c);
         if (got < 1) continue;
@@ -321,11 +327,12 @@ static bool check_ply(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimat
                 return false;
             }
             if (el[n - 1].min_bytes < 4096u) el[n - 1].min_bytes += ascii ? 2u : sz;
-        } else {
-            ob_set_error(OB_ERR_MODEL, "%s: PLY header line '%.60s' is none of format, element, property, comment, obj_info, end_header",
-                         fs->model, line);
+        } else if (!strcmp(kw, "element") || !strcmp(kw, "property") || !strcmp(kw, "format")) {
+            ob_set_error(OB_ERR_MODEL, "%s: PLY header line '%.60s' is incomplete", fs->model, line);
             return false;
         }
+        /* Other text lines are skipped, as Assimp does: Blender 2.47 wrote its "Created by" line
+         * without "comment" (assimp-testmodels' Wuson.ply). */
     }
     if (!has_format) {
         ob_set_error(OB_ERR_MODEL, "%s: PLY header has no format line", fs->model);

@@ -752,7 +752,9 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_f
          * FindInvalidData turns into "No meshes remaining", faces that abort Triangulate, the
          * memory its copies take), then released before the real import so that the two never
          * coexist: peak memory stays that of one import, the time is about one import more. */
-        const struct aiScene *raw = aiImportFileExWithProperties(path, 0, &fs->io, props);
+        /* Validation on: without it Assimp's own scene preprocessing dereferences a face that
+         * has no index array (an OFF face naming vertex 5 of 3, found by fuzz_model). */
+        const struct aiScene *raw = aiImportFileExWithProperties(path, aiProcess_ValidateDataStructure, &fs->io, props);
         if (!raw || fs->refused[0] || !check_raw_scene(raw, path, max_memory, true)) {
             if (!raw || fs->refused[0]) fail_assimp(path, fs, aiGetErrorString());
             if (raw) aiReleaseImport(raw);

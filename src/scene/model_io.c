@@ -269,18 +269,37 @@ static bool check_ply(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimat
     int n = 0;
     bool ascii = true;
     char line[1024] = "";
-    if (!read_line(f, line, sizeof line) || strcmp(line, "ply") != 0) return true; /* Assimp says */
+    /* Assimp's PLY reader loops forever on some malformed headers (a first line "ply\xff...",
+     * found by tests/fuzz/fuzz_model.c): anything it would read as PLY must pass this stricter
+     * reading of the header first. */
+    bool has_format = false;
+    if (!read_line(f, line, sizeof line) || strcmp(line, "ply") != 0) {
+        ob_set_error(OB_ERR_MODEL, "%s: not a PLY file: its first line is not 'ply'", fs->model);
+        return false;
+    }
     for (;;) {
         if (ftello(f) > HEADER_MAX || !read_line(f, line, sizeof line)) {
             ob_set_error(OB_ERR_MODEL, "%s: PLY header has no end_header within %d bytes", fs->model, HEADER_MAX);
             return false;
         }
+        for (const char *p = line; *p; ++p) {
+            if ((unsigned char)*p < 0x20 && *p != '\t') {
+                ob_set_error(OB_ERR_MODEL, "%s: PLY header holds control bytes (corrupt, or not PLY)", fs->model);
+                return false;
+            }
+        }
         char kw[32] = "", a[64] = "", b[64] = "", c[64] = "";
         int got = sscanf(line, "%31s %63s %63s %63s", kw, a, b, c);
         if (got < 1) continue;
         if (!strcmp(kw, "end_header")) break;
-        if (!strcmp(kw, "format") && got >= 2) {
+        if (!strcmp(kw, "comment") || !strcmp(kw, "obj_info")) continue;
+        if (!strcmp(kw, "format") && got >= 3) {
             ascii = !strcmp(a, "ascii");
+            if (!ascii && strcmp(a, "binary_little_endian") != 0 && strcmp(a, "binary_big_endian") != 0) {
+                ob_set_error(OB_ERR_MODEL, "%s: PLY format '%s' is none of ascii, binary_little_endian, binary_big_endian", fs->model, a);
+                return false;
+            }
+            has_format = true;
         } else if (!strcmp(kw, "element") && got >= 3) {
             if (n == MAX_ELEMENTS) {
                 ob_set_error(OB_ERR_MODEL, "%s: PLY header declares more than %d elements", fs->model, MAX_ELEMENTS);
@@ -308,7 +327,16 @@ static bool check_ply(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimat
                 return false;
             }
             if (el[n - 1].min_bytes < 4096u) el[n - 1].min_bytes += ascii ? 2u : sz;
+        } else if (!strcmp(kw, "element") || !strcmp(kw, "property") || !strcmp(kw, "format")) {
+            ob_set_error(OB_ERR_MODEL, "%s: PLY header line '%.60s' is incomplete", fs->model, line);
+            return false;
         }
+        /* Other text lines are skipped, as Assimp does: Blender 2.47 wrote its "Created by" line
+         * without "comment" (assimp-testmodels' Wuson.ply). */
+    }
+    if (!has_format) {
+        ob_set_error(OB_ERR_MODEL, "%s: PLY header has no format line", fs->model);
+        return false;
     }
     off_t header = ftello(f);
     uint64_t left = header >= 0 && (uint64_t)header <= size ? size - (uint64_t)header : 0;
@@ -621,7 +649,7 @@ bool ob_model_precheck(ob_model_fs *fs, uint64_t max_memory)
     rewind(f);
     uint64_t estimate = size * OB_BYTES_PER_FILE_BYTE;
     bool ok = true;
-    if (got == 4 && !memcmp(magic, "ply", 3) && isspace((unsigned char)magic[3])) ok = check_ply(fs, f, size, &estimate);
+    if ((got >= 3 && !memcmp(magic, "ply", 3)) || has_ext(fs->model, ".ply")) ok = check_ply(fs, f, size, &estimate);
     else if (got == 4 && !memcmp(magic, "glTF", 4)) ok = check_gltf(fs, f, size, true, &estimate);
     else if (has_ext(fs->model, ".gltf")) ok = check_gltf(fs, f, size, false, &estimate);
     else if (has_ext(fs->model, ".obj")) ok = check_obj(f, size, &estimate);

@@ -165,6 +165,13 @@ add_case("ply_truncated_binary", 3, "cpu", "--scene", m)
 m = write("models/ply_faces_cut_short.ply", (PLY_HEAD % ("ascii", 3, 2)).encode() +
           b"0 0 0\n1 0 0\n0 1 0\xfe\xcc 0 1 2\n")
 add_case("ply_faces_cut_short", 3, "cpu", "--scene", m)
+# Found by fuzz_model: an OFF face naming vertex 5 of 3; a raw Assimp import crashes (SIGSEGV).
+m = write("models/off_bad_index.off", "OFF\n3 1 0\n0 5 4\n1 0 0\n0 1 0\n0 0\n0 1 0\n3 5 ")
+add_case("off_face_index_out_of_range", 3, "cpu", "--scene", m)
+# Found by fuzz_model: Assimp's PLY reader never returns on this header.
+m = write("models/ply_header_loops.ply", b"ply\xff\xff~\xb8N\xf9\xf9$\nformat ascii 1prope" + b"j\0\0\0rty$clr.am\xe0\xd8"
+          b"\xf9N\xb8\x7f\0\x000\n1 0 0\n0 1 0\n3 0 1 2\n")
+add_case("ply_header_assimp_loops", 3, "cpu", "--scene", m)
 m = write("models/ply_no_end_header.ply", "ply\nformat ascii 1.0\nelement vertex 3\n" + "comment x\n" * 8000)
 add_case("ply_header_never_ends", 3, "cpu", "--scene", m)
 

@@ -1,35 +1,96 @@
 #!/usr/bin/env bash
-# The benchmark on a lent GPU machine (see bench/README.md and the device notes): run from the
-# repository root there, with .gl (the EGL/GL loader .debs and runtime.tar.xz from
-# scripts/pack-runtime.sh) and build/obscura carried. Results go to $OUT (or bench/results/gpu).
-#   usage: bench/run-gpu.sh [quick|sweep|stereo|scaling|all]   (default all)
-# NOT YET VERIFIED on a GPU: no machine was lent to the task that wrote it.
+# The benchmark on a lent GPU machine (bench/README.md "On a GPU"): run from the repository root
+# there, with .gl carried (scripts/pack-runtime.sh --device fills it: the EGL/GL loader .debs the
+# image lacks, runtime.tar.xz with the project's shared libraries, bin/ with obscura and
+# libobscura, the FZK-Haus model and the commit). Everything it writes lands in $OUT (or
+# bench/results/gpu) and is packed as results.tgz after every step, so a step that runs out of
+# time loses only itself.
+#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|fzk|all]...   (default all; the smoke render always)
+# Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-*.md).
 set -u
-what=${1:-all}
+steps=${*:-all}
+gpu=${OB_GPU:-hw} # sw only to try the script itself on a machine without a GPU
 out=${OUT:-bench/results/gpu}
-mkdir -p "$out"
-# The GL/EGL loaders (libglvnd) the device image lacks: unpacked over / as the device notes say.
+raw=$out/r
+mkdir -p "$raw"
+want() { case " $steps " in *" all "* | *" $1 "*) return 0 ;; esac; return 1; }
+pack() { tar -czf "$out/results.tgz.part" -C "$raw" . && mv "$out/results.tgz.part" "$out/results.tgz"; }
+
+# The GL/EGL loaders (libglvnd) the device image lacks, unpacked over / as the device notes say.
 for f in .gl/*.deb; do [ -e "$f" ] && dpkg -x "$f" /; done
 ldconfig
-# The project's own runtime libraries (assimp, cjson, stb, embree, epoxy, ...) stay under .gl/lib.
+# The project's own shared libraries (assimp, cjson, embree, epoxy, ...) under .gl/lib, the
+# binary and libobscura under .gl/bin. LD_LIBRARY_PATH wins over the build's RUNPATH.
 if [ -f .gl/runtime.tar.xz ]; then
     tar -xJf .gl/runtime.tar.xz -C .gl
-    export LD_LIBRARY_PATH=$PWD/.gl/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+    # The image's own C++ runtime is newer than Debian 12's and the driver may load it too:
+    # one copy in the process, the newer one.
+    for l in libstdc++.so.6 libgcc_s.so.1; do ldconfig -p | grep -q "$l " && rm -f ".gl/lib/$l"; done
 fi
+export LD_LIBRARY_PATH=$PWD/.gl/bin:$PWD/.gl/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+B=./build/obscura
+[ -x .gl/bin/obscura ] && B=./.gl/bin/obscura
 # glvnd finds no NVIDIA EGL vendor on some images: point it at the driver's file.
 nv=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-if [ -z "${__EGL_VENDOR_LIBRARY_FILENAMES:-}" ] && [ -f "$nv" ] && ! ls /usr/share/glvnd/egl_vendor.d/*nvidia* >/dev/null 2>&1; then
-    export __EGL_VENDOR_LIBRARY_FILENAMES=$nv
-fi
+[ -z "${__EGL_VENDOR_LIBRARY_FILENAMES:-}" ] && [ -f "$nv" ] && export __EGL_VENDOR_LIBRARY_FILENAMES=$nv
+# The vendor file names libEGL_nvidia.so.0 bare: the driver's folder must be on the search path.
+for d in /usr/local/nvidia/lib64 /usr/local/nvidia/lib; do [ -d "$d" ] && LD_LIBRARY_PATH=$LD_LIBRARY_PATH:$d; done
 # The scenes/ sidecars are looked up in the source tree compiled in; here the tree is the cwd.
 export OBSCURA_DATA_DIR=$PWD
-B=./build/obscura
-nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.mem --format=csv >"$out/nvidia-smi.csv" 2>&1 || true
-ldd "$B" | grep "not found" && { echo "run-gpu: missing libraries (run scripts/pack-runtime.sh here first)" >&2; exit 1; }
-"$B" render --scene corner --size 64x48 --gpu hw -v --out "$out/smoke.png" || exit 1
-run() { local name=$1; shift; "$B" bench --gpu hw -v "$@" --json "$out/$name.json" --csv "$out/$name.csv" >"$out/$name.txt" 2>"$out/$name.err"; echo "$name: exit $?"; }
-case $what in quick | all) run quick --scene cornell --cameras front --frames 10 --warmup 2 ;; esac
-case $what in sweep | all) run sweep --full --scene cornell --size 800x600 --frames 50 --warmup 5 ;; esac
-case $what in stereo | all) run stereo --full --scene cornell --stereo --frames 50 --warmup 5 ;; esac
-case $what in scaling | all) run scaling --scene cornell --cameras front --scaling --frames 50 --warmup 5 ;; esac
+# FZK-Haus's sidecar names the model where Debian's assimp-testmodels puts it.
+ifc=/usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc
+if [ -f .gl/AC14-FZK-Haus.ifc ] && [ ! -f "$ifc" ]; then mkdir -p "${ifc%/*}" && cp .gl/AC14-FZK-Haus.ifc "$ifc"; fi
+
+{
+    echo "commit: $(cat .gl/commit 2>/dev/null || git rev-parse HEAD 2>/dev/null || echo unknown)"
+    echo "date: $(date -u +%FT%TZ)"
+    nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,clocks.mem,power.limit --format=csv 2>&1
+    echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2-) x $(nproc)"
+    uname -a
+} >"$raw/machine.txt"
+if ldd "$B" | grep "not found" >>"$raw/machine.txt"; then
+    echo "run-gpu: missing libraries (scripts/pack-runtime.sh --device here first)" >&2
+    pack; exit 1
+fi
+
+# A first render with -v names the EGL device and GL_RENDERER; without a hardware device stop.
+if ! timeout 60 "$B" render --scene corner --size 64x48 --gpu "$gpu" -v --out "$raw/smoke.png" >"$raw/smoke.txt" 2>&1; then
+    cat "$raw/smoke.txt" >&2
+    { cat "$nv"; echo "LD_LIBRARY_PATH=$LD_LIBRARY_PATH"; ldconfig -p | grep -i -E "egl|glvnd"
+      LD_DEBUG=libs timeout 60 "$B" render --scene corner --size 64x48 --gpu "$gpu" --out /tmp/x.png 2>&1 | grep -i -E "egl|nvidia|error" | head -60; } >>"$raw/smoke.txt" 2>&1
+    pack; exit 1
+fi
+cat "$raw/smoke.txt"
+
+methods=ssao,hbao,crytek,alchemy,ssdo,ssdo_merged,gtao,vbao,vbgi
+# The AO map of every method on the GPU, to hold against the same maps from llvmpipe (the noise
+# is a function of the pixel and frame index alone, so the two should agree to float rounding).
+if want maps; then
+    mkdir -p "$raw/maps"
+    for m in ${methods//,/ }; do
+        timeout 60 "$B" render --gpu "$gpu" --scene cornell --camera front --size 320x240 --method "$m" --shadow none \
+            --out "$raw/maps/$m.png" --ao-out "$raw/maps/$m.pfm" >>"$raw/maps.txt" 2>&1 || echo "maps $m: exit $?" >>"$raw/maps.txt"
+    done
+    pack
+fi
+
+run() {
+    local name=$1 limit=$2; shift 2
+    timeout "$limit" "$B" bench --gpu "$gpu" "$@" --json "$raw/$name.json" --csv "$raw/$name.csv" >"$raw/$name.txt" 2>"$raw/$name.err"
+    echo "$name: exit $? ($SECONDS s)" | tee -a "$raw/steps.txt"
+    pack
+}
+# Every method x preset, 200 measured frames after 20, shadow maps every frame (--full), the
+# floor kernel beside each configuration, the default filter: the whole frame as shipped.
+sweep=(--full --cameras front --radius 4 --quality low,medium,high,ultra --frames 200 --warmup 20 --floor)
+want h1080 && run h1080 150 --scene cornell --size 1920x1080 "${sweep[@]}"
+want stereo && run stereo 150 --scene cornell --stereo "${sweep[@]}"
+# The filters after gtao high (crease's tiled auto picks the plain program on a GPU; on names
+# the tiled one), and the half-resolution AO chain.
+want filters && run filters 60 --scene cornell --size 1920x1080 "${sweep[@]}" --methods gtao,vbao --quality high \
+    --filters none,box4,gaussian,bilateral_sep,crease --ao-scales 1,0.5
+want filters && run filters_tiled 40 --scene cornell --size 1920x1080 "${sweep[@]}" --methods gtao --quality high \
+    --filters crease --set crease.tiled=on
+# FZK-Haus's stair (issue 18's view): 36k triangles and its lights' shadow maps every frame.
+want fzk && run fzk 200 --scene fzk-haus --size 1920x1080 "${sweep[@]}" --cameras stair --quality high
 exit 0

@@ -102,6 +102,8 @@ void ob_destroy_renderer(ob_renderer *r)
     ob_compute_pass_destroy(&r->upsample);
     ob_compute_pass_destroy(&r->upsample_rgb);
     ob_compute_pass_destroy(&r->edges);
+    ob_compute_pass_destroy(&r->fill);
+    ob_compute_pass_destroy(&r->fill_rgb);
     ob_compose_destroy(&r->compose);
     ob_lighting_destroy(&r->lighting);
     ob_shadows_destroy(&r->shadows);
@@ -150,7 +152,8 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
     }
     if (ob_gbuffer_init(&r->gbuffer, d.width, d.height) != OB_OK || ob_compose_init(&r->compose) != OB_OK ||
         ob_downsample_init(&r->downsample) != OB_OK || ob_upsample_init(&r->upsample) != OB_OK ||
-        ob_edges_init(&r->edges) != OB_OK || ob_lighting_init(&r->lighting) != OB_OK ||
+        ob_edges_init(&r->edges) != OB_OK || ob_fill_init(&r->fill, false) != OB_OK ||
+        ob_fill_init(&r->fill_rgb, true) != OB_OK || ob_lighting_init(&r->lighting) != OB_OK ||
         ob_shadows_init(&r->shadows) != OB_OK || ob_hdr_init(&r->hdr, d.width, d.height) != OB_OK) {
         ob_destroy_renderer(r);
         return NULL;
@@ -160,6 +163,7 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
     GLuint full[4] = {0, 0, 0, 0};
     make_full_targets(full, d.width, d.height, 0);
     r->ao = full[0];
+    r->ao_is_one = false;
     r->final = full[1];
     r->direct = full[2];
     r->radiance = full[3];
@@ -212,6 +216,7 @@ ob_error ob_renderer_reshape(ob_renderer *r, int width, int height, int guard)
     GLuint old[7] = {r->ao, r->final, r->direct, r->radiance, r->ao_rgb, r->bounce, r->bent};
     glDeleteTextures(7, old);
     r->ao = full[0];
+    r->ao_is_one = false;
     r->final = full[1];
     r->direct = full[2];
     r->radiance = full[3];

@@ -56,6 +56,7 @@ struct ob_renderer {
     int inner_width, inner_height;
     ob_gbuffer gbuffer;
     ob_compute_pass downsample, upsample, edges;
+    ob_compute_pass fill, fill_rgb; /* fill.c: none's visibility 1, the bounce's 0 */
     ob_compute_pass upsample_rgb;  /* made with the first directional frame */
     bool upsample_rgb_ready;
     ob_compose_pass compose;
@@ -114,6 +115,8 @@ struct ob_renderer {
     ob_temporal_pass temporal;
     bool temporal_ready;
     bool history_valid;
+    /* r->ao holds 1 everywhere, left by a `none` frame: the next `none` frame need not clear it. */
+    bool ao_is_one;
     ob_history_key history_key;
     float prev_view[16], prev_ao_proj[16];
     bool last_temporal;        /* the last frame accumulated (the history_age view and read-backs) */

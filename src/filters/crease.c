@@ -19,6 +19,8 @@ enum { P_RADIUS, P_SIGMA_PLANE, P_SIGMA_NORMAL, P_TILED, P_COUNT };
 
 #define OB_DEG_TO_RAD 0.017453292519943295f
 
+static const char *const tiled_options[] = {"off", "on", "auto"};
+
 static const ob_param_info crease_params[P_COUNT] = {
     /* 2: the window [1/2 1 1 1 1/2]^2 gives every pixel of a 4x4 noise tile the same total
      * weight (eq. 1), so the seeds' rotation noise cancels as under box4; an even r covers whole
@@ -45,16 +47,22 @@ static const ob_param_info crease_params[P_COUNT] = {
      * letting its (too dark) creases brighten from the other face, and cost hbao on the bunny. */
     [P_SIGMA_NORMAL] = {"sigma_normal", OB_PARAM_FLOAT, 1.0f, 90.0f, 20.0f, "degrees",
                         "standard deviation on the angle between normals", false},
-    /* On: the work group's window in shared memory, each texel rebuilt once (crease.glsl's tiled
+    /* on: the work group's window in shared memory, each texel rebuilt once (crease.glsl's tiled
      * program); off: the plain program, the baseline it is measured against. Radii above
-     * OB_CREASE_TILE_RADIUS take the plain one. */
-    [P_TILED] = {"tiled", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
-                 "shared-memory tiles (off: the plain program, every tap fetched and rebuilt per pixel)", false},
+     * OB_CREASE_TILE_RADIUS take the plain one. auto: tiled on a software rasteriser, plain on a
+     * GPU, as measured in one bench run each (gtao high, 1920x1080 on an H100: plain 0.089 ms,
+     * tiled 0.140; 640x480 on llvmpipe, 2 cores: tiled 55 ms, plain 65; docs/filters.md). Off and
+     * on keep their old indices 0 and 1. */
+    [P_TILED] = {"tiled", OB_PARAM_ENUM, 0.0f, 2.0f, 2.0f, "",
+                 "shared-memory tiles: on, off (the plain program, every tap fetched and rebuilt per pixel), "
+                 "or auto (on for a software rasteriser, off on a GPU)",
+                 false, tiled_options},
 };
 
 /* Both programs, so a frame can switch between them. */
 typedef struct crease_state {
     ob_compute_pass plain, tiled;
+    bool software; /* the context is a software rasteriser: what `tiled` auto follows */
 } crease_state;
 
 void ob_crease_constants_init(ob_filter_constants *c, const ob_filter_inputs *in, int radius, float sigma_plane,
@@ -92,6 +100,9 @@ static void *make_state(bool rgb)
         crease_destroy(s);
         return NULL;
     }
+    /* Mesa's software rasterisers name themselves in GL_RENDERER (as context.c tells them). */
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    s->software = renderer && (strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe"));
     return s;
 }
 
@@ -104,7 +115,8 @@ static ob_error crease_run(void *state, const ob_filter_inputs *in, const float 
     ob_filter_constants c;
     ob_crease_constants_init(&c, in, (int)params[P_RADIUS], params[P_SIGMA_PLANE],
                              params[P_SIGMA_NORMAL] * OB_DEG_TO_RAD);
-    bool tiled = params[P_TILED] != 0.0f && c.radius <= OB_CREASE_TILE_RADIUS;
+    const int mode = (int)params[P_TILED]; /* tiled_options */
+    bool tiled = (mode == 1 || (mode == 2 && s->software)) && c.radius <= OB_CREASE_TILE_RADIUS;
     if (tiled) {
         /* The tiled program takes exp2: the same exponents times log2(e). */
         c.depth_falloff *= 1.4426950408889634f;

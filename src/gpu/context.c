@@ -151,7 +151,10 @@ ob_context *ob_make_context(const ob_context_desc *desc)
     if (d.use_current) return adopt_current_context();
     const char *kind = d.gpu == OB_GPU_HW ? "hw" : d.gpu == OB_GPU_SW ? "sw" : "auto";
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!has_ext(client, "EGL_EXT_platform_device") || !has_ext(client, "EGL_EXT_device_enumeration")) {
+    /* EGL_EXT_device_base is device_enumeration + device_query in one name: NVIDIA's driver
+     * advertises only that one, Mesa both. */
+    bool enumeration = has_ext(client, "EGL_EXT_device_enumeration") || has_ext(client, "EGL_EXT_device_base");
+    if (!has_ext(client, "EGL_EXT_platform_device") || !enumeration) {
         ob_set_error(OB_ERR_NO_CONTEXT,
                      "no GPU context (--gpu %s): EGL lacks EGL_EXT_platform_device/device_enumeration "
                      "(is libegl1 with Mesa or the NVIDIA driver installed?)", kind);

@@ -6,8 +6,10 @@ static ob_error none_run(void *state, const ob_ao_inputs *in, const float *param
     (void)state;
     (void)in;
     (void)params;
-    const float one = 1.0f;
-    glClearTexImage(out->visibility, 0, GL_RED, GL_FLOAT, &one);
+    (void)out;
+    /* The renderer writes the 1 with its fill pass, into this target and the full-size one
+     * together (frame.c run_without_ao): a method has no compute pass without a shader, and
+     * the one without a shader is what marks the no-AO baseline. */
     return OB_OK;
 }
 

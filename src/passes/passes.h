@@ -61,6 +61,11 @@ ob_error ob_peel_init(ob_peel *p);
 ob_error ob_peel_run(ob_peel *p, const ob_gbuffer *g, const float *view, const float *proj);
 void ob_peel_destroy(ob_peel *p);
 
+/* ---- fill.c, shaders/fill.glsl: one value into a whole R32F (or, rgb, RGBA16F) target -------- */
+ob_error ob_fill_init(ob_compute_pass *p, bool rgb);
+/* The texture's whole level 0 (its own size, guard band included); rgb as at init. */
+void ob_fill_run(ob_compute_pass *p, bool rgb, GLuint target, const float value[4]);
+
 /* ---- subsampling: downsample.c, upsample.c, edges.c (shaders of the same names) ----------- */
 /* The AO resolution: k full pixels per AO pixel (1, 2 or 4); AO pixel i samples full pixel k i + o. */
 typedef struct ob_ao_grid {

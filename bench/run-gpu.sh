@@ -6,7 +6,7 @@
 # bench/results/gpu) and is packed as results.tgz after every step, so a step that runs out of
 # time loses only itself.
 #   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|fzk|all]...   (default all; the smoke render always)
-# Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-*.md).
+# Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-egl.md).
 set -u
 steps=${*:-all}
 gpu=${OB_GPU:-hw} # sw only to try the script itself on a machine without a GPU

@@ -6,7 +6,13 @@
 # to the device is capped at 64 MiB and libembree3 alone is ~42 MiB.
 # On the device: tar -xJf .gl/runtime.tar.xz -C .gl && export LD_LIBRARY_PATH=$PWD/.gl/lib
 # (bench/run-gpu.sh does both).
+#   usage: scripts/pack-runtime.sh [--device] [BINARY]
+# --device also puts there what the lent machine lacks beside the libraries: the EGL/GL loader
+# .debs (libglvnd, downloaded with apt-get), bin/ (obscura and libobscura, found there through
+# LD_LIBRARY_PATH as the build's RUNPATH is this machine's path), FZK-Haus's model and the commit.
 set -euo pipefail
+device=false
+if [ "${1:-}" = --device ]; then device=true; shift; fi
 BIN=${1:-build/obscura}
 cd "$(dirname "$0")/.."
 [ -x "$BIN" ] || { echo "pack-runtime: $BIN not built (run make)" >&2; exit 1; }
@@ -23,3 +29,16 @@ done
 git check-ignore -q .gl/ 2>/dev/null || echo "pack-runtime: .gl/ is not ignored: echo /.gl/ >>.git/info/exclude" >&2
 tar -cJf .gl/runtime.tar.xz -C "$stage" lib
 echo "pack-runtime: $(ls "$stage/lib" | wc -l) libraries -> .gl/runtime.tar.xz ($(du -h .gl/runtime.tar.xz | cut -f1))"
+if $device; then
+    rm -rf .gl/lib # an unpacked copy from an earlier try here would travel too (64 MiB cap)
+    o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64'
+    mkdir -p /tmp/amd64/partial .gl/bin
+    apt-get $o update -qq
+    (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
+    cp -L "$BIN" "$(dirname "$BIN")"/libobscura.so.0.1 .gl/bin/
+    ifc=/usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc
+    [ -f "$ifc" ] && cp "$ifc" .gl/
+    git rev-parse HEAD >.gl/commit
+    git diff --quiet HEAD || echo "(working tree differs from HEAD)" >>.gl/commit
+    echo "pack-runtime: .gl ready for bench/run-gpu.sh ($(du -sh .gl | cut -f1); carry .gl)"
+fi

@@ -192,6 +192,13 @@ bool ob_march_fetch(sampler2D depth, vec2 at, float dist_px, vec3 p, float mip_s
     bool hit = on_screen && sd > 0.0;
     texel = ivec2(qc);
     w = hit ? ob_view_position(qc, sd, frame.ao_inv_size, frame.ao_proj_info) - p : vec3(0.0);
+    /* P's own texel (a bisection step can land on it) is no sample. Its offset is 0 only where
+     * both reconstructions round alike: NVIDIA's compiler contracts the two inlined copies into
+     * FMAs differently, w came out ~1e-7 |p| in a random direction, and a rise of π read an open
+     * floor 0.10 (test_gtao's CPU port on an H100). A real sample one pixel away is >= 3e-4 |p|
+     * off even at 3840x2160. */
+    hit = hit && dot(w, w) > 1e-12 * dot(p, p);
+    w = hit ? w : vec3(0.0);
     return hit;
 }
 
@@ -232,7 +239,11 @@ float ob_rise_key(vec3 w, vec3 t, vec3 n_slice)
     float x = dot(w, t), y = dot(w, n_slice);
     float r = sqrt(x * x + y * y);
     float k = x > 0.0 ? y * y / (r * (r + x)) : 1.0 - x / r;
-    return y > 0.0 ? k : 0.0;
+    /* On P's plane y is 0 only up to rounding. A sample snapped off the slice can lie on the plane
+     * behind the tangent (x <= 0; at grazing angles a row's step is mostly depth), where y = +1e-7
+     * would read a rise of π: an H100 read open floor 0.88 so (test_gtao's CPU port). Rises under
+     * 1e-3 rad (y < 1e-3 r, the angle of RGBA16F normals: bitmask.glsl OB_RISE_EPSILON) are none. */
+    return y > 1e-3 * r ? k : 0.0;
 }
 
 float ob_rise_angle(float key) { return 2.0 * asin(sqrt(clamp(0.5 * key, 0.0, 1.0))); }

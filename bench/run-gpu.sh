@@ -5,7 +5,7 @@
 # libobscura, the FZK-Haus model and the commit). Everything it writes lands in $OUT (or
 # bench/results/gpu) and is packed as results.tgz after every step, so a step that runs out of
 # time loses only itself.
-#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|fzk|all]...   (default all; the smoke render always)
+#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|tests|fzk|all]...   (default all; the smoke render always)
 # Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-egl.md).
 set -u
 steps=${*:-all}
@@ -91,6 +91,17 @@ want filters && run filters 60 --scene cornell --size 1920x1080 "${sweep[@]}" --
     --filters none,box4,gaussian,bilateral_sep,crease --ao-scales 1,0.5
 want filters && run filters_tiled 40 --scene cornell --size 1920x1080 "${sweep[@]}" --methods gtao --quality high \
     --filters crease --set crease.tiled=on
+# The test suite on the GPU (the build tree that scripts/pack-runtime.sh --device packed; the
+# repository root must be the same path as here, /work/main on these machines: CTest and the
+# tests name absolute paths). The cli-labelled suites need llvmpipe (--gpu sw), gnuplot, chromium
+# or a display and fail there for that alone: their lines are in ctest.log all the same.
+if want tests && [ -f .gl/ctest.tar.xz ]; then
+    tar -xJf .gl/ctest.tar.xz -C / usr 2>/dev/null
+    tar -xJf .gl/ctest.tar.xz build data
+    timeout 300 ctest --test-dir build -j8 --output-on-failure >"$raw/ctest.log" 2>&1
+    echo "tests: $(grep 'tests passed' "$raw/ctest.log") ($SECONDS s)" | tee -a "$raw/steps.txt"
+    pack
+fi
 # FZK-Haus's stair (issue 18's view): 36k triangles and its lights' shadow maps every frame.
 want fzk && run fzk 200 --scene fzk-haus --size 1920x1080 "${sweep[@]}" --cameras stair --quality high
 exit 0

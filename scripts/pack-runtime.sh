@@ -38,6 +38,15 @@ if $device; then
     cp -L "$BIN" "$(dirname "$BIN")"/libobscura.so.0.1 .gl/bin/
     ifc=/usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc
     [ -f "$ifc" ] && cp "$ifc" .gl/
+    # The test suite as built here (bench/run-gpu.sh tests): the build tree without its objects,
+    # data/ and the Debian models the scenes name (absent there).
+    models=(/usr/share/glmark2/models/bunny.obj /usr/share/doc/python3-tinyobjloader/examples/cornell_box.obj
+        /usr/share/doc/python3-tinyobjloader/examples/cornell_box.mtl
+        /usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb)
+    present=()
+    for m in "${models[@]}"; do [ -f "$m" ] && present+=("$m"); done
+    tar -cJf .gl/ctest.tar.xz --exclude=CMakeFiles --exclude='*.a' --exclude=Testing --exclude=build/tests/screenshots \
+        "$(dirname "$BIN")" data "${present[@]}" 2>/dev/null
     git rev-parse HEAD >.gl/commit
     git diff --quiet HEAD || echo "(working tree differs from HEAD)" >>.gl/commit
     echo "pack-runtime: .gl ready for bench/run-gpu.sh ($(du -sh .gl | cut -f1); carry .gl)"

@@ -541,7 +541,7 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "                        divisor; the AO chain costs about (W+2g)(H+2g)/WH)\n"
           "  --temporal on|off     temporal accumulation (docs/temporal.md): reproject last frame's AO\n"
           "                        through depth and the last camera, reject disocclusions, clamp to\n"
-          "                        the 3x3 neighbourhood, blend over --temporal-frames; turns every\n"
+          "                        the 4x4 neighbourhood, blend over --temporal-frames; turns every\n"
           "                        method's noise with the frame index (default off)\n"
           "  --temporal-at before|after  accumulate before (default) or after the spatial filter\n"
           "  --temporal-frames N   history length, 1..256 (default 16)\n"

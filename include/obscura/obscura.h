@@ -445,7 +445,7 @@ typedef struct ob_settings {
     /* Temporal accumulation (issue 17, docs/temporal.md): a pass at the AO resolution that
      * reprojects last frame's accumulated AO (and M, bounce) through this frame's depth and last
      * frame's camera (static scenes), drops it where depth or normal say the surface is new
-     * (disocclusion), clamps it to this frame's 3x3 neighbourhood and blends with a history of
+     * (disocclusion), clamps it to this frame's 4x4 neighbourhood and blends with a history of
      * temporal_frames frames. It also turns every stochastic method's noise with the frame index:
      * gtao/vbao/vbgi's "temporal" parameter (R2 jitters) unless set explicitly, and a per-frame
      * rotation of the random-kernel methods' noise. A new method, AO scale or size starts the

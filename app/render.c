@@ -161,8 +161,15 @@ static int parse(int argc, char **argv, render_opts *o, cli_outputs *outs)
             int found = -1;
             for (int k = 0; k < OB_VIEW_COUNT; ++k)
                 if (!strcmp(v, ob_view_name((ob_view)k))) found = k;
-            if (found < 0)
-                return cli_fail(EXIT_USAGE, "--view: expected final, ao, normals, depth, shadow, radiance, samples or bounce, got '%s'", v);
+            if (found < 0) {
+                /* From the library's own list, so a new view is named without touching this. */
+                char names[512] = "";
+                for (int k = 0; k < OB_VIEW_COUNT; ++k) {
+                    size_t n = strlen(names);
+                    snprintf(names + n, sizeof names - n, "%s%s", k ? ", " : "", ob_view_name((ob_view)k));
+                }
+                return cli_fail(EXIT_USAGE, "--view: unknown view '%s' (known: %s)", v, names);
+            }
             o->view = (ob_view)found;
         } else if (!strcmp(a, "--frames")) {
             char *end = NULL;

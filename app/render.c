@@ -161,8 +161,15 @@ static int parse(int argc, char **argv, render_opts *o, cli_outputs *outs)
             int found = -1;
             for (int k = 0; k < OB_VIEW_COUNT; ++k)
                 if (!strcmp(v, ob_view_name((ob_view)k))) found = k;
-            if (found < 0)
-                return cli_fail(EXIT_USAGE, "--view: expected final, ao, normals, depth, shadow, radiance, samples or bounce, got '%s'", v);
+            if (found < 0) {
+                /* From the library's own list, so a new view is named without touching this. */
+                char names[512] = "";
+                for (int k = 0; k < OB_VIEW_COUNT; ++k) {
+                    size_t n = strlen(names);
+                    snprintf(names + n, sizeof names - n, "%s%s", k ? ", " : "", ob_view_name((ob_view)k));
+                }
+                return cli_fail(EXIT_USAGE, "--view: unknown view '%s' (known: %s)", v, names);
+            }
             o->view = (ob_view)found;
         } else if (!strcmp(a, "--frames")) {
             char *end = NULL;
@@ -279,6 +286,30 @@ done:
     free(buf);
     free(scratch);
     return code;
+}
+
+/* -v: the last frame's exposure, so that another frame can be tone mapped at the same scale
+ * (scripts/demo.sh shows the frame without AO at the with-AO frame's exposure): the scale is
+ * exposure x key / L_avg, L_avg of the radiance before exposure, so a frame of log-average L2
+ * rendered with --key K --exposure L2/L gets exactly the scale K / L of this one. The log-average
+ * is the CPU formula the luminance pass is tested against, over the same composed radiance. */
+static void print_exposure(ob_renderer *r, int w, int h, const ob_hdr_settings *hdr)
+{
+    size_t px = (size_t)w * (size_t)h;
+    float *rgb = malloc(px * 3 * sizeof(float));
+    if (!rgb || ob_read_image(r, OB_IMAGE_HDR_F32, rgb, px * 3 * sizeof(float)) != OB_OK) {
+        free(rgb);
+        ob_clear_error();
+        fprintf(stderr, "obscura: hdr: the frame's radiance could not be read back\n");
+        return;
+    }
+    /* Rec. 709 luminance, in place: as shaders/hdr_shared.h's ob_luminance. */
+    for (size_t i = 0; i < px; ++i) rgb[i] = 0.2126f * rgb[3 * i] + 0.7152f * rgb[3 * i + 1] + 0.0722f * rgb[3 * i + 2];
+    double avg = ob_hdr_log_average(rgb, px);
+    free(rgb);
+    float key = hdr->key > 0.0f ? hdr->key : ob_hdr_auto_key((float)avg);
+    fprintf(stderr, "obscura: hdr: log-average %.9g, key %.9g, exposure %.9g (scale exposure x key / log-average)\n", avg,
+            (double)key, (double)hdr->exposure);
 }
 
 /* AO_R ray traced from each eye's own G-buffer points (a `none` frame of each eye, so before the
@@ -567,6 +598,7 @@ static int render_checked(render_opts *op)
     for (int e = 0; e < eye_count && code == EXIT_OK; ++e)
         code = cli_check_visible(eyes[e], c->width, c->height, ob_query_scene_name(scene), cams[e].name, c->allow_empty,
                                  c->has_eye ? EXIT_USAGE : EXIT_INPUT);
+    if (code == EXIT_OK && c->verbose && settings.hdr.enabled) print_exposure(eyes[0], c->width, c->height, &settings.hdr);
     if (code == EXIT_OK) code = write_outputs(eyes, o.stereo == STEREO_MIRROR ? 2 : 1, &o, o.out_index, true);
 cleanup:
     free(samples);

@@ -3,10 +3,11 @@
 with AO against the same frame without AO, and look where the ray-traced reference says the
 occlusion is.
 
-usage: ao_visibility.py [--label TEXT] [--min-mean M] [--min-share S] FINAL.png NOAO.png REF_AO.png
+usage: ao_visibility.py [--label TEXT] [--min-mean M] [--min-share S] [--contrast] [--max-open L]
+                        FINAL.png NOAO.png REF_AO.png
 
   FINAL.png   the final image with AO (8-bit RGB/RGBA/grey PNG)
-  NOAO.png    the same frame with --method none
+  NOAO.png    the same frame with --method none (scripts/noao_frame.sh: at FINAL's exposure)
   REF_AO.png  the reference AO_R as an 8-bit grey PNG (obscura compare writes VIEW/reference_ao.png)
 
 Prints one line:
@@ -18,7 +19,9 @@ pixel's change is the largest difference of its colour channels. A pixel with AO
 least a quarter of its ambient light blocked (so the AO there should show); AO_R > 0.95 is open.
 
 --min-mean / --min-share: exit 1 (after printing) when the mean or the share is below the value,
-and --contrast: exit 1 unless the mean change where AO_R < 0.75 is above that where AO_R > 0.95.
+--contrast: exit 1 unless the mean change where AO_R < 0.75 is above that where AO_R > 0.95, and
+--max-open L: exit 1 when the mean change where AO_R > 0.95 is above L levels (the AO barely
+touches those pixels, so a larger change there is the two frames' exposures differing).
 Exit 2 on bad usage or an unreadable image (one line on stderr naming the file).
 
 Python 3 standard library only (zlib): the PNGs obscura writes are 8-bit, not interlaced.
@@ -135,10 +138,10 @@ def measure(final, noao, ref):
 
 
 def main(argv):
-    label, min_mean, min_share, contrast, files = None, None, None, False, []
+    label, min_mean, min_share, max_open, contrast, files = None, None, None, None, False, []
     it = iter(argv)
     for arg in it:
-        if arg in ("--label", "--min-mean", "--min-share"):
+        if arg in ("--label", "--min-mean", "--min-share", "--max-open"):
             value = next(it, None)
             if value is None:
                 print(f"ao_visibility: {arg} needs a value", file=sys.stderr)
@@ -153,8 +156,10 @@ def main(argv):
                 return 2
             if arg == "--min-mean":
                 min_mean = number
-            else:
+            elif arg == "--min-share":
                 min_share = number
+            else:
+                max_open = number
         elif arg == "--contrast":
             contrast = True
         elif arg.startswith("--"):
@@ -164,7 +169,7 @@ def main(argv):
             files.append(arg)
     if len(files) != 3:
         print("usage: ao_visibility.py [--label TEXT] [--min-mean M] [--min-share S] [--contrast] "
-              "FINAL.png NOAO.png REF_AO.png", file=sys.stderr)
+              "[--max-open L] FINAL.png NOAO.png REF_AO.png", file=sys.stderr)
         return 2
     try:
         images = [read_png(f) for f in files]
@@ -185,6 +190,8 @@ def main(argv):
         failed.append(f"mean {mean:.2f} < {min_mean}")
     if min_share is not None and share < min_share:
         failed.append(f"share {share:.1f} % < {min_share} %")
+    if max_open is not None and opn > max_open:
+        failed.append(f"the open pixels change by {opn:.1f} levels > {max_open} (a different exposure?)")
     if contrast and not occ > opn:
         failed.append(f"the occluded pixels change no more than the open ones ({occ:.1f} <= {opn:.1f})")
     if failed:

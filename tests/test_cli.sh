@@ -66,6 +66,15 @@ expect 2 "temporal_frames = 0 is out of range" -- "${R[@]}" --set temporal_frame
 expect 2 "textures: expected on or off" -- "${R[@]}" --textures maybe
 expect 2 "vsm-bits: expected 16 or 32" -- "${R[@]}" --shadow vsm --vsm-bits 8
 expect 2 "view" -- "${R[@]}" --view bogus
+# The --view error and render --help name every view the library has (list --json's, from ob_view_name).
+"$OBSCURA" render --scene corner --size 8x8 --out "$dir/out.png" --view bogus 2>"$dir/view.err"
+"$OBSCURA" render --help >"$dir/view.help"
+if "$OBSCURA" list --json | python3 -c 'import json, re, sys
+err, helptext = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+views = json.load(sys.stdin)["views"]
+miss = [v for v in views if not re.search(r"\b%s\b" % v, err) or not re.search(r"\b%s\b" % v, helptext)]
+sys.exit("views missing from the --view error or help: %s (%d views)" % (miss, len(views)) if miss or len(views) < 13 else 0)' \
+    "$dir/view.err" "$dir/view.help"; then ok; else bad "--view bogus: $(cat "$dir/view.err")"; fi
 expect 2 "out of range" -- "${R[@]}" --set geometry.radius=99
 expect 2 "but the filter is geometry" -- "${R[@]}" --set gaussian.sigma=1
 expect 2 "no parameter 'nosuch'" -- "${R[@]}" --filter bilateral --set bilateral.nosuch=1

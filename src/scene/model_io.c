@@ -9,7 +9,8 @@
  * Bounds before allocation: Assimp sizes its arrays from the counts a file declares (a 431-byte
  * PLY declaring 10^9 vertices reached 11.7 GB before failing). The checks here compare each
  * declared count with the bytes that can hold it, and the memory an import would take with the
- * limit, before Assimp sees the file. */
+ * limit, before Assimp sees the file. Quake 3 maps (.pk3 zips and their .bsp) have a file of their
+ * own: bsp_check.c. */
 #include "scene/model_io.h"
 
 #include <ctype.h>
@@ -25,6 +26,7 @@
 #include <cjson/cJSON.h>
 
 #include "core/error.h"
+#include "scene/bsp_check.h"
 
 /* Peak bytes per element of an import, measured with Assimp 5.2.5 and our post-processing flags
  * (peak RSS over the raw-scene element counts): a 33 MB OBJ of 2.94 M face corners peaked at
@@ -386,6 +388,74 @@ static bool check_obj(FILE *f, uint64_t size, uint64_t *estimate)
     return true;
 }
 
+/* ---- OFF ------------------------------------------------------------------------------------- */
+
+/* Past blank space, line ends and comment lines, as Assimp's NextToken. */
+static const char *off_skip(const char *p, const char *end)
+{
+    while (p < end && (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n' || *p == '#')) {
+        if (*p == '#') {
+            while (p < end && *p != '\n') ++p;
+        } else {
+            ++p;
+        }
+    }
+    return p;
+}
+
+/* Assimp's OFF reader allocates its vertex, normal, colour and face arrays from the header's
+ * counts before it reads a line (assimp-testmodels' invalid/OutOfMemory.off, 310 bytes declaring
+ * 3.5e12 vertices, took 16 GB under the fuzzer). Each vertex and each face is one line of at
+ * least one byte, so together they cannot outnumber the bytes that follow the counts. The header
+ * is read as Assimp reads it: comments ('#'), an optional ST/C/N/4/n prefix before "OFF", an
+ * optional "OFF" keyword, the dimension when 'n' is given. */
+static bool check_off(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimate)
+{
+    enum { HEAD = 4096 };
+    char head[HEAD + 1] = "";
+    size_t n = fread(head, 1, HEAD, f);
+    head[n] = '\0';
+    const char *p = head, *end = head + n;
+    p = off_skip(p, end);
+    bool dimension = false;
+    if (end - p > 2 && p[0] == 'S' && p[1] == 'T') p += 2;
+    if (end - p > 1 && p[0] == 'C') ++p;
+    if (end - p > 1 && p[0] == 'N') ++p;
+    if (end - p > 1 && p[0] == '4') ++p;
+    if (end - p > 1 && p[0] == 'n') {
+        dimension = true;
+        ++p;
+    }
+    if (end - p > 3 && !strncmp(p, "OFF", 3)) p += 3;
+    uint64_t count[3] = {0, 0, 0}; /* [dimension,] vertices, faces */
+    for (int k = dimension ? 0 : 1; k < 3; ++k) {
+        p = off_skip(p, end);
+        uint64_t v = 0;
+        while (p < end && *p >= '0' && *p <= '9') {
+            v = v * 10u + (uint64_t)(*p++ - '0');
+            /* Assimp reads the counts as 32-bit and would wrap a larger one. */
+            if (v > UINT32_MAX) {
+                ob_set_error(OB_ERR_MODEL, "%s: OFF header declares a count over 2^32 (corrupt)", fs->model);
+                return false;
+            }
+        }
+        count[k] = v;
+    }
+    /* The edge count and the rest of its line: what follows is the vertex lines. */
+    while (p < end && *p != '\n') ++p;
+    uint64_t used = (uint64_t)(p - head);
+    uint64_t left = size > used ? size - used : 0;
+    if (count[1] + count[2] > left) {
+        ob_set_error(OB_ERR_MODEL,
+                     "%s: OFF header declares %llu vertices and %llu faces, a line each, but only %llu bytes follow (truncated or corrupt)",
+                     fs->model, (unsigned long long)count[1], (unsigned long long)count[2], (unsigned long long)left);
+        return false;
+    }
+    /* Up to four arrays of 12-16 bytes per vertex and a 16-byte face with its index array. */
+    *estimate = size * OB_BYTES_PER_FILE_BYTE + ob_model_estimate_peak(count[1], 4u * count[2]);
+    return true;
+}
+
 /* ---- glTF ------------------------------------------------------------------------------------ */
 
 static bool json_u64(const cJSON *obj, const char *key, uint64_t *out, bool required)
@@ -649,10 +719,13 @@ bool ob_model_precheck(ob_model_fs *fs, uint64_t max_memory)
     rewind(f);
     uint64_t estimate = size * OB_BYTES_PER_FILE_BYTE;
     bool ok = true;
-    if ((got >= 3 && !memcmp(magic, "ply", 3)) || has_ext(fs->model, ".ply")) ok = check_ply(fs, f, size, &estimate);
+    /* First: Assimp picks its Quake 3 importer by these extensions before it looks at content. */
+    if (has_ext(fs->model, ".pk3") || has_ext(fs->model, ".bsp")) ok = ob_q3_check(fs->model, f, size, max_memory, &estimate);
+    else if ((got >= 3 && !memcmp(magic, "ply", 3)) || has_ext(fs->model, ".ply")) ok = check_ply(fs, f, size, &estimate);
     else if (got == 4 && !memcmp(magic, "glTF", 4)) ok = check_gltf(fs, f, size, true, &estimate);
     else if (has_ext(fs->model, ".gltf")) ok = check_gltf(fs, f, size, false, &estimate);
     else if (has_ext(fs->model, ".obj")) ok = check_obj(f, size, &estimate);
+    else if (has_ext(fs->model, ".off")) ok = check_off(fs, f, size, &estimate);
     fclose(f);
     if (ok && estimate > max_memory) {
         char a[32] = "", b[32] = "";

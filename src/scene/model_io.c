@@ -456,6 +456,121 @@ static bool check_off(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimat
     return true;
 }
 
+/* ---- Collada --------------------------------------------------------------------------------- */
+
+/* Assimp 5.2.5's Collada reader sizes a data array by its count attribute (0 when there is none)
+ * and then reads each accessor's offset + index * stride from it with no bound: an array whose
+ * count is missing or smaller than an accessor of it needs is a read past the array (a SIGSEGV
+ * on a null array, found by tests/fuzz/fuzz_model.c; garbage coordinates otherwise). So every
+ * <accessor> must fit the array it names. A text scan, not an XML parser: tags inside comments
+ * count too, which can only refuse more. */
+typedef struct dae_array {
+    const char *id;
+    size_t id_len;
+    uint64_t count;
+} dae_array;
+
+/* The value of attribute `name` in the tag [tag, end): *val and *len; false when it has none. */
+static bool dae_attr(const char *tag, const char *end, const char *name, const char **val, size_t *len)
+{
+    size_t n = strlen(name);
+    for (const char *p = tag + 1; p + n + 2 < end; ++p) {
+        if ((p[-1] != ' ' && p[-1] != '\t' && p[-1] != '\n' && p[-1] != '\r') || strncmp(p, name, n) != 0) continue;
+        const char *q = p + n;
+        while (q < end && (*q == ' ' || *q == '\t')) ++q;
+        if (q >= end || *q != '=') continue;
+        ++q;
+        while (q < end && (*q == ' ' || *q == '\t')) ++q;
+        if (q >= end || (*q != '"' && *q != '\'')) continue;
+        const char *close = memchr(q + 1, *q, (size_t)(end - q - 1));
+        if (!close) return false;
+        *val = q + 1;
+        *len = (size_t)(close - q - 1);
+        return true;
+    }
+    return false;
+}
+
+/* An unsigned attribute as Assimp reads it (0 when missing or not a number); capped at 2^40. */
+static uint64_t dae_uint(const char *tag, const char *end, const char *name, uint64_t missing)
+{
+    const char *v = NULL;
+    size_t len = 0;
+    if (!dae_attr(tag, end, name, &v, &len)) return missing;
+    uint64_t x = 0;
+    for (size_t k = 0; k < len && v[k] >= '0' && v[k] <= '9'; ++k)
+        if (x < (1ull << 40)) x = x * 10u + (uint64_t)(v[k] - '0');
+    return x;
+}
+
+static bool check_dae(ob_model_fs *fs, FILE *f, uint64_t size)
+{
+    static const char *const arrays[] = {"<float_array", "<int_array", "<Name_array", "<IDREF_array", "<bool_array"};
+    char *text = malloc(size + 1u);
+    if (!text) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory reading the Collada file", fs->model);
+        return false;
+    }
+    size_t n = fread(text, 1, size, f);
+    text[n] = '\0';
+    const char *end = text + n;
+    dae_array *list = NULL;
+    size_t count = 0, cap = 0;
+    bool ok = true;
+    for (const char *p = memchr(text, '<', n); ok && p; p = memchr(p + 1, '<', (size_t)(end - p - 1))) {
+        const char *close = memchr(p, '>', (size_t)(end - p));
+        if (!close) break;
+        for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) {
+            size_t len = strlen(arrays[k]);
+            if ((size_t)(close - p) <= len || strncmp(p, arrays[k], len) != 0 || (p[len] != ' ' && p[len] != '\t' && p[len] != '\n' && p[len] != '\r'))
+                continue;
+            if (count == cap) {
+                size_t grown = cap ? 2 * cap : 64;
+                dae_array *bigger = realloc(list, grown * sizeof *bigger);
+                if (!bigger) {
+                    ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory checking the Collada file", fs->model);
+                    ok = false;
+                    break;
+                }
+                list = bigger;
+                cap = grown;
+            }
+            dae_array *a = &list[count++];
+            a->id = NULL;
+            a->id_len = 0;
+            (void)dae_attr(p, close, "id", &a->id, &a->id_len);
+            a->count = dae_uint(p, close, "count", 0);
+        }
+    }
+    for (const char *p = strstr(text, "<accessor"); ok && p; p = strstr(p + 1, "<accessor")) {
+        const char *close = memchr(p, '>', (size_t)(end - p));
+        const char *src = NULL;
+        size_t src_len = 0;
+        if (!close || !dae_attr(p, close, "source", &src, &src_len)) continue;
+        if (src_len > 0 && src[0] == '#') {
+            ++src;
+            --src_len;
+        }
+        uint64_t need = dae_uint(p, close, "offset", 0) + dae_uint(p, close, "count", 0) * dae_uint(p, close, "stride", 1);
+        for (size_t k = 0; k < count; ++k) {
+            if (!list[k].id || list[k].id_len != src_len || strncmp(list[k].id, src, src_len) != 0) continue;
+            if (need > list[k].count) {
+                char id[81] = ""; /* printable ASCII: the message is one line */
+                size_t m = 0;
+                for (; m < src_len && m < 80; ++m) id[m] = src[m] >= 0x20 && src[m] < 0x7f ? src[m] : '?';
+                id[m] = '\0';
+                ob_set_error(OB_ERR_MODEL, "%s: Collada accessor of '%s' reads %llu values; the array declares %llu (corrupt)",
+                             fs->model, id, (unsigned long long)need, (unsigned long long)list[k].count);
+                ok = false;
+            }
+            break;
+        }
+    }
+    free(list);
+    free(text);
+    return ok;
+}
+
 /* ---- glTF ------------------------------------------------------------------------------------ */
 
 static bool json_u64(const cJSON *obj, const char *key, uint64_t *out, bool required)
@@ -726,6 +841,7 @@ bool ob_model_precheck(ob_model_fs *fs, uint64_t max_memory)
     else if (has_ext(fs->model, ".gltf")) ok = check_gltf(fs, f, size, false, &estimate);
     else if (has_ext(fs->model, ".obj")) ok = check_obj(f, size, &estimate);
     else if (has_ext(fs->model, ".off")) ok = check_off(fs, f, size, &estimate);
+    else if (has_ext(fs->model, ".dae")) ok = check_dae(fs, f, size);
     fclose(f);
     if (ok && estimate > max_memory) {
         char a[32] = "", b[32] = "";

@@ -231,6 +231,41 @@ m = write("models/grid.obj", "\n".join(grid) + "\n")
 add_case("obj_over_max_memory", 3, "cpu", "--scene", m, "--max-memory", "16M")
 add_case("obj_under_max_memory_control", 0, "gpu", "--scene", m, "--max-memory", "1G")
 
+def dae_tri(array_count_attr):
+    """A one-triangle Collada file; array_count_attr: the float_array's count attribute."""
+    return """<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter="1"/><up_axis>Y_UP</up_axis></asset>
+  <library_geometries>
+    <geometry id="tri" name="tri"><mesh>
+      <source id="tri-pos">
+        <float_array id="tri-pos-array"%s>0 0 0 1 0 0 0 1 0</float_array>
+        <technique_common><accessor source="#tri-pos-array" count="3" stride="3">
+          <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+        </accessor></technique_common>
+      </source>
+      <vertices id="tri-vtx"><input semantic="POSITION" source="#tri-pos"/></vertices>
+      <triangles count="1"><input semantic="VERTEX" source="#tri-vtx" offset="0"/><p>0 1 2</p></triangles>
+    </mesh></geometry>
+  </library_geometries>
+  <library_visual_scenes><visual_scene id="s"><node id="n"><instance_geometry url="#tri"/></node>
+  </visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+""" % array_count_attr
+
+
+# Found by fuzz_model: a float_array without its count attribute is an empty array to Assimp
+# 5.2.5, and its accessor reads 9 values from it: SIGSEGV. A count of 3 reads past it silently.
+m = write("models/dae_array_no_count.dae", dae_tri(""))
+add_case("dae_array_without_count", 3, "cpu", "--scene", m,
+         expect="Collada accessor of 'tri-pos-array' reads 9 values; the array declares 0")
+m = write("models/dae_array_short.dae", dae_tri(' count="3"'))
+add_case("dae_accessor_past_array", 3, "cpu", "--scene", m, expect="reads 9 values; the array declares 3")
+m = write("models/dae_ok.dae", dae_tri(' count="9"'))
+add_case("dae_control", 0, "gpu", "--scene", m)
+
+
 # ---- Quake 3 maps (.pk3 = a zip holding maps/NAME.bsp; src/scene/bsp_check.c) --------------------
 
 

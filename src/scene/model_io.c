@@ -462,8 +462,8 @@ static bool check_off(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimat
  * and then reads each accessor's offset + index * stride from it with no bound: an array whose
  * count is missing or smaller than an accessor of it needs is a read past the array (a SIGSEGV
  * on a null array, found by tests/fuzz/fuzz_model.c; garbage coordinates otherwise). So every
- * <accessor> must fit the array it names. A text scan, not an XML parser: tags inside comments
- * count too, which can only refuse more. */
+ * <accessor> must fit the array it names; counts and index lists are checked too (below). A text
+ * scan, not an XML parser: tags inside comments count too, which can only refuse more. */
 typedef struct dae_array {
     const char *id;
     size_t id_len;
@@ -520,6 +520,34 @@ static bool check_dae(ob_model_fs *fs, FILE *f, uint64_t size)
     for (const char *p = memchr(text, '<', n); ok && p; p = memchr(p + 1, '<', (size_t)(end - p - 1))) {
         const char *close = memchr(p, '>', (size_t)(end - p));
         if (!close) break;
+        /* Every count sizes a reservation (<triangles count> reserves 3 * count indices per
+         * input); each thing counted takes at least a byte of the file. */
+        uint64_t declared = dae_uint(p, close, "count", 0);
+        if (declared > size) {
+            char tag[33] = "";
+            size_t t = 0;
+            for (; t + 1 < sizeof tag && p + 1 + t < close && p[1 + t] > ' ' && p[1 + t] < 0x7f; ++t) tag[t] = p[1 + t];
+            tag[t] = '\0';
+            ob_set_error(OB_ERR_MODEL, "%s: Collada <%s> declares a count of %llu; the file's %llu bytes cannot hold that many (corrupt)",
+                         fs->model, tag, (unsigned long long)declared, (unsigned long long)size);
+            ok = false;
+            break;
+        }
+        /* Index lists: Assimp 5.2.5 reads <p> with strtol10 until the text ends, and a byte that
+         * is no digit, sign or space stops the reader without advancing it: an endless loop that
+         * grows the index vector until memory runs out (found by fuzz_model). <vcount> and
+         * <v> are read the same way. */
+        if ((close - p == 2 && p[1] == 'p') || (close - p == 7 && !strncmp(p, "<vcount", 7)) || (close - p == 2 && p[1] == 'v')) {
+            for (const char *c = close + 1; c < end && *c != '<'; ++c) {
+                if ((*c >= '0' && *c <= '9') || *c == '-' || *c == '+' || *c == ' ' || *c == '\t' || *c == '\r' || *c == '\n')
+                    continue;
+                ob_set_error(OB_ERR_MODEL, "%s: Collada <%.*s> index list holds byte 0x%02x at offset %llu, not a digit (corrupt)",
+                             fs->model, (int)(close - p - 1), p + 1, (unsigned)(unsigned char)*c, (unsigned long long)(c - text));
+                ok = false;
+                break;
+            }
+            if (!ok) break;
+        }
         for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) {
             size_t len = strlen(arrays[k]);
             if ((size_t)(close - p) <= len || strncmp(p, arrays[k], len) != 0 || (p[len] != ' ' && p[len] != '\t' && p[len] != '\n' && p[len] != '\r'))

@@ -231,8 +231,9 @@ m = write("models/grid.obj", "\n".join(grid) + "\n")
 add_case("obj_over_max_memory", 3, "cpu", "--scene", m, "--max-memory", "16M")
 add_case("obj_under_max_memory_control", 0, "gpu", "--scene", m, "--max-memory", "1G")
 
-def dae_tri(array_count_attr):
-    """A one-triangle Collada file; array_count_attr: the float_array's count attribute."""
+def dae_tri(array_count_attr, p="0 1 2", triangles=1):
+    """A one-triangle Collada file; array_count_attr: the float_array's count attribute; p: the
+    index list; triangles: the primitive count."""
     return """<?xml version="1.0" encoding="utf-8"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
   <asset><unit meter="1"/><up_axis>Y_UP</up_axis></asset>
@@ -245,14 +246,14 @@ def dae_tri(array_count_attr):
         </accessor></technique_common>
       </source>
       <vertices id="tri-vtx"><input semantic="POSITION" source="#tri-pos"/></vertices>
-      <triangles count="1"><input semantic="VERTEX" source="#tri-vtx" offset="0"/><p>0 1 2</p></triangles>
+      <triangles count="%d"><input semantic="VERTEX" source="#tri-vtx" offset="0"/><p>%s</p></triangles>
     </mesh></geometry>
   </library_geometries>
   <library_visual_scenes><visual_scene id="s"><node id="n"><instance_geometry url="#tri"/></node>
   </visual_scene></library_visual_scenes>
   <scene><instance_visual_scene url="#s"/></scene>
 </COLLADA>
-""" % array_count_attr
+""" % (array_count_attr, triangles, p)
 
 
 # Found by fuzz_model: a float_array without its count attribute is an empty array to Assimp
@@ -262,6 +263,12 @@ add_case("dae_array_without_count", 3, "cpu", "--scene", m,
          expect="Collada accessor of 'tri-pos-array' reads 9 values; the array declares 0")
 m = write("models/dae_array_short.dae", dae_tri(' count="3"'))
 add_case("dae_accessor_past_array", 3, "cpu", "--scene", m, expect="reads 9 values; the array declares 3")
+# Found by fuzz_model: a byte in <p> that is no digit stops Assimp's index reader without moving
+# it on: an endless loop that grew the index vector to 2.2 GB.
+m = write("models/dae_p_letter.dae", dae_tri(' count="9"', p="0 1 2H"))
+add_case("dae_index_list_endless", 3, "cpu", "--scene", m, expect="Collada <p> index list holds byte 0x48")
+m = write("models/dae_triangles_1e9.dae", dae_tri(' count="9"', triangles=10**9))
+add_case("dae_triangle_count_1e9", 3, "cpu", "--scene", m, expect="Collada <triangles> declares a count of 1000000000")
 m = write("models/dae_ok.dae", dae_tri(' count="9"'))
 add_case("dae_control", 0, "gpu", "--scene", m)
 

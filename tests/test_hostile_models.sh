@@ -1,8 +1,8 @@
 #!/bin/sh
 # Hostile models and environment maps (issue 19): tests/hostile/make_corpus.py writes the corpus
 # at test time; each case runs `obscura render` at 16x16 and must give the documented exit code,
-# exactly one non-empty stderr line naming the file, no output file (nor a temporary one) left
-# behind, and a peak resident memory under the ceiling.
+# exactly one non-empty stderr line naming the file (and saying what expect.tsv says it must),
+# no output file (nor a temporary one) left behind, and a peak resident memory under the ceiling.
 #
 # usage: test_hostile_models.sh OBSCURA [cpu|gpu|all]
 #   cpu: the cases that fail before a GL context (the ASan build runs these); gpu: the others
@@ -53,6 +53,8 @@ while IFS="$TAB" read -r name expect group rest; do
         [ -s "$out/stderr" ] || why="$why; empty stderr"
         base=$(basename "$target")
         grep -qF -- "$base" "$out/stderr" || why="$why; stderr does not name $base"
+        want=$(awk -F "$TAB" -v n="$name" '$1 == n { print $2 }' "$WORK/corpus/expect.tsv")
+        [ -z "$want" ] || grep -qF -- "$want" "$out/stderr" || why="$why; stderr does not say '$want'"
         leftover=$(ls -A "$out" | grep -v -e '^mem$' -e '^stdout$' -e '^stderr$')
         [ -z "$leftover" ] || why="$why; left behind: $leftover"
     else

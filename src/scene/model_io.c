@@ -9,7 +9,8 @@
  * Bounds before allocation: Assimp sizes its arrays from the counts a file declares (a 431-byte
  * PLY declaring 10^9 vertices reached 11.7 GB before failing). The checks here compare each
  * declared count with the bytes that can hold it, and the memory an import would take with the
- * limit, before Assimp sees the file. */
+ * limit, before Assimp sees the file. Quake 3 maps (.pk3 zips and their .bsp) have a file of their
+ * own: bsp_check.c. */
 #include "scene/model_io.h"
 
 #include <ctype.h>
@@ -25,6 +26,7 @@
 #include <cjson/cJSON.h>
 
 #include "core/error.h"
+#include "scene/bsp_check.h"
 
 /* Peak bytes per element of an import, measured with Assimp 5.2.5 and our post-processing flags
  * (peak RSS over the raw-scene element counts): a 33 MB OBJ of 2.94 M face corners peaked at
@@ -386,6 +388,217 @@ static bool check_obj(FILE *f, uint64_t size, uint64_t *estimate)
     return true;
 }
 
+/* ---- OFF ------------------------------------------------------------------------------------- */
+
+/* Past blank space, line ends and comment lines, as Assimp's NextToken. */
+static const char *off_skip(const char *p, const char *end)
+{
+    while (p < end && (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n' || *p == '#')) {
+        if (*p == '#') {
+            while (p < end && *p != '\n') ++p;
+        } else {
+            ++p;
+        }
+    }
+    return p;
+}
+
+/* Assimp's OFF reader allocates its vertex, normal, colour and face arrays from the header's
+ * counts before it reads a line (assimp-testmodels' invalid/OutOfMemory.off, 310 bytes declaring
+ * 3.5e12 vertices, took 16 GB under the fuzzer). Each vertex and each face is one line of at
+ * least one byte, so together they cannot outnumber the bytes that follow the counts. The header
+ * is read as Assimp reads it: comments ('#'), an optional ST/C/N/4/n prefix before "OFF", an
+ * optional "OFF" keyword, the dimension when 'n' is given. */
+static bool check_off(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimate)
+{
+    enum { HEAD = 4096 };
+    char head[HEAD + 1] = "";
+    size_t n = fread(head, 1, HEAD, f);
+    head[n] = '\0';
+    const char *p = head, *end = head + n;
+    p = off_skip(p, end);
+    bool dimension = false;
+    if (end - p > 2 && p[0] == 'S' && p[1] == 'T') p += 2;
+    if (end - p > 1 && p[0] == 'C') ++p;
+    if (end - p > 1 && p[0] == 'N') ++p;
+    if (end - p > 1 && p[0] == '4') ++p;
+    if (end - p > 1 && p[0] == 'n') {
+        dimension = true;
+        ++p;
+    }
+    if (end - p > 3 && !strncmp(p, "OFF", 3)) p += 3;
+    uint64_t count[3] = {0, 0, 0}; /* [dimension,] vertices, faces */
+    for (int k = dimension ? 0 : 1; k < 3; ++k) {
+        p = off_skip(p, end);
+        uint64_t v = 0;
+        while (p < end && *p >= '0' && *p <= '9') {
+            v = v * 10u + (uint64_t)(*p++ - '0');
+            /* Assimp reads the counts as 32-bit and would wrap a larger one. */
+            if (v > UINT32_MAX) {
+                ob_set_error(OB_ERR_MODEL, "%s: OFF header declares a count over 2^32 (corrupt)", fs->model);
+                return false;
+            }
+        }
+        count[k] = v;
+    }
+    /* The edge count and the rest of its line: what follows is the vertex lines. */
+    while (p < end && *p != '\n') ++p;
+    uint64_t used = (uint64_t)(p - head);
+    uint64_t left = size > used ? size - used : 0;
+    if (count[1] + count[2] > left) {
+        ob_set_error(OB_ERR_MODEL,
+                     "%s: OFF header declares %llu vertices and %llu faces, a line each, but only %llu bytes follow (truncated or corrupt)",
+                     fs->model, (unsigned long long)count[1], (unsigned long long)count[2], (unsigned long long)left);
+        return false;
+    }
+    /* Up to four arrays of 12-16 bytes per vertex and a 16-byte face with its index array. */
+    *estimate = size * OB_BYTES_PER_FILE_BYTE + ob_model_estimate_peak(count[1], 4u * count[2]);
+    return true;
+}
+
+/* ---- Collada --------------------------------------------------------------------------------- */
+
+/* Assimp 5.2.5's Collada reader sizes a data array by its count attribute (0 when there is none)
+ * and then reads each accessor's offset + index * stride from it with no bound: an array whose
+ * count is missing or smaller than an accessor of it needs is a read past the array (a SIGSEGV
+ * on a null array, found by tests/fuzz/fuzz_model.c; garbage coordinates otherwise). So every
+ * <accessor> must fit the array it names; counts and index lists are checked too (below). A text
+ * scan, not an XML parser: tags inside comments count too, which can only refuse more. */
+typedef struct dae_array {
+    const char *id;
+    size_t id_len;
+    uint64_t count;
+} dae_array;
+
+/* The value of attribute `name` in the tag [tag, end): *val and *len; false when it has none. */
+static bool dae_attr(const char *tag, const char *end, const char *name, const char **val, size_t *len)
+{
+    size_t n = strlen(name);
+    for (const char *p = tag + 1; p + n + 2 < end; ++p) {
+        if ((p[-1] != ' ' && p[-1] != '\t' && p[-1] != '\n' && p[-1] != '\r') || strncmp(p, name, n) != 0) continue;
+        const char *q = p + n;
+        while (q < end && (*q == ' ' || *q == '\t')) ++q;
+        if (q >= end || *q != '=') continue;
+        ++q;
+        while (q < end && (*q == ' ' || *q == '\t')) ++q;
+        if (q >= end || (*q != '"' && *q != '\'')) continue;
+        const char *close = memchr(q + 1, *q, (size_t)(end - q - 1));
+        if (!close) return false;
+        *val = q + 1;
+        *len = (size_t)(close - q - 1);
+        return true;
+    }
+    return false;
+}
+
+/* An unsigned attribute as Assimp reads it (0 when missing or not a number); capped at 2^40. */
+static uint64_t dae_uint(const char *tag, const char *end, const char *name, uint64_t missing)
+{
+    const char *v = NULL;
+    size_t len = 0;
+    if (!dae_attr(tag, end, name, &v, &len)) return missing;
+    uint64_t x = 0;
+    for (size_t k = 0; k < len && v[k] >= '0' && v[k] <= '9'; ++k)
+        if (x < (1ull << 40)) x = x * 10u + (uint64_t)(v[k] - '0');
+    return x;
+}
+
+static bool check_dae(ob_model_fs *fs, FILE *f, uint64_t size)
+{
+    static const char *const arrays[] = {"<float_array", "<int_array", "<Name_array", "<IDREF_array", "<bool_array"};
+    char *text = malloc(size + 1u);
+    if (!text) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory reading the Collada file", fs->model);
+        return false;
+    }
+    size_t n = fread(text, 1, size, f);
+    text[n] = '\0';
+    const char *end = text + n;
+    dae_array *list = NULL;
+    size_t count = 0, cap = 0;
+    bool ok = true;
+    for (const char *p = memchr(text, '<', n); ok && p; p = memchr(p + 1, '<', (size_t)(end - p - 1))) {
+        const char *close = memchr(p, '>', (size_t)(end - p));
+        if (!close) break;
+        /* Every count sizes a reservation (<triangles count> reserves 3 * count indices per
+         * input); each thing counted takes at least a byte of the file. */
+        uint64_t declared = dae_uint(p, close, "count", 0);
+        if (declared > size) {
+            char tag[33] = "";
+            size_t t = 0;
+            for (; t + 1 < sizeof tag && p + 1 + t < close && p[1 + t] > ' ' && p[1 + t] < 0x7f; ++t) tag[t] = p[1 + t];
+            tag[t] = '\0';
+            ob_set_error(OB_ERR_MODEL, "%s: Collada <%s> declares a count of %llu; the file's %llu bytes cannot hold that many (corrupt)",
+                         fs->model, tag, (unsigned long long)declared, (unsigned long long)size);
+            ok = false;
+            break;
+        }
+        /* Index lists: Assimp 5.2.5 reads <p> with strtol10 until the text ends, and a byte that
+         * is no digit, sign or space stops the reader without advancing it: an endless loop that
+         * grows the index vector until memory runs out (found by fuzz_model). <vcount> and
+         * <v> are read the same way. */
+        if ((close - p == 2 && p[1] == 'p') || (close - p == 7 && !strncmp(p, "<vcount", 7)) || (close - p == 2 && p[1] == 'v')) {
+            for (const char *c = close + 1; c < end && *c != '<'; ++c) {
+                if ((*c >= '0' && *c <= '9') || *c == '-' || *c == '+' || *c == ' ' || *c == '\t' || *c == '\r' || *c == '\n')
+                    continue;
+                ob_set_error(OB_ERR_MODEL, "%s: Collada <%.*s> index list holds byte 0x%02x at offset %llu, not a digit (corrupt)",
+                             fs->model, (int)(close - p - 1), p + 1, (unsigned)(unsigned char)*c, (unsigned long long)(c - text));
+                ok = false;
+                break;
+            }
+            if (!ok) break;
+        }
+        for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) {
+            size_t len = strlen(arrays[k]);
+            if ((size_t)(close - p) <= len || strncmp(p, arrays[k], len) != 0 || (p[len] != ' ' && p[len] != '\t' && p[len] != '\n' && p[len] != '\r'))
+                continue;
+            if (count == cap) {
+                size_t grown = cap ? 2 * cap : 64;
+                dae_array *bigger = realloc(list, grown * sizeof *bigger);
+                if (!bigger) {
+                    ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory checking the Collada file", fs->model);
+                    ok = false;
+                    break;
+                }
+                list = bigger;
+                cap = grown;
+            }
+            dae_array *a = &list[count++];
+            a->id = NULL;
+            a->id_len = 0;
+            (void)dae_attr(p, close, "id", &a->id, &a->id_len);
+            a->count = dae_uint(p, close, "count", 0);
+        }
+    }
+    for (const char *p = strstr(text, "<accessor"); ok && p; p = strstr(p + 1, "<accessor")) {
+        const char *close = memchr(p, '>', (size_t)(end - p));
+        const char *src = NULL;
+        size_t src_len = 0;
+        if (!close || !dae_attr(p, close, "source", &src, &src_len)) continue;
+        if (src_len > 0 && src[0] == '#') {
+            ++src;
+            --src_len;
+        }
+        uint64_t need = dae_uint(p, close, "offset", 0) + dae_uint(p, close, "count", 0) * dae_uint(p, close, "stride", 1);
+        for (size_t k = 0; k < count; ++k) {
+            if (!list[k].id || list[k].id_len != src_len || strncmp(list[k].id, src, src_len) != 0) continue;
+            if (need > list[k].count) {
+                char id[81] = ""; /* printable ASCII: the message is one line */
+                size_t m = 0;
+                for (; m < src_len && m < 80; ++m) id[m] = src[m] >= 0x20 && src[m] < 0x7f ? src[m] : '?';
+                id[m] = '\0';
+                ob_set_error(OB_ERR_MODEL, "%s: Collada accessor of '%s' reads %llu values; the array declares %llu (corrupt)",
+                             fs->model, id, (unsigned long long)need, (unsigned long long)list[k].count);
+                ok = false;
+            }
+            break;
+        }
+    }
+    free(list);
+    free(text);
+    return ok;
+}
+
 /* ---- glTF ------------------------------------------------------------------------------------ */
 
 static bool json_u64(const cJSON *obj, const char *key, uint64_t *out, bool required)
@@ -649,10 +862,14 @@ bool ob_model_precheck(ob_model_fs *fs, uint64_t max_memory)
     rewind(f);
     uint64_t estimate = size * OB_BYTES_PER_FILE_BYTE;
     bool ok = true;
-    if ((got >= 3 && !memcmp(magic, "ply", 3)) || has_ext(fs->model, ".ply")) ok = check_ply(fs, f, size, &estimate);
+    /* First: Assimp picks its Quake 3 importer by these extensions before it looks at content. */
+    if (has_ext(fs->model, ".pk3") || has_ext(fs->model, ".bsp")) ok = ob_q3_check(fs->model, f, size, max_memory, &estimate);
+    else if ((got >= 3 && !memcmp(magic, "ply", 3)) || has_ext(fs->model, ".ply")) ok = check_ply(fs, f, size, &estimate);
     else if (got == 4 && !memcmp(magic, "glTF", 4)) ok = check_gltf(fs, f, size, true, &estimate);
     else if (has_ext(fs->model, ".gltf")) ok = check_gltf(fs, f, size, false, &estimate);
     else if (has_ext(fs->model, ".obj")) ok = check_obj(f, size, &estimate);
+    else if (has_ext(fs->model, ".off")) ok = check_off(fs, f, size, &estimate);
+    else if (has_ext(fs->model, ".dae")) ok = check_dae(fs, f, size);
     fclose(f);
     if (ok && estimate > max_memory) {
         char a[32] = "", b[32] = "";

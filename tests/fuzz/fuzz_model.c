@@ -14,7 +14,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    static const char *ext[] = {".ply", ".obj", ".gltf", ".glb", ".stl", ".off", ".fbx", ".dae"};
+    static const char *ext[] = {".ply", ".obj", ".gltf", ".glb", ".stl", ".off", ".fbx", ".dae", ".pk3", ".bsp"};
     if (size < 1) return 0;
     char dir[] = "/tmp/ob_fuzz_model_XXXXXX";
     if (!mkdtemp(dir)) return 0;

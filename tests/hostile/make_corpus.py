@@ -14,18 +14,23 @@ context: an environment map, or a positive control that renders), ARG... are the
 `obscura render` after the output options the test adds. The message on stderr must name the
 file given as NAME's target, which is the first ARG naming a file in OUTDIR.
 
+OUTDIR/expect.tsv holds, for some cases, a piece of the message they must give: NAME  TEXT.
+
 Other hostile-input harnesses (command lines, outputs, sidecars: tests/test_hostile_outputs.sh)
 can add their own cases with add_case() and the same runner.
 Python 3 standard library only.
 """
 import base64
+import io
 import json
 import os
 import struct
 import sys
+import zipfile
 
 OUT = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else "hostile-corpus")
 CASES = []
+EXPECT = []
 
 
 def path(*parts):
@@ -41,8 +46,11 @@ def write(rel, data):
     return p
 
 
-def add_case(name, exit_code, group, *args):
+def add_case(name, exit_code, group, *args, expect=None):
+    """expect: a piece of the one-line message the case must give (written to expect.tsv)."""
     CASES.append((name, str(exit_code), group) + tuple(str(a) for a in args))
+    if expect:
+        EXPECT.append((name, expect))
 
 
 # ---- shared pieces -------------------------------------------------------------------------------
@@ -168,6 +176,12 @@ add_case("ply_faces_cut_short", 3, "cpu", "--scene", m)
 # Found by fuzz_model: an OFF face naming vertex 5 of 3; a raw Assimp import crashes (SIGSEGV).
 m = write("models/off_bad_index.off", "OFF\n3 1 0\n0 5 4\n1 0 0\n0 1 0\n0 0\n0 1 0\n3 5 ")
 add_case("off_face_index_out_of_range", 3, "cpu", "--scene", m)
+# Assimp's OFF reader allocates four arrays from the header's counts before reading a line:
+# assimp-testmodels' invalid/OutOfMemory.off (3.5e12 vertices) took 16 GB under fuzz_model.
+m = write("models/off_count_3e12.off", "OFF\n3535352353358 6 0\n-0.5 -0.5 0.5\n0.5 -0.5 0.5\n")
+add_case("off_count_over_2e32", 3, "cpu", "--scene", m, expect="OFF header declares a count over 2^32")
+m = write("models/off_1e9_vertices.off", "OFF\n1000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+add_case("off_1e9_vertices", 3, "cpu", "--scene", m, expect="OFF header declares 1000000000 vertices and 1 faces")
 # Found by fuzz_model: Assimp's PLY reader never returns on this header.
 m = write("models/ply_header_loops.ply", b"ply\xff\xff~\xb8N\xf9\xf9$\nformat ascii 1prope" + b"j\0\0\0rty$clr.am\xe0\xd8"
           b"\xf9N\xb8\x7f\0\x000\n1 0 0\n0 1 0\n3 0 1 2\n")
@@ -216,6 +230,169 @@ for j in range(n):
 m = write("models/grid.obj", "\n".join(grid) + "\n")
 add_case("obj_over_max_memory", 3, "cpu", "--scene", m, "--max-memory", "16M")
 add_case("obj_under_max_memory_control", 0, "gpu", "--scene", m, "--max-memory", "1G")
+
+def dae_tri(array_count_attr, p="0 1 2", triangles=1):
+    """A one-triangle Collada file; array_count_attr: the float_array's count attribute; p: the
+    index list; triangles: the primitive count."""
+    return """<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter="1"/><up_axis>Y_UP</up_axis></asset>
+  <library_geometries>
+    <geometry id="tri" name="tri"><mesh>
+      <source id="tri-pos">
+        <float_array id="tri-pos-array"%s>0 0 0 1 0 0 0 1 0</float_array>
+        <technique_common><accessor source="#tri-pos-array" count="3" stride="3">
+          <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+        </accessor></technique_common>
+      </source>
+      <vertices id="tri-vtx"><input semantic="POSITION" source="#tri-pos"/></vertices>
+      <triangles count="%d"><input semantic="VERTEX" source="#tri-vtx" offset="0"/><p>%s</p></triangles>
+    </mesh></geometry>
+  </library_geometries>
+  <library_visual_scenes><visual_scene id="s"><node id="n"><instance_geometry url="#tri"/></node>
+  </visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+""" % (array_count_attr, triangles, p)
+
+
+# Found by fuzz_model: a float_array without its count attribute is an empty array to Assimp
+# 5.2.5, and its accessor reads 9 values from it: SIGSEGV. A count of 3 reads past it silently.
+m = write("models/dae_array_no_count.dae", dae_tri(""))
+add_case("dae_array_without_count", 3, "cpu", "--scene", m,
+         expect="Collada accessor of 'tri-pos-array' reads 9 values; the array declares 0")
+m = write("models/dae_array_short.dae", dae_tri(' count="3"'))
+add_case("dae_accessor_past_array", 3, "cpu", "--scene", m, expect="reads 9 values; the array declares 3")
+# Found by fuzz_model: a byte in <p> that is no digit stops Assimp's index reader without moving
+# it on: an endless loop that grew the index vector to 2.2 GB.
+m = write("models/dae_p_letter.dae", dae_tri(' count="9"', p="0 1 2H"))
+add_case("dae_index_list_endless", 3, "cpu", "--scene", m, expect="Collada <p> index list holds byte 0x48")
+m = write("models/dae_triangles_1e9.dae", dae_tri(' count="9"', triangles=10**9))
+add_case("dae_triangle_count_1e9", 3, "cpu", "--scene", m, expect="Collada <triangles> declares a count of 1000000000")
+m = write("models/dae_ok.dae", dae_tri(' count="9"'))
+add_case("dae_control", 0, "gpu", "--scene", m)
+
+
+# ---- Quake 3 maps (.pk3 = a zip holding maps/NAME.bsp; src/scene/bsp_check.c) --------------------
+
+
+def bsp(version=46, magic=b"IBSP", lumps=None, face=None, meshverts=(0, 1, 2), tex_name=b"textures/base/floor"):
+    """A one-triangle Quake 3 BSP (version 46, 17 lumps): one texture, three vertices, three mesh
+    vertices, one polygon face. lumps: {index: (offset, length)} patched into the lump table."""
+    tex = tex_name.ljust(64, b"\0")[:64] + struct.pack("<ii", 0, 1)
+    verts = b"".join(struct.pack("<3f2f2f3f4B", *p, 0, 0, 0, 0, 0, 0, 1, 255, 255, 255, 255)
+                     for p in [(0, 0, 0), (64, 0, 0), (0, 64, 0)])
+    f = {"tex": 0, "type": 1, "first": 0, "count": 3}
+    f.update(face or {})
+    faces = struct.pack("<8i4i12f2i", f["tex"], -1, f["type"], 0, 3, f["first"], f["count"], -1,
+                        0, 0, 0, 0, *([0.0] * 11 + [1.0]), 0, 0)
+    body = {0: b'{\n"classname" "worldspawn"\n}\n\0', 1: tex, 10: verts,
+            11: struct.pack("<%di" % len(meshverts), *meshverts), 13: faces}
+    table, data = [], b""
+    for k in range(17):
+        chunk = body.get(k, b"")
+        table.append((8 + 17 * 8 + len(data), len(chunk)))
+        data += chunk + b"\0" * (-len(chunk) % 4)
+    for k, v in (lumps or {}).items():
+        table[k] = v
+    return magic + struct.pack("<i", version) + b"".join(struct.pack("<ii", *t) for t in table) + data
+
+
+def pk3(entries, method=zipfile.ZIP_DEFLATED):
+    b = io.BytesIO()
+    with zipfile.ZipFile(b, "w", method) as z:
+        for name, data in entries:
+            z.writestr(name, data)
+    return b.getvalue()
+
+
+def zip_patch(data, field, value, fmt="<I"):
+    """Set a field (offset in the header) of the first local and central headers to value."""
+    data = bytearray(data)
+    for sig, at in ((b"PK\3\4", {"crc": 14, "csize": 18, "usize": 22}),
+                    (b"PK\1\2", {"crc": 16, "csize": 20, "usize": 24})):
+        i = data.find(sig)
+        struct.pack_into(fmt, data, i + at[field], value)
+    return bytes(data)
+
+
+BSP_OK = bsp()
+BSP_LEN = len(BSP_OK)
+m = write("maps/ok/tri.pk3", pk3([("maps/tri.bsp", BSP_OK)]))
+add_case("pk3_control", 0, "gpu", "--scene", m)
+# The lump table: past the end, a negative length (Assimp divides it unsigned: ~2^64 elements,
+# std::bad_alloc), a mesh-vertex lump that is no whole number of ints (Assimp copies it whole
+# into length/4 of them: a heap overflow).
+m = write("maps/lump_past_end.pk3", pk3([("maps/m.bsp", bsp(lumps={10: (BSP_LEN - 40, 132)}))]))
+add_case("pk3_lump_past_end", 3, "cpu", "--scene", m,
+         expect='lump 10 (vertices) spans bytes')
+m = write("maps/lump_negative.pk3", pk3([("maps/m.bsp", bsp(lumps={14: (200, -49152)}))]))
+add_case("pk3_lump_length_negative", 3, "cpu", "--scene", m,
+         expect='lump 14 (lightmaps) has a negative offset or length')
+m = write("maps/lump_partial.pk3", pk3([("maps/m.bsp", bsp(lumps={11: (8 + 17 * 8, 6)}))]))
+add_case("pk3_mesh_vertices_partial_int", 3, "cpu", "--scene", m,
+         expect='lump 11 (mesh vertices) is 6 bytes, not a whole number of 4-byte elements')
+# Counts that would need gigabytes: a face whose 2e9 mesh vertices the lump does not hold, and
+# 10^5 faces that each use all 2*10^4 mesh vertices (a 2e9-corner mesh, about 600 GB to import)
+# from a 10 MB BSP that deflates to 40 KB.
+m = write("maps/face_count_2e9.pk3", pk3([("maps/m.bsp", bsp(face={"count": 2 * 10**9}))]))
+add_case("pk3_face_count_2e9", 3, "cpu", "--scene", m,
+         expect="face 0's mesh vertices 0 to 2000000000 lie outside")
+many = bytearray(bsp(meshverts=(0, 1, 2) * 6667, face={"count": 20001}))
+at, _ = struct.unpack_from("<ii", many, 8 + 13 * 8)
+face = bytes(many[at:at + 104])
+struct.pack_into("<ii", many, 8 + 13 * 8, len(many), 104 * 10**5)  # the faces lump: appended
+many += face * 10**5
+m = write("maps/corners_2e9.pk3", pk3([("maps/m.bsp", bytes(many))]))
+add_case("pk3_faces_need_600gb", 3, "cpu", "--scene", m,
+         expect='more than the limit of 4.00 GiB (--max-memory)')
+m = write("maps/face_texture.pk3", pk3([("maps/m.bsp", bsp(face={"tex": 7}))]))
+add_case("pk3_face_texture_out_of_range", 3, "cpu", "--scene", m,
+         expect='face 0 names texture 7')
+m = write("maps/face_vertex.pk3", pk3([("maps/m.bsp", bsp(meshverts=(0, 1, 2**31 - 1)))]))
+add_case("pk3_face_vertex_out_of_range", 3, "cpu", "--scene", m,
+         expect='face 0 corner 2 names vertex 2147483647')
+m = write("maps/texture_name.pk3", pk3([("maps/m.bsp", bsp(tex_name=b"x" * 64))]))
+add_case("pk3_texture_name_unterminated", 3, "cpu", "--scene", m,
+         expect="texture 0's name is not terminated")
+m = write("maps/bad_magic.pk3", pk3([("maps/m.bsp", bsp(magic=b"RBSP"))]))
+add_case("pk3_bsp_magic", 3, "cpu", "--scene", m,
+         expect="not a Quake 3 BSP: it begins 'RBSP'")
+m = write("maps/bad_version.pk3", pk3([("maps/m.bsp", bsp(version=47))]))
+add_case("pk3_bsp_version", 3, "cpu", "--scene", m,
+         expect='BSP version 47')
+m = write("maps/short_header.pk3", pk3([("maps/m.bsp", b"IBSP" + struct.pack("<i", 46) + b"\0" * 40)]))
+add_case("pk3_bsp_header_short", 3, "cpu", "--scene", m,
+         expect='too short for a Quake 3 BSP header')
+# The zip: an entry claiming 4 GB uncompressed (Assimp allocates the claim before inflating), one
+# claiming 100 MB over a 64 MiB --max-memory, one whose data inflates past its claim and one that
+# fails its CRC (both end in an ai_assert in Assimp: the process aborts), a truncated archive.
+z = pk3([("maps/m.bsp", BSP_OK)])
+m = write("maps/claims_4g.pk3", zip_patch(z, "usize", 0xFFFFFF00))
+add_case("pk3_entry_claims_4gb", 3, "cpu", "--scene", m,
+         expect="zip entry 'maps/m.bsp' claims 4294967040 bytes uncompressed")
+m = write("maps/claims_100m.pk3", zip_patch(pk3([("maps/m.bsp", BSP_OK + bytes(100 << 20))]),
+                                            "usize", 100 << 20))
+add_case("pk3_entry_over_max_memory", 3, "cpu", "--scene", m, "--max-memory", "64M",
+         expect='claims 100.0 MiB uncompressed, more than the limit of 64.0 MiB')
+m = write("maps/longer_than_claim.pk3", zip_patch(z, "usize", BSP_LEN - 8))
+add_case("pk3_entry_longer_than_claimed", 3, "cpu", "--scene", m,
+         expect='inflates to more than its declared')
+m = write("maps/crc.pk3", zip_patch(z, "crc", 0x12345678))
+add_case("pk3_entry_crc", 3, "cpu", "--scene", m,
+         expect='fails its CRC check')
+m = write("maps/truncated.pk3", bytes(z[:len(z) // 2]) + bytes(z[-22:]))
+add_case("pk3_truncated", 3, "cpu", "--scene", m,
+         expect='zip end record declares a central directory')
+m = write("maps/not_zip.pk3", BSP_OK)
+add_case("pk3_not_a_zip", 3, "cpu", "--scene", m,
+         expect='not a .pk3 (zip) archive')
+m = write("maps/bare.bsp", BSP_OK)
+add_case("bsp_bare", 3, "cpu", "--scene", m,
+         expect='a bare .bsp')
+m = write("maps/bare_past_end.bsp", bsp(lumps={13: (200, 104 * 1000)}))
+add_case("bsp_bare_lump_past_end", 3, "cpu", "--scene", m,
+         expect='lump 13 (faces) spans bytes 200 to 104200')
 
 # ---- scene sanity --------------------------------------------------------------------------------
 
@@ -278,4 +455,7 @@ add_case("hdr_control", 0, "gpu", "--scene", "corner", "--env", m, "--ambient", 
 with open(os.path.join(OUT, "cases.tsv"), "w") as f:
     for c in CASES:
         f.write("\t".join(c) + "\n")
+with open(os.path.join(OUT, "expect.tsv"), "w") as f:
+    for name, text in EXPECT:
+        f.write(name + "\t" + text + "\n")
 print(len(CASES))

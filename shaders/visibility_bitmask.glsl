@@ -100,6 +100,7 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    ob_march_self = pix;
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
     float d = texelFetch(linear_depth, pix, 0).r;

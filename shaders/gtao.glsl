@@ -147,6 +147,10 @@ void main()
         }
         /* Bisect where the surface leaves the sphere of radius R (ob_gap in slice_march.glsl). */
         for (int b = 0; b < REFINE_STEPS; ++b) {
+            /* Without a gap on either side a refinement step changes nothing: skipped. The one
+             * branch of the march: most pixels (open surfaces) have no gap, so whole SIMD groups
+             * skip its fetches, and a group whose lanes disagree runs it as a select would. */
+            if (!ob_gap_open(gap_pos) && !ob_gap_open(gap_neg)) break;
             float mid_pos = ob_gap_mid(gap_pos), mid_neg = ob_gap_mid(gap_neg);
             horizon_step(s, centre + s.dir * mid_pos, mid_pos, p, s.t_pos, true, rise.x, gap_pos);
             horizon_step(s, centre - s.dir * mid_neg, mid_neg, p, s.t_neg, true, rise.y, gap_neg);

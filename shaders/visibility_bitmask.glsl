@@ -142,6 +142,10 @@ void main()
             bitmask_step(s, centre - off, dist_px, p, false, false, mask, rise.y, gap_neg, slice_bounce);
         }
         for (int b = 0; b < REFINE_STEPS; ++b) {
+            /* Without a gap on either side a refinement step changes nothing: skipped. The one
+             * branch of the march: most pixels (open surfaces) have no gap, so whole SIMD groups
+             * skip its fetches, and a group whose lanes disagree runs it as a select would. */
+            if (!ob_gap_open(gap_pos) && !ob_gap_open(gap_neg)) break;
             float mid_pos = ob_gap_mid(gap_pos), mid_neg = ob_gap_mid(gap_neg);
             bitmask_step(s, centre + s.dir * mid_pos, mid_pos, p, true, true, mask, rise.x, gap_pos, slice_bounce);
             bitmask_step(s, centre - s.dir * mid_neg, mid_neg, p, false, true, mask, rise.y, gap_neg, slice_bounce);

@@ -85,11 +85,17 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     int first = count > 0 ? findLSB(bits) : 0;
     float measure = ob_run_measure(first, count, s.ang_n, s.cos_n, s.sin_n);
     float share = count > 0 ? float(bitCount(fresh)) / float(count) : 0.0;
-    vec3 n_s = texelFetch(view_normal, texel, 0).xyz;
-    float facing = -dot(n_s, w) / max(w_len, 1e-20);
-    float emit = vb.emitter_cosine != 0 ? max(facing, 0.0) : (facing > 0.0 ? 1.0 : 0.0);
-    ivec2 full = clamp(texel * frame.ao_k + frame.ao_o, ivec2(0), textureSize(radiance, 0) - 1);
-    bounce += texelFetch(radiance, full, 0).rgb * (emit * share * measure);
+    /* The sender's normal and radiance only where it occludes a sector first: most samples set
+     * none (open surfaces, or sectors already set), and a SIMD group none of whose lanes has a
+     * fresh bit skips the two fetches (on an H100 the bounce's fetches were two of its three per
+     * sample; llvmpipe runs a block its lanes disagree on for all of them, as before). */
+    if (fresh != 0u) {
+        vec3 n_s = texelFetch(view_normal, texel, 0).xyz;
+        float facing = -dot(n_s, w) / max(w_len, 1e-20);
+        float emit = vb.emitter_cosine != 0 ? max(facing, 0.0) : (facing > 0.0 ? 1.0 : 0.0);
+        ivec2 full = clamp(texel * frame.ao_k + frame.ao_o, ivec2(0), textureSize(radiance, 0) - 1);
+        bounce += texelFetch(radiance, full, 0).rgb * (emit * share * measure);
+    }
 #endif
     mask |= bits;
     if (refine) ob_gap_halve(gap, inside);

@@ -46,7 +46,7 @@ static void ai_close(struct aiFileIO *io, struct aiFile *a);
 
 /* ---- confinement ----------------------------------------------------------------------------- */
 
-static const char *file_kind(mode_t m)
+const char *ob_file_kind(mode_t m)
 {
     if (S_ISDIR(m)) return "a directory";
     if (S_ISFIFO(m)) return "a FIFO";
@@ -116,7 +116,7 @@ FILE *ob_model_fs_open(ob_model_fs *fs, const char *path, const char *reference)
     }
     /* Never lifted: a FIFO would block the import, /dev/zero would fill the memory. */
     if (!S_ISREG(st.st_mode)) {
-        snprintf(why, sizeof why, ", which is %s, not a regular file", file_kind(st.st_mode));
+        snprintf(why, sizeof why, ", which is %s, not a regular file", ob_file_kind(st.st_mode));
         refuse(fs, ref, why);
         return NULL;
     }

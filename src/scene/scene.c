@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 
 #include "core/error.h"
+#include "scene/model_io.h"
 #include "scene/sidecar.h"
 
 /* Long enough for any path the loader builds (Linux PATH_MAX). */
@@ -383,13 +384,7 @@ ob_scene *ob_load_scene(const ob_scene_desc *desc)
          * "no such file" would send the user looking for a typo. */
         struct stat st = {0};
         if (stat(name, &st) == 0) {
-            const char *kind = S_ISDIR(st.st_mode)    ? "a directory"
-                               : S_ISFIFO(st.st_mode) ? "a FIFO"
-                               : S_ISCHR(st.st_mode)  ? "a character device"
-                               : S_ISBLK(st.st_mode)  ? "a block device"
-                               : S_ISSOCK(st.st_mode) ? "a socket"
-                                                      : "not a regular file";
-            ob_set_error(OB_ERR_IO, "cannot read model '%s': it is %s, not a model file", name, kind);
+            ob_set_error(OB_ERR_IO, "cannot read model '%s': it is %s, not a model file", name, ob_file_kind(st.st_mode));
             return NULL;
         }
         /* Something that looks like a path is a missing model; a bare word is an unknown name. */

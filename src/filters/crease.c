@@ -100,9 +100,7 @@ static void *make_state(bool rgb)
         crease_destroy(s);
         return NULL;
     }
-    /* Mesa's software rasterisers name themselves in GL_RENDERER (as context.c tells them). */
-    const char *renderer = (const char *)glGetString(GL_RENDERER);
-    s->software = renderer && (strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe"));
+    s->software = ob_renderer_is_software((const char *)glGetString(GL_RENDERER));
     return s;
 }
 

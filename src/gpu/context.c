@@ -140,9 +140,14 @@ static ob_context *adopt_current_context(void)
     snprintf(ctx->version, sizeof ctx->version, "%s", version);
     snprintf(ctx->device, sizeof ctx->device, "the caller's context");
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &ctx->max_texture_size);
-    /* Mesa's software rasterisers name themselves in GL_RENDERER. */
-    ctx->software = strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") || strstr(renderer, "SWR");
+    ctx->software = ob_renderer_is_software(renderer);
     return ctx;
+}
+
+bool ob_renderer_is_software(const char *renderer)
+{
+    /* Mesa's software rasterisers name themselves in GL_RENDERER. */
+    return renderer && (strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") || strstr(renderer, "SWR"));
 }
 
 ob_context *ob_make_context(const ob_context_desc *desc)

@@ -17,6 +17,10 @@ struct ob_context {
     char device[256];
 };
 
+/* Whether a GL_RENDERER string names one of Mesa's software rasterisers (llvmpipe, softpipe,
+ * SWR): for passes whose fastest variant differs between a CPU and a GPU (crease's tiles). */
+bool ob_renderer_is_software(const char *renderer);
+
 /* ---- programs (program.c) ------------------------------------------------------------------ */
 /* Build a compute program from an embedded shader (e.g. "ssao.glsl"), or from the file of that
  * name under ob_set_shader_directory's directory when one is set. `defines` is inserted after

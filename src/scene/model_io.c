@@ -470,6 +470,15 @@ typedef struct dae_array {
     uint64_t count;
 } dae_array;
 
+/* Arrays by id (length, then bytes; no id first), for qsort and bsearch. */
+static int dae_array_order(const void *a, const void *b)
+{
+    const dae_array *x = a, *y = b;
+    if (!x->id || !y->id) return (x->id != NULL) - (y->id != NULL);
+    if (x->id_len != y->id_len) return x->id_len < y->id_len ? -1 : 1;
+    return memcmp(x->id, y->id, x->id_len);
+}
+
 /* The value of attribute `name` in the tag [tag, end): *val and *len; false when it has none. */
 static bool dae_attr(const char *tag, const char *end, const char *name, const char **val, size_t *len)
 {
@@ -517,9 +526,15 @@ static bool check_dae(ob_model_fs *fs, FILE *f, uint64_t size)
     dae_array *list = NULL;
     size_t count = 0, cap = 0;
     bool ok = true;
+    const char *gt = NULL;
     for (const char *p = memchr(text, '<', n); ok && p; p = memchr(p + 1, '<', (size_t)(end - p - 1))) {
-        const char *close = memchr(p, '>', (size_t)(end - p));
-        if (!close) break;
+        /* The tag ends at its '>' or at the next '<', whichever comes first (a '<' inside a tag
+         * is no XML). The '>' found for an earlier '<' serves while it lies ahead. Both keep the
+         * scan linear: a file of many '<' and one '>' would otherwise be read once per '<'. */
+        if (!gt || gt < p) gt = memchr(p, '>', (size_t)(end - p));
+        if (!gt) break;
+        const char *lt = memchr(p + 1, '<', (size_t)(gt - p - 1));
+        const char *close = lt ? lt : gt;
         /* Every count sizes a reservation (<triangles count> reserves 3 * count indices per
          * input); each thing counted takes at least a byte of the file. */
         uint64_t declared = dae_uint(p, close, "count", 0);
@@ -570,28 +585,44 @@ static bool check_dae(ob_model_fs *fs, FILE *f, uint64_t size)
             a->count = dae_uint(p, close, "count", 0);
         }
     }
+    /* By id, so each accessor finds its array in log time: a linear search per accessor would be
+     * quadratic in a file of many arrays and accessors. */
+    if (count > 1) qsort(list, count, sizeof *list, dae_array_order);
+    gt = NULL;
     for (const char *p = strstr(text, "<accessor"); ok && p; p = strstr(p + 1, "<accessor")) {
-        const char *close = memchr(p, '>', (size_t)(end - p));
+        if (!gt || gt < p) gt = memchr(p, '>', (size_t)(end - p)); /* the tag's end, as above */
+        if (!gt) break;
+        const char *lt = memchr(p + 1, '<', (size_t)(gt - p - 1));
+        const char *close = lt ? lt : gt;
         const char *src = NULL;
         size_t src_len = 0;
-        if (!close || !dae_attr(p, close, "source", &src, &src_len)) continue;
+        if (!dae_attr(p, close, "source", &src, &src_len)) continue;
         if (src_len > 0 && src[0] == '#') {
             ++src;
             --src_len;
         }
-        uint64_t need = dae_uint(p, close, "offset", 0) + dae_uint(p, close, "count", 0) * dae_uint(p, close, "stride", 1);
-        for (size_t k = 0; k < count; ++k) {
-            if (!list[k].id || list[k].id_len != src_len || strncmp(list[k].id, src, src_len) != 0) continue;
-            if (need > list[k].count) {
-                char id[81] = ""; /* printable ASCII: the message is one line */
-                size_t m = 0;
-                for (; m < src_len && m < 80; ++m) id[m] = src[m] >= 0x20 && src[m] < 0x7f ? src[m] : '?';
-                id[m] = '\0';
-                ob_set_error(OB_ERR_MODEL, "%s: Collada accessor of '%s' reads %llu values; the array declares %llu (corrupt)",
-                             fs->model, id, (unsigned long long)need, (unsigned long long)list[k].count);
-                ok = false;
-            }
-            break;
+        /* Each factor is capped at 2^40 (dae_uint): saturate rather than wrap past 2^64. */
+        uint64_t per = dae_uint(p, close, "count", 0), stride = dae_uint(p, close, "stride", 1);
+        uint64_t need = stride && per > UINT64_MAX / 2 / stride ? UINT64_MAX / 2 : per * stride;
+        need += dae_uint(p, close, "offset", 0);
+        const dae_array key = {src, src_len, 0};
+        const dae_array *hit = count ? bsearch(&key, list, count, sizeof *list, dae_array_order) : NULL;
+        if (!hit) continue;
+        /* Two arrays of one id (invalid, but which one Assimp takes is its own affair): the
+         * smallest must hold the accessor. */
+        size_t k = (size_t)(hit - list), lo = k, hi = k;
+        while (lo > 0 && dae_array_order(&list[lo - 1], &key) == 0) --lo;
+        while (hi + 1 < count && dae_array_order(&list[hi + 1], &key) == 0) ++hi;
+        uint64_t smallest = UINT64_MAX;
+        for (k = lo; k <= hi; ++k) smallest = list[k].count < smallest ? list[k].count : smallest;
+        if (need > smallest) {
+            char id[81] = ""; /* printable ASCII: the message is one line */
+            size_t m = 0;
+            for (; m < src_len && m < 80; ++m) id[m] = src[m] >= 0x20 && src[m] < 0x7f ? src[m] : '?';
+            id[m] = '\0';
+            ob_set_error(OB_ERR_MODEL, "%s: Collada accessor of '%s' reads %llu values; the array declares %llu (corrupt)",
+                         fs->model, id, (unsigned long long)need, (unsigned long long)smallest);
+            ok = false;
         }
     }
     free(list);

@@ -269,6 +269,10 @@ m = write("models/dae_p_letter.dae", dae_tri(' count="9"', p="0 1 2H"))
 add_case("dae_index_list_endless", 3, "cpu", "--scene", m, expect="Collada <p> index list holds byte 0x48")
 m = write("models/dae_triangles_1e9.dae", dae_tri(' count="9"', triangles=10**9))
 add_case("dae_triangle_count_1e9", 3, "cpu", "--scene", m, expect="Collada <triangles> declares a count of 1000000000")
+# A million '<' and one '>': the pre-import scan read the rest of the file once per '<' (about
+# 10^12 byte reads; it is linear now) before Assimp's XML reader refuses the file.
+m = write("models/dae_open_angles.dae", '<?xml version="1.0"?><COLLADA>' + "<" * 1000000 + "></COLLADA>")
+add_case("dae_many_open_angles", 3, "cpu", "--scene", m, expect="malformed XML")
 m = write("models/dae_ok.dae", dae_tri(' count="9"'))
 add_case("dae_control", 0, "gpu", "--scene", m)
 

@@ -13,10 +13,12 @@
  *   3. resample: Catmull-Rom when all four taps count, else bilinear over those that do;
  *   4. clamp the history to the min/max of this frame's 4x4 neighbourhood (what the history may
  *      still hold of a surface that moved away or of a changed light);
- *   5. blend: age' = min(age + 1, N), out = mix(history, current, max(1 / age', 1 / N)), so a new
- *      history is the plain mean of its first N frames, then an exponential of length N.
+ *   5. blend: age' = min(age t + 1, N), out = mix(history, current, max(1 / age', 1 / N)), so a new
+ *      history is the plain mean of its first N frames, then an exponential of length N; t = 1
+ *      unless the point's pixel footprint changed since the last frame (see 5 below).
  * The history carries its age: RG32F (value, age) for visibility, RGBA16F (rgb, age) for RGB (M,
- * bounce; OB_TEMPORAL_RGB). A sky pixel passes through with age 0. `motion` gets the reprojection
+ * bounce; OB_TEMPORAL_RGB). Before the filter the visibility chain writes no `result`: the filter
+ * reads the new history's .r (4 bytes a pixel less to store; tp.write_result = 0). A sky pixel passes through with age 0. `motion` gets the reprojection
  * offset in AO pixels (previous position - this one) for the tests and the debug views. */
 #include "temporal_params.h"
 #include "common.glsl"
@@ -55,7 +57,7 @@ void main()
     vec3 n = texelFetch(normal, pix, 0).xyz;
     imageStore(next_geometry, pix, vec4(n, d));
     if (d <= 0.0) {
-        imageStore(result, pix, vec4(cur, 1.0));
+        if (tp.write_result != 0) imageStore(result, pix, vec4(cur, 1.0));
 #ifdef OB_TEMPORAL_RGB
         imageStore(next_history, pix, vec4(cur, 0.0));
 #else
@@ -167,10 +169,20 @@ void main()
     }
     bool kept = weight > 1e-3;
     vec3 past = clamp(VALUE(h), lo, hi);
-    float age = min((kept ? AGE(h) : 0.0) + 1.0, tp.history_frames);
+    /* 5's age, discounted by the change of the point's footprint (tp.footprint_falloff): a pixel's
+     * size at the point is its depth times 1/P11 (common.glsl's ob_view_position), so s is that
+     * ratio between the previous view and this one. A screen-space method's estimate at a point is
+     * a function of how the depth buffer samples R around it, so history gathered from farther
+     * (fewer pixels per R, thin steps missed) is a different, brighter estimate, not more samples of
+     * this one: on a dolly toward the stair (`walk`) a full-length history kept that brightness and
+     * was further from AO_R than the single frame (docs/temporal.md, "Footprint"). A still camera,
+     * an orbit or a sideways move keep s = 1 and the whole age. */
+    float s = (-pp.z * tp.prev_ao_proj_info.y) / (d * frame.ao_proj_info.y);
+    float trust = exp2(-tp.footprint_falloff * abs(log2(s)));
+    float age = min((kept ? AGE(h) * trust : 0.0) + 1.0, tp.history_frames);
     float alpha = max(1.0 / age, 1.0 / tp.history_frames);
     vec3 v = mix(past, cur, alpha);
-    imageStore(result, pix, vec4(v, 1.0));
+    if (tp.write_result != 0) imageStore(result, pix, vec4(v, 1.0));
 #ifdef OB_TEMPORAL_RGB
     imageStore(next_history, pix, vec4(v, age));
 #else

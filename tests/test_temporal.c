@@ -302,6 +302,64 @@ static void test_disocclusion(ob_context *ctx, ob_scene *cornell)
     ob_destroy_renderer(r);
 }
 
+/* A dolly toward the box: every point's pixel footprint shrinks by s = d_before / d_after, and the
+ * history's age is discounted by 2^(-4.5 |log2 s|) (passes/temporal.c FOOTPRINT_FALLOFF): a point
+ * seen before on a flat quad keeps age min(N 2^(-4.5 |log2 s|) + 1, N), not N. */
+static void test_dolly(ob_context *ctx, ob_scene *cornell)
+{
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
+    ob_camera a;
+    CHECK(r && ob_renderer_set_scene(r, cornell) == OB_OK && ob_find_camera(cornell, "front", &a) == OB_OK,
+          "cornell renderer");
+    if (!r) return;
+    a.near_z = 0.05f;
+    a.far_z = 10.0f;
+    if (a.fov_y_deg <= 0.0f) a.fov_y_deg = 60.0f;
+    ob_camera b = a;
+    for (int k = 0; k < 3; ++k) b.eye[k] += 0.12f * (a.target[k] - a.eye[k]);
+    ob_settings s;
+    ob_settings_init(&s, "gtao");
+    s.temporal = true;
+    s.temporal_frames = N;
+    static frame_data fa, fb;
+    bool ok = true;
+    for (int f = 0; f < N + 2 && ok; ++f) ok = render(r, &a, &s);
+    ok = ok && grab(r, &fa) && render(r, &b, &s) && grab(r, &fb);
+    CHECK(ok, "frames with temporal on");
+    if (!ok) {
+        ob_destroy_renderer(r);
+        return;
+    }
+    cam_mats ma = mats(a), mb = mats(b);
+    int seen = 0, matched = 0, shortened = 0;
+    double worst = 0.0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const int i = y * W + x;
+            if (fb.depth[i] <= 0.0f) continue;
+            vec3 p;
+            world_at(&mb, (float)x, (float)y, fb.depth[i], p);
+            float qx = 0.0f, qy = 0.0f, d = 0.0f;
+            project(&ma, p, &qx, &qy, &d);
+            int x0 = (int)floorf(qx - 0.5f), y0 = (int)floorf(qy - 0.5f);
+            if (x0 < 0 || y0 < 0 || x0 + 1 >= W || y0 + 1 >= H) continue;
+            if (!flat_quad(&fa, x0, y0) || fabsf(depth_at(&fa, qx, qy, x0, y0) - d) >= 0.005f * d) continue;
+            const double trust = exp2(-4.5 * fabs(log2((double)d / (double)fb.depth[i])));
+            const double expect = fmin((double)N * trust + 1.0, (double)N);
+            const double e = fabs((double)fb.age[i] - expect);
+            ++seen;
+            matched += e < 0.05;
+            shortened += fb.age[i] < (float)N - 1.0f;
+            worst = fmax(worst, e);
+        }
+    printf("  dolly: %d px seen before, %d with the age the footprint rule gives (worst off by %.4f), %d shortened\n",
+           seen, matched, worst, shortened);
+    CHECK(seen > W * H / 3, "the dolly keeps most pixels in view (%d)", seen);
+    CHECK(matched >= seen * 99 / 100, "ages follow the footprint rule (%d of %d)", matched, seen);
+    CHECK(shortened >= seen * 99 / 100, "a dolly of 12 %% shortens the histories (%d of %d)", shortened, seen);
+    ob_destroy_renderer(r);
+}
+
 static void test_settings(void)
 {
     ob_settings s;
@@ -335,6 +393,7 @@ int main(void)
         test_converges(ctx, corner, "ssdo", 4, OB_TEMPORAL_BEFORE_FILTER);
         test_reprojection(ctx, cornell);
         test_disocclusion(ctx, cornell);
+        test_dolly(ctx, cornell);
     }
     ob_destroy_scene(cornell);
     ob_destroy_scene(corner);

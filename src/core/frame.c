@@ -460,9 +460,10 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         const GLuint main_accum = plan->rgb ? t->accum_rgb : t->accum;
         if (s->temporal_at == OB_TEMPORAL_BEFORE_FILTER) {
             ob_timer_begin(&r->timers, "temporal");
-            run_temporal(r, s, plan, t, main_in, main_accum, bounce_in, t->bounce_accum);
+            /* Visibility: the filter reads the new history's value (.r of RG32F) itself, no copy. */
+            run_temporal(r, s, plan, t, main_in, plan->rgb ? main_accum : 0, bounce_in, t->bounce_accum);
             glMemoryBarrier(barrier);
-            main_in = main_accum;
+            main_in = plan->rgb ? main_accum : t->history[t->history_index];
             bounce_in = t->bounce_accum;
         } else {
             main_out = main_accum;

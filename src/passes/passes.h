@@ -114,7 +114,8 @@ ob_error ob_temporal_init(ob_temporal_pass *p);
  * depth/normal are this frame's at the AO resolution; prev_geometry (RGBA16F normal xyz, depth w)
  * the previous frame's, next_geometry this frame's for the next (a different texture). */
 typedef struct ob_temporal_chain {
-    GLuint current, history, result, next_history;
+    GLuint current, history, next_history;
+    GLuint result; /* 0: none, the next history's .r is the output (visibility only) */
     bool rgb;
 } ob_temporal_chain;
 void ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth, GLuint normal,

@@ -15,6 +15,12 @@
 /* ... and its normal within 25 degrees (cos 25 = 0.906), the edge pass's turn (edges.c): more
  * than the normals of a tessellated curve turn in one pixel, less than any crease. */
 #define NORMAL_COS 0.906f
+/* The history's trust halves, per frame, when the point's pixel footprint changes by 1/6: the
+ * screen-space methods march or scatter their samples over R's projection, and gtao's and vbao's
+ * default 6 steps per side move by a whole step's spacing at the far end of the march when R's
+ * projection changes by 1/6 of itself, so from there the samples land on other texels and the
+ * estimate is another one. 1 / log2(1 + 1/6) = 4.50 (docs/temporal.md, "Footprint"). */
+#define FOOTPRINT_FALLOFF 4.50f
 
 void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const float prev_ao_proj[16],
                       bool history_valid, int history_frames)
@@ -31,6 +37,7 @@ void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const
     c->history_frames = (float)(history_frames > 0 ? history_frames : 1);
     c->plane_tolerance = PLANE_TOLERANCE;
     c->normal_cos = NORMAL_COS;
+    c->footprint_falloff = FOOTPRINT_FALLOFF;
 }
 
 ob_error ob_temporal_init(ob_temporal_pass *p)
@@ -49,11 +56,14 @@ ob_error ob_temporal_init(ob_temporal_pass *p)
 void ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth, GLuint normal,
                      GLuint prev_geometry, GLuint next_geometry, GLuint motion, const ob_temporal_chain *chain)
 {
-    ob_compute_pass_use(chain->rgb ? &p->rgb : &p->scalar, c, sizeof *c);
+    ob_temporal_constants k = *c;
+    k.write_result = chain->result != 0;
+    ob_compute_pass_use(chain->rgb ? &p->rgb : &p->scalar, &k, sizeof k);
     const GLuint units[5] = {chain->current, chain->history, depth, normal, prev_geometry};
     for (int i = 0; i < 5; ++i) glBindTextureUnit((GLuint)i, units[i]);
     glBindImageTexture(3, next_geometry, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(0, chain->result, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_R32F);
+    if (chain->result)
+        glBindImageTexture(0, chain->result, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_R32F);
     glBindImageTexture(1, chain->next_history, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_RG32F);
     glBindImageTexture(2, motion, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
     ob_dispatch_2d(g->width, g->height, OB_TEMPORAL_GROUP_X, OB_TEMPORAL_GROUP_Y);

@@ -146,6 +146,17 @@ double cli_median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+double cli_frame_log_average(ob_renderer *r, float *rgb, size_t px)
+{
+    if (ob_read_image(r, OB_IMAGE_HDR_F32, rgb, px * 3 * sizeof(float)) != OB_OK) {
+        ob_clear_error();
+        return NAN;
+    }
+    /* Rec. 709 luminance, in place: as shaders/hdr_shared.h's ob_luminance. */
+    for (size_t i = 0; i < px; ++i) rgb[i] = 0.2126f * rgb[3 * i] + 0.7152f * rgb[3 * i + 1] + 0.0722f * rgb[3 * i + 2];
+    return ob_hdr_log_average(rgb, px);
+}
+
 bool cli_parse_vec3(const char *text, float out[3])
 {
     const char *p = text;

@@ -297,16 +297,12 @@ static void print_exposure(ob_renderer *r, int w, int h, const ob_hdr_settings *
 {
     size_t px = (size_t)w * (size_t)h;
     float *rgb = malloc(px * 3 * sizeof(float));
-    if (!rgb || ob_read_image(r, OB_IMAGE_HDR_F32, rgb, px * 3 * sizeof(float)) != OB_OK) {
-        free(rgb);
-        ob_clear_error();
+    double avg = rgb ? cli_frame_log_average(r, rgb, px) : NAN;
+    free(rgb);
+    if (isnan(avg)) {
         fprintf(stderr, "obscura: hdr: the frame's radiance could not be read back\n");
         return;
     }
-    /* Rec. 709 luminance, in place: as shaders/hdr_shared.h's ob_luminance. */
-    for (size_t i = 0; i < px; ++i) rgb[i] = 0.2126f * rgb[3 * i] + 0.7152f * rgb[3 * i + 1] + 0.0722f * rgb[3 * i + 2];
-    double avg = ob_hdr_log_average(rgb, px);
-    free(rgb);
     float key = hdr->key > 0.0f ? hdr->key : ob_hdr_auto_key((float)avg);
     fprintf(stderr, "obscura: hdr: log-average %.9g, key %.9g, exposure %.9g (scale exposure x key / log-average)\n", avg,
             (double)key, (double)hdr->exposure);

@@ -157,6 +157,51 @@ double cli_frame_log_average(ob_renderer *r, float *rgb, size_t px)
     return ob_hdr_log_average(rgb, px);
 }
 
+int cli_exposure_begin(cli_exposure *e, ob_renderer *r, const ob_camera *cam, const ob_settings *like, size_t px)
+{
+    memset(e, 0, sizeof *e);
+    if (!like->hdr.enabled) return EXIT_OK;
+    e->scratch = malloc(px * 3 * sizeof(float));
+    if (!e->scratch) return cli_fail(EXIT_RUNTIME, "out of memory");
+    e->px = px;
+    ob_settings s;
+    ob_settings_init(&s, "none");
+    s.hdr = like->hdr;
+    memcpy(s.lights, like->lights, sizeof s.lights);
+    s.light_count = like->light_count;
+    s.shadow = like->shadow;
+    s.ambient_mode = like->ambient_mode;
+    memcpy(s.ambient, like->ambient, sizeof s.ambient);
+    memcpy(s.sky, like->sky, sizeof s.sky);
+    memcpy(s.ground, like->ground, sizeof s.ground);
+    s.textures_off = like->textures_off;
+    memcpy(s.background, like->background, sizeof s.background);
+    s.guard = like->guard;
+    if (ob_render_frame(r, cam, &s) != OB_OK) return cli_fail_from_library();
+    e->log_average = cli_frame_log_average(r, e->scratch, px);
+    e->key = like->hdr.key > 0.0f ? like->hdr.key : ob_hdr_auto_key((float)e->log_average);
+    e->exposure = like->hdr.exposure;
+    e->active = e->log_average > 0.0;
+    return EXIT_OK;
+}
+
+int cli_exposure_apply(cli_exposure *e, ob_renderer *r, const ob_camera *cam, const ob_settings *s)
+{
+    if (!e->active || !s->hdr.enabled) return EXIT_OK;
+    const double l = cli_frame_log_average(r, e->scratch, e->px);
+    if (!(l > 0.0)) return EXIT_OK; /* a black frame: its own exposure is as good as any */
+    ob_settings shared = *s;
+    shared.hdr.key = e->key;
+    shared.hdr.exposure = (float)(e->exposure * l / e->log_average);
+    return ob_render_frame(r, cam, &shared) == OB_OK ? EXIT_OK : cli_fail_from_library();
+}
+
+void cli_exposure_free(cli_exposure *e)
+{
+    free(e->scratch);
+    memset(e, 0, sizeof *e);
+}
+
 bool cli_parse_vec3(const char *text, float out[3])
 {
     const char *p = text;

@@ -47,6 +47,25 @@ double cli_median(double *v, int n);
  * tone map's scale exposure x key / L_avg. rgb is scratch for px x 3 floats. NAN if the radiance
  * cannot be read back. */
 double cli_frame_log_average(ob_renderer *r, float *rgb, size_t px);
+/* One exposure for several frames of one camera (compare's rows, sheet's rows): the tone map scales
+ * each frame by exposure x key / L_avg of its own radiance, so a frame that AO darkens is brightened
+ * back and the frames would differ by less than the AO (issue 20). The anchor is the view without
+ * AO: a `none` frame with `like`'s lights, ambient, shadows and HDR settings. cli_exposure_apply
+ * renders the frame just rendered with settings s once more at the anchor's key and at exposure
+ * e_0 L_m / L_0, which gives its radiance the anchor's scale e_0 key_0 / L_0 (render.c's
+ * print_exposure, scripts/noao_frame.sh). With HDR off there is no adaptation and nothing to do. */
+typedef struct cli_exposure {
+    bool active;
+    double log_average; /* L_0 */
+    float key;          /* key_0: like's key, or the automatic key of L_0 */
+    float exposure;     /* e_0 */
+    float *scratch;     /* px x 3 floats */
+    size_t px;
+} cli_exposure;
+/* EXIT_OK or the failure's exit code (one line printed). */
+int cli_exposure_begin(cli_exposure *e, ob_renderer *r, const ob_camera *cam, const ob_settings *like, size_t px);
+int cli_exposure_apply(cli_exposure *e, ob_renderer *r, const ob_camera *cam, const ob_settings *s);
+void cli_exposure_free(cli_exposure *e);
 /* Fail early when an output's directory cannot take a new file. */
 bool cli_output_writable(const char *path);
 /* Whether the frame r holds (w x h) covers any pixel: EXIT_OK, else "nothing visible from this

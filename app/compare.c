@@ -339,7 +339,8 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     const ob_scene *scene = in->scene;
     const ob_camera cam = in->cam;
     int code = EXIT_OK;
-    float *depth = NULL, *normals = NULL, *ref = NULL, *ao = NULL, *ref_rgb = NULL, *test_rgb = NULL, *lum = NULL;
+    float *depth = NULL, *normals = NULL, *ref = NULL, *ao = NULL, *ref_rgb = NULL, *test_rgb = NULL;
+    cli_exposure exposure = {0};
     uint8_t *rgba = NULL, *mask = NULL, *heat = NULL, *masks = NULL;
     snprintf(vr->scene, sizeof vr->scene, "%s", ob_query_scene_name(scene));
     snprintf(vr->camera, sizeof vr->camera, "%s", cam.name);
@@ -475,41 +476,8 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
         }
         vr->has_bounce = true;
     }
-    /* One exposure for the view's final images: the tone map scales each frame by exposure x key /
-     * L_avg of its own radiance, so a frame that AO darkens is brightened back and the images would
-     * differ by less than the AO (issue 20). The anchor is the view without AO (method none, with
-     * the first row's lights and HDR settings); each row's final image is rendered once more at
-     * key_0 and exposure e_0 L_m / L_0, which gives its radiance the anchor's scale e_0 key_0 / L_0
-     * (render.c's print_exposure, scripts/noao_frame.sh). With HDR off there is no adaptation. */
-    double anchor_l = NAN;
-    float anchor_key = 0.0f, anchor_exposure = 1.0f;
-    if (configs[0].settings.hdr.enabled) {
-        lum = malloc(px * 3 * sizeof(float));
-        if (!lum) {
-            code = cli_fail(EXIT_RUNTIME, "out of memory");
-            goto done;
-        }
-        ob_settings base = configs[0].settings;
-        ob_settings_init(&s, "none");
-        s.hdr = base.hdr;
-        memcpy(s.lights, base.lights, sizeof s.lights);
-        s.light_count = base.light_count;
-        s.shadow = base.shadow;
-        s.ambient_mode = base.ambient_mode;
-        memcpy(s.ambient, base.ambient, sizeof s.ambient);
-        memcpy(s.sky, base.sky, sizeof s.sky);
-        memcpy(s.ground, base.ground, sizeof s.ground);
-        s.textures_off = base.textures_off;
-        memcpy(s.background, base.background, sizeof s.background);
-        s.guard = base.guard;
-        if (ob_render_frame(r, &cam, &s) != OB_OK) {
-            code = cli_fail_from_library();
-            goto done;
-        }
-        anchor_l = cli_frame_log_average(r, lum, px);
-        anchor_key = base.hdr.key > 0.0f ? base.hdr.key : ob_hdr_auto_key((float)anchor_l);
-        anchor_exposure = base.hdr.exposure;
-    }
+    /* One exposure for the view's final images: the view without AO's (cli_exposure_begin). */
+    if ((code = cli_exposure_begin(&exposure, r, &cam, &configs[0].settings, px)) != EXIT_OK) goto done;
     char radius_set[64];
     snprintf(radius_set, sizeof radius_set, "radius=%.9g", (double)vr->radius);
     for (int k = 0; k < count; ++k) {
@@ -566,19 +534,7 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
             code = cli_fail_from_library();
             goto done;
         }
-        if (s.hdr.enabled && anchor_l > 0.0) {
-            /* The final image at the anchor's scale (above). */
-            const double l = cli_frame_log_average(r, lum, px);
-            if (l > 0.0) {
-                ob_settings shared = s;
-                shared.hdr.key = anchor_key;
-                shared.hdr.exposure = (float)(anchor_exposure * l / anchor_l);
-                if (ob_render_frame(r, &cam, &shared) != OB_OK) {
-                    code = cli_fail_from_library();
-                    goto done;
-                }
-            }
-        }
+        if ((code = cli_exposure_apply(&exposure, r, &cam, &s)) != EXIT_OK) goto done;
         ob_read_image(r, OB_IMAGE_FINAL_RGBA8, rgba, px * 4);
         static const char *const kinds[3] = {"final", "ao", "error"};
         ob_error e = OB_OK;
@@ -611,7 +567,7 @@ done:
     free(ao);
     free(ref_rgb);
     free(test_rgb);
-    free(lum);
+    cli_exposure_free(&exposure);
     free(rgba);
     free(mask);
     free(heat);

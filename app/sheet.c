@@ -151,7 +151,7 @@ static int row_y(int row, int th) { return STRIP_H + row * (STRIP_H + th); }
 /* FRAMES frames of one configuration; its row goes into the sheet, the median AO pass time into
  * *ao_ms (NaN when the renderer timed no "ao" pass). */
 static int render_row(ob_renderer *r, const ob_camera *cam, const cli_config *cfg, const char *name, sheet_image *img,
-                      int row, const cli_common *c, uint8_t *rgba, float *ao, double *ao_ms)
+                      int row, const cli_common *c, cli_exposure *exposure, uint8_t *rgba, float *ao, double *ao_ms)
 {
     double ms[FRAMES];
     int timed = 0;
@@ -168,6 +168,9 @@ static int render_row(ob_renderer *r, const ob_camera *cam, const cli_config *cf
             }
     }
     *ao_ms = cli_median(ms, timed);
+    /* Every row's final image at the exposure of the view without AO, so rows differ by the AO. */
+    int code = cli_exposure_apply(exposure, r, cam, &cfg->settings);
+    if (code != EXIT_OK) return code;
 
     size_t px = (size_t)c->width * (size_t)c->height;
     if (ob_read_image(r, OB_IMAGE_FINAL_RGBA8, rgba, px * 4) != OB_OK ||
@@ -225,6 +228,7 @@ static int sheet_checked(const sheet_opts *op)
         return code;
     }
     sheet_image img = {0};
+    cli_exposure exposure = {0};
     uint8_t *rgba = NULL;
     float *ao = NULL;
     double *ao_ms = calloc((size_t)count, sizeof *ao_ms);
@@ -247,12 +251,13 @@ static int sheet_checked(const sheet_opts *op)
         code = cli_fail(EXIT_RUNTIME, "out of memory for a %dx%d sheet", img.w, img.h);
         goto cleanup;
     }
+    if ((code = cli_exposure_begin(&exposure, r, &cam, &configs[0].settings, px)) != EXIT_OK) goto cleanup;
     fill_rect(&img, 0, 0, img.w, img.h, STRIP_RGB);
     draw_text(&img, PAD + TEXT_INSET, TEXT_INSET, PAD + c->width, "final");
     draw_text(&img, 2 * PAD + c->width + TEXT_INSET, TEXT_INSET, img.w - PAD, "ao");
     for (int i = 0; i < count && code == EXIT_OK; ++i) {
         cli_config_label(c, &configs[i], ", ", names[i], sizeof names[i]);
-        code = render_row(r, &cam, &configs[i], names[i], &img, i, c, rgba, ao, &ao_ms[i]);
+        code = render_row(r, &cam, &configs[i], names[i], &img, i, c, &exposure, rgba, ao, &ao_ms[i]);
         /* Every row has the same camera: the first tells whether it sees anything. */
         if (code == EXIT_OK && i == 0)
             code = cli_check_visible(r, c->width, c->height, ob_query_scene_name(scene), cam.name, c->allow_empty,
@@ -265,6 +270,7 @@ static int sheet_checked(const sheet_opts *op)
             else printf("%-10s ao %8.3f ms\n", names[i], ao_ms[i]);
         }
 cleanup:
+    cli_exposure_free(&exposure);
     free(img.rgb);
     free(rgba);
     free(ao);

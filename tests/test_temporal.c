@@ -232,33 +232,57 @@ static void test_reprojection(ob_context *ctx, ob_scene *cornell)
     ob_destroy_renderer(r);
 }
 
-static void test_disocclusion(ob_context *ctx, ob_scene *cornell)
+/* Where pixel (x, y) of frame b (camera mb) was in frame a (camera ma): its continuous pixel
+ * (qx, qy), its linear depth d there and the bottom-left pixel (x0, y0) of its bilinear quad. False
+ * on the sky or when the quad leaves the image. */
+static bool seen_from(cam_mats *ma, cam_mats *mb, const frame_data *fb, int x, int y, float *qx, float *qy, float *d,
+                      int *x0, int *y0)
+{
+    const float depth = fb->depth[y * W + x];
+    if (depth <= 0.0f) return false;
+    vec3 p;
+    world_at(mb, (float)x, (float)y, depth, p);
+    project(ma, p, qx, qy, d);
+    *x0 = (int)floorf(*qx - 0.5f);
+    *y0 = (int)floorf(*qy - 0.5f);
+    return *x0 >= 0 && *y0 >= 0 && *x0 + 1 < W && *y0 + 1 < H;
+}
+
+/* Cornell's front camera still for N + 2 frames with temporal on (into fa), then one frame after a
+ * move (into fb): `sideways` world units along +x (eye and target), then the eye `dolly` of the way
+ * to the target. *a and *b get the two cameras. False (and a failed check) if a frame failed. */
+static bool still_then_move(ob_context *ctx, ob_scene *cornell, const char *method, float sideways, float dolly,
+                            ob_camera *a, ob_camera *b, frame_data *fa, frame_data *fb)
 {
     ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
-    ob_camera a;
-    CHECK(r && ob_renderer_set_scene(r, cornell) == OB_OK && ob_find_camera(cornell, "front", &a) == OB_OK,
-          "cornell renderer");
-    if (!r) return;
-    a.near_z = 0.05f;
-    a.far_z = 10.0f;
-    if (a.fov_y_deg <= 0.0f) a.fov_y_deg = 60.0f;
-    /* A sideways step: the blocks slide across the back wall and floor more than those do. */
-    ob_camera b = a;
-    b.eye[0] += 0.15f;
-    b.target[0] += 0.15f;
-    ob_settings s;
-    ob_settings_init(&s, "ssao");
-    s.temporal = true;
-    s.temporal_frames = N;
-    static frame_data fa, fb;
-    bool ok = true;
-    for (int f = 0; f < N + 2 && ok; ++f) ok = render(r, &a, &s);
-    ok = ok && grab(r, &fa) && render(r, &b, &s) && grab(r, &fb);
-    CHECK(ok, "frames with temporal on");
-    if (!ok) {
-        ob_destroy_renderer(r);
-        return;
+    bool ok = r && ob_renderer_set_scene(r, cornell) == OB_OK && ob_find_camera(cornell, "front", a) == OB_OK;
+    CHECK(ok, "cornell renderer");
+    if (ok) {
+        a->near_z = 0.05f;
+        a->far_z = 10.0f;
+        if (a->fov_y_deg <= 0.0f) a->fov_y_deg = 60.0f;
+        *b = *a;
+        b->eye[0] += sideways;
+        b->target[0] += sideways;
+        for (int k = 0; k < 3; ++k) b->eye[k] += dolly * (b->target[k] - b->eye[k]);
+        ob_settings s;
+        ob_settings_init(&s, method);
+        s.temporal = true;
+        s.temporal_frames = N;
+        for (int f = 0; f < N + 2 && ok; ++f) ok = render(r, a, &s);
+        ok = ok && grab(r, fa) && render(r, b, &s) && grab(r, fb);
+        CHECK(ok, "frames with temporal on");
     }
+    ob_destroy_renderer(r);
+    return ok;
+}
+
+static void test_disocclusion(ob_context *ctx, ob_scene *cornell)
+{
+    /* A sideways step: the blocks slide across the back wall and floor more than those do. */
+    ob_camera a, b;
+    static frame_data fa, fb;
+    if (!still_then_move(ctx, cornell, "ssao", 0.15f, 0.0f, &a, &b, &fa, &fb)) return;
     int still_full = 0, geometry = 0;
     for (int i = 0; i < W * H; ++i) {
         geometry += fa.depth[i] > 0.0f;
@@ -270,13 +294,9 @@ static void test_disocclusion(ob_context *ctx, ob_scene *cornell)
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             const int i = y * W + x;
-            if (fb.depth[i] <= 0.0f) continue;
-            vec3 p;
-            world_at(&mb, (float)x, (float)y, fb.depth[i], p);
             float qx = 0.0f, qy = 0.0f, d = 0.0f;
-            project(&ma, p, &qx, &qy, &d);
-            int x0 = (int)floorf(qx - 0.5f), y0 = (int)floorf(qy - 0.5f);
-            if (x0 < 0 || y0 < 0 || x0 + 1 >= W || y0 + 1 >= H) continue;
+            int x0 = 0, y0 = 0;
+            if (!seen_from(&ma, &mb, &fb, x, y, &qx, &qy, &d, &x0, &y0)) continue;
             /* All four of frame a's pixels around the point in front of it by 5 % (an occluder), or a
              * flat quad whose depth there is the point's within 0.5 % (seen). Anything between is an
              * edge, left unjudged. */
@@ -299,7 +319,6 @@ static void test_disocclusion(ob_context *ctx, ob_scene *cornell)
     CHECK(hidden_reset == hidden, "every uncovered pixel starts its history again (%d of %d)", hidden_reset, hidden);
     CHECK(seen > W * H / 3 && seen_kept >= seen * 99 / 100, "pixels seen before keep their history (%d of %d)",
           seen_kept, seen);
-    ob_destroy_renderer(r);
 }
 
 /* A dolly toward the box: every point's pixel footprint shrinks by s = d_before / d_after, and the
@@ -307,42 +326,18 @@ static void test_disocclusion(ob_context *ctx, ob_scene *cornell)
  * seen before on a flat quad keeps age min(N 2^(-4.5 |log2 s|) + 1, N), not N. */
 static void test_dolly(ob_context *ctx, ob_scene *cornell)
 {
-    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
-    ob_camera a;
-    CHECK(r && ob_renderer_set_scene(r, cornell) == OB_OK && ob_find_camera(cornell, "front", &a) == OB_OK,
-          "cornell renderer");
-    if (!r) return;
-    a.near_z = 0.05f;
-    a.far_z = 10.0f;
-    if (a.fov_y_deg <= 0.0f) a.fov_y_deg = 60.0f;
-    ob_camera b = a;
-    for (int k = 0; k < 3; ++k) b.eye[k] += 0.12f * (a.target[k] - a.eye[k]);
-    ob_settings s;
-    ob_settings_init(&s, "gtao");
-    s.temporal = true;
-    s.temporal_frames = N;
+    ob_camera a, b;
     static frame_data fa, fb;
-    bool ok = true;
-    for (int f = 0; f < N + 2 && ok; ++f) ok = render(r, &a, &s);
-    ok = ok && grab(r, &fa) && render(r, &b, &s) && grab(r, &fb);
-    CHECK(ok, "frames with temporal on");
-    if (!ok) {
-        ob_destroy_renderer(r);
-        return;
-    }
+    if (!still_then_move(ctx, cornell, "gtao", 0.0f, 0.12f, &a, &b, &fa, &fb)) return;
     cam_mats ma = mats(a), mb = mats(b);
     int seen = 0, matched = 0, shortened = 0;
     double worst = 0.0;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             const int i = y * W + x;
-            if (fb.depth[i] <= 0.0f) continue;
-            vec3 p;
-            world_at(&mb, (float)x, (float)y, fb.depth[i], p);
             float qx = 0.0f, qy = 0.0f, d = 0.0f;
-            project(&ma, p, &qx, &qy, &d);
-            int x0 = (int)floorf(qx - 0.5f), y0 = (int)floorf(qy - 0.5f);
-            if (x0 < 0 || y0 < 0 || x0 + 1 >= W || y0 + 1 >= H) continue;
+            int x0 = 0, y0 = 0;
+            if (!seen_from(&ma, &mb, &fb, x, y, &qx, &qy, &d, &x0, &y0)) continue;
             if (!flat_quad(&fa, x0, y0) || fabsf(depth_at(&fa, qx, qy, x0, y0) - d) >= 0.005f * d) continue;
             const double trust = exp2(-4.5 * fabs(log2((double)d / (double)fb.depth[i])));
             const double expect = fmin((double)N * trust + 1.0, (double)N);
@@ -357,7 +352,6 @@ static void test_dolly(ob_context *ctx, ob_scene *cornell)
     CHECK(seen > W * H / 3, "the dolly keeps most pixels in view (%d)", seen);
     CHECK(matched >= seen * 99 / 100, "ages follow the footprint rule (%d of %d)", matched, seen);
     CHECK(shortened >= seen * 99 / 100, "a dolly of 12 %% shortens the histories (%d of %d)", shortened, seen);
-    ob_destroy_renderer(r);
 }
 
 static void test_settings(void)

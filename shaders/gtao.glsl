@@ -39,7 +39,7 @@ layout(binding = 3) uniform sampler2D depth_mips;   /* R32F MIP chain of linear 
                                                        linear_depth itself */
 layout(binding = 5) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
 layout(binding = 0, r32f) uniform writeonly image2D ao_out;
-layout(binding = 1, rgba16f) uniform writeonly image2D bent_out; /* view-space bent normal (bent_normals = 1) */
+layout(binding = 1, rgba16f) uniform writeonly image2D bent_out; /* view-space bent normal (OB_GTAO_BENT) */
 
 /* The cosine-weighted mean direction of the visible arc [h0, h1] of a slice (the first moment of
  * eq. 3's integrand: ∫ (sin θ, cos θ) cos(θ - n) |sin θ| dθ in closed form, Jimenez et al. 2016
@@ -56,7 +56,8 @@ vec3 slice_bent(float h0, float h1, float n, vec3 v, vec3 o)
  * a sample? The horizon-based integral takes everything below the highest sample as occluded,
  * each occluder infinitely thick behind its surface. The second layer bounds the object: on the
  * sample's view ray it occupies [z1, z2], and a sample between the layers is inside, one behind the
- * second free (seed 000 §4.4). Apply that to the ray at the current horizon on this side: where it
+ * second free (seed 000 §4.4). Compiled in the OB_MARCH_LAYERS variant only (methods/method.h
+ * OB_SLICE_LAYERS: llvmpipe would run the block for every sample with the layer off too). Apply that to the ray at the current horizon on this side: where it
  * crosses the sample's view ray (in the slice plane, which holds both) at depth z_h, z1 < z_h <= z2
  * means the ray runs into the object, so every direction between it and the sample is blocked and
  * the sample may raise the horizon; z_h > z2 means the ray passes behind the object, the directions
@@ -100,11 +101,11 @@ void horizon_step(ob_slice s, vec2 at, float dist_px, vec3 p, vec3 t, bool refin
     float w_len = length(vec3(w.xy, w.z * (1.0 + gtao.thin)));
     float weight = hit ? clamp(w_len * gtao.falloff_mul + gtao.falloff_add, 0.0, 1.0) : 0.0;
     float k = ob_rise_key(w, t, s.n_slice);
-    if (gtao.layers != 0) {
-        float z1 = -(p.z + w.z);
-        float t2 = ob_layer_thickness(z1, ob_second_depth(texel), -p.z, gtao.radius, s.radius_px, gtao.steps);
-        k = t2 > 0.0 && behind_object(w, p, t, s.n_slice, rise, z1 + t2) ? 0.0 : k;
-    }
+#ifdef OB_MARCH_LAYERS
+    float z1 = -(p.z + w.z);
+    float t2 = ob_layer_thickness(z1, ob_second_depth(texel), -p.z, gtao.radius, s.radius_px, gtao.steps);
+    k = t2 > 0.0 && behind_object(w, p, t, s.n_slice, rise, z1 + t2) ? 0.0 : k;
+#endif
     if (refine) ob_gap_halve(gap, weight > 0.0);
     else ob_gap_note(gap, weight > 0.0, hit && weight <= 0.0 && k > rise, dist_px);
     rise = max(rise, weight * k);
@@ -119,7 +120,9 @@ void main()
     float d = texelFetch(linear_depth, pix, 0).r;
     if (d <= 0.0) {
         imageStore(ao_out, pix, vec4(1.0));
-        if (gtao.bent_normals != 0) imageStore(bent_out, pix, vec4(0.0));
+#ifdef OB_GTAO_BENT
+        imageStore(bent_out, pix, vec4(0.0));
+#endif
         return;
     }
     vec2 centre, to_view;
@@ -166,21 +169,22 @@ void main()
         visibility += s.len_n * a;
         /* The same slice with nothing above its tangents: â(n + π/2) + â(n - π/2) = cos n + n sin n. */
         open_sky += s.len_n * (s.cos_n + s.ang_n * s.sin_n);
-        if (gtao.bent_normals != 0)
-            bent += s.len_n * (slice_bent(h0, h1, s.ang_n, v, s.o) -
-                               slice_bent(s.ang_n - OB_HALF_PI, s.ang_n + OB_HALF_PI, s.ang_n, v, s.o));
+#ifdef OB_GTAO_BENT
+        bent += s.len_n * (slice_bent(h0, h1, s.ang_n, v, s.o) -
+                           slice_bent(s.ang_n - OB_HALF_PI, s.ang_n + OB_HALF_PI, s.ang_n, v, s.o));
+#endif
     }
     /* The mean over slices of |n_φ| a(φ) is the φ integral only in the limit: with a few slices
      * an open surface seen at an angle reads 0.990-1.010 (corner, 3 slices). Dividing by the same
      * quadrature of the unoccluded hemisphere, whose exact integral is 1, makes open surfaces
      * exactly 1 at any slice count and converges to the same value. */
     imageStore(ao_out, pix, vec4(open_sky > 0.0 ? clamp(visibility / open_sky, 0.0, 1.0) : 1.0));
-    if (gtao.bent_normals != 0) {
-        /* The bent normal: the visible hemisphere's cosine-weighted mean direction. Open, it is
-         * 2/3 n exactly; the slices estimate only how occlusion moves it from there (the same
-         * quadrature of the open hemisphere subtracted, as for the visibility), so an open
-         * surface gets its own normal at any slice count. */
-        vec3 b = (2.0 / 3.0) * n + bent / float(slices);
-        imageStore(bent_out, pix, vec4(dot(b, b) > 1e-12 ? normalize(b) : n, 0.0));
-    }
+#ifdef OB_GTAO_BENT
+    /* The bent normal: the visible hemisphere's cosine-weighted mean direction. Open, it is 2/3 n
+     * exactly; the slices estimate only how occlusion moves it from there (the same quadrature of
+     * the open hemisphere subtracted, as for the visibility), so an open surface gets its own
+     * normal at any slice count. */
+    vec3 b = (2.0 / 3.0) * n + bent / float(slices);
+    imageStore(bent_out, pix, vec4(dot(b, b) > 1e-12 ? normalize(b) : n, 0.0));
+#endif
 }

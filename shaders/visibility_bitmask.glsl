@@ -65,14 +65,15 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     vec3 sv = p + w;
     float thick = vb.thickness + vb.thickness_slope * max(-sv.z, 0.0);
     vec3 wb = w + sv * (thick * inversesqrt(max(dot(sv, sv), 1e-20)));
-    if (vb.layers != 0) {
-        /* The sample's true back: the second layer on the same view ray, at least the steps'
-         * spacing (ob_layer_thickness; linear depth scales along the ray, so the point at depth
-         * z1 + t is sv (z1 + t) / z1); nothing behind: the constant above. */
-        float z1 = max(-sv.z, 1e-20);
-        float t2 = ob_layer_thickness(z1, ob_second_depth(texel), -p.z, vb.radius, s.radius_px, vb.steps);
-        wb = t2 > 0.0 ? sv * ((z1 + t2) / z1) - p : wb;
-    }
+#ifdef OB_MARCH_LAYERS
+    /* The sample's true back: the second layer on the same view ray, at least the steps' spacing
+     * (ob_layer_thickness; linear depth scales along the ray, so the point at depth z1 + t is
+     * sv (z1 + t) / z1); nothing behind: the constant above. Its own program variant
+     * (OB_SLICE_LAYERS): llvmpipe would run the block for every sample with the layer off too. */
+    float z1 = max(-sv.z, 1e-20);
+    float t2 = ob_layer_thickness(z1, ob_second_depth(texel), -p.z, vb.radius, s.radius_px, vb.steps);
+    wb = t2 > 0.0 ? sv * ((z1 + t2) / z1) - p : wb;
+#endif
     float rise_front = ob_rise_angle_of(w, t, s.n_slice), rise_back = ob_rise_angle_of(wb, t, s.n_slice);
     uint bits = inside ? ob_sample_bits(rise_front, rise_back, s.ang_n, positive, vb.coverage) : 0u;
 #ifdef OB_VBGI

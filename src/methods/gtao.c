@@ -50,8 +50,8 @@ static const ob_param_info gtao_params[P_COUNT] = {
 };
 
 typedef struct gtao_state {
-    ob_method_kit kit;      /* the full-resolution program (shaders/gtao.glsl as it is) */
-    GLuint mips_program;    /* the same shader with OB_MARCH_DEPTH_MIPS, made on first use */
+    ob_method_kit kit;                    /* the default program (shaders/gtao.glsl as it is) */
+    GLuint variants[OB_SLICE_VARIANTS];   /* depth MIPs, second layer, bent normal: made on first use */
 } gtao_state;
 
 /* Settings -> constants, a pure function: the falloff as weight = clamp(r mul + add, 0, 1), 1
@@ -105,7 +105,9 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
     c.bent_normals = c.bent_normals && out->bent_normal ? 1 : 0;
     /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
     ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
-    ob_error err = ob_slice_use(&s->kit, &s->mips_program, "gtao.glsl", c.depth_mips != 0, &c, sizeof c, in, out);
+    const unsigned features = (c.depth_mips ? OB_SLICE_MIPS : 0u) | (c.layers ? OB_SLICE_LAYERS : 0u) |
+                              (c.bent_normals ? OB_SLICE_BENT : 0u);
+    ob_error err = ob_slice_use(&s->kit, s->variants, "gtao.glsl", features, &c, sizeof c, in, out);
     if (err != OB_OK) return err;
     if (c.bent_normals) glBindImageTexture(1, out->bent_normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(in->width, in->height, OB_GTAO_GROUP_X, OB_GTAO_GROUP_Y);
@@ -115,7 +117,7 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
 static void gtao_destroy(void *p)
 {
     gtao_state *s = p;
-    ob_slice_release(&s->mips_program);
+    ob_slice_release(s->variants);
 }
 
 static int gtao_count_samples(const float *params) { return 2 * (int)params[P_SLICES] * (int)params[P_STEPS]; }

@@ -199,13 +199,25 @@ ob_slice_frame ob_slice_frame_make(const ob_ao_inputs *in);
 /* Adaptive slices (seed 003 §4.1): *adaptive and the slices at multiplier 1, (slices + 1) / 3 as
  * ob_adaptive_base rounds taps, at least 1. Fill them into the constants before ob_slice_use. */
 void ob_slice_adaptive(const ob_ao_inputs *in, int slices, int *adaptive, int *base);
+/* A slice method's optional features, each compiled into its own program variant rather than
+ * tested at run time: llvmpipe runs an if block whose (uniform) condition is false as it runs every
+ * other, so the default-off second-layer block, one more fetch and its arithmetic per sample, cost
+ * gtao 43 % of its AO pass at its default settings (fzk-haus:stair 640x480, 36 taps: 135 -> 77 ms
+ * with the block compiled out). */
+enum {
+    OB_SLICE_MIPS = 1,   /* OB_MARCH_DEPTH_MIPS: far steps read the depth MIP chain */
+    OB_SLICE_LAYERS = 2, /* OB_MARCH_LAYERS: the second depth layer bounds each sample's thickness */
+    OB_SLICE_BENT = 4,   /* OB_GTAO_BENT: gtao also writes the bent normal */
+    OB_SLICE_VARIANTS = 8
+};
 /* The run of a slice method after its constants are filled: the kit's uploads and bindings, the
- * OB_MARCH_DEPTH_MIPS variant of `shader` when `mips` (made on first use into *mips_program), the
- * depth chain on unit 3 (the depth itself without one) and the adaptive multiplier on unit 5 (the
- * noise tile when off, so every sampler is valid). Dispatch after. Fails with the error set. */
-ob_error ob_slice_use(ob_method_kit *kit, GLuint *mips_program, const char *shader, bool mips, const void *constants,
-                      size_t size, const ob_ao_inputs *in, const ob_ao_outputs *out);
-/* Frees what ob_slice_use made (the MIP program). */
-void ob_slice_release(GLuint *mips_program);
+ * program for `features` (OB_SLICE_*: the kit's own for none, else a variant of `shader` made on
+ * first use into variants[features]), the depth chain on unit 3 (the depth itself without one),
+ * the adaptive multiplier on unit 5 (the noise tile when off) and the second layer on unit 6 (the
+ * depth when there is none), so every sampler is valid. Dispatch after. Fails with the error set. */
+ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], const char *shader, unsigned features,
+                      const void *constants, size_t size, const ob_ao_inputs *in, const ob_ao_outputs *out);
+/* Frees the variants ob_slice_use made. */
+void ob_slice_release(GLuint variants[OB_SLICE_VARIANTS]);
 
 #endif

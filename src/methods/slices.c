@@ -1,7 +1,8 @@
 /* What the slice methods (gtao, vbao, vbgi) share on the CPU: the split of a sample count into
- * slices x steps, the per-frame jitter offsets and the depth-MIP program variant. Their shaders
- * share shaders/slice_march.glsl. */
+ * slices x steps, the per-frame jitter offsets and the program variants of their optional features.
+ * Their shaders share shaders/slice_march.glsl. */
 #include <math.h>
+#include <string.h>
 
 #include "core/error.h"
 #include "methods/method.h"
@@ -61,22 +62,31 @@ void ob_slice_adaptive(const ob_ao_inputs *in, int slices, int *adaptive, int *b
 
 /* The MIP chain's level is a per-sample choice; as a runtime branch it cost the full-resolution
  * baseline too (shaders/slice_march.glsl), so it is a program of its own. */
-ob_error ob_slice_use(ob_method_kit *kit, GLuint *mips_program, const char *shader, bool mips, const void *constants,
-                      size_t size, const ob_ao_inputs *in, const ob_ao_outputs *out)
+ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], const char *shader, unsigned features,
+                      const void *constants, size_t size, const ob_ao_inputs *in, const ob_ao_outputs *out)
 {
-    if (mips && !ob_method_variant(mips_program, shader, "#define OB_MARCH_DEPTH_MIPS 1\n")) return ob_peek_error(NULL);
+    features &= OB_SLICE_VARIANTS - 1;
+    if (features) {
+        char defines[128] = "";
+        if (features & OB_SLICE_MIPS) strcat(defines, "#define OB_MARCH_DEPTH_MIPS 1\n");
+        if (features & OB_SLICE_LAYERS) strcat(defines, "#define OB_MARCH_LAYERS 1\n");
+        if (features & OB_SLICE_BENT) strcat(defines, "#define OB_GTAO_BENT 1\n");
+        if (!ob_method_variant(&variants[features], shader, defines)) return ob_peek_error(NULL);
+    }
     ob_method_kit_use(kit, constants, size, in, out, GL_R32F);
-    if (mips) glUseProgram(*mips_program);
+    if (features) glUseProgram(variants[features]);
     glBindTextureUnit(3, in->depth_mips ? in->depth_mips : in->linear_depth);
     glBindTextureUnit(5, in->sample_multiplier ? in->sample_multiplier : kit->noise);
     /* The second depth layer (full resolution); the depth itself keeps the sampler valid when the
-     * frame has none, and the constants then say not to read it. */
+     * frame has none, and then no variant reads it. */
     glBindTextureUnit(6, in->second_depth ? in->second_depth : in->linear_depth);
     return OB_OK;
 }
 
-void ob_slice_release(GLuint *mips_program)
+void ob_slice_release(GLuint variants[OB_SLICE_VARIANTS])
 {
-    if (*mips_program) glDeleteProgram(*mips_program);
-    *mips_program = 0;
+    for (int i = 0; i < OB_SLICE_VARIANTS; ++i) {
+        if (variants[i]) glDeleteProgram(variants[i]);
+        variants[i] = 0;
+    }
 }

@@ -69,7 +69,7 @@ static const ob_param_info vb_params[P_COUNT] = {
 
 typedef struct vb_state {
     ob_method_kit kit;   /* the full-resolution program */
-    GLuint mips_program; /* the OB_MARCH_DEPTH_MIPS variant, made on first use */
+    GLuint variants[OB_SLICE_VARIANTS]; /* depth MIPs, second layer: made on first use (ob_slice_use) */
     const char *shader;
     bool gi;
 } vb_state;
@@ -112,7 +112,7 @@ static ob_error vbgi_init(void *p)
 static void vb_destroy(void *p)
 {
     vb_state *s = p;
-    ob_slice_release(&s->mips_program);
+    ob_slice_release(s->variants);
 }
 
 static uint32_t vb_active_reads(const float *params, uint32_t reads)
@@ -144,7 +144,8 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
     c.layers = c.layers && in->second_depth ? 1 : 0; /* ob_compute_ao has no second layer */
     /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
     ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
-    ob_error err = ob_slice_use(&s->kit, &s->mips_program, s->shader, c.max_mip > 0, &c, sizeof c, in, out);
+    const unsigned features = (c.max_mip > 0 ? OB_SLICE_MIPS : 0u) | (c.layers ? OB_SLICE_LAYERS : 0u);
+    ob_error err = ob_slice_use(&s->kit, s->variants, s->shader, features, &c, sizeof c, in, out);
     if (err != OB_OK) return err;
     if (s->gi) {
         glBindTextureUnit(4, in->radiance);

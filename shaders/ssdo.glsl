@@ -72,10 +72,16 @@ void lights_at(vec3 p, mat3 to_view)
 /* Incoming radiance from view direction w (see the top comment); up is world +Y in view space. */
 vec3 incoming(vec3 w, vec3 up, mat3 to_world)
 {
-    int mode = frame.ambient_mode;
+    /* The ambient mode is compiled in (methods/ssdo.c picks the program by frame.ambient_mode):
+     * llvmpipe runs an if block whose uniform condition is false as it runs any other, and the SH
+     * branch's products per sample cost the default constant mode a third of the pass. */
+#if defined(OB_SSDO_AMBIENT_HEMISPHERE)
+    vec3 l_in = mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * dot(w, up));
+#elif defined(OB_SSDO_AMBIENT_ENVIRONMENT)
+    vec3 l_in = max(ob_sh_irradiance(frame.sh, to_world * w), vec3(0.0));
+#else
     vec3 l_in = frame.ambient.rgb;
-    if (mode == OB_AMBIENT_MODE_HEMISPHERE) l_in = mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * dot(w, up));
-    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) l_in = max(ob_sh_irradiance(frame.sh, to_world * w), vec3(0.0));
+#endif
     for (int i = 0; i < frame.light_count; ++i) l_in += light_e[i] * pow(max(dot(w, light_dir[i]), 0.0), ssdo.lobe);
     return l_in;
 }

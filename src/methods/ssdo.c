@@ -10,6 +10,7 @@
  *     bounce in one loop, the bounce darkened by M.
  * Shader: shaders/ssdo.glsl (one program, the stage in a constant). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -58,11 +59,15 @@ static const ob_param_info ssdo_params[P_COUNT] = {
 
 #define KERNEL_SEED 0x55D0u
 
+/* 2 x 2 x 3 programs: see ssdo_state.variants. */
+#define VARIANTS 12
+
 typedef struct ssdo_state {
     ob_method_kit kit;
-    /* The program variants with the second layer (bit 0) and the extra view (bit 1), made on first
-     * use; [0] is the kit's own program. */
-    GLuint variants[4];
+    /* The program variants with the second layer (bit 0), the extra view (bit 1) and the ambient
+     * mode (bits 2-3: constant, hemisphere, environment), made on first use; [0] is the kit's own
+     * program (constant ambient, one layer, one view). */
+    GLuint variants[VARIANTS];
     int kernel_count; /* the cached kernel was built for these */
     int kernel_pdf;
     bool merged;
@@ -119,7 +124,7 @@ static uint32_t ssdo_active_writes(const float *params)
 static void ssdo_destroy(void *p)
 {
     ssdo_state *s = p;
-    for (int v = 1; v < 4; ++v)
+    for (int v = 1; v < VARIANTS; ++v)
         if (s->variants[v]) glDeleteProgram(s->variants[v]);
 }
 
@@ -161,13 +166,22 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
         c->extra_proj_info[3] = ep[9];
     }
 
-    /* The layer and extra-view code only in their own programs (shaders/ssdo.glsl). */
+    /* The layer and extra-view code and the ambient mode's per-sample radiance only in their own
+     * programs (shaders/ssdo.glsl): llvmpipe runs an if block whose uniform condition is false as
+     * it runs any other, and the hemisphere and SH branches cost ssdo a third of its pass in the
+     * default constant mode (bench/results/2026-11-23-llvmpipe-ssdo-ambient.md). */
     GLuint variant = 0;
-    const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0);
+    const int mode = in->frame->ambient_mode == OB_AMBIENT_MODE_HEMISPHERE     ? 1
+                     : in->frame->ambient_mode == OB_AMBIENT_MODE_ENVIRONMENT ? 2
+                                                                              : 0;
+    const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0) | mode << 2;
     if (v) {
-        static const char *const defines[4] = {NULL, "#define OB_SSDO_LAYERS 1\n", "#define OB_SSDO_EXTRA_VIEW 1\n",
-                                               "#define OB_SSDO_LAYERS 1\n#define OB_SSDO_EXTRA_VIEW 1\n"};
-        variant = ob_method_variant(&s->variants[v], "ssdo.glsl", defines[v]);
+        static const char *const ambient[3] = {"", "#define OB_SSDO_AMBIENT_HEMISPHERE 1\n",
+                                               "#define OB_SSDO_AMBIENT_ENVIRONMENT 1\n"};
+        char defines[160];
+        snprintf(defines, sizeof defines, "%s%s%s", c->layers ? "#define OB_SSDO_LAYERS 1\n" : "",
+                 c->extra_view ? "#define OB_SSDO_EXTRA_VIEW 1\n" : "", ambient[mode]);
+        variant = ob_method_variant(&s->variants[v], "ssdo.glsl", defines);
         if (!variant) return ob_peek_error(NULL);
     }
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];

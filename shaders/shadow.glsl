@@ -122,18 +122,34 @@ float ob_shadow_cube(int map, int method, vec3 world_pos, float cos_alpha, vec3 
     return sum / (n * n);
 }
 
+/* The lighting pass's program variants (passes/lighting.c) compile the frame's shadow method in
+ * (OB_SHADOW_FIXED_METHOD) and leave out the lookups no light of the frame needs (OB_SHADOW_NO_CUBE:
+ * no point light has a map; OB_SHADOW_NO_2D: no directional or spot light has one): llvmpipe runs
+ * an if block whose uniform condition is false as it runs any other, so every light paid for the
+ * cube PCF, the 2D PCF, VSM and the hard lookup. Without the defines (shadow_probe.glsl) every
+ * path is there and the constants choose. */
 float ob_shadow(int light, vec3 world_pos, vec3 world_normal)
 {
     int map = int(floor(frame.light_direction[light].w + 0.5));
+#ifdef OB_SHADOW_FIXED_METHOD
+    const int method = OB_SHADOW_FIXED_METHOD;
+#else
     int method = lit.shadow_method;
+#endif
     if (map < 0 || map >= OB_MAX_SHADOW_MAPS || method == OB_SHADOW_METHOD_NONE) return 1.0;
     int type = int(frame.light_color[light].w + 0.5);
     vec3 light_pos = frame.light_position[light].xyz;
     vec3 l = type == OB_LIGHT_TYPE_DIRECTIONAL ? frame.light_direction[light].xyz : light_pos - world_pos;
     float len_n = length(world_normal), len_l = length(l);
     float cos_alpha = len_n > 0.0 && len_l > 0.0 ? dot(world_normal, l) / (len_n * len_l) : 1.0;
+#ifndef OB_SHADOW_NO_CUBE
     if (type == OB_LIGHT_TYPE_POINT) return ob_shadow_cube(map, method, world_pos, cos_alpha, light_pos);
+#endif
+#ifdef OB_SHADOW_NO_2D
+    return 1.0;
+#else
     return ob_shadow_2d(map, method, world_pos, cos_alpha, light_pos);
+#endif
 }
 
 #endif

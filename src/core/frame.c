@@ -270,12 +270,13 @@ static ob_error run_extra_view(ob_renderer *r, const ob_settings *s, const ob_li
     ob_shadows_fill(&r->shadows, &r->lighting.constants, &r->extra_constants);
     glNamedBufferSubData(r->extra_ubo, 0, sizeof r->extra_constants, &r->extra_constants);
     glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_FRAME, r->extra_ubo);
-    ob_lighting_run(&r->lighting, r->gbuffer.width, r->gbuffer.height, r->extra_gbuffer.linear_depth,
-                    r->extra_gbuffer.normal, r->extra_gbuffer.albedo, r->extra_direct);
+    err = ob_lighting_run(&r->lighting, &r->extra_constants, r->gbuffer.width, r->gbuffer.height,
+                          r->extra_gbuffer.linear_depth, r->extra_gbuffer.normal, r->extra_gbuffer.albedo,
+                          r->extra_direct);
     glMemoryBarrier(barrier);
     r->lighting.constants = keep;
     glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_FRAME, r->frame_ubo);
-    return OB_OK;
+    return err;
 }
 
 /* Temporal accumulation of the main chain (visibility or M) and the bounce: `*_in` this frame's
@@ -351,8 +352,9 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     ob_lighting_setup(&r->lighting);
     ob_shadows_fill(&r->shadows, &r->lighting.constants, &r->frame_constants);
     upload_frame(r); /* after ob_shadows_fill: each light's shadow map index */
-    ob_lighting_run(&r->lighting, r->inner_width, r->inner_height, r->gbuffer.linear_depth, r->gbuffer.normal, r->gbuffer.albedo,
-                    r->direct);
+    err = ob_lighting_run(&r->lighting, &r->frame_constants, r->inner_width, r->inner_height, r->gbuffer.linear_depth,
+                          r->gbuffer.normal, r->gbuffer.albedo, r->direct);
+    if (err != OB_OK) return err;
     glMemoryBarrier(barrier);
     /* A method that dispatches nothing (none) is the cost baseline: AO 1 straight into the
      * full-size target that compose reads, with no AO-grid pass, filter, accumulation or upsample

@@ -1,5 +1,7 @@
 /* Direct light over the G-buffer into RGBA16F radiance (seed 000 §4.5; seed 003 §5.2), with the
  * shadow maps of src/passes/shadow.c. Shader: shaders/lighting.glsl. */
+#include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -22,16 +24,47 @@ void ob_lighting_setup(ob_lighting_pass *l)
     l->constants.specular_shininess = SPECULAR_SHININESS;
 }
 
-void ob_lighting_run(ob_lighting_pass *l, int width, int height, GLuint linear_depth, GLuint normal, GLuint albedo,
-                     GLuint radiance_out)
+/* The variant for this frame: the shadow method (2 bits) and whether a point light (cube map) and
+ * a directional or spot light (2D map) has a map to read (shaders/shadow.glsl). */
+static GLuint lighting_variant(ob_lighting_pass *l, const ob_frame_constants *frame)
 {
+    const int method = l->constants.shadow_method & 3;
+    bool cube = false, flat = false;
+    for (int i = 0; i < frame->light_count && i < OB_MAX_LIGHTS && method != OB_SHADOW_METHOD_NONE; ++i) {
+        const int map = (int)floorf(frame->light_direction[i][3] + 0.5f);
+        if (map < 0 || map >= OB_MAX_SHADOW_MAPS) continue;
+        if ((int)(frame->light_color[i][3] + 0.5f) == OB_LIGHT_TYPE_POINT) cube = true;
+        else flat = true;
+    }
+    const int v = method | (cube ? 4 : 0) | (flat ? 8 : 0);
+    if (!l->variants[v]) {
+        char defines[160];
+        snprintf(defines, sizeof defines, "#define OB_SHADOW_FIXED_METHOD %d\n%s%s", method,
+                 cube ? "" : "#define OB_SHADOW_NO_CUBE 1\n", flat ? "" : "#define OB_SHADOW_NO_2D 1\n");
+        l->variants[v] = ob_make_compute_program("lighting.glsl", defines);
+    }
+    return l->variants[v];
+}
+
+ob_error ob_lighting_run(ob_lighting_pass *l, const ob_frame_constants *frame, int width, int height, GLuint linear_depth,
+                         GLuint normal, GLuint albedo, GLuint radiance_out)
+{
+    const GLuint program = lighting_variant(l, frame);
+    if (!program) return ob_peek_error(NULL);
     const ob_lighting_constants *c = &l->constants;
     ob_compute_pass_use(&l->pass, c, sizeof *c);
+    glUseProgram(program);
     glBindTextureUnit(0, linear_depth);
     glBindTextureUnit(1, normal);
     glBindTextureUnit(2, albedo);
     glBindImageTexture(0, radiance_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(width, height, OB_LIGHTING_GROUP_X, OB_LIGHTING_GROUP_Y);
+    return OB_OK;
 }
 
-void ob_lighting_destroy(ob_lighting_pass *l) { ob_compute_pass_destroy(&l->pass); }
+void ob_lighting_destroy(ob_lighting_pass *l)
+{
+    for (int v = 0; v < OB_LIGHTING_VARIANTS; ++v)
+        if (l->variants[v]) glDeleteProgram(l->variants[v]);
+    ob_compute_pass_destroy(&l->pass);
+}

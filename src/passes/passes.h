@@ -192,15 +192,25 @@ ob_error ob_floor_run(ob_floor *f, const ob_floor_desc *d, GLuint linear_depth, 
 void ob_floor_destroy(ob_floor *f);
 
 /* ---- direct light: lighting.c, shaders/lighting.glsl ---------------------------------------- */
-typedef struct ob_lighting_pass { ob_compute_pass pass; ob_lighting_constants constants; } ob_lighting_pass;
+/* The lighting pass: `pass` uploads the constants; the program that runs is one of `variants`,
+ * by the shadow method and whether any light reads a cube or a 2D map (shaders/shadow.glsl), each
+ * made on first use. */
+#define OB_LIGHTING_VARIANTS 16
+typedef struct ob_lighting_pass {
+    ob_compute_pass pass;
+    ob_lighting_constants constants;
+    GLuint variants[OB_LIGHTING_VARIANTS];
+} ob_lighting_pass;
 
 /* The lights, the camera and the size come from the frame block (frame_params.h, bound at
  * OB_BINDING_FRAME); the pass's own constants are the specular lobe and the shadow maps. */
 ob_error ob_lighting_init(ob_lighting_pass *l);
 /* The specular lobe; the shadow members are ob_shadows_fill's. */
 void ob_lighting_setup(ob_lighting_pass *l);
-void ob_lighting_run(ob_lighting_pass *l, int width, int height, GLuint linear_depth, GLuint normal, GLuint albedo,
-                     GLuint radiance_out);
+/* `frame` is the block the dispatch reads (its lights' types and shadow maps pick the variant).
+ * Fails (error set) only when a variant does not compile. */
+ob_error ob_lighting_run(ob_lighting_pass *l, const ob_frame_constants *frame, int width, int height, GLuint linear_depth,
+                         GLuint normal, GLuint albedo, GLuint radiance_out);
 void ob_lighting_destroy(ob_lighting_pass *l);
 
 /* ---- the environment map: environment.c (CPU: load, spherical harmonics) ------------------- */

@@ -103,10 +103,11 @@ void main()
     float inv_dp = -1.0 / pp.z; /* the linear depth d_p = -z */
     float weight = 1.0;
     OB_FILTER_T sum = tile_ao[c.y][c.x];
-    /* Half of the window, (y > 0) or (y = 0, x > 0); each offset brings its mirror (eq. 4). */
+    /* Half of the window, (y > 0) or (y = 0, x > 0); each offset brings its mirror (eq. 4). Row 0
+     * starts at x = 1 rather than skipping x <= 0 with a `continue`: llvmpipe runs a skipped
+     * iteration's body anyway (masked), a fifth of the pairs at r = 2. */
     for (int y = 0; y <= r; ++y) {
-        for (int x = -r; x <= r; ++x) {
-            if (y == 0 && x <= 0) continue;
+        for (int x = y == 0 ? 1 : -r; x <= r; ++x) {
             ivec2 a = c + ivec2(x, y), b = c - ivec2(x, y);
             vec4 pa = tile_pos[a.y][a.x], pb = tile_pos[b.y][b.x];
             float xa = dot(np, pa.xyz - pp.xyz) * inv_dp, xb = dot(np, pb.xyz - pp.xyz) * inv_dp;
@@ -138,10 +139,10 @@ void main()
     int r = flt.radius;
     float weight = 1.0;
     OB_FILTER_T sum = OB_FILTER_FETCH(ao_in, pix);
-    /* Half of the window, (y > 0) or (y = 0, x > 0); each offset brings its mirror (eq. 4). */
+    /* Half of the window, (y > 0) or (y = 0, x > 0); each offset brings its mirror (eq. 4); row 0
+     * from x = 1, as in the tiled program. */
     for (int y = 0; y <= r; ++y) {
-        for (int x = -r; x <= r; ++x) {
-            if (y == 0 && x <= 0) continue;
+        for (int x = y == 0 ? 1 : -r; x <= r; ++x) {
             ivec2 o = ivec2(x, y);
             float s = flt.weights[abs(x)].x * flt.weights[y].x;
             float w = s * min(range_weight(pix + o, size, pp, np, inv_dp), range_weight(pix - o, size, pp, np, inv_dp));

@@ -18,7 +18,7 @@
  *      unless the point's pixel footprint changed since the last frame (see 5 below).
  * The history carries its age: RG32F (value, age) for visibility, RGBA16F (rgb, age) for RGB (M,
  * bounce; OB_TEMPORAL_RGB). Before the filter the visibility chain writes no `result`: the filter
- * reads the new history's .r (4 bytes a pixel less to store; tp.write_result = 0). A sky pixel passes through with age 0. `motion` gets the reprojection
+ * reads the new history's .r (4 bytes a pixel less to store; the OB_TEMPORAL_NO_RESULT program). A sky pixel passes through with age 0. `motion` gets the reprojection
  * offset in AO pixels (previous position - this one) for the tests and the debug views. */
 #include "temporal_params.h"
 #include "common.glsl"
@@ -57,7 +57,9 @@ void main()
     vec3 n = texelFetch(normal, pix, 0).xyz;
     imageStore(next_geometry, pix, vec4(n, d));
     if (d <= 0.0) {
-        if (tp.write_result != 0) imageStore(result, pix, vec4(cur, 1.0));
+#ifndef OB_TEMPORAL_NO_RESULT
+        imageStore(result, pix, vec4(cur, 1.0));
+#endif
 #ifdef OB_TEMPORAL_RGB
         imageStore(next_history, pix, vec4(cur, 0.0));
 #else
@@ -182,7 +184,9 @@ void main()
     float age = min((kept ? AGE(h) * trust : 0.0) + 1.0, tp.history_frames);
     float alpha = max(1.0 / age, 1.0 / tp.history_frames);
     vec3 v = mix(past, cur, alpha);
-    if (tp.write_result != 0) imageStore(result, pix, vec4(v, 1.0));
+#ifndef OB_TEMPORAL_NO_RESULT
+    imageStore(result, pix, vec4(v, 1.0));
+#endif
 #ifdef OB_TEMPORAL_RGB
     imageStore(next_history, pix, vec4(v, age));
 #else

@@ -23,7 +23,7 @@ OB_CONSTANTS_BEGIN(ob_temporal_constants, OB_BINDING_PASS)
     OB_FLOAT normal_cos;        /* ... and its normal is within acos(normal_cos) of this point's */
     OB_FLOAT footprint_falloff; /* the history's age is multiplied by 2^(-falloff |log2 s|), s = the point's
                                    pixel footprint in the previous frame / in this one */
-    OB_INT write_result;        /* 0: no `result` image; the next history's value (.r) is the output */
+    OB_FLOAT pad0;
     OB_FLOAT pad1;
     OB_FLOAT pad2;
 OB_CONSTANTS_END(ob_temporal_constants, tp)

@@ -103,6 +103,7 @@ void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLui
  * history textures carry the age (RG32F value, age; RGBA16F rgb, age). */
 typedef struct ob_temporal_pass {
     ob_compute_pass scalar, rgb; /* temporal.glsl without / with OB_TEMPORAL_RGB */
+    ob_compute_pass scalar_direct; /* OB_TEMPORAL_NO_RESULT: the filter reads the new history (.r) */
 } ob_temporal_pass;
 /* The camera of the previous frame and the history rules (pure; no GL): prev_view and
  * prev_ao_proj column-major, history_frames N >= 1. */

@@ -46,8 +46,10 @@ ob_error ob_temporal_init(ob_temporal_pass *p)
     if (ob_compute_pass_init(&p->scalar, "temporal.glsl", NULL, sizeof(ob_temporal_constants)) != OB_OK)
         return ob_peek_error(NULL);
     if (ob_compute_pass_init(&p->rgb, "temporal.glsl", "#define OB_TEMPORAL_RGB 1\n", sizeof(ob_temporal_constants)) !=
-        OB_OK) {
-        ob_compute_pass_destroy(&p->scalar);
+            OB_OK ||
+        ob_compute_pass_init(&p->scalar_direct, "temporal.glsl", "#define OB_TEMPORAL_NO_RESULT 1\n",
+                             sizeof(ob_temporal_constants)) != OB_OK) {
+        ob_temporal_destroy(p);
         return ob_peek_error(NULL);
     }
     return OB_OK;
@@ -56,9 +58,10 @@ ob_error ob_temporal_init(ob_temporal_pass *p)
 void ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth, GLuint normal,
                      GLuint prev_geometry, GLuint next_geometry, GLuint motion, const ob_temporal_chain *chain)
 {
-    ob_temporal_constants k = *c;
-    k.write_result = chain->result != 0;
-    ob_compute_pass_use(chain->rgb ? &p->rgb : &p->scalar, &k, sizeof k);
+    /* Without a result image, the program that has no store for it (a uniform test of one would
+     * still store on llvmpipe, which runs a false branch masked). */
+    ob_compute_pass *pass = chain->rgb ? &p->rgb : chain->result ? &p->scalar : &p->scalar_direct;
+    ob_compute_pass_use(pass, c, sizeof *c);
     const GLuint units[5] = {chain->current, chain->history, depth, normal, prev_geometry};
     for (int i = 0; i < 5; ++i) glBindTextureUnit((GLuint)i, units[i]);
     glBindImageTexture(3, next_geometry, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -73,4 +76,5 @@ void ob_temporal_destroy(ob_temporal_pass *p)
 {
     ob_compute_pass_destroy(&p->scalar);
     ob_compute_pass_destroy(&p->rgb);
+    ob_compute_pass_destroy(&p->scalar_direct);
 }

@@ -60,8 +60,9 @@ void ob_slice_adaptive(const ob_ao_inputs *in, int slices, int *adaptive, int *b
     *base = (slices + 1) / 3 > 1 ? (slices + 1) / 3 : 1;
 }
 
-/* The MIP chain's level is a per-sample choice; as a runtime branch it cost the full-resolution
- * baseline too (shaders/slice_march.glsl), so it is a program of its own. */
+/* Each optional feature is compiled in, not branched on: the MIP chain's level is a per-sample
+ * choice, and the second layer and the bent normal are uniform tests that llvmpipe runs masked
+ * when false, so as runtime branches they cost the default program too (method.h OB_SLICE_*). */
 ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], const char *shader, unsigned features,
                       const void *constants, size_t size, const ob_ao_inputs *in, const ob_ao_outputs *out)
 {

@@ -164,19 +164,12 @@ int cli_exposure_begin(cli_exposure *e, ob_renderer *r, const ob_camera *cam, co
     e->scratch = malloc(px * 3 * sizeof(float));
     if (!e->scratch) return cli_fail(EXIT_RUNTIME, "out of memory");
     e->px = px;
-    ob_settings s;
-    ob_settings_init(&s, "none");
-    s.hdr = like->hdr;
-    memcpy(s.lights, like->lights, sizeof s.lights);
-    s.light_count = like->light_count;
-    s.shadow = like->shadow;
-    s.ambient_mode = like->ambient_mode;
-    memcpy(s.ambient, like->ambient, sizeof s.ambient);
-    memcpy(s.sky, like->sky, sizeof s.sky);
-    memcpy(s.ground, like->ground, sizeof s.ground);
-    s.textures_off = like->textures_off;
-    memcpy(s.background, like->background, sizeof s.background);
-    s.guard = like->guard;
+    /* `like` with no AO: everything else (lights, ambient, shadows, HDR, textures) as it is. */
+    ob_settings s = *like;
+    s.method = ob_find_method("none");
+    memset(s.params, 0, sizeof s.params);
+    s.params_set = 0;
+    s.temporal = false;
     if (ob_render_frame(r, cam, &s) != OB_OK) return cli_fail_from_library();
     e->log_average = cli_frame_log_average(r, e->scratch, px);
     e->key = like->hdr.key > 0.0f ? like->hdr.key : ob_hdr_auto_key((float)e->log_average);
@@ -190,6 +183,11 @@ int cli_exposure_apply(cli_exposure *e, ob_renderer *r, const ob_camera *cam, co
     if (!e->active || !s->hdr.enabled) return EXIT_OK;
     const double l = cli_frame_log_average(r, e->scratch, e->px);
     if (!(l > 0.0)) return EXIT_OK; /* a black frame: its own exposure is as good as any */
+    /* The frame's own scale exposure x key / L_avg already the anchor's (the none row, or a frame
+     * AO leaves alone): nothing to render again. */
+    const double key = s->hdr.key > 0.0f ? s->hdr.key : ob_hdr_auto_key((float)l);
+    const double own = s->hdr.exposure * key / l, anchor = e->exposure * e->key / e->log_average;
+    if (fabs(own - anchor) <= 1e-6 * anchor) return EXIT_OK;
     ob_settings shared = *s;
     shared.hdr.key = e->key;
     shared.hdr.exposure = (float)(e->exposure * l / e->log_average);

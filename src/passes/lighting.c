@@ -12,10 +12,26 @@
 #define SPECULAR_KS 0.04f
 #define SPECULAR_SHININESS 32.0f
 
+/* The variant index and defines of a frame's lighting program (shaders/shadow.glsl): the shadow
+ * method (2 bits) and whether a point light (cube map) and a directional or spot light (2D map)
+ * has a map to read. */
+static int variant_defines(int method, bool cube, bool flat, char *defines, size_t size)
+{
+    snprintf(defines, size, "#define OB_SHADOW_FIXED_METHOD %d\n%s%s", method,
+             cube ? "" : "#define OB_SHADOW_NO_CUBE 1\n", flat ? "" : "#define OB_SHADOW_NO_2D 1\n");
+    return method | (cube ? 4 : 0) | (flat ? 8 : 0);
+}
+
 ob_error ob_lighting_init(ob_lighting_pass *l)
 {
     memset(l, 0, sizeof *l);
-    return ob_compute_pass_init(&l->pass, "lighting.glsl", NULL, sizeof(ob_lighting_constants));
+    /* The pass's own program is the common variant (PCF, directional and spot maps, no point
+     * light's), so most scenes compile nothing more at their first frame. */
+    char defines[160];
+    const int v = variant_defines(OB_SHADOW_METHOD_PCF, false, true, defines, sizeof defines);
+    ob_error err = ob_compute_pass_init(&l->pass, "lighting.glsl", defines, sizeof(ob_lighting_constants));
+    if (err == OB_OK) l->variants[v] = l->pass.program;
+    return err;
 }
 
 void ob_lighting_setup(ob_lighting_pass *l)
@@ -24,8 +40,7 @@ void ob_lighting_setup(ob_lighting_pass *l)
     l->constants.specular_shininess = SPECULAR_SHININESS;
 }
 
-/* The variant for this frame: the shadow method (2 bits) and whether a point light (cube map) and
- * a directional or spot light (2D map) has a map to read (shaders/shadow.glsl). */
+/* The variant for this frame, made on first use. */
 static GLuint lighting_variant(ob_lighting_pass *l, const ob_frame_constants *frame)
 {
     const int method = l->constants.shadow_method & 3;
@@ -36,13 +51,9 @@ static GLuint lighting_variant(ob_lighting_pass *l, const ob_frame_constants *fr
         if ((int)(frame->light_color[i][3] + 0.5f) == OB_LIGHT_TYPE_POINT) cube = true;
         else flat = true;
     }
-    const int v = method | (cube ? 4 : 0) | (flat ? 8 : 0);
-    if (!l->variants[v]) {
-        char defines[160];
-        snprintf(defines, sizeof defines, "#define OB_SHADOW_FIXED_METHOD %d\n%s%s", method,
-                 cube ? "" : "#define OB_SHADOW_NO_CUBE 1\n", flat ? "" : "#define OB_SHADOW_NO_2D 1\n");
-        l->variants[v] = ob_make_compute_program("lighting.glsl", defines);
-    }
+    char defines[160];
+    const int v = variant_defines(method, cube, flat, defines, sizeof defines);
+    if (!l->variants[v]) l->variants[v] = ob_make_compute_program("lighting.glsl", defines);
     return l->variants[v];
 }
 
@@ -65,6 +76,6 @@ ob_error ob_lighting_run(ob_lighting_pass *l, const ob_frame_constants *frame, i
 void ob_lighting_destroy(ob_lighting_pass *l)
 {
     for (int v = 0; v < OB_LIGHTING_VARIANTS; ++v)
-        if (l->variants[v]) glDeleteProgram(l->variants[v]);
+        if (l->variants[v] && l->variants[v] != l->pass.program) glDeleteProgram(l->variants[v]);
     ob_compute_pass_destroy(&l->pass);
 }

@@ -86,11 +86,14 @@ sweep=(--full --cameras front --radius 4 --quality low,medium,high,ultra --frame
 want h1080 && run h1080 150 --scene cornell --size 1920x1080 "${sweep[@]}"
 want stereo && run stereo 150 --scene cornell --stereo "${sweep[@]}"
 # The filters after gtao high (crease's tiled auto picks the plain program on a GPU; on names
-# the tiled one), and the half-resolution AO chain.
+# the tiled one, block the 4x4-pixels-per-invocation one that llvmpipe runs), and the
+# half-resolution AO chain.
 want filters && run filters 60 --scene cornell --size 1920x1080 "${sweep[@]}" --methods gtao,vbao --quality high \
     --filters none,box4,gaussian,bilateral_sep,crease --ao-scales 1,0.5
 want filters && run filters_tiled 40 --scene cornell --size 1920x1080 "${sweep[@]}" --methods gtao --quality high \
     --filters crease --set crease.tiled=on
+want filters && run filters_block 40 --scene cornell --size 1920x1080 "${sweep[@]}" --methods gtao --quality high \
+    --filters crease --set crease.tiled=block
 # The test suite on the GPU (the build tree that scripts/pack-runtime.sh --device packed; the
 # repository root must be the same path as here, /work/main on these machines: CTest and the
 # tests name absolute paths). The cli-labelled suites need llvmpipe (--gpu sw), gnuplot, chromium

@@ -51,26 +51,30 @@ float range_weight(ivec2 q, ivec2 size, vec3 pp, vec3 np, float inv_dp)
     return exp(x * x * flt.depth_falloff + theta * theta * flt.normal_falloff);
 }
 
-#ifdef OB_CREASE_TILED
-/* The tiled program (`tiled` on, radius <= OB_CREASE_TILE_RADIUS): the work group first turns its
- * (8 + 2r)^2 texels into view positions, normals and AO in shared memory, once each, where the
- * plain program fetched and rebuilt every one of them for each of the up to 25 pixels whose
- * window covers it (24 range weights a pixel, each two fetches and a reconstruction). The weights
- * are the same equations; acos becomes Abramowitz & Stegun 4.4.45 (|error| <= 6.7e-5 rad, so
- * theta^2 / 2 s_n^2 moves by under 1e-3 of itself at s_n = 20 deg), and exp an exp2 with the
- * falloffs scaled by log2(e) on the CPU. The plain program stays as the baseline (tiled off). */
-const int TILE_W = OB_FILTER_GROUP_X + 2 * OB_CREASE_TILE_RADIUS;
-const int TILE_H = OB_FILTER_GROUP_Y + 2 * OB_CREASE_TILE_RADIUS;
-shared vec4 tile_pos[TILE_H][TILE_W];    /* view position, w = 1 on geometry inside the image, else 0 */
-shared vec3 tile_normal[TILE_H][TILE_W];
-shared OB_FILTER_T tile_ao[TILE_H][TILE_W];
-
+/* acos by Abramowitz & Stegun 4.4.45 (|error| <= 6.7e-5 rad, so theta^2 / 2 s_n^2 moves by under
+ * 1e-3 of itself at s_n = 20 deg): the tiled and block programs' eq. 3. */
 float fast_acos(float x)
 {
     float a = abs(x);
     float r = sqrt(1.0 - a) * (1.5707288 + a * (-0.2121144 + a * (0.0742610 - 0.0187293 * a)));
     return x < 0.0 ? 3.14159265 - r : r;
 }
+
+#ifdef OB_CREASE_TILED
+/* The tiled program (`tiled` on, radius <= OB_CREASE_TILE_RADIUS): the work group first turns its
+ * (8 + 2r)^2 texels into view positions, normals and AO in shared memory, once each, where the
+ * plain program fetched and rebuilt every one of them for each of the up to 25 pixels whose
+ * window covers it (24 range weights a pixel, each two fetches and a reconstruction). The weights
+ * are the same equations; acos becomes fast_acos, and exp an exp2 with the falloffs scaled by
+ * log2(e) on the CPU. The plain program stays as the baseline (tiled off).
+ * On llvmpipe a shared-memory load whose address differs between lanes is a loop over the 8
+ * lanes, one branch and one scalar load each (Mesa 22.3 lp_bld_nir_soa.c emit_load_mem): each
+ * pair's 16 floats cost 128 of them, which is why the block program below is 4x faster there. */
+const int TILE_W = OB_FILTER_GROUP_X + 2 * OB_CREASE_TILE_RADIUS;
+const int TILE_H = OB_FILTER_GROUP_Y + 2 * OB_CREASE_TILE_RADIUS;
+shared vec4 tile_pos[TILE_H][TILE_W];    /* view position, w = 1 on geometry inside the image, else 0 */
+shared vec3 tile_normal[TILE_H][TILE_W];
+shared OB_FILTER_T tile_ao[TILE_H][TILE_W];
 
 void main()
 {
@@ -121,6 +125,81 @@ void main()
         }
     }
     imageStore(ao_out, pix, vec4(sum / weight));
+}
+#elif defined(OB_CREASE_BLOCK)
+/* The block program (`tiled` block, radius 2 only): each invocation filters a 4x4 block of
+ * pixels from the 8x8 window around it, fetched once into registers. Per pixel that is 64 / 16 = 4
+ * texels of each texture instead of 25, and no shared memory (the tiled program's loads are
+ * per-lane loops on llvmpipe, see above). Everything is unrolled by the macros below, so every
+ * array index is a constant and the arrays stay in registers (an array indexed at run time would
+ * go to scratch memory, per lane again). The weights are the tiled program's: eq. 1-4, fast_acos,
+ * exp2 with the CPU's log2(e)-scaled falloffs. Eq. 2 needs no view positions: with
+ * L(q) = n_p . P_q / d_q, which is linear in q's pixel coordinates (ob_view_position),
+ *   n_p . (P_q - P_p) = d_q L(p + o) - d_p L(p),  L(p + o) = L(p) + o . dL/dq,
+ * one multiply-add per tap. On a 4x4 block 1 - 4 px the window overhangs the image's edge or
+ * the sky as in the other programs: those taps have d = 0 and weigh nothing. */
+const int BLOCK = 4;
+const int WINDOW = BLOCK + 4; /* 2 px each side at r = 2 */
+float win_depth[WINDOW * WINDOW];           /* 0 off the image and on the sky */
+vec3 win_normal[WINDOW * WINDOW];
+OB_FILTER_T win_ao[WINDOW * WINDOW];
+
+/* the window texel at block offset (x, y), x, y in -2 .. BLOCK + 1 */
+#define WIN(x, y) (((x) + 2) + WINDOW * ((y) + 2))
+
+#define LOAD(x, y) { \
+    ivec2 q = base + ivec2(x, y), qc = clamp(q, ivec2(0), size - 1); \
+    float d = texelFetch(linear_depth, qc, 0).r; \
+    win_depth[WIN(x, y)] = q == qc ? d : 0.0; \
+    win_normal[WIN(x, y)] = texelFetch(view_normal, qc, 0).xyz; \
+    win_ao[WIN(x, y)] = OB_FILTER_FETCH(ao_in, qc); }
+#define LOAD_ROW(y) LOAD(-2, y) LOAD(-1, y) LOAD(0, y) LOAD(1, y) LOAD(2, y) LOAD(3, y) LOAD(4, y) LOAD(5, y)
+
+/* Offsets (ox, oy) and (-ox, -oy) of pixel (bx, by) of the block: eq. 2-4 with eq. 1's weight. */
+#define PAIR(bx, by, ox, oy) { \
+    int ia = WIN(bx + ox, by + oy), ib = WIN(bx - ox, by - oy); \
+    float t = float(ox) * dl.x + float(oy) * dl.y; \
+    float xa = (win_depth[ia] * (lp + t) - dp * lp) * inv_dp; \
+    float xb = (win_depth[ib] * (lp - t) - dp * lp) * inv_dp; \
+    float ta = fast_acos(clamp(dot(np, win_normal[ia]), -1.0, 1.0)); \
+    float tb = fast_acos(clamp(dot(np, win_normal[ib]), -1.0, 1.0)); \
+    float ga = win_depth[ia] > 0.0 ? exp2(xa * xa * flt.depth_falloff + ta * ta * flt.normal_falloff) : 0.0; \
+    float gb = win_depth[ib] > 0.0 ? exp2(xb * xb * flt.depth_falloff + tb * tb * flt.normal_falloff) : 0.0; \
+    float w = (abs(ox) == 2 ? 0.5 : 1.0) * (oy == 2 ? 0.5 : 1.0) * min(ga, gb); \
+    sum += w * (win_ao[ia] + win_ao[ib]); \
+    weight += 2.0 * w; }
+
+/* Pixel (bx, by) of the block: the half window (oy > 0, or oy = 0 and ox > 0), mirrors paired. */
+#define PIXEL(bx, by) { \
+    ivec2 pix = base + ivec2(bx, by); \
+    float dp = win_depth[WIN(bx, by)]; \
+    if (all(lessThan(pix, size))) { \
+        if (dp <= 0.0) { \
+            imageStore(ao_out, pix, OB_FILTER_SKY); \
+        } else { \
+            vec3 np = win_normal[WIN(bx, by)]; \
+            vec2 ndc = (vec2(pix) + 0.5) * frame.ao_inv_size * 2.0 - 1.0; \
+            float lp = np.x * pinfo.x * (ndc.x + pinfo.z) + np.y * pinfo.y * (ndc.y + pinfo.w) - np.z; \
+            vec2 dl = np.xy * pinfo.xy * 2.0 * frame.ao_inv_size; \
+            float inv_dp = 1.0 / dp; \
+            float weight = 1.0; \
+            OB_FILTER_T sum = win_ao[WIN(bx, by)]; \
+            PAIR(bx, by, 1, 0) PAIR(bx, by, 2, 0) \
+            PAIR(bx, by, -2, 1) PAIR(bx, by, -1, 1) PAIR(bx, by, 0, 1) PAIR(bx, by, 1, 1) PAIR(bx, by, 2, 1) \
+            PAIR(bx, by, -2, 2) PAIR(bx, by, -1, 2) PAIR(bx, by, 0, 2) PAIR(bx, by, 1, 2) PAIR(bx, by, 2, 2) \
+            imageStore(ao_out, pix, vec4(sum / weight)); \
+        } \
+    } }
+#define PIXEL_ROW(y) PIXEL(0, y) PIXEL(1, y) PIXEL(2, y) PIXEL(3, y)
+
+void main()
+{
+    ivec2 size = flt.size;
+    ivec2 base = BLOCK * ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(base, size))) return;
+    vec4 pinfo = frame.ao_proj_info;
+    LOAD_ROW(-2) LOAD_ROW(-1) LOAD_ROW(0) LOAD_ROW(1) LOAD_ROW(2) LOAD_ROW(3) LOAD_ROW(4) LOAD_ROW(5)
+    PIXEL_ROW(0) PIXEL_ROW(1) PIXEL_ROW(2) PIXEL_ROW(3)
 }
 #else
 void main()

@@ -19,7 +19,8 @@ enum { P_RADIUS, P_SIGMA_PLANE, P_SIGMA_NORMAL, P_TILED, P_COUNT };
 
 #define OB_DEG_TO_RAD 0.017453292519943295f
 
-static const char *const tiled_options[] = {"off", "on", "auto"};
+static const char *const tiled_options[] = {"off", "on", "auto", "block"};
+enum { TILED_OFF, TILED_ON, TILED_AUTO, TILED_BLOCK }; /* tiled_options' indices */
 
 static const ob_param_info crease_params[P_COUNT] = {
     /* 2: the window [1/2 1 1 1 1/2]^2 gives every pixel of a 4x4 noise tile the same total
@@ -48,20 +49,23 @@ static const ob_param_info crease_params[P_COUNT] = {
     [P_SIGMA_NORMAL] = {"sigma_normal", OB_PARAM_FLOAT, 1.0f, 90.0f, 20.0f, "degrees",
                         "standard deviation on the angle between normals", false},
     /* on: the work group's window in shared memory, each texel rebuilt once (crease.glsl's tiled
-     * program); off: the plain program, the baseline it is measured against. Radii above
-     * OB_CREASE_TILE_RADIUS take the plain one. auto: tiled on a software rasteriser, plain on a
-     * GPU, as measured in one bench run each (gtao high, 1920x1080 on an H100: plain 0.089 ms,
-     * tiled 0.140; 640x480 on llvmpipe, 2 cores: tiled 55 ms, plain 65; docs/filters.md). Off and
-     * on keep their old indices 0 and 1. */
-    [P_TILED] = {"tiled", OB_PARAM_ENUM, 0.0f, 2.0f, 2.0f, "",
-                 "shared-memory tiles: on, off (the plain program, every tap fetched and rebuilt per pixel), "
-                 "or auto (on for a software rasteriser, off on a GPU)",
+     * program); off: the plain program, the baseline the others are measured against; block: each
+     * invocation filters 4x4 pixels from one 8x8 window in registers (radius 2, the default). Radii
+     * above OB_CREASE_TILE_RADIUS take the plain program, other radii than 2 take `on` for block.
+     * auto: block on a software rasteriser, plain on a GPU, as measured in one bench run each
+     * (1280x720 on llvmpipe, 2 cores, after gtao: block 25 ms, tiled 100-200, gaussian 27-28;
+     * 1920x1080 on an H100: plain 0.089 ms, tiled 0.140, block not measured yet; docs/filters.md).
+     * The values keep their old indices. */
+    [P_TILED] = {"tiled", OB_PARAM_ENUM, 0.0f, 3.0f, 2.0f, "",
+                 "how the window is read: on (shared-memory tiles), off (the plain program, every tap fetched "
+                 "and rebuilt per pixel), block (4x4 pixels per invocation, radius 2), or auto (block on a "
+                 "software rasteriser, off on a GPU)",
                  false, tiled_options},
 };
 
-/* Both programs, so a frame can switch between them. */
+/* Every program, so a frame can switch between them. */
 typedef struct crease_state {
-    ob_compute_pass plain, tiled;
+    ob_compute_pass plain, tiled, block;
     bool software; /* the context is a software rasteriser: what `tiled` auto follows */
 } crease_state;
 
@@ -83,6 +87,7 @@ static void crease_destroy(void *state)
     if (!s) return;
     ob_compute_pass_destroy(&s->plain);
     ob_compute_pass_destroy(&s->tiled);
+    ob_compute_pass_destroy(&s->block);
     free(s);
 }
 
@@ -95,8 +100,10 @@ static void *make_state(bool rgb)
     }
     const char *plain = rgb ? "#define OB_FILTER_RGB 1\n" : NULL;
     const char *tiled = rgb ? "#define OB_FILTER_RGB 1\n#define OB_CREASE_TILED 1\n" : "#define OB_CREASE_TILED 1\n";
+    const char *block = rgb ? "#define OB_FILTER_RGB 1\n#define OB_CREASE_BLOCK 1\n" : "#define OB_CREASE_BLOCK 1\n";
     if (ob_compute_pass_init(&s->plain, "crease.glsl", plain, sizeof(ob_filter_constants)) != OB_OK ||
-        ob_compute_pass_init(&s->tiled, "crease.glsl", tiled, sizeof(ob_filter_constants)) != OB_OK) {
+        ob_compute_pass_init(&s->tiled, "crease.glsl", tiled, sizeof(ob_filter_constants)) != OB_OK ||
+        ob_compute_pass_init(&s->block, "crease.glsl", block, sizeof(ob_filter_constants)) != OB_OK) {
         crease_destroy(s);
         return NULL;
     }
@@ -113,16 +120,22 @@ static ob_error crease_run(void *state, const ob_filter_inputs *in, const float 
     ob_filter_constants c;
     ob_crease_constants_init(&c, in, (int)params[P_RADIUS], params[P_SIGMA_PLANE],
                              params[P_SIGMA_NORMAL] * OB_DEG_TO_RAD);
-    const int mode = (int)params[P_TILED]; /* tiled_options */
-    bool tiled = (mode == 1 || (mode == 2 && s->software)) && c.radius <= OB_CREASE_TILE_RADIUS;
-    if (tiled) {
-        /* The tiled program takes exp2: the same exponents times log2(e). */
+    int mode = (int)params[P_TILED];
+    if (mode == TILED_AUTO) mode = s->software ? TILED_BLOCK : TILED_OFF;
+    if (mode == TILED_BLOCK && c.radius != 2) mode = TILED_ON; /* the block program is unrolled for r = 2 */
+    if (mode == TILED_ON && c.radius > OB_CREASE_TILE_RADIUS) mode = TILED_OFF;
+    if (mode != TILED_OFF) {
+        /* The tiled and block programs take exp2: the same exponents times log2(e). */
         c.depth_falloff *= 1.4426950408889634f;
         c.normal_falloff *= 1.4426950408889634f;
     }
     /* One pass: the view positions come from the frame's block at OB_BINDING_FRAME, which the
      * renderer binds for every pass of the frame (and ob_compute_ao_filtered for its own). */
-    ob_filter_run_single(tiled ? &s->tiled : &s->plain, &c, ob_filter_constants_used(&c), in);
+    if (mode == TILED_BLOCK) {
+        ob_filter_run_blocks(&s->block, &c, ob_filter_constants_used(&c), in, 4); /* crease.glsl's BLOCK */
+    } else {
+        ob_filter_run_single(mode == TILED_ON ? &s->tiled : &s->plain, &c, ob_filter_constants_used(&c), in);
+    }
     return OB_OK;
 }
 

@@ -61,6 +61,10 @@ void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, cons
 /* The one dispatch of a single-pass filter: the first `used` bytes of c uploaded, AO at texture
  * unit 0, linear depth at 1, view normals at 2, in->dst as image 0. */
 void ob_filter_run_single(ob_compute_pass *pass, const ob_filter_constants *c, size_t used, const ob_filter_inputs *in);
+/* The same for a shader whose invocations each write a block x block square of pixels: one
+ * invocation per square (crease's block program). */
+void ob_filter_run_blocks(ob_compute_pass *pass, const ob_filter_constants *c, size_t used, const ob_filter_inputs *in,
+                          int block);
 /* A filter's compute pass from its shader, R32F or (rgb) RGBA16F; NULL + ob_set_error. */
 void *ob_filter_make_pass(const char *shader, bool rgb);
 /* Frees what ob_filter_make_pass made (NULL is a no-op): every filter's destroy. */

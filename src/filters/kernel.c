@@ -73,12 +73,19 @@ void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, cons
 
 void ob_filter_run_single(ob_compute_pass *pass, const ob_filter_constants *c, size_t used, const ob_filter_inputs *in)
 {
+    ob_filter_run_blocks(pass, c, used, in, 1);
+}
+
+void ob_filter_run_blocks(ob_compute_pass *pass, const ob_filter_constants *c, size_t used, const ob_filter_inputs *in,
+                          int block)
+{
     ob_compute_pass_use(pass, c, used);
     glBindTextureUnit(0, in->src);
     glBindTextureUnit(1, in->linear_depth);
     glBindTextureUnit(2, in->view_normal);
     glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
-    ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
+    ob_dispatch_2d((in->width + block - 1) / block, (in->height + block - 1) / block, OB_FILTER_GROUP_X,
+                   OB_FILTER_GROUP_Y);
 }
 
 void ob_filter_destroy_pass(void *state)

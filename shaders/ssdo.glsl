@@ -82,7 +82,18 @@ vec3 incoming(vec3 w, vec3 up, mat3 to_world)
 #else
     vec3 l_in = frame.ambient.rgb;
 #endif
-    for (int i = 0; i < frame.light_count; ++i) l_in += light_e[i] * pow(max(dot(w, light_dir[i]), 0.0), ssdo.lobe);
+    for (int i = 0; i < frame.light_count; ++i) {
+#ifdef OB_SSDO_LOBE_POW
+        l_in += light_e[i] * pow(max(dot(w, light_dir[i]), 0.0), ssdo.lobe);
+#else
+        /* The default lobe, k = 8 (methods/ssdo.c picks this program only then): three squarings.
+         * llvmpipe's pow is an exp2 of a log2, a third of ssdo_merged's pass at 16 samples. */
+        float c = max(dot(w, light_dir[i]), 0.0);
+        c *= c;
+        c *= c;
+        l_in += light_e[i] * (c * c);
+#endif
+    }
     return l_in;
 }
 

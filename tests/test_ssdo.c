@@ -188,6 +188,36 @@ static void test_fused(ob_renderer *r)
     free(b2);
 }
 
+/* The default lobe (k = 8) is compiled in as three squarings; any other k takes the pow program.
+ * At k = 8 and k = 8 (1 - 1e-6) the two must agree to float rounding on M (x^k moves by k 1e-6
+ * |ln x| x^k, under 1e-5 of it), and a lobe of 2 must move M (the pow program reads the value). */
+static void test_lobe_programs(ob_renderer *r, const char *m)
+{
+    ob_settings sq, pw, wide;
+    settings_for(&sq, m);
+    ob_settings_set_filter(&sq, "none");
+    pw = wide = sq;
+    char key[64];
+    snprintf(key, sizeof key, "%s.lobe=7.999992", m);
+    CHECK(ob_settings_set(&pw, key) == OB_OK, "%s", key);
+    snprintf(key, sizeof key, "%s.lobe=2", m);
+    CHECK(ob_settings_set(&wide, key) == OB_OK, "%s", key);
+    float *a = render(r, &sq, OB_IMAGE_AO_RGB_F32), *b = render(r, &pw, OB_IMAGE_AO_RGB_F32);
+    float *c = render(r, &wide, OB_IMAGE_AO_RGB_F32);
+    size_t n = (size_t)W * H * 3;
+    double worst = 0.0, moved = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        worst = fmax(worst, fabs((double)a[i] - b[i]));
+        moved = fmax(moved, fabs((double)a[i] - c[i]));
+    }
+    printf("  %s lobe 8 squared vs pow(7.999992): max |dM| %.2g; lobe 2 moves M by up to %.3f\n", m, worst, moved);
+    CHECK(worst <= 1e-3, "%s: the squarings program matches pow at k = 8 (%.2g)", m, worst);
+    CHECK(moved > 0.01, "%s: lobe 2 changes M (%.3f)", m, moved);
+    free(a);
+    free(b);
+    free(c);
+}
+
 /* M in [0,1]; sky pixels M = 1 and bounce 0; bounce off gives a black bounce. */
 static void test_ranges(ob_renderer *r, const char *m, float scale)
 {
@@ -244,6 +274,8 @@ int main(void)
     test_light_moves(r, cornell);
     test_agreement(r);
     test_fused(r);
+    test_lobe_programs(r, "ssdo");
+    test_lobe_programs(r, "ssdo_merged");
     test_ranges(r, "ssdo", 1.0f);
     test_ranges(r, "ssdo_merged", 1.0f);
     test_ranges(r, "ssdo_merged", 0.5f);

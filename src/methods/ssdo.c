@@ -21,6 +21,10 @@
 
 enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_EXTRA_VIEW, P_FUSED, P_COUNT };
 
+/* The lobe exponent of the default programs, which compile it in (shaders/ssdo.glsl: three
+ * squarings); any other value takes the pow variant. */
+#define DEFAULT_LOBE 8.0f
+
 static const ob_param_info ssdo_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
                   "sampling hemisphere radius; default: the scene's suggested radius", true},
@@ -38,7 +42,7 @@ static const ob_param_info ssdo_params[P_COUNT] = {
                            "multiplies the sender patch area pi r^2 / N", false},
     /* 8: a lobe of ~30 degrees half-width at half maximum, wide enough that 16 samples hit it,
      * narrow enough that M still says from which side the light comes. */
-    [P_LOBE] = {"lobe", OB_PARAM_FLOAT, 1.0f, 256.0f, 8.0f, "exponent",
+    [P_LOBE] = {"lobe", OB_PARAM_FLOAT, 1.0f, 256.0f, DEFAULT_LOBE, "exponent",
                 "lights become cosine lobes max(0, w.l)^k around their direction: k", false},
     /* 2: seed 000's test around Fig. 4.6: a sample behind the first layer occludes only while it
      * is in front of the second (inside the object); behind it the sample is free. */
@@ -59,14 +63,15 @@ static const ob_param_info ssdo_params[P_COUNT] = {
 
 #define KERNEL_SEED 0x55D0u
 
-/* 2 x 2 x 3 programs: see ssdo_state.variants. */
-#define VARIANTS 12
+/* 2 x 2 x 3 x 2 programs: see ssdo_state.variants. */
+#define VARIANTS 24
 
 typedef struct ssdo_state {
     ob_method_kit kit;
-    /* The program variants with the second layer (bit 0), the extra view (bit 1) and the ambient
-     * mode (bits 2-3: constant, hemisphere, environment), made on first use; [0] is the kit's own
-     * program (constant ambient, one layer, one view). */
+    /* The program variants with the second layer (bit 0), the extra view (bit 1), the ambient
+     * mode (bits 2-3: constant, hemisphere, environment) and a lobe other than DEFAULT_LOBE (bit 4:
+     * pow), made on first use; [0] is the kit's own program (constant ambient, one layer, one
+     * view, the default lobe). */
     GLuint variants[VARIANTS];
     int kernel_count; /* the cached kernel was built for these */
     int kernel_pdf;
@@ -174,13 +179,15 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     const int mode = in->frame->ambient_mode == OB_AMBIENT_MODE_HEMISPHERE     ? 1
                      : in->frame->ambient_mode == OB_AMBIENT_MODE_ENVIRONMENT ? 2
                                                                               : 0;
-    const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0) | mode << 2;
+    const bool pow_lobe = c->lobe != DEFAULT_LOBE;
+    const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0) | mode << 2 | (pow_lobe ? 16 : 0);
     if (v) {
         static const char *const ambient[3] = {"", "#define OB_SSDO_AMBIENT_HEMISPHERE 1\n",
                                                "#define OB_SSDO_AMBIENT_ENVIRONMENT 1\n"};
-        char defines[160];
-        snprintf(defines, sizeof defines, "%s%s%s", c->layers ? "#define OB_SSDO_LAYERS 1\n" : "",
-                 c->extra_view ? "#define OB_SSDO_EXTRA_VIEW 1\n" : "", ambient[mode]);
+        char defines[200];
+        snprintf(defines, sizeof defines, "%s%s%s%s", c->layers ? "#define OB_SSDO_LAYERS 1\n" : "",
+                 c->extra_view ? "#define OB_SSDO_EXTRA_VIEW 1\n" : "", ambient[mode],
+                 pow_lobe ? "#define OB_SSDO_LOBE_POW 1\n" : "");
         variant = ob_method_variant(&s->variants[v], "ssdo.glsl", defines);
         if (!variant) return ob_peek_error(NULL);
     }

@@ -9,6 +9,7 @@
  * 0.05 R of a wall change by -0.004 (ssao), +0.001 (hbao), -0.001 (alchemy) against the raw AO;
  * the same window without it brightens them by +0.19 / +0.10 / +0.10, as much as box4.
  * Shader: shaders/crease.glsl. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -63,9 +64,11 @@ static const ob_param_info crease_params[P_COUNT] = {
                  false, tiled_options},
 };
 
-/* Every program, so a frame can switch between them. */
+/* The three programs, each compiled at its first use (a GPU's auto never compiles the block
+ * program, llvmpipe's never the tiled one), so a frame can switch between them. */
 typedef struct crease_state {
     ob_compute_pass plain, tiled, block;
+    bool rgb;      /* the RGBA16F variant (SSDO's M and bounce) */
     bool software; /* the context is a software rasteriser: what `tiled` auto follows */
 } crease_state;
 
@@ -98,17 +101,21 @@ static void *make_state(bool rgb)
         ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory (crease.glsl)");
         return NULL;
     }
-    const char *plain = rgb ? "#define OB_FILTER_RGB 1\n" : NULL;
-    const char *tiled = rgb ? "#define OB_FILTER_RGB 1\n#define OB_CREASE_TILED 1\n" : "#define OB_CREASE_TILED 1\n";
-    const char *block = rgb ? "#define OB_FILTER_RGB 1\n#define OB_CREASE_BLOCK 1\n" : "#define OB_CREASE_BLOCK 1\n";
-    if (ob_compute_pass_init(&s->plain, "crease.glsl", plain, sizeof(ob_filter_constants)) != OB_OK ||
-        ob_compute_pass_init(&s->tiled, "crease.glsl", tiled, sizeof(ob_filter_constants)) != OB_OK ||
-        ob_compute_pass_init(&s->block, "crease.glsl", block, sizeof(ob_filter_constants)) != OB_OK) {
-        crease_destroy(s);
-        return NULL;
-    }
+    s->rgb = rgb;
     s->software = ob_renderer_is_software((const char *)glGetString(GL_RENDERER));
     return s;
+}
+
+/* The program for `mode` (TILED_OFF, TILED_ON or TILED_BLOCK), compiled now if this is its first
+ * use; NULL + ob_set_error when it does not compile. */
+static ob_compute_pass *program_for(crease_state *s, int mode)
+{
+    ob_compute_pass *p = mode == TILED_BLOCK ? &s->block : mode == TILED_ON ? &s->tiled : &s->plain;
+    if (p->program) return p;
+    char defines[96];
+    snprintf(defines, sizeof defines, "%s%s", s->rgb ? "#define OB_FILTER_RGB 1\n" : "",
+             mode == TILED_BLOCK ? "#define OB_CREASE_BLOCK 1\n" : mode == TILED_ON ? "#define OB_CREASE_TILED 1\n" : "");
+    return ob_compute_pass_init(p, "crease.glsl", defines, sizeof(ob_filter_constants)) == OB_OK ? p : NULL;
 }
 
 static void *crease_init(void) { return make_state(false); }
@@ -131,11 +138,12 @@ static ob_error crease_run(void *state, const ob_filter_inputs *in, const float 
     }
     /* One pass: the view positions come from the frame's block at OB_BINDING_FRAME, which the
      * renderer binds for every pass of the frame (and ob_compute_ao_filtered for its own). */
-    if (mode == TILED_BLOCK) {
-        ob_filter_run_blocks(&s->block, &c, ob_filter_constants_used(&c), in, 4); /* crease.glsl's BLOCK */
-    } else {
-        ob_filter_run_single(mode == TILED_ON ? &s->tiled : &s->plain, &c, ob_filter_constants_used(&c), in);
-    }
+    ob_compute_pass *p = program_for(s, mode);
+    if (!p) return ob_peek_error(NULL);
+    if (mode == TILED_BLOCK)
+        ob_filter_run_blocks(p, &c, ob_filter_constants_used(&c), in, 4); /* crease.glsl's BLOCK */
+    else
+        ob_filter_run_single(p, &c, ob_filter_constants_used(&c), in);
     return OB_OK;
 }
 

@@ -69,7 +69,8 @@ float fast_acos(float x)
  * log2(e) on the CPU. The plain program stays as the baseline (tiled off).
  * On llvmpipe a shared-memory load whose address differs between lanes is a loop over the 8
  * lanes, one branch and one scalar load each (Mesa 22.3 lp_bld_nir_soa.c emit_load_mem): each
- * pair's 16 floats cost 128 of them, which is why the block program below is 4x faster there. */
+ * pair's 16 floats cost 128 of them, no cheaper than fetching them. The block program below reads
+ * each texel once for 16 pixels and is 4x faster there (docs/filters.md). */
 const int TILE_W = OB_FILTER_GROUP_X + 2 * OB_CREASE_TILE_RADIUS;
 const int TILE_H = OB_FILTER_GROUP_Y + 2 * OB_CREASE_TILE_RADIUS;
 shared vec4 tile_pos[TILE_H][TILE_W];    /* view position, w = 1 on geometry inside the image, else 0 */
@@ -136,8 +137,8 @@ void main()
  * exp2 with the CPU's log2(e)-scaled falloffs. Eq. 2 needs no view positions: with
  * L(q) = n_p . P_q / d_q, which is linear in q's pixel coordinates (ob_view_position),
  *   n_p . (P_q - P_p) = d_q L(p + o) - d_p L(p),  L(p + o) = L(p) + o . dL/dq,
- * one multiply-add per tap. On a 4x4 block 1 - 4 px the window overhangs the image's edge or
- * the sky as in the other programs: those taps have d = 0 and weigh nothing. */
+ * one multiply-add per tap. Window texels past the image's edge or on the sky have d = 0 and
+ * weigh nothing, as in the other programs; pixels of a block past the edge write nothing. */
 const int BLOCK = 4;
 const int WINDOW = BLOCK + 4; /* 2 px each side at r = 2 */
 float win_depth[WINDOW * WINDOW];           /* 0 off the image and on the sky */

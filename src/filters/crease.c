@@ -54,7 +54,7 @@ static const ob_param_info crease_params[P_COUNT] = {
      * invocation filters 4x4 pixels from one 8x8 window in registers (radius 2, the default). Radii
      * above OB_CREASE_TILE_RADIUS take the plain program, other radii than 2 take `on` for block.
      * auto: block on a software rasteriser, plain on a GPU, as measured in one bench run each
-     * (1280x720 on llvmpipe, 2 cores, after gtao: block 25 ms, tiled 100-200, gaussian 27-28;
+     * (1280x720 on llvmpipe, 2 cores, after gtao: block 25 ms, tiled 98-102, plain 144-151, gaussian 28;
      * 1920x1080 on an H100: plain 0.089 ms, tiled 0.140, block not measured yet; docs/filters.md).
      * The values keep their old indices. */
     [P_TILED] = {"tiled", OB_PARAM_ENUM, 0.0f, 3.0f, 2.0f, "",

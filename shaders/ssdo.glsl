@@ -44,6 +44,10 @@ layout(binding = 6) uniform sampler2D second_layer; /* full resolution R32F seco
 layout(binding = 7) uniform sampler2D extra_depth;  /* the extra view (ssdo.extra_view): R32F linear depth, */
 layout(binding = 8) uniform sampler2D extra_normal; /*   RGBA16F normals in its own view space, */
 layout(binding = 9) uniform sampler2D extra_direct; /*   RGBA16F direct radiance */
+#ifdef OB_SSDO_PACKED
+/* Each AO texel's depth, normal and direct radiance in one texel (shaders/ssdo_pack.glsl). */
+layout(binding = 10) uniform usampler2D packed_samples;
+#endif
 layout(binding = 0, rgba16f) uniform writeonly image2D m_out;
 layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
 
@@ -186,11 +190,19 @@ void main()
 #endif
         vec3 s = p + dir * (radius * ssdo.kernel[i].w);
         vec4 clip = frame.ao_proj * vec4(s, 1.0);
+#ifdef OB_SSDO_PACKED
+        uvec4 texel = uvec4(0u); /* ssdo_pack.glsl's: depth, normal and radiance of q */
+#endif
         if (clip.w > 0.0) {
             vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
             if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
                 q = ivec2(uv * frame.ao_size);
+#ifdef OB_SSDO_PACKED
+                texel = texelFetch(packed_samples, q, 0);
+                float scene_d = uintBitsToFloat(texel.w);
+#else
                 float scene_d = texelFetch(linear_depth, q, 0).r;
+#endif
                 if (scene_d > 0.0) {
                     scene_p = ob_view_position(vec2(q) + 0.5, scene_d, frame.ao_inv_size, frame.ao_proj_info);
                     /* As ssao.glsl: an occluder rises above P's tangent plane (no self-occlusion
@@ -209,8 +221,13 @@ void main()
                     occ = above && scene_d <= -s.z - bias && inside ? range : 0.0;
 #ifdef OB_SSDO_EXTRA_VIEW
                     if (want_bounce && occ > 0.0) {
+#ifdef OB_SSDO_PACKED
+                        send_n = vec3(unpackHalf2x16(texel.y).y, unpackHalf2x16(texel.z));
+                        send_l = vec3(unpackHalf2x16(texel.x), unpackHalf2x16(texel.y).x);
+#else
                         send_n = texelFetch(view_normal, q, 0).xyz;
                         send_l = texelFetch(direct_map, min(q * frame.ao_k + frame.ao_o, full_size - 1), 0).rgb;
+#endif
                     }
                     if (occ > 0.0) extra_test(s, bias, scene_p, occ, send_n, send_l);
 #endif
@@ -229,13 +246,21 @@ void main()
             float len2 = max(dot(v, v), 1e-12);
             vec3 vd = v * inversesqrt(len2);
 #ifndef OB_SSDO_EXTRA_VIEW
+#ifdef OB_SSDO_PACKED
+            vec3 send_n = vec3(unpackHalf2x16(texel.y).y, unpackHalf2x16(texel.z));
+#else
             vec3 send_n = texelFetch(view_normal, q, 0).xyz;
+#endif
 #endif
             float cos_s = dot(send_n, vd); /* the sender must face P */
             float cos_r = dot(n, -vd);     /* and P must face the sender */
             if (cos_s > 0.0 && cos_r > 0.0) {
 #ifndef OB_SSDO_EXTRA_VIEW
+#ifdef OB_SSDO_PACKED
+                vec3 send_l = vec3(unpackHalf2x16(texel.x), unpackHalf2x16(texel.y).x);
+#else
                 vec3 send_l = texelFetch(direct_map, clamp(q * frame.ao_k + frame.ao_o, ivec2(0), full_size - 1), 0).rgb;
+#endif
 #endif
                 bounce += send_l * (occ * cos_s * cos_r / max(len2, min_d2));
             }

@@ -188,6 +188,47 @@ static void test_fused(ob_renderer *r)
     free(b2);
 }
 
+/* `packed` on against off: the samples' depth, normal and direct radiance from one packed texel
+ * (shaders/ssdo_pack.glsl) are the textures' own values, so M and the bounce must be the same bits,
+ * for both methods, at full and half AO resolution (where a sender's radiance is its AO texel's
+ * full-resolution pixel), and with the extra view (whose senders replace the packed ones). */
+static void test_packed(ob_renderer *r, const char *m, float scale, bool extra)
+{
+    ob_settings on, off;
+    settings_for(&on, m);
+    ob_settings_set_filter(&on, "none");
+    CHECK(ob_settings_set_ao_scale(&on, scale) == OB_OK, "ao scale %g", (double)scale);
+    char key[64];
+    if (extra) {
+        snprintf(key, sizeof key, "%s.extra_view=on", m);
+        CHECK(ob_settings_set(&on, key) == OB_OK, "%s", key);
+    }
+    off = on;
+    snprintf(key, sizeof key, "%s.packed=on", m);
+    CHECK(ob_settings_set(&on, key) == OB_OK, "%s", key);
+    snprintf(key, sizeof key, "%s.packed=off", m);
+    CHECK(ob_settings_set(&off, key) == OB_OK, "%s", key);
+    float *m1 = render(r, &on, OB_IMAGE_AO_RGB_F32), *b1 = render(r, &on, OB_IMAGE_BOUNCE_F32);
+    float *m2 = render(r, &off, OB_IMAGE_AO_RGB_F32), *b2 = render(r, &off, OB_IMAGE_BOUNCE_F32);
+    size_t n = (size_t)W * H * 3;
+    double bounce = 0.0, occluded = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        bounce += b1[i];
+        occluded += 1.0 - m1[i];
+    }
+    printf("  %s packed vs not at %g%s: M %s, bounce %s (sum %.1f)\n", m, (double)scale, extra ? ", extra view" : "",
+           memcmp(m1, m2, n * sizeof(float)) ? "differs" : "same bits", memcmp(b1, b2, n * sizeof(float)) ? "differs" : "same bits",
+           bounce);
+    CHECK(!memcmp(m1, m2, n * sizeof(float)), "%s packed at %g: M is the plain program's bit for bit", m, (double)scale);
+    CHECK(!memcmp(b1, b2, n * sizeof(float)), "%s packed at %g: the bounce is the plain program's bit for bit", m,
+          (double)scale);
+    CHECK(bounce > 0.0 && occluded > 0.0, "%s: there is occlusion (%g) and a bounce (%g) to compare", m, occluded, bounce);
+    free(m1);
+    free(b1);
+    free(m2);
+    free(b2);
+}
+
 /* The default lobe (k = 8) is compiled in as three squarings; any other k takes the pow program.
  * At k = 8 and k = 8 (1 - 1e-6) the two must agree to float rounding on M (x^k moves by k 1e-6
  * |ln x| x^k, under 1e-5 of it), and a lobe of 2 must move M (the pow program reads the value). */
@@ -274,6 +315,10 @@ int main(void)
     test_light_moves(r, cornell);
     test_agreement(r);
     test_fused(r);
+    test_packed(r, "ssdo", 1.0f, false);
+    test_packed(r, "ssdo_merged", 1.0f, false);
+    test_packed(r, "ssdo_merged", 0.5f, false);
+    test_packed(r, "ssdo", 1.0f, true);
     test_lobe_programs(r, "ssdo");
     test_lobe_programs(r, "ssdo_merged");
     test_ranges(r, "ssdo", 1.0f);

@@ -19,7 +19,10 @@
 #include "sampling/sampling.h"
 #include "ssdo_params.h"
 
-enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_EXTRA_VIEW, P_FUSED, P_COUNT };
+enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_EXTRA_VIEW, P_FUSED, P_PACKED, P_COUNT };
+
+static const char *const packed_options[] = {"off", "on", "auto"};
+enum { PACKED_OFF, PACKED_ON, PACKED_AUTO }; /* packed_options' indices */
 
 /* The lobe exponent of the default programs, which compile it in (shaders/ssdo.glsl: three
  * squarings); any other value takes the pow variant. */
@@ -59,20 +62,38 @@ static const ob_param_info ssdo_params[P_COUNT] = {
      * pass either way. */
     [P_FUSED] = {"fused", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
                  "ssdo: M and the bounce in one dispatch (off: two passes over the same samples)", false},
+    /* On: a pre-pass packs each AO texel's depth, normal and direct radiance into one RGBA32UI
+     * texel (shaders/ssdo_pack.glsl) and a sample makes one fetch instead of three; the outputs
+     * are the same bits (tests/test_ssdo.c). llvmpipe fetches a sender's normal and radiance for
+     * every sample (the bounce's block is masked, not skipped), and a fetch costs it about the
+     * same whatever its size: on fzk-haus:stair at 640x480 (five alternated rounds, the medians'
+     * median, pack included) ssdo 144 -> 98 ms, ssdo_merged 141 -> 122
+     * (bench/results/2026-11-23-llvmpipe-crease-block-ssdo-lobe.md). A GPU
+     * skips those fetches where no lane of a group is occluded and would read 16 bytes a sample
+     * for 4, so auto packs only on a software rasteriser; off is the baseline. */
+    [P_PACKED] = {"packed", OB_PARAM_ENUM, 0.0f, 2.0f, (float)PACKED_AUTO, "",
+                  "read each sample's depth, normal and direct light from one packed texel: on, off, or auto "
+                  "(on for a software rasteriser)",
+                  false, packed_options},
 };
 
 #define KERNEL_SEED 0x55D0u
 
-/* 2 x 2 x 3 x 2 programs: see ssdo_state.variants. */
-#define VARIANTS 24
+/* 2 x 2 x 3 x 2 x 2 programs, indexed by bits (the ambient mode's two bits take 3 values): see
+ * ssdo_state.variants. */
+#define VARIANTS 64
 
 typedef struct ssdo_state {
     ob_method_kit kit;
     /* The program variants with the second layer (bit 0), the extra view (bit 1), the ambient
-     * mode (bits 2-3: constant, hemisphere, environment) and a lobe other than DEFAULT_LOBE (bit 4:
-     * pow), made on first use; [0] is the kit's own program (constant ambient, one layer, one
-     * view, the default lobe). */
+     * mode (bits 2-3: constant, hemisphere, environment), a lobe other than DEFAULT_LOBE (bit 4:
+     * pow) and the packed samples (bit 5), made on first use; [0] is the kit's own program (constant ambient, one layer, one view, the default lobe,
+     * unpacked). */
     GLuint variants[VARIANTS];
+    GLuint pack_program; /* shaders/ssdo_pack.glsl, made on first use */
+    GLuint packed;       /* its RGBA32UI target at the AO grid's size */
+    int packed_width, packed_height;
+    bool software;       /* a software rasteriser: what `packed` auto follows */
     int kernel_count; /* the cached kernel was built for these */
     int kernel_pdf;
     bool merged;
@@ -84,6 +105,7 @@ static ob_error ssdo_init(void *p)
     ssdo_state *s = p;
     s->merged = false;
     s->kernel_count = -1;
+    s->software = ob_renderer_is_software((const char *)glGetString(GL_RENDERER));
     return OB_OK;
 }
 
@@ -92,6 +114,36 @@ static ob_error ssdo_merged_init(void *p)
     ssdo_state *s = p;
     s->merged = true;
     s->kernel_count = -1;
+    s->software = ob_renderer_is_software((const char *)glGetString(GL_RENDERER));
+    return OB_OK;
+}
+
+/* The packed samples of this frame (shaders/ssdo_pack.glsl) at texture unit 10; the main
+ * dispatch reads them after a barrier. */
+static ob_error pack_samples(ssdo_state *s, const ob_ao_inputs *in)
+{
+    if (!s->pack_program) {
+        s->pack_program = ob_make_compute_program("ssdo_pack.glsl", NULL);
+        if (!s->pack_program) return ob_peek_error(NULL);
+    }
+    if (s->packed && (s->packed_width != in->width || s->packed_height != in->height)) {
+        glDeleteTextures(1, &s->packed);
+        s->packed = 0;
+    }
+    if (!s->packed) {
+        s->packed = ob_make_texture_2d(GL_RGBA32UI, in->width, in->height);
+        if (!s->packed) return ob_peek_error(NULL);
+        s->packed_width = in->width;
+        s->packed_height = in->height;
+    }
+    glUseProgram(s->pack_program);
+    glBindTextureUnit(0, in->linear_depth);
+    glBindTextureUnit(1, in->view_normal);
+    glBindTextureUnit(3, in->radiance);
+    glBindImageTexture(2, s->packed, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
+    ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glBindTextureUnit(10, s->packed);
     return OB_OK;
 }
 
@@ -131,6 +183,8 @@ static void ssdo_destroy(void *p)
     ssdo_state *s = p;
     for (int v = 1; v < VARIANTS; ++v)
         if (s->variants[v]) glDeleteProgram(s->variants[v]);
+    if (s->pack_program) glDeleteProgram(s->pack_program);
+    if (s->packed) glDeleteTextures(1, &s->packed);
 }
 
 static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
@@ -180,16 +234,22 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
                      : in->frame->ambient_mode == OB_AMBIENT_MODE_ENVIRONMENT ? 2
                                                                               : 0;
     const bool pow_lobe = c->lobe != DEFAULT_LOBE;
-    const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0) | mode << 2 | (pow_lobe ? 16 : 0);
+    const int packing = (int)params[P_PACKED];
+    const bool packed = packing == PACKED_ON || (packing == PACKED_AUTO && s->software);
+    const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0) | mode << 2 | (pow_lobe ? 16 : 0) | (packed ? 32 : 0);
     if (v) {
         static const char *const ambient[3] = {"", "#define OB_SSDO_AMBIENT_HEMISPHERE 1\n",
                                                "#define OB_SSDO_AMBIENT_ENVIRONMENT 1\n"};
-        char defines[200];
-        snprintf(defines, sizeof defines, "%s%s%s%s", c->layers ? "#define OB_SSDO_LAYERS 1\n" : "",
+        char defines[240];
+        snprintf(defines, sizeof defines, "%s%s%s%s%s", c->layers ? "#define OB_SSDO_LAYERS 1\n" : "",
                  c->extra_view ? "#define OB_SSDO_EXTRA_VIEW 1\n" : "", ambient[mode],
-                 pow_lobe ? "#define OB_SSDO_LOBE_POW 1\n" : "");
+                 pow_lobe ? "#define OB_SSDO_LOBE_POW 1\n" : "", packed ? "#define OB_SSDO_PACKED 1\n" : "");
         variant = ob_method_variant(&s->variants[v], "ssdo.glsl", defines);
         if (!variant) return ob_peek_error(NULL);
+    }
+    if (packed) {
+        ob_error err = pack_samples(s, in);
+        if (err != OB_OK) return err;
     }
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     const bool fused = params[P_FUSED] != 0.0f && bounce;

@@ -1,0 +1,29 @@
+#version 450 core
+/* ssdo's packed samples (`packed`, src/methods/ssdo.c): per AO-grid texel the three things a
+ * sample of shaders/ssdo.glsl reads there, in one RGBA32UI texel, so that the sample loop makes
+ * one fetch instead of three (its linear depth; then, as a sender of the bounce, its normal and
+ * its pixel's direct radiance). llvmpipe runs the bounce's fetches for every sample, occluded or
+ * not, and a fetch costs it about as much whatever the texel's size (docs/adding-a-method.md).
+ *   x = half2(L.r, L.g), y = half2(L.b, n.x), z = half2(n.y, n.z), w = the float bits of d.
+ * The radiance and the normals are RGBA16F textures and the depth R32F, so the packing is
+ * lossless: the packed program's M and bounce are the plain program's bit for bit (test_ssdo). */
+#include "ssdo_params.h"
+
+layout(local_size_x = OB_SSDO_GROUP_X, local_size_y = OB_SSDO_GROUP_Y) in;
+
+layout(binding = 0) uniform sampler2D linear_depth; /* AO grid, R32F */
+layout(binding = 1) uniform sampler2D view_normal;  /* AO grid, RGBA16F */
+layout(binding = 3) uniform sampler2D direct_map;   /* full resolution RGBA16F direct radiance */
+layout(binding = 2, rgba32ui) uniform writeonly uimage2D packed_out;
+
+void main()
+{
+    ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(q, ivec2(frame.ao_size)))) return;
+    float d = texelFetch(linear_depth, q, 0).r;
+    vec3 n = texelFetch(view_normal, q, 0).xyz;
+    /* The AO texel's full-resolution pixel, as ssdo.glsl reads the sender's radiance. */
+    ivec2 full = clamp(q * frame.ao_k + frame.ao_o, ivec2(0), textureSize(direct_map, 0) - 1);
+    vec3 l = texelFetch(direct_map, full, 0).rgb;
+    imageStore(packed_out, q, uvec4(packHalf2x16(l.rg), packHalf2x16(vec2(l.b, n.x)), packHalf2x16(n.yz), floatBitsToUint(d)));
+}

@@ -87,8 +87,8 @@ typedef struct ssdo_state {
     ob_method_kit kit;
     /* The program variants with the second layer (bit 0), the extra view (bit 1), the ambient
      * mode (bits 2-3: constant, hemisphere, environment), a lobe other than DEFAULT_LOBE (bit 4:
-     * pow) and the packed samples (bit 5), made on first use; [0] is the kit's own program (constant ambient, one layer, one view, the default lobe,
-     * unpacked). */
+     * pow) and the packed samples (bit 5), made on first use; [0] is the kit's own program
+     * (constant ambient, one layer, one view, the default lobe, unpacked). */
     GLuint variants[VARIANTS];
     GLuint pack_program; /* shaders/ssdo_pack.glsl, made on first use */
     GLuint packed;       /* its RGBA32UI target at the AO grid's size */

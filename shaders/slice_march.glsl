@@ -171,6 +171,14 @@ float ob_march_depth(sampler2D depth, ivec2 q, int level, ivec2 size, out vec2 c
 }
 #endif
 
+#ifdef OB_MARCH_PACKED
+/* Each AO texel's depth, normal and direct radiance in one texel (shaders/sample_pack.glsl;
+ * vbgi's `packed`, never with the MIP chain): the march reads its depth from there and keeps the
+ * texel in ob_march_packed for the sample's bounce, one fetch where there were three. */
+layout(binding = 10) uniform usampler2D ob_packed_samples;
+uvec4 ob_march_packed = uvec4(0u);
+#endif
+
 /* The sample at AO-grid position `at`, dist_px from P: its offset w from p in view space, the
  * AO-grid texel whose surface point that is (for its normal or radiance), and whether there is a
  * surface there (false off the screen and on sky, w = 0 then). Without
@@ -189,6 +197,10 @@ bool ob_march_fetch(sampler2D depth, vec2 at, float dist_px, vec3 p, float mip_s
     int level = clamp(findMSB(int(dist_px * mip_scale)), 0, max_mip);
     vec2 qc;
     float sd = ob_march_depth(depth, q, level, size, qc);
+#elif defined(OB_MARCH_PACKED)
+    vec2 qc = vec2(q) + 0.5;
+    ob_march_packed = texelFetch(ob_packed_samples, q, 0);
+    float sd = uintBitsToFloat(ob_march_packed.w);
 #else
     vec2 qc = vec2(q) + 0.5;
     float sd = texelFetch(depth, q, 0).r;

@@ -45,7 +45,7 @@ layout(binding = 7) uniform sampler2D extra_depth;  /* the extra view (ssdo.extr
 layout(binding = 8) uniform sampler2D extra_normal; /*   RGBA16F normals in its own view space, */
 layout(binding = 9) uniform sampler2D extra_direct; /*   RGBA16F direct radiance */
 #ifdef OB_SSDO_PACKED
-/* Each AO texel's depth, normal and direct radiance in one texel (shaders/ssdo_pack.glsl). */
+/* Each AO texel's depth, normal and direct radiance in one texel (shaders/sample_pack.glsl). */
 layout(binding = 10) uniform usampler2D packed_samples;
 #endif
 layout(binding = 0, rgba16f) uniform writeonly image2D m_out;
@@ -191,7 +191,7 @@ void main()
         vec3 s = p + dir * (radius * ssdo.kernel[i].w);
         vec4 clip = frame.ao_proj * vec4(s, 1.0);
 #ifdef OB_SSDO_PACKED
-        uvec4 texel = uvec4(0u); /* ssdo_pack.glsl's: depth, normal and radiance of q */
+        uvec4 texel = uvec4(0u); /* sample_pack.glsl's: depth, normal and radiance of q */
 #endif
         if (clip.w > 0.0) {
             vec2 uv = clip.xy / clip.w * 0.5 + 0.5;

@@ -91,11 +91,18 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
      * fresh bit skips the two fetches (on an H100 the bounce's fetches were two of its three per
      * sample; llvmpipe runs a block its lanes disagree on for all of them, as before). */
     if (fresh != 0u) {
+#ifdef OB_MARCH_PACKED
+        /* The sample's texel as ob_march_fetch read it (sample_pack.glsl's layout). */
+        vec3 n_s = vec3(unpackHalf2x16(ob_march_packed.y).y, unpackHalf2x16(ob_march_packed.z));
+        vec3 l_s = vec3(unpackHalf2x16(ob_march_packed.x), unpackHalf2x16(ob_march_packed.y).x);
+#else
         vec3 n_s = texelFetch(view_normal, texel, 0).xyz;
+        ivec2 full = clamp(texel * frame.ao_k + frame.ao_o, ivec2(0), textureSize(radiance, 0) - 1);
+        vec3 l_s = texelFetch(radiance, full, 0).rgb;
+#endif
         float facing = -dot(n_s, w) / max(w_len, 1e-20);
         float emit = vb.emitter_cosine != 0 ? max(facing, 0.0) : (facing > 0.0 ? 1.0 : 0.0);
-        ivec2 full = clamp(texel * frame.ao_k + frame.ao_o, ivec2(0), textureSize(radiance, 0) - 1);
-        bounce += texelFetch(radiance, full, 0).rgb * (emit * share * measure);
+        bounce += l_s * (emit * share * measure);
     }
 #endif
     mask |= bits;

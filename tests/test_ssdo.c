@@ -189,7 +189,7 @@ static void test_fused(ob_renderer *r)
 }
 
 /* `packed` on against off: the samples' depth, normal and direct radiance from one packed texel
- * (shaders/ssdo_pack.glsl) are the textures' own values, so M and the bounce must be the same bits,
+ * (shaders/sample_pack.glsl) are the textures' own values, so M and the bounce must be the same bits,
  * for both methods, at full and half AO resolution (where a sender's radiance is its AO texel's
  * full-resolution pixel), and with the extra view (whose senders replace the packed ones). */
 static void test_packed(ob_renderer *r, const char *m, float scale, bool extra)

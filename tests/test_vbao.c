@@ -462,6 +462,47 @@ static void check_second_layer(ob_context *ctx)
     ob_destroy_scene(scene);
 }
 
+/* vbgi's `packed` on against off: the march reads the same depth and the bounce the same normal
+ * and radiance, from one packed texel (shaders/sample_pack.glsl) instead of three textures, so AO
+ * and bounce must be the same bits: at full and half AO resolution, and with the second layer. */
+static void check_vbgi_packed(ob_context *ctx)
+{
+    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "bleed"});
+    CHECK(scene != NULL, "bleed scene");
+    if (!scene) return;
+    const struct {
+        float scale;
+        const char *layers;
+    } cases[] = {{1.0f, "vbgi.layers=1"}, {0.5f, "vbgi.layers=1"}, {1.0f, "vbgi.layers=2"}};
+    const ob_image_kind kinds[2] = {OB_IMAGE_AO_F32, OB_IMAGE_BOUNCE_F32};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        for (int k = 0; k < 2; ++k) {
+            frame f[2];
+            bool ok = true;
+            for (int packed = 0; packed < 2 && ok; ++packed) {
+                const char *sets[] = {"vbgi.radius=0.5", cases[c].layers, packed ? "vbgi.packed=on" : "vbgi.packed=off", NULL};
+                ob_settings s;
+                ok = settings_for(&s, "vbgi", sets) && ob_settings_set_ao_scale(&s, cases[c].scale) == OB_OK &&
+                     render_frame(ctx, scene, "side", &s, kinds[k], &f[packed]);
+                if (!ok && packed) frame_free(&f[0]);
+            }
+            if (!ok) continue;
+            size_t n = (size_t)W * H * (k ? 3 : 1);
+            double sum = 0.0;
+            for (size_t i = 0; i < n; ++i) sum += k ? f[1].img[i] : 1.0 - f[1].img[i];
+            bool same = !memcmp(f[0].img, f[1].img, n * sizeof(float));
+            printf("  vbgi packed vs not at %g, %s: %s %s (sum %.1f)\n", (double)cases[c].scale, cases[c].layers,
+                   k ? "bounce" : "AO", same ? "same bits" : "differs", sum);
+            CHECK(same, "vbgi packed at %g, %s: the %s is the plain program's bit for bit", (double)cases[c].scale,
+                  cases[c].layers, k ? "bounce" : "AO");
+            CHECK(sum > 0.0, "vbgi at %g: there is %s to compare", (double)cases[c].scale, k ? "a bounce" : "occlusion");
+            frame_free(&f[0]);
+            frame_free(&f[1]);
+        }
+    }
+    ob_destroy_scene(scene);
+}
+
 int main(void)
 {
     ob_context *ctx = check_context();
@@ -517,6 +558,8 @@ int main(void)
         check_bounce("vbgi", &gi_on, &gi_off);
         check_bounce_against_reference("vbgi", &gi_on);
     }
+
+    check_vbgi_packed(ctx);
 
     ob_destroy_context(ctx);
     return check_finish("test_vbao");

@@ -208,7 +208,8 @@ enum {
     OB_SLICE_MIPS = 1,   /* OB_MARCH_DEPTH_MIPS: far steps read the depth MIP chain */
     OB_SLICE_LAYERS = 2, /* OB_MARCH_LAYERS: the second depth layer bounds each sample's thickness */
     OB_SLICE_BENT = 4,   /* OB_GTAO_BENT: gtao also writes the bent normal */
-    OB_SLICE_VARIANTS = 8
+    OB_SLICE_PACKED = 8, /* OB_MARCH_PACKED: samples read ob_packed_samples at unit 10 (vbgi; no MIPs) */
+    OB_SLICE_VARIANTS = 16
 };
 /* The run of a slice method after its constants are filled: the kit's uploads and bindings, the
  * program for `features` (OB_SLICE_*: the kit's own for none, else a variant of `shader` made on
@@ -219,5 +220,18 @@ ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], co
                       const void *constants, size_t size, const ob_ao_inputs *in, const ob_ao_outputs *out);
 /* Frees the variants ob_slice_use made. */
 void ob_slice_release(GLuint variants[OB_SLICE_VARIANTS]);
+
+/* Each AO texel's depth, normal and direct radiance in one RGBA32UI texel (methods/packed.c,
+ * shaders/sample_pack.glsl), for methods whose samples read all three: one fetch a sample. */
+typedef struct ob_packed_samples {
+    GLuint program; /* made on first use */
+    GLuint texture; /* at the AO grid's size */
+    int width, height;
+} ob_packed_samples;
+/* Packs this frame's in->linear_depth, in->view_normal and in->radiance (AO texel q's pixel
+ * q ao_k + ao_o) and binds the result to texture unit `unit` after a barrier. Uses image unit 2
+ * and texture units 0, 1, 3: run it before the method binds its own. Fails with the error set. */
+ob_error ob_packed_samples_run(ob_packed_samples *p, const ob_ao_inputs *in, int unit);
+void ob_packed_samples_release(ob_packed_samples *p);
 
 #endif

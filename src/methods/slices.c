@@ -68,10 +68,11 @@ ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], co
 {
     features &= OB_SLICE_VARIANTS - 1;
     if (features) {
-        char defines[128] = "";
+        char defines[160] = "";
         if (features & OB_SLICE_MIPS) strcat(defines, "#define OB_MARCH_DEPTH_MIPS 1\n");
         if (features & OB_SLICE_LAYERS) strcat(defines, "#define OB_MARCH_LAYERS 1\n");
         if (features & OB_SLICE_BENT) strcat(defines, "#define OB_GTAO_BENT 1\n");
+        if (features & OB_SLICE_PACKED) strcat(defines, "#define OB_MARCH_PACKED 1\n");
         if (!ob_method_variant(&variants[features], shader, defines)) return ob_peek_error(NULL);
     }
     ob_method_kit_use(kit, constants, size, in, out, GL_R32F);

@@ -63,7 +63,7 @@ static const ob_param_info ssdo_params[P_COUNT] = {
     [P_FUSED] = {"fused", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
                  "ssdo: M and the bounce in one dispatch (off: two passes over the same samples)", false},
     /* On: a pre-pass packs each AO texel's depth, normal and direct radiance into one RGBA32UI
-     * texel (shaders/ssdo_pack.glsl) and a sample makes one fetch instead of three; the outputs
+     * texel (methods/packed.c) and a sample makes one fetch instead of three; the outputs
      * are the same bits (tests/test_ssdo.c). llvmpipe fetches a sender's normal and radiance for
      * every sample (the bounce's block is masked, not skipped), and a fetch costs it about the
      * same whatever its size: on fzk-haus:stair at 640x480 (five alternated rounds, the medians'
@@ -90,10 +90,8 @@ typedef struct ssdo_state {
      * pow) and the packed samples (bit 5), made on first use; [0] is the kit's own program
      * (constant ambient, one layer, one view, the default lobe, unpacked). */
     GLuint variants[VARIANTS];
-    GLuint pack_program; /* shaders/ssdo_pack.glsl, made on first use */
-    GLuint packed;       /* its RGBA32UI target at the AO grid's size */
-    int packed_width, packed_height;
-    bool software;       /* a software rasteriser: what `packed` auto follows */
+    ob_packed_samples packed; /* `packed`: methods/packed.c, bound at unit 10 */
+    bool software;            /* a software rasteriser: what `packed` auto follows */
     int kernel_count; /* the cached kernel was built for these */
     int kernel_pdf;
     bool merged;
@@ -118,34 +116,6 @@ static ob_error ssdo_merged_init(void *p)
     return OB_OK;
 }
 
-/* The packed samples of this frame (shaders/ssdo_pack.glsl) at texture unit 10; the main
- * dispatch reads them after a barrier. */
-static ob_error pack_samples(ssdo_state *s, const ob_ao_inputs *in)
-{
-    if (!s->pack_program) {
-        s->pack_program = ob_make_compute_program("ssdo_pack.glsl", NULL);
-        if (!s->pack_program) return ob_peek_error(NULL);
-    }
-    if (s->packed && (s->packed_width != in->width || s->packed_height != in->height)) {
-        glDeleteTextures(1, &s->packed);
-        s->packed = 0;
-    }
-    if (!s->packed) {
-        s->packed = ob_make_texture_2d(GL_RGBA32UI, in->width, in->height);
-        if (!s->packed) return ob_peek_error(NULL);
-        s->packed_width = in->width;
-        s->packed_height = in->height;
-    }
-    glUseProgram(s->pack_program);
-    glBindTextureUnit(0, in->linear_depth);
-    glBindTextureUnit(1, in->view_normal);
-    glBindTextureUnit(3, in->radiance);
-    glBindImageTexture(2, s->packed, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
-    ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    glBindTextureUnit(10, s->packed);
-    return OB_OK;
-}
 
 /* Halton 2,5 directions and base 3 steps (seed 003 §5.3), as unit direction + length. */
 static void build_kernel(ssdo_state *s, int count, ob_direction_pdf pdf)
@@ -183,8 +153,7 @@ static void ssdo_destroy(void *p)
     ssdo_state *s = p;
     for (int v = 1; v < VARIANTS; ++v)
         if (s->variants[v]) glDeleteProgram(s->variants[v]);
-    if (s->pack_program) glDeleteProgram(s->pack_program);
-    if (s->packed) glDeleteTextures(1, &s->packed);
+    ob_packed_samples_release(&s->packed);
 }
 
 static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
@@ -248,7 +217,7 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
         if (!variant) return ob_peek_error(NULL);
     }
     if (packed) {
-        ob_error err = pack_samples(s, in);
+        ob_error err = ob_packed_samples_run(&s->packed, in, 10); /* ssdo.glsl's packed_samples */
         if (err != OB_OK) return err;
     }
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];

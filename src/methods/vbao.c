@@ -24,11 +24,14 @@ enum {
     P_TEMPORAL,
     P_DEPTH_MIPS,
     P_LAYERS,
-    P_EMITTER_COSINE, /* vbgi only: the last entry, so vbao's table is the prefix */
+    P_EMITTER_COSINE, /* vbgi only from here on: the last entries, so vbao's table is the prefix */
+    P_PACKED,
     P_COUNT
 };
 
 static const char *const coverage_options[] = {"touch", "half", "all"};
+static const char *const packed_options[] = {"off", "on", "auto"};
+enum { PACKED_OFF, PACKED_ON, PACKED_AUTO }; /* packed_options' indices */
 
 /* The defaults and the views that chose them: docs/methods.md, "vbao". */
 static const ob_param_info vb_params[P_COUNT] = {
@@ -65,13 +68,26 @@ static const ob_param_info vb_params[P_COUNT] = {
                           "a sender's radiance times its cosine toward P (the paper's); off: its radiance where it "
                           "faces P (the solid-angle form of the one-bounce integral)",
                           false},
+    /* On: each AO texel's depth, normal and direct radiance packed into one texel by a pre-pass
+     * (methods/packed.c), so a sample makes one fetch instead of three; the same bits
+     * (tests/test_vbao.c). llvmpipe fetches a sender's normal and radiance for every sample (the
+     * fresh-sector block is masked, not skipped): without those two fetches vbgi's pass at
+     * 640x480 took 111-115 ms against 168-198. A GPU skips them where no lane of a group has a
+     * fresh sector, so auto packs only on a software rasteriser; off is the baseline. Not with
+     * depth_mips (the chain's levels are not packed). */
+    [P_PACKED] = {"packed", OB_PARAM_ENUM, 0.0f, 2.0f, (float)PACKED_AUTO, "",
+                  "read each sample's depth, normal and direct light from one packed texel: on, off, or auto "
+                  "(on for a software rasteriser); not with depth_mips",
+                  false, packed_options},
 };
 
 typedef struct vb_state {
     ob_method_kit kit;   /* the full-resolution program */
-    GLuint variants[OB_SLICE_VARIANTS]; /* depth MIPs, second layer: made on first use (ob_slice_use) */
+    GLuint variants[OB_SLICE_VARIANTS]; /* depth MIPs, second layer, packed: made on first use (ob_slice_use) */
     const char *shader;
     bool gi;
+    ob_packed_samples packed; /* vbgi's `packed`: methods/packed.c, bound at unit 10 */
+    bool software;            /* a software rasteriser: what `packed` auto follows */
 } vb_state;
 
 /* Settings -> constants, a pure function. */
@@ -106,6 +122,7 @@ static ob_error vbgi_init(void *p)
     vb_state *s = p;
     s->shader = "vbgi.glsl";
     s->gi = true;
+    s->software = ob_renderer_is_software((const char *)glGetString(GL_RENDERER));
     return OB_OK;
 }
 
@@ -113,6 +130,7 @@ static void vb_destroy(void *p)
 {
     vb_state *s = p;
     ob_slice_release(s->variants);
+    ob_packed_samples_release(&s->packed);
 }
 
 static uint32_t vb_active_reads(const float *params, uint32_t reads)
@@ -144,7 +162,14 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
     c.layers = c.layers && in->second_depth ? 1 : 0; /* ob_compute_ao has no second layer */
     /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
     ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
-    const unsigned features = (c.max_mip > 0 ? OB_SLICE_MIPS : 0u) | (c.layers ? OB_SLICE_LAYERS : 0u);
+    const int packing = s->gi ? (int)params[P_PACKED] : PACKED_OFF;
+    const bool packed = c.max_mip == 0 && (packing == PACKED_ON || (packing == PACKED_AUTO && s->software));
+    const unsigned features =
+        (c.max_mip > 0 ? OB_SLICE_MIPS : 0u) | (c.layers ? OB_SLICE_LAYERS : 0u) | (packed ? OB_SLICE_PACKED : 0u);
+    if (packed) {
+        ob_error err = ob_packed_samples_run(&s->packed, in, 10); /* slice_march.glsl's ob_packed_samples */
+        if (err != OB_OK) return err;
+    }
     ob_error err = ob_slice_use(&s->kit, s->variants, s->shader, features, &c, sizeof c, in, out);
     if (err != OB_OK) return err;
     if (s->gi) {

@@ -1,15 +1,17 @@
 #version 450 core
-/* ssdo's packed samples (`packed`, src/methods/ssdo.c): per AO-grid texel the three things a
- * sample of shaders/ssdo.glsl reads there, in one RGBA32UI texel, so that the sample loop makes
- * one fetch instead of three (its linear depth; then, as a sender of the bounce, its normal and
- * its pixel's direct radiance). llvmpipe runs the bounce's fetches for every sample, occluded or
- * not, and a fetch costs it about as much whatever the texel's size (docs/adding-a-method.md).
+/* Packed samples (src/methods/packed.c; ssdo's and vbgi's `packed`): per AO-grid texel the three
+ * things a sample of ssdo.glsl or visibility_bitmask.glsl (vbgi) reads there, in one RGBA32UI
+ * texel, so that a sample makes one fetch instead of three: its linear depth, and as a sender of
+ * the bounce its normal and its pixel's direct radiance. llvmpipe runs the senders' fetches for
+ * every sample, occluded or not, and a fetch costs it about as much whatever the texel's size
+ * (docs/adding-a-method.md).
  *   x = half2(L.r, L.g), y = half2(L.b, n.x), z = half2(n.y, n.z), w = the float bits of d.
  * The radiance and the normals are RGBA16F textures and the depth R32F, so the packing is
- * lossless: the packed program's M and bounce are the plain program's bit for bit (test_ssdo). */
-#include "ssdo_params.h"
+ * lossless: a packed program's outputs are the plain one's bit for bit (test_ssdo, test_vbao). */
+#include "frame_params.h"
 
-layout(local_size_x = OB_SSDO_GROUP_X, local_size_y = OB_SSDO_GROUP_Y) in;
+#define OB_PACK_GROUP 8 /* packed.c dispatches 8x8 groups */
+layout(local_size_x = OB_PACK_GROUP, local_size_y = OB_PACK_GROUP) in;
 
 layout(binding = 0) uniform sampler2D linear_depth; /* AO grid, R32F */
 layout(binding = 1) uniform sampler2D view_normal;  /* AO grid, RGBA16F */
@@ -22,7 +24,7 @@ void main()
     if (any(greaterThanEqual(q, ivec2(frame.ao_size)))) return;
     float d = texelFetch(linear_depth, q, 0).r;
     vec3 n = texelFetch(view_normal, q, 0).xyz;
-    /* The AO texel's full-resolution pixel, as ssdo.glsl reads the sender's radiance. */
+    /* The AO texel's full-resolution pixel, where both methods read a sender's radiance. */
     ivec2 full = clamp(q * frame.ao_k + frame.ao_o, ivec2(0), textureSize(direct_map, 0) - 1);
     vec3 l = texelFetch(direct_map, full, 0).rgb;
     imageStore(packed_out, q, uvec4(packHalf2x16(l.rg), packHalf2x16(vec2(l.b, n.x)), packHalf2x16(n.yz), floatBitsToUint(d)));

@@ -1,0 +1,45 @@
+/* Packed samples for the methods whose samples read a sender's normal and direct radiance besides
+ * the depth (ssdo, ssdo_merged, vbgi: their `packed` parameter): one pass that writes each AO
+ * texel's depth, normal and radiance into one RGBA32UI texel, losslessly, so that a sample makes
+ * one fetch instead of three. llvmpipe makes the senders' fetches for every sample, occluded or
+ * not (a block its lanes all skip still runs, masked), and a fetch costs it about the same
+ * whatever its size; a GPU skips them where a whole group is open and would read 16 bytes a
+ * sample for 4, so the methods pack only on a software rasteriser by default. Shader:
+ * shaders/sample_pack.glsl. */
+#include "core/error.h"
+#include "methods/method.h"
+
+#define PACK_GROUP 8 /* shaders/sample_pack.glsl's OB_PACK_GROUP */
+
+ob_error ob_packed_samples_run(ob_packed_samples *p, const ob_ao_inputs *in, int unit)
+{
+    if (!p->program) {
+        p->program = ob_make_compute_program("sample_pack.glsl", NULL);
+        if (!p->program) return ob_peek_error(NULL);
+    }
+    if (p->texture && (p->width != in->width || p->height != in->height)) {
+        glDeleteTextures(1, &p->texture);
+        p->texture = 0;
+    }
+    if (!p->texture) {
+        p->texture = ob_make_texture_2d(GL_RGBA32UI, in->width, in->height);
+        p->width = in->width;
+        p->height = in->height;
+    }
+    glUseProgram(p->program);
+    glBindTextureUnit(0, in->linear_depth);
+    glBindTextureUnit(1, in->view_normal);
+    glBindTextureUnit(3, in->radiance);
+    glBindImageTexture(2, p->texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
+    ob_dispatch_2d(in->width, in->height, PACK_GROUP, PACK_GROUP);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glBindTextureUnit((GLuint)unit, p->texture);
+    return OB_OK;
+}
+
+void ob_packed_samples_release(ob_packed_samples *p)
+{
+    if (p->program) glDeleteProgram(p->program);
+    if (p->texture) glDeleteTextures(1, &p->texture);
+    *p = (ob_packed_samples){0};
+}

@@ -5,10 +5,10 @@
  * the bounce its normal and its pixel's direct radiance. llvmpipe runs the senders' fetches for
  * every sample, occluded or not, and a fetch costs it about as much whatever the texel's size
  * (docs/adding-a-method.md).
- *   x = half2(L.r, L.g), y = half2(L.b, n.x), z = half2(n.y, n.z), w = the float bits of d.
- * The radiance and the normals are RGBA16F textures and the depth R32F, so the packing is
- * lossless: a packed program's outputs are the plain one's bit for bit (test_ssdo, test_vbao). */
+ * The layout and the pack/unpack functions: packed_samples.glsl (lossless, so a packed
+ * program's outputs are the plain one's bit for bit: test_ssdo, test_vbao). */
 #include "frame_params.h"
+#include "packed_samples.glsl"
 
 #define OB_PACK_GROUP 8 /* packed.c dispatches 8x8 groups */
 layout(local_size_x = OB_PACK_GROUP, local_size_y = OB_PACK_GROUP) in;
@@ -27,5 +27,5 @@ void main()
     /* The AO texel's full-resolution pixel, where both methods read a sender's radiance. */
     ivec2 full = clamp(q * frame.ao_k + frame.ao_o, ivec2(0), textureSize(direct_map, 0) - 1);
     vec3 l = texelFetch(direct_map, full, 0).rgb;
-    imageStore(packed_out, q, uvec4(packHalf2x16(l.rg), packHalf2x16(vec2(l.b, n.x)), packHalf2x16(n.yz), floatBitsToUint(d)));
+    imageStore(packed_out, q, ob_pack_sample(d, n, l));
 }

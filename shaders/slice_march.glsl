@@ -175,6 +175,7 @@ float ob_march_depth(sampler2D depth, ivec2 q, int level, ivec2 size, out vec2 c
 /* Each AO texel's depth, normal and direct radiance in one texel (shaders/sample_pack.glsl;
  * vbgi's `packed`, never with the MIP chain): the march reads its depth from there and keeps the
  * texel in ob_march_packed for the sample's bounce, one fetch where there were three. */
+#include "packed_samples.glsl"
 layout(binding = 10) uniform usampler2D ob_packed_samples;
 uvec4 ob_march_packed = uvec4(0u);
 #endif
@@ -200,7 +201,7 @@ bool ob_march_fetch(sampler2D depth, vec2 at, float dist_px, vec3 p, float mip_s
 #elif defined(OB_MARCH_PACKED)
     vec2 qc = vec2(q) + 0.5;
     ob_march_packed = texelFetch(ob_packed_samples, q, 0);
-    float sd = uintBitsToFloat(ob_march_packed.w);
+    float sd = ob_packed_depth(ob_march_packed);
 #else
     vec2 qc = vec2(q) + 0.5;
     float sd = texelFetch(depth, q, 0).r;

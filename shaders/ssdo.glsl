@@ -46,6 +46,7 @@ layout(binding = 8) uniform sampler2D extra_normal; /*   RGBA16F normals in its 
 layout(binding = 9) uniform sampler2D extra_direct; /*   RGBA16F direct radiance */
 #ifdef OB_SSDO_PACKED
 /* Each AO texel's depth, normal and direct radiance in one texel (shaders/sample_pack.glsl). */
+#include "packed_samples.glsl"
 layout(binding = 10) uniform usampler2D packed_samples;
 #endif
 layout(binding = 0, rgba16f) uniform writeonly image2D m_out;
@@ -199,7 +200,7 @@ void main()
                 q = ivec2(uv * frame.ao_size);
 #ifdef OB_SSDO_PACKED
                 texel = texelFetch(packed_samples, q, 0);
-                float scene_d = uintBitsToFloat(texel.w);
+                float scene_d = ob_packed_depth(texel);
 #else
                 float scene_d = texelFetch(linear_depth, q, 0).r;
 #endif
@@ -222,8 +223,8 @@ void main()
 #ifdef OB_SSDO_EXTRA_VIEW
                     if (want_bounce && occ > 0.0) {
 #ifdef OB_SSDO_PACKED
-                        send_n = vec3(unpackHalf2x16(texel.y).y, unpackHalf2x16(texel.z));
-                        send_l = vec3(unpackHalf2x16(texel.x), unpackHalf2x16(texel.y).x);
+                        send_n = ob_packed_normal(texel);
+                        send_l = ob_packed_radiance(texel);
 #else
                         send_n = texelFetch(view_normal, q, 0).xyz;
                         send_l = texelFetch(direct_map, min(q * frame.ao_k + frame.ao_o, full_size - 1), 0).rgb;
@@ -247,7 +248,7 @@ void main()
             vec3 vd = v * inversesqrt(len2);
 #ifndef OB_SSDO_EXTRA_VIEW
 #ifdef OB_SSDO_PACKED
-            vec3 send_n = vec3(unpackHalf2x16(texel.y).y, unpackHalf2x16(texel.z));
+            vec3 send_n = ob_packed_normal(texel);
 #else
             vec3 send_n = texelFetch(view_normal, q, 0).xyz;
 #endif
@@ -257,7 +258,7 @@ void main()
             if (cos_s > 0.0 && cos_r > 0.0) {
 #ifndef OB_SSDO_EXTRA_VIEW
 #ifdef OB_SSDO_PACKED
-                vec3 send_l = vec3(unpackHalf2x16(texel.x), unpackHalf2x16(texel.y).x);
+                vec3 send_l = ob_packed_radiance(texel);
 #else
                 vec3 send_l = texelFetch(direct_map, clamp(q * frame.ao_k + frame.ao_o, ivec2(0), full_size - 1), 0).rgb;
 #endif

@@ -92,9 +92,9 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
      * sample; llvmpipe runs a block its lanes disagree on for all of them, as before). */
     if (fresh != 0u) {
 #ifdef OB_MARCH_PACKED
-        /* The sample's texel as ob_march_fetch read it (sample_pack.glsl's layout). */
-        vec3 n_s = vec3(unpackHalf2x16(ob_march_packed.y).y, unpackHalf2x16(ob_march_packed.z));
-        vec3 l_s = vec3(unpackHalf2x16(ob_march_packed.x), unpackHalf2x16(ob_march_packed.y).x);
+        /* The sample's texel as ob_march_fetch read it. */
+        vec3 n_s = ob_packed_normal(ob_march_packed);
+        vec3 l_s = ob_packed_radiance(ob_march_packed);
 #else
         vec3 n_s = texelFetch(view_normal, texel, 0).xyz;
         ivec2 full = clamp(texel * frame.ao_k + frame.ao_o, ivec2(0), textureSize(radiance, 0) - 1);

@@ -222,12 +222,24 @@ ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], co
 void ob_slice_release(GLuint variants[OB_SLICE_VARIANTS]);
 
 /* Each AO texel's depth, normal and direct radiance in one RGBA32UI texel (methods/packed.c,
- * shaders/sample_pack.glsl), for methods whose samples read all three: one fetch a sample. */
+ * shaders/sample_pack.glsl, the layout in shaders/packed_samples.glsl), for methods whose samples
+ * read all three (ssdo, ssdo_merged, vbgi): one fetch a sample. */
 typedef struct ob_packed_samples {
     GLuint program; /* made on first use */
     GLuint texture; /* at the AO grid's size */
     int width, height;
+    int software;   /* 0 = not asked yet, 1 = a software rasteriser, -1 = not */
 } ob_packed_samples;
+/* The methods' `packed` parameter: off, on, or auto (on for a software rasteriser, off on a GPU). */
+enum { OB_PACKED_OFF, OB_PACKED_ON, OB_PACKED_AUTO };
+extern const char *const ob_packed_options[];
+#define OB_PACKED_PARAM(extra)                                                                                \
+    {"packed", OB_PARAM_ENUM, 0.0f, 2.0f, (float)OB_PACKED_AUTO, "",                                          \
+     "read each sample's depth, normal and direct light from one packed texel: on, off, or auto (on for a "   \
+     "software rasteriser)" extra,                                                                             \
+     false, ob_packed_options}
+/* Whether the parameter's value `mode` packs on this context (auto asks GL_RENDERER once). */
+bool ob_packed_samples_wanted(ob_packed_samples *p, float mode);
 /* Packs this frame's in->linear_depth, in->view_normal and in->radiance (AO texel q's pixel
  * q ao_k + ao_o) and binds the result to texture unit `unit` after a barrier. Uses image unit 2
  * and texture units 0, 1, 3: run it before the method binds its own. Fails with the error set. */

@@ -11,6 +11,16 @@
 
 #define PACK_GROUP 8 /* shaders/sample_pack.glsl's OB_PACK_GROUP */
 
+const char *const ob_packed_options[] = {"off", "on", "auto"};
+
+bool ob_packed_samples_wanted(ob_packed_samples *p, float mode)
+{
+    if ((int)mode == OB_PACKED_ON) return true;
+    if ((int)mode != OB_PACKED_AUTO) return false;
+    if (!p->software) p->software = ob_renderer_is_software((const char *)glGetString(GL_RENDERER)) ? 1 : -1;
+    return p->software > 0;
+}
+
 ob_error ob_packed_samples_run(ob_packed_samples *p, const ob_ao_inputs *in, int unit)
 {
     if (!p->program) {
@@ -41,5 +51,5 @@ void ob_packed_samples_release(ob_packed_samples *p)
 {
     if (p->program) glDeleteProgram(p->program);
     if (p->texture) glDeleteTextures(1, &p->texture);
-    *p = (ob_packed_samples){0};
+    *p = (ob_packed_samples){.software = p->software};
 }

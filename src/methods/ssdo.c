@@ -21,8 +21,6 @@
 
 enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_EXTRA_VIEW, P_FUSED, P_PACKED, P_COUNT };
 
-static const char *const packed_options[] = {"off", "on", "auto"};
-enum { PACKED_OFF, PACKED_ON, PACKED_AUTO }; /* packed_options' indices */
 
 /* The lobe exponent of the default programs, which compile it in (shaders/ssdo.glsl: three
  * squarings); any other value takes the pow variant. */
@@ -71,10 +69,7 @@ static const ob_param_info ssdo_params[P_COUNT] = {
      * (bench/results/2026-11-23-llvmpipe-crease-block-ssdo-lobe.md). A GPU
      * skips those fetches where no lane of a group is occluded and would read 16 bytes a sample
      * for 4, so auto packs only on a software rasteriser; off is the baseline. */
-    [P_PACKED] = {"packed", OB_PARAM_ENUM, 0.0f, 2.0f, (float)PACKED_AUTO, "",
-                  "read each sample's depth, normal and direct light from one packed texel: on, off, or auto "
-                  "(on for a software rasteriser)",
-                  false, packed_options},
+    [P_PACKED] = OB_PACKED_PARAM(""),
 };
 
 #define KERNEL_SEED 0x55D0u
@@ -91,7 +86,6 @@ typedef struct ssdo_state {
      * (constant ambient, one layer, one view, the default lobe, unpacked). */
     GLuint variants[VARIANTS];
     ob_packed_samples packed; /* `packed`: methods/packed.c, bound at unit 10 */
-    bool software;            /* a software rasteriser: what `packed` auto follows */
     int kernel_count; /* the cached kernel was built for these */
     int kernel_pdf;
     bool merged;
@@ -103,7 +97,6 @@ static ob_error ssdo_init(void *p)
     ssdo_state *s = p;
     s->merged = false;
     s->kernel_count = -1;
-    s->software = ob_renderer_is_software((const char *)glGetString(GL_RENDERER));
     return OB_OK;
 }
 
@@ -112,7 +105,6 @@ static ob_error ssdo_merged_init(void *p)
     ssdo_state *s = p;
     s->merged = true;
     s->kernel_count = -1;
-    s->software = ob_renderer_is_software((const char *)glGetString(GL_RENDERER));
     return OB_OK;
 }
 
@@ -203,8 +195,7 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
                      : in->frame->ambient_mode == OB_AMBIENT_MODE_ENVIRONMENT ? 2
                                                                               : 0;
     const bool pow_lobe = c->lobe != DEFAULT_LOBE;
-    const int packing = (int)params[P_PACKED];
-    const bool packed = packing == PACKED_ON || (packing == PACKED_AUTO && s->software);
+    const bool packed = ob_packed_samples_wanted(&s->packed, params[P_PACKED]);
     const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0) | mode << 2 | (pow_lobe ? 16 : 0) | (packed ? 32 : 0);
     if (v) {
         static const char *const ambient[3] = {"", "#define OB_SSDO_AMBIENT_HEMISPHERE 1\n",

@@ -30,8 +30,6 @@ enum {
 };
 
 static const char *const coverage_options[] = {"touch", "half", "all"};
-static const char *const packed_options[] = {"off", "on", "auto"};
-enum { PACKED_OFF, PACKED_ON, PACKED_AUTO }; /* packed_options' indices */
 
 /* The defaults and the views that chose them: docs/methods.md, "vbao". */
 static const ob_param_info vb_params[P_COUNT] = {
@@ -75,10 +73,7 @@ static const ob_param_info vb_params[P_COUNT] = {
      * 640x480 took 111-115 ms against 168-198. A GPU skips them where no lane of a group has a
      * fresh sector, so auto packs only on a software rasteriser; off is the baseline. Not with
      * depth_mips (the chain's levels are not packed). */
-    [P_PACKED] = {"packed", OB_PARAM_ENUM, 0.0f, 2.0f, (float)PACKED_AUTO, "",
-                  "read each sample's depth, normal and direct light from one packed texel: on, off, or auto "
-                  "(on for a software rasteriser); not with depth_mips",
-                  false, packed_options},
+    [P_PACKED] = OB_PACKED_PARAM("; not with depth_mips"),
 };
 
 typedef struct vb_state {
@@ -87,7 +82,6 @@ typedef struct vb_state {
     const char *shader;
     bool gi;
     ob_packed_samples packed; /* vbgi's `packed`: methods/packed.c, bound at unit 10 */
-    bool software;            /* a software rasteriser: what `packed` auto follows */
 } vb_state;
 
 /* Settings -> constants, a pure function. */
@@ -122,7 +116,6 @@ static ob_error vbgi_init(void *p)
     vb_state *s = p;
     s->shader = "vbgi.glsl";
     s->gi = true;
-    s->software = ob_renderer_is_software((const char *)glGetString(GL_RENDERER));
     return OB_OK;
 }
 
@@ -162,8 +155,7 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
     c.layers = c.layers && in->second_depth ? 1 : 0; /* ob_compute_ao has no second layer */
     /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
     ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
-    const int packing = s->gi ? (int)params[P_PACKED] : PACKED_OFF;
-    const bool packed = c.max_mip == 0 && (packing == PACKED_ON || (packing == PACKED_AUTO && s->software));
+    const bool packed = s->gi && c.max_mip == 0 && ob_packed_samples_wanted(&s->packed, params[P_PACKED]);
     const unsigned features =
         (c.max_mip > 0 ? OB_SLICE_MIPS : 0u) | (c.layers ? OB_SLICE_LAYERS : 0u) | (packed ? OB_SLICE_PACKED : 0u);
     if (packed) {

@@ -163,6 +163,13 @@ static float depth_at(const frame_data *a, float qx, float qy, int x0, int y0)
            ty * ((1 - tx) * d[(y0 + 1) * W + x0] + tx * d[(y0 + 1) * W + x0 + 1]);
 }
 
+/* Frame a saw the point at depth d at continuous pixel (qx, qy): the four centres around it lie on
+ * one flat surface whose depth there is d within 0.5 %. */
+static bool seen_on_flat_quad(const frame_data *a, float qx, float qy, int x0, int y0, float d)
+{
+    return flat_quad(a, x0, y0) && fabsf(depth_at(a, qx, qy, x0, y0) - d) < 0.005f * d;
+}
+
 static void test_reprojection(ob_context *ctx, ob_scene *cornell)
 {
     ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
@@ -308,7 +315,7 @@ static void test_disocclusion(ob_context *ctx, ob_scene *cornell)
             if (front == 4) {
                 ++hidden;
                 hidden_reset += fb.age[i] == 1.0f;
-            } else if (flat_quad(&fa, x0, y0) && fabsf(depth_at(&fa, qx, qy, x0, y0) - d) < 0.005f * d) {
+            } else if (seen_on_flat_quad(&fa, qx, qy, x0, y0, d)) {
                 ++seen;
                 seen_kept += fb.age[i] == (float)N;
             }
@@ -338,7 +345,7 @@ static void test_dolly(ob_context *ctx, ob_scene *cornell)
             float qx = 0.0f, qy = 0.0f, d = 0.0f;
             int x0 = 0, y0 = 0;
             if (!seen_from(&ma, &mb, &fb, x, y, &qx, &qy, &d, &x0, &y0)) continue;
-            if (!flat_quad(&fa, x0, y0) || fabsf(depth_at(&fa, qx, qy, x0, y0) - d) >= 0.005f * d) continue;
+            if (!seen_on_flat_quad(&fa, qx, qy, x0, y0, d)) continue;
             const double trust = exp2(-4.5 * fabs(log2((double)d / (double)fb.depth[i])));
             const double expect = fmin((double)N * trust + 1.0, (double)N);
             const double e = fabs((double)fb.age[i] - expect);

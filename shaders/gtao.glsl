@@ -19,7 +19,8 @@
  * (k + jitter) π / N_slices.
  *
  * What counts as an occluder is AO_R's: a depth-buffer sample within R of x (falloff 0 gives the
- * definition's hard cut; falloff f fades occluders over the last f R). Like every horizon method
+ * definition's hard cut; falloff f fades occluders over the last f R), and where the solid behind
+ * a sample beyond R, at most gtao.column deep, enters the sphere of radius R (ob_column_entry). Like every horizon method
  * this treats the depth buffer as a height field: everything below the horizon is occluded, so
  * thin objects occlude too much behind them (`thin` stretches the depth component of a sample's
  * distance, as in Jimenez et al. §5's thickness heuristic, so thin objects count less).
@@ -82,6 +83,21 @@ bool behind_object(vec3 w, vec3 p, vec3 t, vec3 n_slice, float rise, float z2)
     return lambda > 1.0 && lambda * z1 > z2;
 }
 
+/* The distance up to which an occluder's weight is 1: (1 - falloff) R, or R with falloff 0, and
+ * the square of that plus gtao.column: a front farther than that cannot reach the sphere through
+ * its column (set in main from the constants). */
+float full_reach = 0.0;
+float shell2 = 0.0;
+
+/* A side's candidate for ob_column_entry: the highest sample beyond R whose column may still reach
+ * the sphere. The march keeps it (a compare and a select per sample) and the entry is worked out
+ * once per side after it (column_rise): on llvmpipe, which runs every sample's arithmetic for
+ * every lane, the entry per sample cost gtao high 30 % of its pass. */
+struct column_candidate {
+    vec3 w;  /* the sample's offset from P */
+    float k; /* its own rise key (0 = none yet) */
+};
+
 /* Bisections of the last gap in which the surface leaves the sphere of radius R (see main). */
 const int REFINE_STEPS = 2;
 
@@ -91,7 +107,8 @@ const int REFINE_STEPS = 2;
  * horizon cosines (falloff 0: weight 0 or 1, exact). `refine`: a bisection step of the gap, which
  * counts only while the gap is open. Selects, not branches: llvmpipe runs both sides of a branch
  * its lanes disagree on. */
-void horizon_step(ob_slice s, vec2 at, float dist_px, vec3 p, vec3 t, bool refine, inout float rise, inout ob_gap gap)
+void horizon_step(ob_slice s, vec2 at, float dist_px, vec3 p, vec3 t, bool refine, inout float rise, inout ob_gap gap,
+                  inout column_candidate cand)
 {
     vec3 w;
     ivec2 texel;
@@ -101,6 +118,10 @@ void horizon_step(ob_slice s, vec2 at, float dist_px, vec3 p, vec3 t, bool refin
     float w_len = length(vec3(w.xy, w.z * (1.0 + gtao.thin)));
     float weight = hit ? clamp(w_len * gtao.falloff_mul + gtao.falloff_add, 0.0, 1.0) : 0.0;
     float k = ob_rise_key(w, t, s.n_slice);
+    /* Beyond R but within reach of its column: the side's candidate if it stands highest. */
+    bool shell = hit && weight <= 0.0 && dot(w, w) <= shell2 && k > cand.k;
+    cand.k = shell ? k : cand.k;
+    cand.w = shell ? w : cand.w;
 #ifdef OB_MARCH_LAYERS
     float z1 = -(p.z + w.z);
     float t2 = ob_layer_thickness(z1, ob_second_depth(texel), -p.z, gtao.radius, s.radius_px, gtao.steps);
@@ -111,10 +132,21 @@ void horizon_step(ob_slice s, vec2 at, float dist_px, vec3 p, vec3 t, bool refin
     rise = max(rise, weight * k);
 }
 
+/* The rise key of where the candidate's solid, up to gtao.column behind its front, enters the
+ * sphere on which the weight reaches 1 (R itself with falloff 0); 0 when it does not. */
+float column_rise(column_candidate cand, vec3 p, vec3 t, vec3 n_slice)
+{
+    vec3 entry;
+    bool meets = cand.k > 0.0 && ob_column_entry(cand.w, normalize(p + cand.w), full_reach, gtao.column, entry);
+    return meets ? ob_rise_key(entry, t, n_slice) : 0.0;
+}
+
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
     ob_march_self = pix;
+    full_reach = (1.0 - gtao.falloff_add) / gtao.falloff_mul;
+    shell2 = (full_reach + gtao.column) * (full_reach + gtao.column);
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
     float d = texelFetch(linear_depth, pix, 0).r;
@@ -142,11 +174,12 @@ void main()
          * along -dir (θ < 0). */
         vec2 rise = vec2(0.0);
         ob_gap gap_pos = ob_gap_none(), gap_neg = ob_gap_none();
+        column_candidate cand_pos = column_candidate(vec3(0.0), 0.0), cand_neg = cand_pos;
         for (int j = 0; j < steps; ++j) {
             float dist_px = ob_slice_step_px(j, jit.y, steps, s.radius_px);
             vec2 off = s.dir * dist_px;
-            horizon_step(s, centre + off, dist_px, p, s.t_pos, false, rise.x, gap_pos);
-            horizon_step(s, centre - off, dist_px, p, s.t_neg, false, rise.y, gap_neg);
+            horizon_step(s, centre + off, dist_px, p, s.t_pos, false, rise.x, gap_pos, cand_pos);
+            horizon_step(s, centre - off, dist_px, p, s.t_neg, false, rise.y, gap_neg, cand_neg);
         }
         /* Bisect where the surface leaves the sphere of radius R (ob_gap in slice_march.glsl). */
         for (int b = 0; b < REFINE_STEPS; ++b) {
@@ -155,9 +188,11 @@ void main()
              * skip its fetches, and a group whose lanes disagree runs it as a select would. */
             if (!ob_gap_open(gap_pos) && !ob_gap_open(gap_neg)) break;
             float mid_pos = ob_gap_mid(gap_pos), mid_neg = ob_gap_mid(gap_neg);
-            horizon_step(s, centre + s.dir * mid_pos, mid_pos, p, s.t_pos, true, rise.x, gap_pos);
-            horizon_step(s, centre - s.dir * mid_neg, mid_neg, p, s.t_neg, true, rise.y, gap_neg);
+            horizon_step(s, centre + s.dir * mid_pos, mid_pos, p, s.t_pos, true, rise.x, gap_pos, cand_pos);
+            horizon_step(s, centre - s.dir * mid_neg, mid_neg, p, s.t_neg, true, rise.y, gap_neg, cand_neg);
         }
+        /* The solid behind each side's highest sample beyond R (ob_column_entry). */
+        rise = max(rise, vec2(column_rise(cand_pos, p, s.t_pos, s.n_slice), column_rise(cand_neg, p, s.t_neg, s.n_slice)));
         /* h: each side's horizon angle from V toward its side, the tangent's angle (π/2 ± n)
          * less the highest rise (rise_key inverted); a horizon on one side cannot pass V. eq. 10 with θ signed: the
          * horizon of side 1 is at -h.y, that of side 0 at h.x. */

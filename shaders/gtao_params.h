@@ -28,7 +28,12 @@ OB_CONSTANTS_BEGIN(ob_gtao_constants, OB_BINDING_PASS)
     OB_INT adaptive;          /* 1: per-pixel slices, adaptive_base x the edge pass's multiplier (unit 5) */
     OB_INT adaptive_base;     /*   the slices at multiplier 1 (seed 003 §4.1) */
     OB_INT layers;            /* 1: the second depth layer bounds each sample's object (unit 6) */
+    OB_FLOAT column;          /* world units: how far behind its front a sample beyond R is solid (its part
+                                 inside R occludes: slice_march.glsl ob_column_entry); 0 = none */
+    OB_FLOAT pad0;
+    OB_FLOAT pad1;
+    OB_FLOAT pad2;
 OB_CONSTANTS_END(ob_gtao_constants, gtao)
-OB_CONSTANTS_SIZE(ob_gtao_constants, 4 * 16);
+OB_CONSTANTS_SIZE(ob_gtao_constants, 5 * 16);
 
 #endif

@@ -263,6 +263,32 @@ float ob_rise_key(vec3 w, vec3 t, vec3 n_slice)
     return y > 1e-3 * r ? k : 0.0;
 }
 
+/* The occluder that a sample beyond `reach` stands for inside the sphere of radius `reach` around
+ * P. The march's model takes each depth-buffer sample S = p + w as the front of a solid running on
+ * along its view ray u (unit, away from the eye). A front farther than `reach` from P is not
+ * itself an occluder of AO_R, but the solid behind it may still pass through the sphere: the
+ * point where it enters, X = S + t u with |X - p| = reach, is then solid under the same model, and
+ * so is every direction from P whose ray reaches it (a ray from P that ends inside the solid
+ * within reach crossed its surface within reach). X is the column's highest point inside the
+ * sphere (farther along u it sinks away from the eye). With b = w.u and c = |w|^2 - reach^2 > 0
+ * (S outside), the nearer root of |w + t u|^2 = reach^2 is t = -(b + sqrt(b^2 - c)); the column
+ * meets the sphere behind S when b < 0 (it heads toward P) and b^2 >= c, and counts when t is
+ * within `depth` of the front, the solid's assumed thickness there. Returns X - p then, else w
+ * unchanged. On a real solid at least `depth` thick X lies inside it, below where its surface
+ * leaves the sphere, so X never reads more than the truth there; where that surface is hidden from
+ * the eye (a fin's far face beside P, the riser behind a step's nose seen from above) X stands in
+ * for the occluder the depth buffer does not show. An infinite `depth` (gtao's height field taken
+ * literally) brings back the halo behind every silhouette, which the cut at R exists to remove. */
+bool ob_column_entry(vec3 w, vec3 u, float reach, float depth, out vec3 entry)
+{
+    float b = dot(w, u), c = dot(w, w) - reach * reach;
+    float disc = b * b - c;
+    float t = -(b + sqrt(max(disc, 0.0)));
+    bool meets = c > 0.0 && b < 0.0 && disc >= 0.0 && t <= depth;
+    entry = meets ? w + t * u : w;
+    return meets;
+}
+
 float ob_rise_angle(float key) { return 2.0 * asin(sqrt(clamp(0.5 * key, 0.0, 1.0))); }
 
 /* Where the surface leaves the sphere of radius R. On a wall that climbs away from P (every

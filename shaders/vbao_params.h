@@ -11,7 +11,7 @@
 #define OB_VB_MAX_STEPS 32
 
 OB_CONSTANTS_BEGIN(ob_vb_constants, OB_BINDING_PASS)
-    OB_FLOAT radius;          /* R of AO_R, world units: a sample counts when its front is within R */
+    OB_FLOAT radius;          /* R of AO_R, world units: a sample counts where it lies within R */
     OB_FLOAT thickness;       /* a sample's thickness behind its front, world units: */
     OB_FLOAT thickness_slope; /*   thickness + thickness_slope x the sample's linear depth */
     OB_INT weighting;         /* OB_DIRECTIONS_MODE_*: sectors weighted uniformly in angle or by the cosine */

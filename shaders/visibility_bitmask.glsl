@@ -8,8 +8,9 @@
  * P's tangent in the slice, θ' = θ - n(φ) in [-π/2, π/2] around the projected normal, is cut into
  * 32 sectors, one bit each (§3.1). Each sample within R is a front point (the depth buffer) and a
  * back point pushed away from the eye along its view ray by a thickness t (§3.2); the angles of
- * the two bound an interval, and the sectors it covers are set. Light passes through the sectors
- * no sample set, behind thin objects too.
+ * the two bound an interval, and the sectors it covers are set (a front beyond R whose back still
+ * reaches into the sphere: from where it enters, ob_column_entry). Light passes through the
+ * sectors no sample set, behind thin objects too.
  *
  * Visibility per slice is the unset part of the mask, weighted
  *   uniform (the paper's, §3.1):   1 - popcount(mask) / 32, the mean over slices; or
@@ -61,21 +62,32 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     float w_len = length(w);
     bool inside = hit && w_len < vb.radius;
     vec3 t = positive ? s.t_pos : s.t_neg;
-    /* §3.2: the back of the sample, its front pushed away from the eye along its view ray. */
+    /* §3.2: the back of the sample, its front pushed away from the eye along its view ray u by
+     * the thickness. */
     vec3 sv = p + w;
+    float sv_inv = inversesqrt(max(dot(sv, sv), 1e-20));
+    vec3 u = sv * sv_inv;
     float thick = vb.thickness + vb.thickness_slope * max(-sv.z, 0.0);
-    vec3 wb = w + sv * (thick * inversesqrt(max(dot(sv, sv), 1e-20)));
 #ifdef OB_MARCH_LAYERS
     /* The sample's true back: the second layer on the same view ray, at least the steps' spacing
-     * (ob_layer_thickness; linear depth scales along the ray, so the point at depth z1 + t is
-     * sv (z1 + t) / z1); nothing behind: the constant above. Its own program variant
-     * (OB_SLICE_LAYERS): llvmpipe would run the block for every sample with the layer off too. */
+     * (ob_layer_thickness; linear depth scales along the ray, so depth z1 + t lies |sv| t / z1
+     * along it); nothing behind: the constant above. Its own program variant (OB_SLICE_LAYERS):
+     * llvmpipe would run the block for every sample with the layer off too. */
     float z1 = max(-sv.z, 1e-20);
     float t2 = ob_layer_thickness(z1, ob_second_depth(texel), -p.z, vb.radius, s.radius_px, vb.steps);
-    wb = t2 > 0.0 ? sv * ((z1 + t2) / z1) - p : wb;
+    thick = t2 > 0.0 ? t2 / (z1 * sv_inv) : thick;
 #endif
-    float rise_front = ob_rise_angle_of(w, t, s.n_slice), rise_back = ob_rise_angle_of(wb, t, s.n_slice);
-    uint bits = inside ? ob_sample_bits(rise_front, rise_back, s.ang_n, positive, vb.coverage) : 0u;
+    vec3 wb = w + u * thick;
+    /* A front beyond R whose solid still enters the sphere within its thickness: the interval
+     * runs from where it enters (ob_column_entry) to its back, as for a front inside R. Per
+     * sample, not once per side as gtao does (gtao.glsl column_candidate): a horizon keeps only
+     * the highest entry, but the mask is the union of every sample's interval, and the steps of a
+     * stair or the fins of an engine each add their own (one candidate per side kept half of
+     * vbao's gain on the views of docs/methods.md, for 7-15 % of its pass on llvmpipe). */
+    vec3 entry;
+    bool column = hit && !inside && ob_column_entry(w, u, vb.radius, thick, entry);
+    float rise_front = ob_rise_angle_of(column ? entry : w, t, s.n_slice), rise_back = ob_rise_angle_of(wb, t, s.n_slice);
+    uint bits = inside || column ? ob_sample_bits(rise_front, rise_back, s.ang_n, positive, vb.coverage) : 0u;
 #ifdef OB_VBGI
     /* The sender's direct radiance through the directions it is the first to occlude. Their
      * cosine measure is the interval's exact one (two cosines, ob_run_measure) times the share of its
@@ -108,7 +120,7 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     mask |= bits;
     if (refine) ob_gap_halve(gap, inside);
     else ob_gap_note(gap, inside, hit && !inside && rise_front > rise, dist_px);
-    rise = inside ? max(rise, rise_front) : rise;
+    rise = inside || column ? max(rise, rise_front) : rise;
 }
 
 void main()

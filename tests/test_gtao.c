@@ -198,29 +198,55 @@ static void view_position(const synth *g, float px, float py, float d, vec3 out)
     out[2] = -d;
 }
 
+/* The angle from V of offset w above the side's tangent: the tangent less its rise in [0, π]; on
+ * or below the tangent's plane (y <= 0) none: a sample exactly on P's plane behind the tangent
+ * would otherwise get atan2(+0, x < 0) = π. Rises under 1e-3 rad are none (slice_march.glsl
+ * ob_rise_key). */
+static float rise_theta(const vec3 w, const vec3 n, const vec3 t, float inv_len_n, float tangent)
+{
+    float y = glm_vec3_dot((float *)w, (float *)n) * inv_len_n, x = glm_vec3_dot((float *)w, (float *)t);
+    float rise = y > 1e-3f * sqrtf(x * x + y * y) ? atan2f(y, x) : 0.0f;
+    return tangent - rise;
+}
+
 enum { NONE = 0, INSIDE = 1, BEYOND = 2 };
 
+/* The sample at (ax, ay): its kind, its angle theta from V (the tangent when it does not rise) and
+ * its offset w from P. */
 static int sample_theta(const synth *g, float ax, float ay, const vec3 p, const vec3 n, const vec3 t, float inv_len_n,
-                        float tangent, float radius, float *theta)
+                        float tangent, float radius, float *theta, vec3 w)
 {
     *theta = tangent;
+    glm_vec3_zero(w);
     int qx = (int)floorf(ax), qy = (int)floorf(ay);
     float sd = g->depth[qy * W + qx];
     if (sd <= 0.0f) return NONE;
-    vec3 s, w;
+    vec3 s;
     view_position(g, (float)qx + 0.5f, (float)qy + 0.5f, sd, s);
     glm_vec3_sub(s, (float *)p, w);
     if (glm_vec3_dot(w, w) <= 1e-12f * glm_vec3_dot((float *)p, (float *)p)) return NONE; /* P's own texel (slice_march.glsl) */
-    /* The rise above the tangent in [0, π]; on or below the tangent's plane (y <= 0) none: a
-     * sample exactly on P's plane behind the tangent would otherwise get atan2(+0, x < 0) = π. */
-    float y = glm_vec3_dot(w, (float *)n) * inv_len_n, x = glm_vec3_dot(w, (float *)t);
-    /* Rises under 1e-3 rad are none (slice_march.glsl ob_rise_key). */
-    float rise = y > 1e-3f * sqrtf(x * x + y * y) ? atan2f(y, x) : 0.0f;
-    *theta = tangent - rise;
+    *theta = rise_theta(w, n, t, inv_len_n, tangent);
     return glm_vec3_norm(w) >= radius ? BEYOND : INSIDE;
 }
 
-static float cpu_gtao(const synth *g, const float rot[16][2], int x, int y, float radius, int slices, int steps)
+/* gtao.glsl's column_rise: where the view ray behind the candidate w (at most `column` behind its
+ * front) enters the sphere of radius R; its theta, or the tangent when it does not. */
+static float column_theta(const vec3 p, const vec3 w, const vec3 n, const vec3 t, float inv_len_n, float tangent,
+                          float radius, float column)
+{
+    vec3 u, s, e;
+    glm_vec3_add((float *)p, (float *)w, s);
+    glm_vec3_normalize_to(s, u);
+    float b = glm_vec3_dot((float *)w, u), c = glm_vec3_dot((float *)w, (float *)w) - radius * radius, disc = b * b - c;
+    float tc = -(b + sqrtf(fmaxf(disc, 0.0f)));
+    if (!(c > 0.0f && b < 0.0f && disc >= 0.0f && tc <= column)) return tangent;
+    glm_vec3_scale(u, tc, e);
+    glm_vec3_add(e, (float *)w, e);
+    return rise_theta(e, n, t, inv_len_n, tangent);
+}
+
+static float cpu_gtao(const synth *g, const float rot[16][2], int x, int y, float radius, float column, int slices,
+                      int steps)
 {
     const float half_pi = 1.57079632679490f, pi = 3.14159265358979f;
     float d = g->depth[y * W + x];
@@ -269,13 +295,22 @@ static float cpu_gtao(const synth *g, const float rot[16][2], int x, int y, floa
             glm_vec3_add(a, b, t);
             float horizon = tangent, inside_px = 0.0f, theta = 0.0f;
             bool refined = false;
+            /* The candidate for the column (gtao.glsl column_candidate): the highest sample beyond R
+             * within R + column of P; cand_theta = tangent: none yet. */
+            float cand_theta = tangent;
+            vec3 cand_w = {0, 0, 0}, w;
+            const float shell = (radius + column) * (radius + column);
             for (int j = 0; j < steps; ++j) {
                 float s = ((float)j + jy) / (float)steps;
                 float dist = 1.5f + s * fmaxf(radius_px - 1.5f, 0.0f);
                 if (dist > radius_px) break;
                 float ax = cx + sgn * dir[0] * dist, ay = cy + sgn * dir[1] * dist;
                 if (ax < 0.0f || ay < 0.0f || ax >= W || ay >= H) break;
-                int st = sample_theta(g, ax, ay, p, n, t, 1.0f / len_n, tangent, radius, &theta);
+                int st = sample_theta(g, ax, ay, p, n, t, 1.0f / len_n, tangent, radius, &theta, w);
+                if (st == BEYOND && glm_vec3_dot(w, w) <= shell && theta < cand_theta) {
+                    cand_theta = theta;
+                    glm_vec3_copy(w, cand_w);
+                }
                 if (st == INSIDE) {
                     horizon = fminf(horizon, theta);
                     inside_px = dist;
@@ -285,7 +320,11 @@ static float cpu_gtao(const synth *g, const float rot[16][2], int x, int y, floa
                     for (int it = 0; it < 2; ++it) {
                         float mid = 0.5f * (lo + hi);
                         int m = sample_theta(g, cx + sgn * dir[0] * mid, cy + sgn * dir[1] * mid, p, n, t,
-                                             1.0f / len_n, tangent, radius, &theta);
+                                             1.0f / len_n, tangent, radius, &theta, w);
+                        if (m == BEYOND && glm_vec3_dot(w, w) <= shell && theta < cand_theta) {
+                            cand_theta = theta;
+                            glm_vec3_copy(w, cand_w);
+                        }
                         if (m == INSIDE) {
                             horizon = fminf(horizon, theta);
                             lo = mid;
@@ -295,6 +334,8 @@ static float cpu_gtao(const synth *g, const float rot[16][2], int x, int y, floa
                     }
                 }
             }
+            if (cand_theta < tangent)
+                horizon = fminf(horizon, column_theta(p, cand_w, n, t, 1.0f / len_n, tangent, radius, column));
             h[side] = fmaxf(horizon, 0.0f);
         }
         float h0 = -h[1], h1 = h[0], cn = cosf(ang_n), sn = sinf(ang_n);
@@ -304,6 +345,67 @@ static float cpu_gtao(const synth *g, const float rot[16][2], int x, int y, floa
         open_sky += len_n * (cn + ang_n * sn);
     }
     return open_sky > 0.0f ? fminf(fmaxf(vis / open_sky, 0.0f), 1.0f) : 1.0f;
+}
+
+/* The GPU pass against the CPU port at one `thickness` (x R; < 0: gtao's default). Returns the
+ * CPU port's mean AO, or -1 when the pass could not run. */
+static double port_at(ob_renderer *r, const synth *g, const GLuint tex[3], float thickness)
+{
+    const float radius = 0.4f;
+    ob_settings s;
+    ob_settings_init(&s, "gtao");
+    CHECK(ob_settings_set(&s, "gtao.radius=0.4") == OB_OK, "radius");
+    char set[64];
+    if (thickness >= 0.0f) {
+        snprintf(set, sizeof set, "gtao.thickness=%g", (double)thickness);
+        CHECK(ob_settings_set(&s, set) == OB_OK, "%s", set);
+    }
+    const float column = (thickness >= 0.0f ? thickness : ob_settings_get(&s, "thickness")) * radius;
+    if (ob_compute_ao(r, tex[0], tex[1], (const float *)g->proj, &s, tex[2]) != OB_OK) {
+        const char *message = NULL;
+        ob_get_error(&message);
+        CHECK(false, "ob_compute_ao gtao: %s", message ? message : "?");
+        return -1.0;
+    }
+    float *gpu = malloc((size_t)W * H * sizeof(float));
+    glGetTextureImage(tex[2], 0, GL_RED, GL_FLOAT, (GLsizei)((size_t)W * H * sizeof(float)), gpu);
+    float rot[16][2];
+    ob_rotation_noise_4x4(&rot[0][0], 0x4E01u);
+    double worst = 0.0, sum = 0.0, mean_ao = 0.0;
+    int over = 0, occluded = 0, worst_x = 0, worst_y = 0;
+    float worst_cpu = 0.0f;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            float c = cpu_gtao(g, rot, x, y, radius, column, 3, 6);
+            double d = fabs((double)c - (double)gpu[y * W + x]);
+            if (d > worst) {
+                worst_x = x;
+                worst_y = y;
+                worst_cpu = c;
+            }
+            worst = fmax(worst, d);
+            sum += d;
+            over += d > 1e-3;
+            mean_ao += c;
+            occluded += c < 0.9f;
+        }
+    printf("  gtao CPU port vs GPU, %dx%d box on a floor, thickness %.2f R: mean |diff| %.2g, worst %.2g, %d pixels "
+           "over 1e-3, mean AO %.4f, %d pixels below 0.9\n",
+           W, H, (double)(column / radius), sum / (W * H), worst, over, mean_ao / (W * H), occluded);
+    CHECK(occluded > 300, "the synthetic scene has occlusion to compare (%d pixels below 0.9)", occluded);
+    if (over > 0) { /* the neighbourhood of the worst pixel, to see which samples the two disagree on */
+        for (int y = worst_y + 3; y >= worst_y - 3; --y) {
+            printf("   row %3d:", y);
+            for (int x = worst_x - 4; x <= worst_x + 4; ++x)
+                if (x >= 0 && x < W && y >= 0 && y < H)
+                    printf(" %.3f/%.3f", (double)cpu_gtao(g, rot, x, y, radius, column, 3, 6), (double)gpu[y * W + x]);
+            printf("\n");
+        }
+    }
+    CHECK(over == 0, "CPU and GPU agree within 1e-3 (%d pixels over, worst %.3g at (%d, %d): CPU %.4f, GPU %.4f)", over,
+          worst, worst_x, worst_y, (double)worst_cpu, (double)gpu[worst_y * W + worst_x]);
+    free(gpu);
+    return mean_ao / (W * H);
 }
 
 static void test_cpu_port(ob_context *ctx)
@@ -320,50 +422,14 @@ static void test_cpu_port(ob_context *ctx)
                      ob_make_texture_2d(GL_R32F, W, H)};
     glTextureSubImage2D(tex[0], 0, 0, 0, W, H, GL_RED, GL_FLOAT, g->depth);
     glTextureSubImage2D(tex[1], 0, 0, 0, W, H, GL_RGBA, GL_FLOAT, g->normal);
-    const float radius = 0.4f;
-    ob_settings s;
-    ob_settings_init(&s, "gtao");
-    CHECK(ob_settings_set(&s, "gtao.radius=0.4") == OB_OK, "radius");
-    CHECK(ob_compute_ao(r, tex[0], tex[1], (const float *)g->proj, &s, tex[2]) == OB_OK, "ob_compute_ao gtao");
-    float *gpu = malloc((size_t)W * H * sizeof(float));
-    glGetTextureImage(tex[2], 0, GL_RED, GL_FLOAT, (GLsizei)((size_t)W * H * sizeof(float)), gpu);
-    float rot[16][2];
-    ob_rotation_noise_4x4(&rot[0][0], 0x4E01u);
-    double worst = 0.0, sum = 0.0, mean_ao = 0.0;
-    int over = 0, occluded = 0, worst_x = 0, worst_y = 0;
-    float worst_cpu = 0.0f;
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-            float c = cpu_gtao(g, rot, x, y, radius, 3, 6);
-            double d = fabs((double)c - (double)gpu[y * W + x]);
-            if (d > worst) {
-                worst_x = x;
-                worst_y = y;
-                worst_cpu = c;
-            }
-            worst = fmax(worst, d);
-            sum += d;
-            over += d > 1e-3;
-            mean_ao += c;
-            occluded += c < 0.9f;
-        }
-    printf("  gtao CPU port vs GPU, %dx%d box on a floor: mean |diff| %.2g, worst %.2g, %d pixels over 1e-3, mean AO "
-           "%.3f, %d pixels below 0.9\n",
-           W, H, sum / (W * H), worst, over, mean_ao / (W * H), occluded);
-    CHECK(occluded > 300, "the synthetic scene has occlusion to compare (%d pixels below 0.9)", occluded);
-    if (over > 0) { /* the neighbourhood of the worst pixel, to see which samples the two disagree on */
-        for (int y = worst_y + 3; y >= worst_y - 3; --y) {
-            printf("   row %3d:", y);
-            for (int x = worst_x - 4; x <= worst_x + 4; ++x)
-                if (x >= 0 && x < W && y >= 0 && y < H)
-                    printf(" %.3f/%.3f", (double)cpu_gtao(g, rot, x, y, radius, 3, 6), (double)gpu[y * W + x]);
-            printf("\n");
-        }
-    }
-    CHECK(over == 0, "CPU and GPU agree within 1e-3 (%d pixels over, worst %.3g at (%d, %d): CPU %.4f, GPU %.4f)", over,
-          worst, worst_x, worst_y, (double)worst_cpu, (double)gpu[worst_y * W + worst_x]);
+    /* No column (only samples within R occlude), the default, and a thick one: the box's sides
+     * hide its far faces, so the thick column must darken, and the port follows each. */
+    double none = port_at(r, g, tex, 0.0f);
+    port_at(r, g, tex, -1.0f);
+    double thick = port_at(r, g, tex, 2.0f);
+    CHECK(thick < none - 1e-3, "a thick column darkens the box's surroundings (mean AO %.4f, without %.4f)", thick,
+          none);
     glDeleteTextures(3, tex);
-    free(gpu);
     free(g);
     ob_destroy_renderer(r);
 }

@@ -34,7 +34,9 @@ static const char *const coverage_options[] = {"touch", "half", "all"};
 /* The defaults and the views that chose them: docs/methods.md, "vbao". */
 static const ob_param_info vb_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
-                  "R of AO_R: a sample counts when its front is within R; default: the scene's suggested radius", true},
+                  "R of AO_R: a sample counts where it lies within R (its front, or where its thickness enters the "
+                  "sphere); default: the scene's suggested radius",
+                  true},
     [P_THICKNESS] = {"thickness", OB_PARAM_FLOAT, 0.0f, 100.0f, 0.75f, "x radius",
                      "every sample's thickness behind its front surface, as a multiple of R (constant in world units)",
                      false},

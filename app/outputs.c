@@ -155,22 +155,30 @@ static bool dir_takes(const char *path, bool dir, int *err)
         *err = ENAMETOOLONG;
         return false;
     }
+    /* The probe exists for microseconds, before the outputs are watched (watch): a SIGINT, SIGTERM
+     * or SIGHUP then would kill the process with the probe left behind (test_hostile_outputs.sh
+     * caught one). Held back until it is gone, the signal then takes its course. */
+    sigset_t term, old;
+    sigemptyset(&term);
+    sigaddset(&term, SIGINT);
+    sigaddset(&term, SIGTERM);
+    sigaddset(&term, SIGHUP);
+    sigprocmask(SIG_BLOCK, &term, &old);
+    bool made = false;
     if (dir) {
-        if (!mkdtemp(tmp)) {
-            *err = errno;
-            return false;
+        made = mkdtemp(tmp) != NULL;
+        if (made) rmdir(tmp);
+    } else {
+        int fd = mkstemp(tmp);
+        made = fd >= 0;
+        if (made) {
+            close(fd);
+            unlink(tmp);
         }
-        rmdir(tmp);
-        return true;
     }
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        *err = errno;
-        return false;
-    }
-    close(fd);
-    unlink(tmp);
-    return true;
+    if (!made) *err = errno;
+    sigprocmask(SIG_SETMASK, &old, NULL);
+    return made;
 }
 
 int cli_outputs_add(cli_outputs *s, const char *option, const char *path, unsigned formats, int *index)

@@ -20,10 +20,11 @@
  *
  * What counts as an occluder is AO_R's: a depth-buffer sample within R of x (falloff 0 gives the
  * definition's hard cut; falloff f fades occluders over the last f R), and where the solid behind
- * a sample beyond R, at most gtao.column deep, enters the sphere of radius R (ob_column_entry). Like every horizon method
- * this treats the depth buffer as a height field: everything below the horizon is occluded, so
- * thin objects occlude too much behind them (`thin` stretches the depth component of a sample's
- * distance, as in Jimenez et al. §5's thickness heuristic, so thin objects count less).
+ * a sample beyond R, at most gtao.column deep, enters the sphere of radius R (ob_column_entry).
+ * Like every horizon method this treats the depth buffer as a height field: everything below the
+ * horizon is occluded, so thin objects occlude too much behind them (`thin` stretches the depth
+ * component of a sample's distance, as in Jimenez et al. §5's thickness heuristic, so thin
+ * objects count less).
  *
  * AO is visibility: 1 = open. Sky (depth 0) writes 1. */
 #include "gtao_params.h"
@@ -83,12 +84,6 @@ bool behind_object(vec3 w, vec3 p, vec3 t, vec3 n_slice, float rise, float z2)
     return lambda > 1.0 && lambda * z1 > z2;
 }
 
-/* The distance up to which an occluder's weight is 1: (1 - falloff) R, or R with falloff 0, and
- * the square of that plus gtao.column: a front farther than that cannot reach the sphere through
- * its column (set in main from the constants). */
-float full_reach = 0.0;
-float shell2 = 0.0;
-
 /* A side's candidate for ob_column_entry: the highest sample beyond R whose column may still reach
  * the sphere. The march keeps it (a compare and a select per sample) and the entry is worked out
  * once per side after it (column_rise): on llvmpipe, which runs every sample's arithmetic for
@@ -119,7 +114,7 @@ void horizon_step(ob_slice s, vec2 at, float dist_px, vec3 p, vec3 t, bool refin
     float weight = hit ? clamp(w_len * gtao.falloff_mul + gtao.falloff_add, 0.0, 1.0) : 0.0;
     float k = ob_rise_key(w, t, s.n_slice);
     /* Beyond R but within reach of its column: the side's candidate if it stands highest. */
-    bool shell = hit && weight <= 0.0 && dot(w, w) <= shell2 && k > cand.k;
+    bool shell = hit && weight <= 0.0 && dot(w, w) <= gtao.column_shell2 && k > cand.k;
     cand.k = shell ? k : cand.k;
     cand.w = shell ? w : cand.w;
 #ifdef OB_MARCH_LAYERS
@@ -137,7 +132,8 @@ void horizon_step(ob_slice s, vec2 at, float dist_px, vec3 p, vec3 t, bool refin
 float column_rise(column_candidate cand, vec3 p, vec3 t, vec3 n_slice)
 {
     vec3 entry;
-    bool meets = cand.k > 0.0 && ob_column_entry(cand.w, normalize(p + cand.w), full_reach, gtao.column, entry);
+    bool meets =
+        cand.k > 0.0 && ob_column_entry(cand.w, normalize(p + cand.w), gtao.full_reach, gtao.column, entry);
     return meets ? ob_rise_key(entry, t, n_slice) : 0.0;
 }
 
@@ -145,8 +141,6 @@ void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
     ob_march_self = pix;
-    full_reach = (1.0 - gtao.falloff_add) / gtao.falloff_mul;
-    shell2 = (full_reach + gtao.column) * (full_reach + gtao.column);
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
     float d = texelFetch(linear_depth, pix, 0).r;

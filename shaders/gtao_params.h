@@ -30,9 +30,9 @@ OB_CONSTANTS_BEGIN(ob_gtao_constants, OB_BINDING_PASS)
     OB_INT layers;            /* 1: the second depth layer bounds each sample's object (unit 6) */
     OB_FLOAT column;          /* world units: how far behind its front a sample beyond R is solid (its part
                                  inside R occludes: slice_march.glsl ob_column_entry); 0 = none */
+    OB_FLOAT full_reach;      /* the distance up to which an occluder's weight is 1: (1 - falloff) R */
+    OB_FLOAT column_shell2;   /* (full_reach + column)^2: a front farther from P cannot reach the sphere */
     OB_FLOAT pad0;
-    OB_FLOAT pad1;
-    OB_FLOAT pad2;
 OB_CONSTANTS_END(ob_gtao_constants, gtao)
 OB_CONSTANTS_SIZE(ob_gtao_constants, 5 * 16);
 

@@ -10,7 +10,10 @@
 #include "gtao_params.h"
 #include "methods/method.h"
 
-enum { P_RADIUS, P_FALLOFF, P_THIN, P_THICKNESS, P_SLICES, P_STEPS, P_NOISE, P_TEMPORAL, P_DEPTH_MIPS, P_BENT_NORMALS, P_LAYERS, P_COUNT };
+enum {
+    P_RADIUS, P_FALLOFF, P_THIN, P_THICKNESS, P_SLICES, P_STEPS, P_NOISE, P_TEMPORAL, P_DEPTH_MIPS, P_BENT_NORMALS,
+    P_LAYERS, P_COUNT
+};
 
 static const ob_param_info gtao_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -82,6 +85,8 @@ static void fill_constants(ob_gtao_constants *c, const float *params, const ob_s
     }
     c->thin = params[P_THIN];
     c->column = params[P_THICKNESS] * r;
+    c->full_reach = (1.0f - f) * r;
+    c->column_shell2 = (c->full_reach + c->column) * (c->full_reach + c->column);
     c->slices = (int)params[P_SLICES];
     c->steps = (int)params[P_STEPS];
     c->noise = (int)params[P_NOISE];

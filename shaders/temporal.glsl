@@ -16,8 +16,10 @@
  *   5. blend: age' = min(age t + 1, N), out = mix(history, current, max(1 / age', 1 / N)), so a new
  *      history is the plain mean of its first N frames, then an exponential of length N; t = 1
  *      unless the point's pixel footprint changed since the last frame (see 5 below).
- * The history carries its age: RG32F (value, age) for visibility, RGBA16F (rgb, age) for RGB (M,
- * bounce; OB_TEMPORAL_RGB). Before the filter the visibility chain writes no `result`: the filter
+ * The history carries its age: RG32F (value, age) for visibility, RGBA16F (rgb, age) for RGB (M;
+ * OB_TEMPORAL_RGB). A method's bounce (vbgi, ssdo) rides in the same dispatch (OB_TEMPORAL_BOUNCE):
+ * it shares 1, 2 and 5's age with the main chain, which is the same point and the same taps, and
+ * has its own clamp box and resampling; its history's .a holds the same age. Before the filter the visibility chain writes no `result`: the filter
  * reads the new history's .r (4 bytes a pixel less to store; the OB_TEMPORAL_NO_RESULT program). A sky pixel passes through with age 0. `motion` gets the reprojection
  * offset in AO pixels (previous position - this one) for the tests and the debug views. */
 #include "temporal_params.h"
@@ -37,15 +39,68 @@ layout(binding = 4) uniform sampler2D prev_geometry;
 layout(binding = 0, rgba16f) uniform writeonly image2D result;
 layout(binding = 1, rgba16f) uniform writeonly image2D next_history;
 #define VALUE(v) (v).rgb
-#define AGE(v) (v).a
 #else
 layout(binding = 0, r32f) uniform writeonly image2D result;
 layout(binding = 1, rg32f) uniform writeonly image2D next_history;
 #define VALUE(v) (v).rrr
-#define AGE(v) (v).g
 #endif
 layout(binding = 2, rg16f) uniform writeonly image2D motion;
 layout(binding = 3, rgba16f) uniform writeonly image2D next_geometry; /* this frame's, for the next */
+#ifdef OB_TEMPORAL_BOUNCE
+layout(binding = 5) uniform sampler2D bounce_current; /* RGBA16F, 0 on the sky */
+layout(binding = 6) uniform sampler2D bounce_history; /* RGBA16F (rgb, age) */
+layout(binding = 4, rgba16f) uniform writeonly image2D bounce_result;
+layout(binding = 5, rgba16f) uniform writeonly image2D bounce_next_history;
+#endif
+
+#if defined(OB_TEMPORAL_RGB) || defined(OB_TEMPORAL_BOUNCE)
+/* 4's box for an RGB chain: its values at this frame's geometry pixels of the 4x4 window, whose
+ * depths main gathered (box_depth[i]: the 2x2 at pix + 2 (i & 1, i >> 1) - 1, in a gather's order
+ * (0,1), (1,1), (1,0), (0,0)); the edge clamp repeats the border as the gather does. */
+void rgb_box(sampler2D values, ivec2 pix, ivec2 size, vec4 box_depth[4], vec3 cur, out vec3 lo, out vec3 hi)
+{
+    const ivec2 order[4] = ivec2[4](ivec2(-1, 0), ivec2(0, 0), ivec2(0, -1), ivec2(-1, -1));
+    lo = cur;
+    hi = cur;
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 4; ++k) {
+            ivec2 q = clamp(pix + 2 * ivec2(i & 1, i >> 1) + order[k], ivec2(0), size - 1);
+            vec3 v = texelFetch(values, q, 0).rgb;
+            lo = box_depth[i][k] > 0.0 ? min(lo, v) : lo;
+            hi = box_depth[i][k] > 0.0 ? max(hi, v) : hi;
+        }
+}
+
+/* 3 for an RGB chain: Catmull-Rom from five bilinear fetches when all four taps count, else
+ * bilinear over those that do (main says why each). */
+vec3 rgb_resample(sampler2D hist, ivec2 base, vec2 w, float tap_weight[4], float weight, ivec2 size)
+{
+    if (weight > 0.999) {
+        /* Five bilinear fetches make the 4x4 cubic less its four corners (products of two small
+         * negative lobes): the middle two taps of each axis merge into one fetch at w2 / (w1 + w2)
+         * between them. */
+        vec2 w0 = w * (-0.5 + w * (1.0 - 0.5 * w));
+        vec2 w1 = 1.0 + w * w * (-2.5 + 1.5 * w);
+        vec2 w2 = w * (0.5 + w * (2.0 - 1.5 * w));
+        vec2 w3 = w * w * (-0.5 + 0.5 * w);
+        vec2 w12 = w1 + w2;
+        vec2 c1 = vec2(base) + 0.5; /* the centre of tap (0, 0) */
+        vec2 t0 = (c1 - 1.0) * frame.ao_inv_size;
+        vec2 t12 = (c1 + w2 / w12) * frame.ao_inv_size;
+        vec2 t3 = (c1 + 2.0) * frame.ao_inv_size;
+        vec3 h = textureLod(hist, vec2(t12.x, t0.y), 0.0).rgb * (w12.x * w0.y) +
+                 textureLod(hist, vec2(t0.x, t12.y), 0.0).rgb * (w0.x * w12.y) +
+                 textureLod(hist, t12, 0.0).rgb * (w12.x * w12.y) +
+                 textureLod(hist, vec2(t3.x, t12.y), 0.0).rgb * (w3.x * w12.y) +
+                 textureLod(hist, vec2(t12.x, t3.y), 0.0).rgb * (w12.x * w3.y);
+        return h / (w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y);
+    }
+    vec3 h = vec3(0.0);
+    for (int i = 0; i < 4; ++i)
+        h += tap_weight[i] * texelFetch(hist, clamp(base + ivec2(i & 1, i >> 1), ivec2(0), size - 1), 0).rgb;
+    return weight > 1e-3 ? h / weight : vec3(0.0);
+}
+#endif
 
 void main()
 {
@@ -56,6 +111,9 @@ void main()
     float d = texelFetch(depth, pix, 0).r;
     vec3 n = texelFetch(normal, pix, 0).xyz;
     imageStore(next_geometry, pix, vec4(n, d));
+#ifdef OB_TEMPORAL_BOUNCE
+    vec3 bounce_cur = texelFetch(bounce_current, pix, 0).rgb;
+#endif
     if (d <= 0.0) {
 #ifndef OB_TEMPORAL_NO_RESULT
         imageStore(result, pix, vec4(cur, 1.0));
@@ -64,6 +122,10 @@ void main()
         imageStore(next_history, pix, vec4(cur, 0.0));
 #else
         imageStore(next_history, pix, vec4(cur.r, 0.0, 0.0, 0.0));
+#endif
+#ifdef OB_TEMPORAL_BOUNCE
+        imageStore(bounce_result, pix, vec4(bounce_cur, 1.0));
+        imageStore(bounce_next_history, pix, vec4(bounce_cur, 0.0));
 #endif
         imageStore(motion, pix, vec4(0.0));
         return;
@@ -74,28 +136,22 @@ void main()
      * skewed per-pixel estimate (ssao's occlusion is a count of 16 samples: mostly near the mode,
      * rarely far darker) its min/max misses the rare side and clamps the history's mean toward the
      * mode, frame after frame: ssao's accumulated AO came out brighter than any single frame. */
-    vec3 lo = cur, hi = cur;
+    vec4 box_depth[4];
+    for (int i = 0; i < 4; ++i)
+        box_depth[i] = textureGather(depth, (vec2(pix) + 2.0 * vec2(i & 1, i >> 1)) * frame.ao_inv_size, 0);
+    vec3 lo, hi;
 #ifdef OB_TEMPORAL_RGB
-    for (int y = -1; y <= 2; ++y)
-        for (int x = -1; x <= 2; ++x) {
-            ivec2 q = clamp(pix + ivec2(x, y), ivec2(0), size - 1);
-            if (texelFetch(depth, q, 0).r <= 0.0) continue;
-            vec3 v = VALUE(texelFetch(current, q, 0));
-            lo = min(lo, v);
-            hi = max(hi, v);
-        }
+    rgb_box(current, pix, size, box_depth, cur, lo, hi);
 #else
-    /* One value: four 2x2 gathers of the value and four of the depth (8 fetches, not 32); the
-     * edge clamp repeats the border. */
+    /* One value: four 2x2 gathers of it beside the depth's (8 fetches, not 32). */
+    lo = cur;
+    hi = cur;
     for (int i = 0; i < 4; ++i) {
-        vec2 corner = (vec2(pix) + 2.0 * vec2(i & 1, i >> 1)) * frame.ao_inv_size;
-        vec4 dq = textureGather(depth, corner, 0);
-        vec4 vq = textureGather(current, corner, 0);
-        for (int k = 0; k < 4; ++k)
-            if (dq[k] > 0.0) {
-                lo.r = min(lo.r, vq[k]);
-                hi.r = max(hi.r, vq[k]);
-            }
+        vec4 vq = textureGather(current, (vec2(pix) + 2.0 * vec2(i & 1, i >> 1)) * frame.ao_inv_size, 0);
+        for (int k = 0; k < 4; ++k) {
+            lo.r = box_depth[i][k] > 0.0 ? min(lo.r, vq[k]) : lo.r;
+            hi.r = box_depth[i][k] > 0.0 ? max(hi.r, vq[k]) : hi.r;
+        }
     }
     lo = lo.rrr;
     hi = hi.rrr;
@@ -108,69 +164,83 @@ void main()
     vec2 at = (clip.xy / clip.w * 0.5 + 0.5) * frame.ao_size;
     imageStore(motion, pix, vec4(at - (vec2(pix) + 0.5), 0.0, 0.0));
     vec3 np = mat3(tp.prev_view) * (mat3(frame.inv_view) * n);
-    /* The four bilinear taps around it. */
+    /* The four bilinear taps around it: tap i is base + (i & 1, i >> 1). */
     vec2 f = at - 0.5;
     ivec2 base = ivec2(floor(f));
     vec2 w = f - vec2(base);
-    float weight = 0.0;
     float tolerance = tp.plane_tolerance * -pp.z;
     /* OB_TEMPORAL_NEAR_PIXELS previous AO pixels' width at the point's previous depth (common.glsl's
      * ob_view_position). */
     float footprint = OB_TEMPORAL_NEAR_PIXELS * 2.0 * -pp.z *
                       max(frame.ao_inv_size.x * tp.prev_ao_proj_info.x, frame.ao_inv_size.y * tp.prev_ao_proj_info.y);
-    /* 2: which of the four bilinear taps are this point's surface (their geometry alone). */
-    float tap_weight[4] = float[4](0.0, 0.0, 0.0, 0.0);
-    for (int i = 0; i < 4 && tp.history_valid != 0 && clip.w > 0.0; ++i) {
+    /* 2: which of the four bilinear taps are this point's surface (their geometry alone). The loop
+     * has a constant trip count and no branch, so it unrolls and tap_weight stays in registers: a
+     * data-dependent bound and `continue`s kept it a loop over a private array, which llvmpipe
+     * indexes lane by lane. */
+    bool any_history = tp.history_valid != 0 && clip.w > 0.0;
+    float tap_weight[4];
+    for (int i = 0; i < 4; ++i) {
         ivec2 o = ivec2(i & 1, i >> 1);
         ivec2 q = base + o;
-        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-        vec4 g = texelFetch(prev_geometry, q, 0);
-        if (g.w <= 0.0) continue;
+        bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
+        vec4 g = texelFetch(prev_geometry, clamp(q, ivec2(0), size - 1), 0);
         vec3 qp = ob_view_position(vec2(q) + 0.5, g.w, frame.ao_inv_size, tp.prev_ao_proj_info);
         /* A tap within OB_TEMPORAL_NEAR_PIXELS footprints of the point in 3D is its neighbourhood
          * whatever its plane: across a crease the other face's tap is as near as this face's, and
          * rejecting it would leave only the taps away from the crease (brighter), biasing every
          * crease brighter frame after frame. Farther taps must be the same surface. */
         bool near = dot(qp - pp, qp - pp) <= footprint * footprint;
-        if (!near && (abs(dot(qp - pp, np)) > tolerance || dot(g.xyz, np) < tp.normal_cos)) continue;
-        tap_weight[i] = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
-        weight += tap_weight[i];
+        bool same = abs(dot(qp - pp, np)) <= tolerance && dot(g.xyz, np) >= tp.normal_cos;
+        bool counts = any_history && inside && g.w > 0.0 && (near || same);
+        tap_weight[i] = counts ? (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y) : 0.0;
     }
-    vec4 h = vec4(0.0);
-    if (weight > 0.999) {
-        /* 3: all four taps this point's neighbourhood: resample with Catmull-Rom (Karis 2014), not
-         * bilinear. Bilinear widens the history by a tent of variance w(1 - w) per axis at every
-         * frame, ~1/6 px^2 on average, so the ~16 resamplings an exponential history of length 16
-         * carries blur a one-pixel crease line away (sigma ~1.6 px); the cubic keeps it. Five
-         * bilinear fetches make the 4x4 cubic less its four corners (products of two small negative
-         * lobes): the middle two taps of each axis merge into one fetch at w2 / (w1 + w2) between
-         * them. The outer taps are not checked: the neighbourhood clamp (4) bounds what they bring.
-         * The age is the centre fetch's (bilinear between the four taps). */
-        vec2 w0 = w * (-0.5 + w * (1.0 - 0.5 * w));
-        vec2 w1 = 1.0 + w * w * (-2.5 + 1.5 * w);
-        vec2 w2 = w * (0.5 + w * (2.0 - 1.5 * w));
-        vec2 w3 = w * w * (-0.5 + 0.5 * w);
-        vec2 w12 = w1 + w2;
-        vec2 c1 = vec2(base) + 0.5; /* the centre of tap (0, 0) */
-        vec2 t0 = (c1 - 1.0) * frame.ao_inv_size;
-        vec2 t12 = (c1 + w2 / w12) * frame.ao_inv_size;
-        vec2 t3 = (c1 + 2.0) * frame.ao_inv_size;
-        vec4 centre = textureLod(history, t12, 0.0);
-        h = textureLod(history, vec2(t12.x, t0.y), 0.0) * (w12.x * w0.y) +
-            textureLod(history, vec2(t0.x, t12.y), 0.0) * (w0.x * w12.y) + centre * (w12.x * w12.y) +
-            textureLod(history, vec2(t3.x, t12.y), 0.0) * (w3.x * w12.y) +
-            textureLod(history, vec2(t12.x, t3.y), 0.0) * (w12.x * w3.y);
-        h /= w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y;
-        AGE(h) = AGE(centre);
-    } else if (weight > 1e-3) {
-        /* Some taps are another surface: bilinear over the rest. (A sliver of a tap, weight ~ 0,
-         * is no history: its value would be one tap's alone.) */
-        for (int i = 0; i < 4; ++i)
-            if (tap_weight[i] > 0.0) h += tap_weight[i] * texelFetch(history, base + ivec2(i & 1, i >> 1), 0);
-        h /= weight;
-    }
+    float weight = tap_weight[0] + tap_weight[1] + tap_weight[2] + tap_weight[3];
+    /* A sliver of a tap (weight ~ 0) is no history: its value would be one tap's alone. */
     bool kept = weight > 1e-3;
-    vec3 past = clamp(VALUE(h), lo, hi);
+    float inv_weight = kept ? 1.0 / weight : 0.0;
+    /* 3: resample. When all four taps are this point's neighbourhood, Catmull-Rom (Karis 2014), not
+     * bilinear: bilinear widens the history by a tent of variance w(1 - w) per axis at every
+     * frame, ~1/6 px^2 on average, so the ~16 resamplings an exponential history of length 16
+     * carries blur a one-pixel crease line away (sigma ~1.6 px); the cubic keeps it. The outer
+     * taps are not checked: the neighbourhood clamp (4) bounds what they bring. When some taps are
+     * another surface, bilinear over the rest. The age is always the bilinear one over the taps
+     * that count. */
+#ifdef OB_TEMPORAL_RGB
+    vec3 h = rgb_resample(history, base, w, tap_weight, weight, size);
+    float h_age = 0.0;
+    for (int i = 0; i < 4; ++i)
+        h_age += tap_weight[i] * texelFetch(history, clamp(base + ivec2(i & 1, i >> 1), ivec2(0), size - 1), 0).a;
+    h_age *= inv_weight;
+#else
+    /* One value: the whole separable 4x4 cubic from four 2x2 gathers of the value (texel (a, b) of
+     * the window is base - 1 + (a, b)), and the bilinear fallback and the age from the inner 2x2
+     * (the same texels, and one gather of the age). Five fetches, none filtered: bilinear fetches
+     * of RG32F cost llvmpipe four texel reads and the filter arithmetic each. A gather returns
+     * texels (0,1), (1,1), (1,0), (0,0) of its 2x2 as x, y, z, w. */
+    vec2 c0 = w * (-0.5 + w * (1.0 - 0.5 * w));
+    vec2 c1 = 1.0 + w * w * (-2.5 + 1.5 * w);
+    vec2 c2 = w * (0.5 + w * (2.0 - 1.5 * w));
+    vec2 c3 = w * w * (-0.5 + 0.5 * w);
+    /* Catmull-Rom weights of the window's columns and rows 0..3 (offsets -1..2 from tap 0) */
+    vec4 wx = vec4(c0.x, c1.x, c2.x, c3.x), wy = vec4(c0.y, c1.y, c2.y, c3.y);
+    float cubic = 0.0;
+    vec4 inner = vec4(0.0); /* taps 0..3 */
+    for (int i = 0; i < 4; ++i) {
+        ivec2 a = 2 * ivec2(i & 1, i >> 1); /* this gather's window texel (a.x, a.y) at its (0, 0) */
+        vec4 v = textureGather(history, (vec2(base + a)) * frame.ao_inv_size, 0);
+        cubic += wy[a.y] * (wx[a.x] * v.w + wx[a.x + 1] * v.z) + wy[a.y + 1] * (wx[a.x] * v.x + wx[a.x + 1] * v.y);
+        /* window (1, 1), (2, 1), (1, 2), (2, 2) are taps 0, 1, 2, 3 */
+        if (i == 0) inner.x = v.y;
+        if (i == 1) inner.y = v.x;
+        if (i == 2) inner.z = v.z;
+        if (i == 3) inner.w = v.w;
+    }
+    vec4 ages = textureGather(history, (vec2(base) + 1.0) * frame.ao_inv_size, 1);
+    vec4 tw = vec4(tap_weight[0], tap_weight[1], tap_weight[2], tap_weight[3]);
+    float h_age = dot(tw, ages.wzxy) * inv_weight;
+    vec3 h = vec3(weight > 0.999 ? cubic : dot(tw, inner) * inv_weight);
+#endif
+    vec3 past = clamp(h, lo, hi);
     /* 5's age, discounted by the change of the point's footprint (tp.footprint_falloff): a pixel's
      * size at the point is its depth times 1/P11 (common.glsl's ob_view_position), so s is that
      * ratio between the previous view and this one. A screen-space method's estimate at a point is
@@ -181,9 +251,9 @@ void main()
      * an orbit or a sideways move keep s = 1 and the whole age. */
     float s = (-pp.z * tp.prev_ao_proj_info.y) / (d * frame.ao_proj_info.y);
     float trust = exp2(-tp.footprint_falloff * abs(log2(s)));
-    float age = min((kept ? AGE(h) * trust : 0.0) + 1.0, tp.history_frames);
+    float age = min((kept ? h_age * trust : 0.0) + 1.0, tp.history_frames);
     float alpha = max(1.0 / age, 1.0 / tp.history_frames);
-    vec3 v = mix(past, cur, alpha);
+    vec3 v = mix(past, cur, alpha); /* alpha = 1 when no tap counts */
 #ifndef OB_TEMPORAL_NO_RESULT
     imageStore(result, pix, vec4(v, 1.0));
 #endif
@@ -191,5 +261,14 @@ void main()
     imageStore(next_history, pix, vec4(v, age));
 #else
     imageStore(next_history, pix, vec4(v.r, age, 0.0, 0.0));
+#endif
+#ifdef OB_TEMPORAL_BOUNCE
+    /* The bounce: the same taps, age and blend; its own box and history. */
+    vec3 bounce_lo, bounce_hi;
+    rgb_box(bounce_current, pix, size, box_depth, bounce_cur, bounce_lo, bounce_hi);
+    vec3 bounce_past = clamp(rgb_resample(bounce_history, base, w, tap_weight, weight, size), bounce_lo, bounce_hi);
+    vec3 bounce_v = mix(bounce_past, bounce_cur, alpha);
+    imageStore(bounce_result, pix, vec4(bounce_v, 1.0));
+    imageStore(bounce_next_history, pix, vec4(bounce_v, age));
 #endif
 }

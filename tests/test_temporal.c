@@ -29,38 +29,43 @@ static bool render(ob_renderer *r, const ob_camera *cam, const ob_settings *s)
     return false;
 }
 
-/* Mean |a - b| over pixels with geometry. */
-static double mean_change(const float *a, const float *b, const float *depth, int n)
+/* Mean |a - b| over pixels with geometry, `channels` values a pixel. */
+static double mean_change(const float *a, const float *b, const float *depth, int n, int channels)
 {
     double sum = 0.0;
     int count = 0;
     for (int i = 0; i < n; ++i)
-        if (depth[i] > 0.0f) {
-            sum += fabs((double)a[i] - (double)b[i]);
-            ++count;
-        }
+        if (depth[i] > 0.0f)
+            for (int c = 0; c < channels; ++c) {
+                sum += fabs((double)a[i * channels + c] - (double)b[i * channels + c]);
+                ++count;
+            }
     return count ? sum / count : 0.0;
 }
 
-/* The mean frame-to-frame change of the final AO over frames [from, to) of a still camera. */
-static double still_change(ob_renderer *r, const ob_camera *cam, const ob_settings *s, int from, int to)
+/* The mean frame-to-frame change of the final image `kind` (the AO, or the bounce: 3 values a
+ * pixel) over frames [from, to) of a still camera. */
+static double still_change(ob_renderer *r, const ob_camera *cam, const ob_settings *s, int from, int to,
+                           ob_image_kind kind)
 {
-    static float ao[2][W * H], depth[W * H];
+    static float values[2][W * H * 3], depth[W * H];
+    const int channels = kind == OB_IMAGE_BOUNCE_F32 ? 3 : 1;
+    const size_t size = sizeof(float) * W * H * (size_t)channels;
     double sum = 0.0;
     int count = 0;
     for (int f = 0; f < to; ++f) {
-        if (!render(r, cam, s)) return -1.0;
-        ob_read_image(r, OB_IMAGE_AO_F32, ao[f & 1], sizeof ao[0]);
+        if (!render(r, cam, s) || ob_read_image(r, kind, values[f & 1], size) != OB_OK) return -1.0;
         if (f == 0) ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, sizeof depth);
         if (f > from) {
-            sum += mean_change(ao[f & 1], ao[(f - 1) & 1], depth, W * H);
+            sum += mean_change(values[f & 1], values[(f - 1) & 1], depth, W * H, channels);
             ++count;
         }
     }
     return count ? sum / count : -1.0;
 }
 
-static void test_converges(ob_context *ctx, ob_scene *corner, const char *method, int divisor, int at)
+static void test_converges(ob_context *ctx, ob_scene *corner, const char *method, int divisor, int at,
+                           ob_image_kind kind)
 {
     ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
     CHECK(r && ob_renderer_set_scene(r, corner) == OB_OK, "corner renderer");
@@ -74,16 +79,18 @@ static void test_converges(ob_context *ctx, ob_scene *corner, const char *method
     s.temporal_frames = N;
     s.temporal_at = at;
     s.temporal = true;
-    double on = still_change(r, &cam, &s, 2 * N, 3 * N);
+    double on = still_change(r, &cam, &s, 2 * N, 3 * N, kind);
     /* The baseline: the same moving noise with a history of one frame, i.e. the spatial filter alone. */
     ob_settings one = s;
     one.temporal_frames = 1;
-    double spatial = still_change(r, &cam, &one, 2, 2 + N);
-    printf("  %s ao/%d temporal %s: frame-to-frame change %.5f with a %d-frame history, %.5f with 1 frame\n", method,
-           divisor, at == OB_TEMPORAL_AFTER_FILTER ? "after" : "before", on, N, spatial);
-    CHECK(spatial > 5e-4, "%s: the noise moves from frame to frame without accumulation (%.5f)", method, spatial);
-    CHECK(on >= 0.0 && on < 0.1 * spatial, "%s ao/%d: after %d frames the change %.5f is below a tenth of %.5f",
-          method, divisor, N, on, spatial);
+    double spatial = still_change(r, &cam, &one, 2, 2 + N, kind);
+    const char *what = kind == OB_IMAGE_BOUNCE_F32 ? "bounce" : "ao";
+    printf("  %s %s/%d temporal %s: frame-to-frame change %.5f with a %d-frame history, %.5f with 1 frame\n", method,
+           what, divisor, at == OB_TEMPORAL_AFTER_FILTER ? "after" : "before", on, N, spatial);
+    CHECK(spatial > 5e-4, "%s %s: the noise moves from frame to frame without accumulation (%.5f)", method, what,
+          spatial);
+    CHECK(on >= 0.0 && on < 0.1 * spatial, "%s %s/%d: after %d frames the change %.5f is below a tenth of %.5f",
+          method, what, divisor, N, on, spatial);
     ob_destroy_renderer(r);
 }
 
@@ -388,10 +395,15 @@ int main(void)
     ob_scene *corner = ob_load_scene(&(ob_scene_desc){.name = "corner"});
     CHECK(cornell && corner, "scenes");
     if (cornell && corner) {
-        test_converges(ctx, corner, "gtao", 1, OB_TEMPORAL_BEFORE_FILTER);
-        test_converges(ctx, corner, "gtao", 1, OB_TEMPORAL_AFTER_FILTER);
-        test_converges(ctx, corner, "ssao", 2, OB_TEMPORAL_BEFORE_FILTER);
-        test_converges(ctx, corner, "ssdo", 4, OB_TEMPORAL_BEFORE_FILTER);
+        test_converges(ctx, corner, "gtao", 1, OB_TEMPORAL_BEFORE_FILTER, OB_IMAGE_AO_F32);
+        test_converges(ctx, corner, "gtao", 1, OB_TEMPORAL_AFTER_FILTER, OB_IMAGE_AO_F32);
+        test_converges(ctx, corner, "ssao", 2, OB_TEMPORAL_BEFORE_FILTER, OB_IMAGE_AO_F32);
+        test_converges(ctx, corner, "ssdo", 4, OB_TEMPORAL_BEFORE_FILTER, OB_IMAGE_AO_F32);
+        /* A bounce accumulates in the main chain's dispatch: beside a visibility with no result
+         * image (vbgi before the filter), with one (after), and beside M (ssdo). */
+        test_converges(ctx, corner, "vbgi", 1, OB_TEMPORAL_BEFORE_FILTER, OB_IMAGE_BOUNCE_F32);
+        test_converges(ctx, corner, "vbgi", 2, OB_TEMPORAL_AFTER_FILTER, OB_IMAGE_BOUNCE_F32);
+        test_converges(ctx, corner, "ssdo", 4, OB_TEMPORAL_BEFORE_FILTER, OB_IMAGE_BOUNCE_F32);
         test_reprojection(ctx, cornell);
         test_disocclusion(ctx, cornell);
         test_dolly(ctx, cornell);

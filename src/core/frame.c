@@ -283,8 +283,8 @@ static ob_error run_extra_view(ob_renderer *r, const ob_settings *s, const ob_li
  * values, `*_out` where the accumulation goes (passes/temporal.c). The history is reused only when
  * the last frame accumulated under the same key; the pass also writes this frame's depth and
  * normals for the next (geometry[1 - h]). */
-static void run_temporal(ob_renderer *r, const ob_settings *s, const method_plan *plan, ao_targets *t, GLuint main_in,
-                         GLuint main_out, GLuint bounce_in, GLuint bounce_out)
+static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const method_plan *plan, ao_targets *t,
+                             GLuint main_in, GLuint main_out, GLuint bounce_in, GLuint bounce_out)
 {
     const ob_history_key key = {.method = plan->index, .scale = r->last_scale, .at = s->temporal_at,
                                 .width = r->inner_width, .height = r->inner_height, .rgb = plan->rgb,
@@ -294,22 +294,24 @@ static void run_temporal(ob_renderer *r, const ob_settings *s, const method_plan
     ob_temporal_constants c;
     ob_temporal_fill(&c, r->prev_view, r->prev_ao_proj, valid, frames);
     const int h = t->history_index;
-    const ob_temporal_chain main_chain = {.current = main_in, .result = main_out, .rgb = plan->rgb,
-                                          .history = plan->rgb ? t->history_rgb[h] : t->history[h],
-                                          .next_history = plan->rgb ? t->history_rgb[1 - h] : t->history[1 - h]};
-    ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, t->geometry[h], t->geometry[1 - h], t->motion,
-                    &main_chain);
+    ob_temporal_chain chain = {.current = main_in, .result = main_out, .rgb = plan->rgb,
+                               .history = plan->rgb ? t->history_rgb[h] : t->history[h],
+                               .next_history = plan->rgb ? t->history_rgb[1 - h] : t->history[1 - h]};
     if (plan->bounce) {
-        const ob_temporal_chain bounce = {.current = bounce_in, .result = bounce_out, .rgb = true,
-                                          .history = t->bounce_history[h], .next_history = t->bounce_history[1 - h]};
-        ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, t->geometry[h], t->geometry[1 - h], t->motion,
-                        &bounce);
+        chain.bounce_current = bounce_in;
+        chain.bounce_result = bounce_out;
+        chain.bounce_history = t->bounce_history[h];
+        chain.bounce_next_history = t->bounce_history[1 - h];
     }
+    ob_error err = ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, t->geometry[h], t->geometry[1 - h],
+                                   t->motion, &chain);
+    if (err != OB_OK) return err;
     t->history_index = 1 - h;
     r->history_key = key;
     r->history_valid = true;
     memcpy(r->prev_view, r->frame_constants.view, sizeof r->prev_view);
     memcpy(r->prev_ao_proj, r->frame_constants.ao_proj, sizeof r->prev_ao_proj);
+    return OB_OK;
 }
 
 /* none: 1 into the raw target (what the raw-AO read-back shows) and into the full-size one that
@@ -463,7 +465,8 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         if (s->temporal_at == OB_TEMPORAL_BEFORE_FILTER) {
             ob_timer_begin(&r->timers, "temporal");
             /* Visibility: the filter reads the new history's value (.r of RG32F) itself, no copy. */
-            run_temporal(r, s, plan, t, main_in, plan->rgb ? main_accum : 0, bounce_in, t->bounce_accum);
+            err = run_temporal(r, s, plan, t, main_in, plan->rgb ? main_accum : 0, bounce_in, t->bounce_accum);
+            if (err != OB_OK) return err;
             glMemoryBarrier(barrier);
             main_in = plan->rgb ? main_accum : t->history[t->history_index];
             bounce_in = t->bounce_accum;
@@ -505,9 +508,10 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     glMemoryBarrier(barrier);
     if (temporal && s->temporal_at == OB_TEMPORAL_AFTER_FILTER) {
         ob_timer_begin(&r->timers, "temporal");
-        run_temporal(r, s, plan, t, main_out, plan->rgb ? (g->k > 1 ? t->filtered_rgb : r->ao_rgb)
-                                                        : (g->k > 1 ? t->filtered : r->ao),
-                     bounce_out, g->k > 1 ? t->bounce_filtered : r->bounce);
+        err = run_temporal(r, s, plan, t, main_out,
+                           plan->rgb ? (g->k > 1 ? t->filtered_rgb : r->ao_rgb) : (g->k > 1 ? t->filtered : r->ao),
+                           bounce_out, g->k > 1 ? t->bounce_filtered : r->bounce);
+        if (err != OB_OK) return err;
         glMemoryBarrier(barrier);
     }
     if (g->k > 1) {

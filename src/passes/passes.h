@@ -98,29 +98,35 @@ ob_error ob_edges_init(ob_compute_pass *p);
 void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLuint ao_normal, GLuint multiplier);
 
 /* ---- temporal accumulation: temporal.c, shaders/temporal.glsl (issue 17) --------------------
- * At the AO resolution, one dispatch per chain (visibility or M, then the bounce): reprojected
- * history, disocclusion by depth and normal, a 3x3 clamp, a blend of history length N. The
- * history textures carry the age (RG32F value, age; RGBA16F rgb, age). */
+ * At the AO resolution, one dispatch for the main chain (visibility or M) and a method's bounce
+ * together: reprojected history, disocclusion by depth and normal, a 4x4 clamp, a blend of history
+ * length N. The history textures carry the age (RG32F value, age; RGBA16F rgb, age). A program per
+ * shape of the chains (made on first use): scalar with or without a result, RGB; each with or
+ * without the bounce. */
+enum { OB_TEMPORAL_PROGRAMS = 6 };
 typedef struct ob_temporal_pass {
-    ob_compute_pass scalar, rgb; /* temporal.glsl without / with OB_TEMPORAL_RGB */
-    ob_compute_pass scalar_direct; /* OB_TEMPORAL_NO_RESULT: the filter reads the new history (.r) */
+    ob_compute_pass programs[OB_TEMPORAL_PROGRAMS];
+    bool ready[OB_TEMPORAL_PROGRAMS];
 } ob_temporal_pass;
 /* The camera of the previous frame and the history rules (pure; no GL): prev_view and
  * prev_ao_proj column-major, history_frames N >= 1. */
 void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const float prev_ao_proj[16],
                       bool history_valid, int history_frames);
 ob_error ob_temporal_init(ob_temporal_pass *p);
-/* One chain: `current` (R32F or RGBA16F) and `history` (RG32F or RGBA16F, with the age) in,
- * `result` and `next_history` out (the same formats), `motion` (RG16F) the reprojection offset.
- * depth/normal are this frame's at the AO resolution; prev_geometry (RGBA16F normal xyz, depth w)
- * the previous frame's, next_geometry this frame's for the next (a different texture). */
+/* The main chain: `current` (R32F or RGBA16F) and `history` (RG32F or RGBA16F, with the age) in,
+ * `result` and `next_history` out (the same formats); the bounce (bounce_current != 0): RGBA16F
+ * throughout, with a result always. `motion` (RG16F) gets the reprojection offset. depth/normal
+ * are this frame's at the AO resolution; prev_geometry (RGBA16F normal xyz, depth w) the previous
+ * frame's, next_geometry this frame's for the next (a different texture). */
 typedef struct ob_temporal_chain {
     GLuint current, history, next_history;
     GLuint result; /* 0: none, the next history's .r is the output (visibility only) */
     bool rgb;
+    GLuint bounce_current, bounce_history, bounce_next_history, bounce_result;
 } ob_temporal_chain;
-void ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth, GLuint normal,
-                     GLuint prev_geometry, GLuint next_geometry, GLuint motion, const ob_temporal_chain *chain);
+ob_error ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth,
+                         GLuint normal, GLuint prev_geometry, GLuint next_geometry, GLuint motion,
+                         const ob_temporal_chain *chain);
 void ob_temporal_destroy(ob_temporal_pass *p);
 
 /* ---- depth MIP prefilter: depth_mips.c, shaders/depth_mips.glsl (issue 13) -------------------

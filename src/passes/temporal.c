@@ -1,6 +1,7 @@
 /* Temporal accumulation (issue 17): the reprojection cache of Nehab et al. 2007 with Karis 2014's
  * neighbourhood clamp, at the AO resolution. Shader: shaders/temporal.glsl (it says what each step
  * does and what moving objects would need); the frame's use of it: src/core/frame.c. */
+#include <stdio.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -43,38 +44,48 @@ void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const
 ob_error ob_temporal_init(ob_temporal_pass *p)
 {
     memset(p, 0, sizeof *p);
-    if (ob_compute_pass_init(&p->scalar, "temporal.glsl", NULL, sizeof(ob_temporal_constants)) != OB_OK)
-        return ob_peek_error(NULL);
-    if (ob_compute_pass_init(&p->rgb, "temporal.glsl", "#define OB_TEMPORAL_RGB 1\n", sizeof(ob_temporal_constants)) !=
-            OB_OK ||
-        ob_compute_pass_init(&p->scalar_direct, "temporal.glsl", "#define OB_TEMPORAL_NO_RESULT 1\n",
-                             sizeof(ob_temporal_constants)) != OB_OK) {
-        ob_temporal_destroy(p);
-        return ob_peek_error(NULL);
-    }
     return OB_OK;
 }
 
-void ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth, GLuint normal,
-                     GLuint prev_geometry, GLuint next_geometry, GLuint motion, const ob_temporal_chain *chain)
+ob_error ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth,
+                         GLuint normal, GLuint prev_geometry, GLuint next_geometry, GLuint motion,
+                         const ob_temporal_chain *chain)
 {
-    /* Without a result image, the program that has no store for it (a uniform test of one would
-     * still store on llvmpipe, which runs a false branch masked). */
-    ob_compute_pass *pass = chain->rgb ? &p->rgb : chain->result ? &p->scalar : &p->scalar_direct;
-    ob_compute_pass_use(pass, c, sizeof *c);
-    const GLuint units[5] = {chain->current, chain->history, depth, normal, prev_geometry};
-    for (int i = 0; i < 5; ++i) glBindTextureUnit((GLuint)i, units[i]);
+    /* Compile-time shapes, not uniform tests: llvmpipe runs a uniformly false branch masked, so a
+     * store behind one still costs its store. Without a result image, the program that has none;
+     * a method's bounce rides in the same dispatch (its own second dispatch redid the
+     * reprojection, the tap tests and the geometry and motion stores). */
+    static const char *const shapes[3] = {"", "#define OB_TEMPORAL_NO_RESULT 1\n", "#define OB_TEMPORAL_RGB 1\n"};
+    const int shape = chain->rgb ? 2 : chain->result ? 0 : 1;
+    const bool bounce = chain->bounce_current != 0;
+    const int k = shape + (bounce ? 3 : 0);
+    if (!p->ready[k]) {
+        char defines[128];
+        snprintf(defines, sizeof defines, "%s%s", shapes[shape], bounce ? "#define OB_TEMPORAL_BOUNCE 1\n" : "");
+        if (ob_compute_pass_init(&p->programs[k], "temporal.glsl", defines, sizeof(ob_temporal_constants)) != OB_OK)
+            return ob_peek_error(NULL);
+        p->ready[k] = true;
+    }
+    ob_compute_pass_use(&p->programs[k], c, sizeof *c);
+    const GLuint units[7] = {chain->current,       chain->history, depth, normal, prev_geometry,
+                             chain->bounce_current, chain->bounce_history};
+    for (int i = 0; i < (bounce ? 7 : 5); ++i) glBindTextureUnit((GLuint)i, units[i]);
     glBindImageTexture(3, next_geometry, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (chain->result)
         glBindImageTexture(0, chain->result, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_R32F);
     glBindImageTexture(1, chain->next_history, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_RG32F);
     glBindImageTexture(2, motion, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+    if (bounce) {
+        glBindImageTexture(4, chain->bounce_result, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(5, chain->bounce_next_history, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    }
     ob_dispatch_2d(g->width, g->height, OB_TEMPORAL_GROUP_X, OB_TEMPORAL_GROUP_Y);
+    return OB_OK;
 }
 
 void ob_temporal_destroy(ob_temporal_pass *p)
 {
-    ob_compute_pass_destroy(&p->scalar);
-    ob_compute_pass_destroy(&p->rgb);
-    ob_compute_pass_destroy(&p->scalar_direct);
+    for (int k = 0; k < OB_TEMPORAL_PROGRAMS; ++k)
+        if (p->ready[k]) ob_compute_pass_destroy(&p->programs[k]);
+    memset(p, 0, sizeof *p);
 }

@@ -105,6 +105,7 @@ static void add_scene_json(cJSON *scenes, const char *name, const char *kind, co
 static int list_json(void)
 {
     cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "default_method", OB_DEFAULT_METHOD);
     add_tables_json(root, "methods", ob_method_count(), ob_method_at);
     add_tables_json(root, "filters", ob_filter_count(), ob_filter_at);
     cJSON *views = cJSON_AddArrayToObject(root, "views");
@@ -177,7 +178,7 @@ static void print_cameras(const char *name, bool own_line)
 
 static int list_human(void)
 {
-    printf("methods (--method NAME, --set NAME.PARAM=VALUE):\n");
+    printf("methods (--method NAME, default %s; --set NAME.PARAM=VALUE):\n", OB_DEFAULT_METHOD);
     print_tables(ob_method_count(), ob_method_at);
     printf("\n  every method:\n    %-14s %-5s default %-8g range [%g, %g] %-9s %s\n", "radius_scale", "float", 1.0,
            (double)OB_RADIUS_SCALE_MIN, (double)OB_RADIUS_SCALE_MAX, "x radius",

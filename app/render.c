@@ -87,8 +87,7 @@ static void render_defaults(render_opts *o)
                        .ao_png_index = -1, .depth_index = -1, .normal_index = -1};
     cli_common_init(&o->common, "render", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_GPU | CLI_TAKES_PATH);
     o->common.scene = "cornell";
-    /* The method closest to the ray-traced AO_R on every graded view (docs/compare.md). */
-    o->common.default_method = "gtao";
+    o->common.default_method = OB_DEFAULT_METHOD;
     o->common.width = 640;
     o->common.height = 480;
 }

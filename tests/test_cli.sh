@@ -282,7 +282,8 @@ PY
     then ok; else bad "docs/$kind.md lags the registry"; fi
 done
 # Mirror: both eyes side by side in every output (2W x H), with the stereo frame's ms and the
-# consistency (a small number: gtao's eyes agree to a few hundredths); single: the left eye (W x H).
+# consistency (a small number: the default method's eyes agree to a few hundredths); single: the left
+# eye (W x H).
 if "$OBSCURA" render --scene cornell --size 48x40 --stereo mirror --ipd 0.05 --out "$dir/sm.png" \
         --ao-out "$dir/sm.pfm" >"$dir/stdout" 2>"$dir/stderr"; then
     read -r w h c lo hi mean < <("$IMGCHECK" "$dir/sm.png")
@@ -291,7 +292,7 @@ if "$OBSCURA" render --scene cornell --size 48x40 --stereo mirror --ipd 0.05 --o
     [ "$w $h $c" = "96 40 1" ] && ok || bad "stereo mirror AO PFM is '$w $h $c'"
     grep -qE "^stereo frame \(mirror, 48x40 per eye.*left [0-9.]+, right [0-9.]+, both [0-9.]+" "$dir/stdout" && ok \
         || bad "no stereo frame line: $(cat "$dir/stdout")"
-    grep -qE "^stereo consistency \(gtao\): mean .* 0\.0[0-9]+ over [0-9.]+ %" "$dir/stdout" && ok \
+    grep -qE "^stereo consistency \(vbao\): mean .* 0\.0[0-9]+ over [0-9.]+ %" "$dir/stdout" && ok \
         || bad "no (or a large) consistency: $(cat "$dir/stdout")"
 else
     bad "render --stereo mirror failed: $(cat "$dir/stderr")"

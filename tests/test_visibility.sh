@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# make demo's visibility numbers (issue 20) at a small size: with the default method (gtao) the
+# make demo's visibility numbers (issue 20) at a small size: with the default method (vbao) the
 # final image differs from the no-AO frame (at the same exposure, scripts/noao_frame.sh) where the
 # reference AO_R is low, and much less where it is high, on the demo's three report views; and
 # scripts/ao_visibility.py itself fails when the AO does not show and refuses bad input with one
@@ -15,10 +15,14 @@ failed=0
 ok() { passed=$((passed + 1)); }
 bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
 vis() { python3 "$SCRIPTS/ao_visibility.py" "$@"; }
+# The default method, as the demo takes it (list --json's default_method).
+m=$("$OBSCURA" list --json | python3 -c 'import json, sys; print(json.load(sys.stdin)["default_method"])')
+[ "$m" = vbao ] && ok || bad "list --json: default_method '$m', want vbao (OB_DEFAULT_METHOD)"
 
 # The demo's lights (the scenes' own, the default constant ambient) and its report views, at 128x96:
-# the reference AO_R from compare; gtao and none from render, the none frame at gtao's exposure.
-if "$OBSCURA" compare --scene cornell:front --scene bunny:front --scene fzk-haus:stair --methods gtao,none \
+# the reference AO_R from compare; the default method and none from render, the none frame at the
+# former's exposure.
+if "$OBSCURA" compare --scene cornell:front --scene bunny:front --scene fzk-haus:stair --methods "$m",none \
     --size 128x96 --spp 64 --report "$dir/report" >"$dir/stdout" 2>"$dir/stderr"; then ok
 else bad "compare failed: $(tail -2 "$dir/stderr")"; fi
 
@@ -28,26 +32,26 @@ else bad "compare failed: $(tail -2 "$dir/stderr")"; fi
 for view in cornell_front bunny_front fzk-haus_stair; do
     v="$dir/report/$view"
     pair=(--scene "${view%_*}" --camera "${view##*_}" --size 128x96)
-    if ! "$OBSCURA" render "${pair[@]}" --method gtao -v --out "$dir/${view}_gtao.png" 2>"$dir/${view}.log" ||
+    if ! "$OBSCURA" render "${pair[@]}" --method "$m" -v --out "$dir/${view}_$m.png" 2>"$dir/${view}.log" ||
         ! "$SCRIPTS/noao_frame.sh" "$OBSCURA" "$dir/${view}.log" "$dir/${view}_none.png" "${pair[@]}" 2>"$dir/stderr"; then
         bad "$view: the pair failed: $(tail -2 "$dir/${view}.log" "$dir/stderr")"
         continue
     fi
-    if out=$(vis --label "$view" --min-share 20 --contrast --max-open 1 "$dir/${view}_gtao.png" "$dir/${view}_none.png" \
+    if out=$(vis --label "$view" --min-share 20 --contrast --max-open 1 "$dir/${view}_$m.png" "$dir/${view}_none.png" \
         "$v/reference_ao.png" 2>&1); then ok; echo "  $out"
     else bad "$out"; fi
 done
 
 # The report's final images share one exposure, the view without AO's (compare.c): Cornell's open
-# pixels change by less than a level between its none and gtao, and the AO shows as in the pair
-# above. The gtao frame exposed for itself (render, above) against the report's none does not:
+# pixels change by less than a level between its none and the default method, and the AO shows as
+# in the pair above. The default method's frame exposed for itself (render, above) against the report's none does not:
 # its open pixels move by more than a level (--max-open can fail).
 v="$dir/report/cornell_front"
-if out=$(vis --label "report cornell_front" --min-share 20 --contrast --max-open 1 "$v/gtao_final.png"     "$v/none_final.png" "$v/reference_ao.png" 2>&1); then ok; echo "  $out"
-else bad "the report's gtao and none do not share an exposure: $out"; fi
-vis --max-open 1 "$dir/cornell_front_gtao.png" "$v/none_final.png" "$v/reference_ao.png" >"$dir/stdout" 2>"$dir/stderr"
+if out=$(vis --label "report cornell_front" --min-share 20 --contrast --max-open 1 "$v/${m}_final.png" "$v/none_final.png" "$v/reference_ao.png" 2>&1); then ok; echo "  $out"
+else bad "the report's $m and none do not share an exposure: $out"; fi
+vis --max-open 1 "$dir/cornell_front_$m.png" "$v/none_final.png" "$v/reference_ao.png" >"$dir/stdout" 2>"$dir/stderr"
 [ $? -eq 1 ] && grep -q "a different exposure" "$dir/stderr" && ok ||
-    bad "gtao at its own exposure against the report's none passed --max-open 1: $(cat "$dir/stdout" "$dir/stderr")"
+    bad "$m at its own exposure against the report's none passed --max-open 1: $(cat "$dir/stdout" "$dir/stderr")"
 
 # noao_frame.sh needs the with-AO frame's exposure line: one line and exit 2 without it, no file.
 printf 'obscura: GL_RENDERER llvmpipe\n' >"$dir/nohdr.log"
@@ -87,8 +91,8 @@ expect2 "small.png is 32x24" python3 "$SCRIPTS/side_by_side.py" "$dir/sbs.png" "
 [ -e "$dir/sbs.png" ] && bad "side_by_side.py left $dir/sbs.png after an error" || ok
 
 # The strip: three 128x96 images and two 4-px gaps, the middle one the with-AO image.
-if python3 "$SCRIPTS/side_by_side.py" "$dir/sbs.png" "$v/none_final.png" "$v/gtao_final.png" "$v/gtao_ao.png"; then
-    if python3 - "$SCRIPTS" "$dir/sbs.png" "$v/gtao_final.png" <<'PY'
+if python3 "$SCRIPTS/side_by_side.py" "$dir/sbs.png" "$v/none_final.png" "$v/${m}_final.png" "$v/${m}_ao.png"; then
+    if python3 - "$SCRIPTS" "$dir/sbs.png" "$v/${m}_final.png" <<'PY'
 import sys
 sys.path.insert(0, sys.argv[1])
 from ao_visibility import colour, read_png

@@ -15,7 +15,7 @@
 ob_error ob_settings_init(ob_settings *s, const char *method)
 {
     if (!s) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_settings_init: settings is NULL");
-    const char *name = method ? method : "ssao";
+    const char *name = method ? method : OB_DEFAULT_METHOD;
     int index = ob_find_method(name);
     if (index < 0) {
         char list[512] = "";

@@ -19,9 +19,11 @@
  * The history carries its age: RG32F (value, age) for visibility, RGBA16F (rgb, age) for RGB (M;
  * OB_TEMPORAL_RGB). A method's bounce (vbgi, ssdo) rides in the same dispatch (OB_TEMPORAL_BOUNCE):
  * it shares 1, 2 and 5's age with the main chain, which is the same point and the same taps, and
- * has its own clamp box and resampling; its history's .a holds the same age. Before the filter the visibility chain writes no `result`: the filter
- * reads the new history's .r (4 bytes a pixel less to store; the OB_TEMPORAL_NO_RESULT program). A sky pixel passes through with age 0. `motion` gets the reprojection
- * offset in AO pixels (previous position - this one) for the tests and the debug views. */
+ * has its own clamp box and resampling; its history's .a holds the same age. Before the filter the
+ * visibility chain writes no `result`: the filter reads the new history's .r (4 bytes a pixel less
+ * to store; the OB_TEMPORAL_NO_RESULT program). A sky pixel passes through with age 0. `motion`
+ * gets the reprojection offset in AO pixels (previous position - this one) for the tests and the
+ * debug views. */
 #include "temporal_params.h"
 #include "common.glsl"
 
@@ -53,6 +55,14 @@ layout(binding = 4, rgba16f) uniform writeonly image2D bounce_result;
 layout(binding = 5, rgba16f) uniform writeonly image2D bounce_next_history;
 #endif
 
+/* Catmull-Rom's weights (Karis 2014) of the taps at offsets -1, 0, 1, 2 for a point at fraction t
+ * past tap 0, along one axis. */
+vec4 catmull_rom(float t)
+{
+    return vec4(t * (-0.5 + t * (1.0 - 0.5 * t)), 1.0 + t * t * (-2.5 + 1.5 * t), t * (0.5 + t * (2.0 - 1.5 * t)),
+                t * t * (-0.5 + 0.5 * t));
+}
+
 #if defined(OB_TEMPORAL_RGB) || defined(OB_TEMPORAL_BOUNCE)
 /* 4's box for an RGB chain: its values at this frame's geometry pixels of the 4x4 window, whose
  * depths main gathered (box_depth[i]: the 2x2 at pix + 2 (i & 1, i >> 1) - 1, in a gather's order
@@ -71,34 +81,34 @@ void rgb_box(sampler2D values, ivec2 pix, ivec2 size, vec4 box_depth[4], vec3 cu
         }
 }
 
-/* 3 for an RGB chain: Catmull-Rom from five bilinear fetches when all four taps count, else
- * bilinear over those that do (main says why each). */
-vec3 rgb_resample(sampler2D hist, ivec2 base, vec2 w, float tap_weight[4], float weight, ivec2 size)
+/* 3 for an RGB chain: (rgb, age). Catmull-Rom from five bilinear fetches when all four taps count,
+ * else bilinear over those that do (main says why each); the age always bilinear over the taps
+ * that count, from the same four texel fetches as the fallback. */
+vec4 rgb_resample(sampler2D hist, ivec2 base, vec2 w, float tap_weight[4], float weight, ivec2 size)
 {
+    vec4 h = vec4(0.0);
+    for (int i = 0; i < 4; ++i)
+        h += tap_weight[i] * texelFetch(hist, clamp(base + ivec2(i & 1, i >> 1), ivec2(0), size - 1), 0);
+    h = weight > 1e-3 ? h / weight : vec4(0.0);
     if (weight > 0.999) {
         /* Five bilinear fetches make the 4x4 cubic less its four corners (products of two small
          * negative lobes): the middle two taps of each axis merge into one fetch at w2 / (w1 + w2)
          * between them. */
-        vec2 w0 = w * (-0.5 + w * (1.0 - 0.5 * w));
-        vec2 w1 = 1.0 + w * w * (-2.5 + 1.5 * w);
-        vec2 w2 = w * (0.5 + w * (2.0 - 1.5 * w));
-        vec2 w3 = w * w * (-0.5 + 0.5 * w);
-        vec2 w12 = w1 + w2;
+        vec4 wx = catmull_rom(w.x), wy = catmull_rom(w.y);
+        vec2 w0 = vec2(wx.x, wy.x), w2 = vec2(wx.z, wy.z), w3 = vec2(wx.w, wy.w);
+        vec2 w12 = vec2(wx.y, wy.y) + w2;
         vec2 c1 = vec2(base) + 0.5; /* the centre of tap (0, 0) */
         vec2 t0 = (c1 - 1.0) * frame.ao_inv_size;
         vec2 t12 = (c1 + w2 / w12) * frame.ao_inv_size;
         vec2 t3 = (c1 + 2.0) * frame.ao_inv_size;
-        vec3 h = textureLod(hist, vec2(t12.x, t0.y), 0.0).rgb * (w12.x * w0.y) +
-                 textureLod(hist, vec2(t0.x, t12.y), 0.0).rgb * (w0.x * w12.y) +
-                 textureLod(hist, t12, 0.0).rgb * (w12.x * w12.y) +
-                 textureLod(hist, vec2(t3.x, t12.y), 0.0).rgb * (w3.x * w12.y) +
-                 textureLod(hist, vec2(t12.x, t3.y), 0.0).rgb * (w12.x * w3.y);
-        return h / (w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y);
+        vec3 cubic = textureLod(hist, vec2(t12.x, t0.y), 0.0).rgb * (w12.x * w0.y) +
+                     textureLod(hist, vec2(t0.x, t12.y), 0.0).rgb * (w0.x * w12.y) +
+                     textureLod(hist, t12, 0.0).rgb * (w12.x * w12.y) +
+                     textureLod(hist, vec2(t3.x, t12.y), 0.0).rgb * (w3.x * w12.y) +
+                     textureLod(hist, vec2(t12.x, t3.y), 0.0).rgb * (w12.x * w3.y);
+        h.rgb = cubic / (w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y);
     }
-    vec3 h = vec3(0.0);
-    for (int i = 0; i < 4; ++i)
-        h += tap_weight[i] * texelFetch(hist, clamp(base + ivec2(i & 1, i >> 1), ivec2(0), size - 1), 0).rgb;
-    return weight > 1e-3 ? h / weight : vec3(0.0);
+    return h;
 }
 #endif
 
@@ -197,7 +207,6 @@ void main()
     float weight = tap_weight[0] + tap_weight[1] + tap_weight[2] + tap_weight[3];
     /* A sliver of a tap (weight ~ 0) is no history: its value would be one tap's alone. */
     bool kept = weight > 1e-3;
-    float inv_weight = kept ? 1.0 / weight : 0.0;
     /* 3: resample. When all four taps are this point's neighbourhood, Catmull-Rom (Karis 2014), not
      * bilinear: bilinear widens the history by a tent of variance w(1 - w) per axis at every
      * frame, ~1/6 px^2 on average, so the ~16 resamplings an exponential history of length 16
@@ -206,23 +215,17 @@ void main()
      * another surface, bilinear over the rest. The age is always the bilinear one over the taps
      * that count. */
 #ifdef OB_TEMPORAL_RGB
-    vec3 h = rgb_resample(history, base, w, tap_weight, weight, size);
-    float h_age = 0.0;
-    for (int i = 0; i < 4; ++i)
-        h_age += tap_weight[i] * texelFetch(history, clamp(base + ivec2(i & 1, i >> 1), ivec2(0), size - 1), 0).a;
-    h_age *= inv_weight;
+    vec4 resampled = rgb_resample(history, base, w, tap_weight, weight, size);
+    vec3 h = resampled.rgb;
+    float h_age = resampled.a;
 #else
     /* One value: the whole separable 4x4 cubic from four 2x2 gathers of the value (texel (a, b) of
      * the window is base - 1 + (a, b)), and the bilinear fallback and the age from the inner 2x2
      * (the same texels, and one gather of the age). Five fetches, none filtered: bilinear fetches
      * of RG32F cost llvmpipe four texel reads and the filter arithmetic each. A gather returns
      * texels (0,1), (1,1), (1,0), (0,0) of its 2x2 as x, y, z, w. */
-    vec2 c0 = w * (-0.5 + w * (1.0 - 0.5 * w));
-    vec2 c1 = 1.0 + w * w * (-2.5 + 1.5 * w);
-    vec2 c2 = w * (0.5 + w * (2.0 - 1.5 * w));
-    vec2 c3 = w * w * (-0.5 + 0.5 * w);
-    /* Catmull-Rom weights of the window's columns and rows 0..3 (offsets -1..2 from tap 0) */
-    vec4 wx = vec4(c0.x, c1.x, c2.x, c3.x), wy = vec4(c0.y, c1.y, c2.y, c3.y);
+    float inv_weight = kept ? 1.0 / weight : 0.0;
+    vec4 wx = catmull_rom(w.x), wy = catmull_rom(w.y); /* the window's columns and rows 0..3 */
     float cubic = 0.0;
     vec4 inner = vec4(0.0); /* taps 0..3 */
     for (int i = 0; i < 4; ++i) {
@@ -266,7 +269,7 @@ void main()
     /* The bounce: the same taps, age and blend; its own box and history. */
     vec3 bounce_lo, bounce_hi;
     rgb_box(bounce_current, pix, size, box_depth, bounce_cur, bounce_lo, bounce_hi);
-    vec3 bounce_past = clamp(rgb_resample(bounce_history, base, w, tap_weight, weight, size), bounce_lo, bounce_hi);
+    vec3 bounce_past = clamp(rgb_resample(bounce_history, base, w, tap_weight, weight, size).rgb, bounce_lo, bounce_hi);
     vec3 bounce_v = mix(bounce_past, bounce_cur, alpha);
     imageStore(bounce_result, pix, vec4(bounce_v, 1.0));
     imageStore(bounce_next_history, pix, vec4(bounce_v, age));

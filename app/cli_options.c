@@ -26,7 +26,8 @@ static bool takes(const cli_common *c, unsigned what) { return (c->takes & what)
 
 void cli_common_init(cli_common *c, const char *command, unsigned takes_mask)
 {
-    *c = (cli_common){.command = command, .takes = takes_mask, .default_method = OB_DEFAULT_METHOD, .width = 640, .height = 480};
+    *c = (cli_common){.command = command, .takes = takes_mask, .default_method = OB_DEFAULT_METHOD, .width = 640,
+                      .height = 480};
 }
 
 /* ---- comma lists ------------------------------------------------------------------------------ */

@@ -66,9 +66,9 @@ t0=$(date +%s.%N)
     --report "$out/report" 2>&1 >/dev/null | sed 's/^/demo:   /'
 awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "demo: %-26s %5.1f s\n", "report", b - a }'
 # How much of the AO the final image shows (issue 20), on the report's views, where the reference
-# AO_R is known: the default method against none, both composed with the same lights and
-# tone mapped at the default method's frame's exposure (the report's own none_final has its own, which hides
-# part of the AO and shifts the open areas instead).
+# AO_R is known: the default method against none, both composed with the same lights and tone
+# mapped at the default method's frame's exposure (the report's own none_final has its own, which
+# hides part of the AO and shifts the open areas instead).
 for view in cornell_front bunny_front fzk-haus_stair; do
     v="$out/report/$view"
     scene=${view%_*}

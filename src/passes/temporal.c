@@ -59,12 +59,11 @@ ob_error ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, co
     const int shape = chain->rgb ? 2 : chain->result ? 0 : 1;
     const bool bounce = chain->bounce_current != 0;
     const int k = shape + (bounce ? 3 : 0);
-    if (!p->ready[k]) {
+    if (!p->programs[k].program) {
         char defines[128];
         snprintf(defines, sizeof defines, "%s%s", shapes[shape], bounce ? "#define OB_TEMPORAL_BOUNCE 1\n" : "");
         if (ob_compute_pass_init(&p->programs[k], "temporal.glsl", defines, sizeof(ob_temporal_constants)) != OB_OK)
             return ob_peek_error(NULL);
-        p->ready[k] = true;
     }
     ob_compute_pass_use(&p->programs[k], c, sizeof *c);
     const GLuint units[7] = {chain->current,       chain->history, depth, normal, prev_geometry,
@@ -85,7 +84,5 @@ ob_error ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, co
 
 void ob_temporal_destroy(ob_temporal_pass *p)
 {
-    for (int k = 0; k < OB_TEMPORAL_PROGRAMS; ++k)
-        if (p->ready[k]) ob_compute_pass_destroy(&p->programs[k]);
-    memset(p, 0, sizeof *p);
+    for (int k = 0; k < OB_TEMPORAL_PROGRAMS; ++k) ob_compute_pass_destroy(&p->programs[k]);
 }

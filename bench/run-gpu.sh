@@ -5,7 +5,7 @@
 # libobscura, the FZK-Haus model and the commit). Everything it writes lands in $OUT (or
 # bench/results/gpu) and is packed as results.tgz after every step, so a step that runs out of
 # time loses only itself.
-#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|tests|fzk|all]...   (default all; the smoke render always)
+#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|tests|fzk|temporal|all]...   (default all; the smoke render always)
 # Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-egl.md).
 set -u
 steps=${*:-all}
@@ -107,4 +107,12 @@ if want tests && [ -f .gl/ctest.tar.xz ]; then
 fi
 # FZK-Haus's stair (issue 18's view): 36k triangles and its lights' shadow maps every frame.
 want fzk && run fzk 200 --scene fzk-haus --size 1920x1080 "${sweep[@]}" --cameras stair --quality high
+# Issue 17's cost target: the temporal accumulation pass against the AO pass it follows, in the
+# same run, along FZK-Haus's walk (the path its flicker table is measured on), as on 2026-11-23
+# (radius 4, shadows off: neither pass reads them). gtao high at AO scale 1, 1/2 and 1/4; then
+# the default method and the two whose bounce rides in the same dispatch (vbgi, ssdo).
+walk=(--scene fzk-haus --size 1920x1080 --path walk --path-frames 16 --radius 4 --temporal on --frames 200 --warmup 20
+    --shadow none)
+want temporal && run temporal 120 "${walk[@]}" --methods gtao --quality high --ao-scales 1,0.5,0.25
+want temporal && run temporal_methods 120 "${walk[@]}" --methods vbao,vbgi,ssao,ssdo --quality high
 exit 0

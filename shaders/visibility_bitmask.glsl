@@ -59,8 +59,10 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     ivec2 texel;
     bool hit = ob_march_fetch(depth_mips, at, dist_px, p, vb.mip_scale, vb.max_mip, w, texel) &&
                (refine ? ob_gap_open(gap) : dist_px <= s.radius_px);
-    float w_len = length(w);
-    bool inside = hit && w_len < vb.radius;
+    /* Within R by the squared distance (ob_column_entry takes the same dot): no square root per
+     * sample unless vbgi's bounce block needs |w|. */
+    float w2 = dot(w, w);
+    bool inside = hit && w2 < vb.radius * vb.radius;
     vec3 t = positive ? s.t_pos : s.t_neg;
     /* §3.2: the back of the sample, its front pushed away from the eye along its view ray u by
      * the thickness. */
@@ -112,7 +114,7 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
         ivec2 full = clamp(texel * frame.ao_k + frame.ao_o, ivec2(0), textureSize(radiance, 0) - 1);
         vec3 l_s = texelFetch(radiance, full, 0).rgb;
 #endif
-        float facing = -dot(n_s, w) / max(w_len, 1e-20);
+        float facing = -dot(n_s, w) / max(sqrt(w2), 1e-20);
         float emit = vb.emitter_cosine != 0 ? max(facing, 0.0) : (facing > 0.0 ? 1.0 : 0.0);
         bounce += l_s * (emit * share * measure);
     }

@@ -105,7 +105,7 @@ void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLui
  * without the bounce. */
 enum { OB_TEMPORAL_PROGRAMS = 6 };
 typedef struct ob_temporal_pass {
-    ob_compute_pass programs[OB_TEMPORAL_PROGRAMS]; /* program 0: not made yet */
+    ob_compute_pass programs[OB_TEMPORAL_PROGRAMS]; /* a slot whose .program is 0 is not made yet */
 } ob_temporal_pass;
 /* The camera of the previous frame and the history rules (pure; no GL): prev_view and
  * prev_ao_proj column-major, history_frames N >= 1. */

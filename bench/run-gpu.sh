@@ -5,7 +5,7 @@
 # libobscura, the FZK-Haus model and the commit). Everything it writes lands in $OUT (or
 # bench/results/gpu) and is packed as results.tgz after every step, so a step that runs out of
 # time loses only itself.
-#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|tests|fzk|temporal|all]...   (default all; the smoke render always)
+#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|tests|fzk|temporal|deinterleave|all]...   (default all; the smoke render always)
 # Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-egl.md).
 set -u
 steps=${*:-all}
@@ -115,4 +115,15 @@ walk=(--scene fzk-haus --size 1920x1080 --path walk --path-frames 16 --radius 4 
     --shadow none)
 want temporal && run temporal 120 "${walk[@]}" --methods gtao --quality high --ao-scales 1,0.5,0.25
 want temporal && run temporal_methods 120 "${walk[@]}" --methods vbao,vbgi,ssao,ssdo --quality high
+# Issue 18's deinterleaved sampling (methods/deinterleave.c): the random-kernel methods' plain
+# and deinterleaved programs in two runs of the same sweep, at the suggested radius and twice it
+# (where the plain program's taps scatter the most), FZK-Haus's stair at 1080p. llvmpipe gains
+# nothing from it (docs/methods.md, "Deinterleaved sampling"): this is where it is measured.
+split=(--scene fzk-haus --size 1920x1080 --cameras stair --radius 4,8 --quality low,medium,high,ultra --frames 200
+    --warmup 20 --floor --filters none --methods ssao,hbao,crytek,alchemy)
+di() { local v=$1; printf -- '--set %s.deinterleave=%s ' ssao "$v" hbao "$v" crytek "$v" alchemy "$v"; }
+# shellcheck disable=SC2046 # di's words are separate arguments on purpose
+want deinterleave && run deinterleave_off 150 "${split[@]}" $(di off)
+# shellcheck disable=SC2046
+want deinterleave && run deinterleave_on 150 "${split[@]}" $(di on)
 exit 0

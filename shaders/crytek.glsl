@@ -7,10 +7,13 @@
  *   - occlusion factor = occluded / N, AO = 1 - occlusion factor (seed 004 §2.2).
  * Half of a sphere around a point on a plane lies inside the plane, so flat surfaces read about
  * 0.5: that is the method (its characteristic grey look), not a bug. The optional correction of
- * seed 003 §5.4 rescales AO' = min(1, 2 AO) so open planes read 1, wasting half the samples. */
+ * seed 003 §5.4 rescales AO' = min(1, 2 AO) so open planes read 1, wasting half the samples.
+ * `deinterleave on` compiles OB_DEINTERLEAVED: far taps read the nearest pixel of their own 4x4 class
+ * (deinterleaved_taps.glsl). */
 #include "crytek_params.h"
 #include "common.glsl"
 #include "noise.glsl"
+#include "deinterleaved_taps.glsl"
 
 layout(local_size_x = OB_CRYTEK_GROUP_X, local_size_y = OB_CRYTEK_GROUP_Y) in;
 
@@ -21,8 +24,9 @@ layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 
 void main()
 {
-    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pix, ivec2(frame.ao_size)))) return;
+    ivec2 pix = ob_invocation_pixel(); /* deinterleaved_taps.glsl */
+    ivec2 size = ivec2(frame.ao_size);
+    if (any(greaterThanEqual(pix, size))) return;
     float d = texelFetch(linear_depth, pix, 0).r;
     if (d <= 0.0) {
         imageStore(ao_out, pix, vec4(1.0));
@@ -46,7 +50,7 @@ void main()
         if (clip.w <= 0.0) continue;
         vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
-        float scene_d = texelFetch(linear_depth, ivec2(uv * frame.ao_size), 0).r;
+        float scene_d = ob_tap_depth(linear_depth, ob_tap_pixel(ivec2(uv * frame.ao_size), size));
         if (scene_d <= 0.0) continue;
         float range = smoothstep(0.0, 1.0, radius / abs(d - scene_d));
         occlusion += (scene_d <= -s.z - bias ? 1.0 : 0.0) * range;

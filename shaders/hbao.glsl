@@ -13,10 +13,13 @@
  * direction marches N_s texel-snapped steps out to the world radius R projected to pixels
  * (seed 004 §3.4: the radius scales with depth and is clamped).
  *
- * AO is visibility: 1 = open. Sky (depth 0) writes 1. */
+ * AO is visibility: 1 = open. Sky (depth 0) writes 1.
+ * `deinterleave on` compiles OB_DEINTERLEAVED: far steps read the nearest pixel of their own 4x4 class
+ * (deinterleaved_taps.glsl; Bavoil 2014, as NVIDIA's HBAO+ marches its quarter-resolution layers). */
 #include "hbao_params.h"
 #include "common.glsl"
 #include "noise.glsl"
+#include "deinterleaved_taps.glsl"
 
 layout(local_size_x = OB_HBAO_GROUP_X, local_size_y = OB_HBAO_GROUP_Y) in;
 
@@ -70,7 +73,7 @@ float hbao_sin_tangent(vec3 p, float pn, vec3 n, vec2 d)
 
 void main()
 {
-    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pix = ob_invocation_pixel(); /* deinterleaved_taps.glsl */
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
 
@@ -146,7 +149,8 @@ void main()
             vec2 offset = dir * (start_px + float(j) * step_px);
             ivec2 q = ivec2(floor(centre + offset)); /* snap to the texel centre */
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) break;
-            float sd = texelFetch(linear_depth, q, 0).r;
+            q = ob_tap_pixel(q, size);
+            float sd = ob_tap_depth(linear_depth, q);
             if (sd <= 0.0) continue; /* sky: no occluder there */
             vec2 snapped = vec2(q) + 0.5;
             vec3 s = ob_view_position(snapped, sd, frame.ao_inv_size, frame.ao_proj_info);

@@ -9,10 +9,13 @@
  *     so silhouettes in front do not darken the background (seed 004 §3.3);
  *   - one addition: the occluder must lie above P's tangent plane (see the loop), which removes
  *     the grazing-angle self-occlusion that the bias alone only hides;
- *   - AO = (1 - occluded / N) ^ intensity: visibility in [0,1]. */
+ *   - AO = (1 - occluded / N) ^ intensity: visibility in [0,1].
+ * `deinterleave on` compiles OB_DEINTERLEAVED: far taps read the nearest pixel of their own 4x4 class
+ * (deinterleaved_taps.glsl). */
 #include "ssao_params.h"
 #include "common.glsl"
 #include "noise.glsl"
+#include "deinterleaved_taps.glsl"
 
 layout(local_size_x = OB_SSAO_GROUP_X, local_size_y = OB_SSAO_GROUP_Y) in;
 
@@ -24,7 +27,7 @@ layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 
 void main()
 {
-    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pix = ob_invocation_pixel(); /* deinterleaved_taps.glsl */
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
 
@@ -56,7 +59,8 @@ void main()
         if (clip.w <= 0.0) continue;
         vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
-        float scene_d = texelFetch(linear_depth, ivec2(uv * frame.ao_size), 0).r;
+        ivec2 q = ob_tap_pixel(ivec2(uv * frame.ao_size), size);
+        float scene_d = ob_tap_depth(linear_depth, q);
         if (scene_d <= 0.0) continue; /* sky: nothing there */
         float sample_d = -s.z;
         float range = smoothstep(0.0, 1.0, radius / abs(d - scene_d));
@@ -65,7 +69,7 @@ void main()
          * front of samples that hug it, and flat floors go grey. An occluder must also rise above
          * P's tangent plane (by `bias`); a flat surface then never occludes itself, while a wall
          * or a crease still does. */
-        vec3 scene_p = ob_view_position(floor(uv * frame.ao_size) + 0.5, scene_d, frame.ao_inv_size, frame.ao_proj_info);
+        vec3 scene_p = ob_view_position(vec2(q) + 0.5, scene_d, frame.ao_inv_size, frame.ao_proj_info);
         bool above = dot(scene_p - p, n) > bias;
         occlusion += (above && scene_d <= sample_d - bias ? 1.0 : 0.0) * range;
     }

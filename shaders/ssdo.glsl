@@ -49,6 +49,7 @@ layout(binding = 9) uniform sampler2D extra_direct; /*   RGBA16F direct radiance
 #include "packed_samples.glsl"
 layout(binding = 10) uniform usampler2D packed_samples;
 #endif
+#include "deinterleaved_taps.glsl" /* `deinterleave on`: OB_DEINTERLEAVED */
 layout(binding = 0, rgba16f) uniform writeonly image2D m_out;
 layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
 
@@ -136,7 +137,7 @@ void extra_test(vec3 s, float bias, inout vec3 scene_p, inout float occ, inout v
 
 void main()
 {
-    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pix = ob_invocation_pixel(); /* deinterleaved_taps.glsl */
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
     int stage = ssdo.stage;
@@ -197,12 +198,14 @@ void main()
         if (clip.w > 0.0) {
             vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
             if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
-                q = ivec2(uv * frame.ao_size);
+                /* Deinterleaved, the nearest pixel of this pixel's class (its depth from the class's
+                 * layer; a packed texel, the sender's normal and light from their full textures). */
+                q = ob_tap_pixel(ivec2(uv * frame.ao_size), size);
 #ifdef OB_SSDO_PACKED
                 texel = texelFetch(packed_samples, q, 0);
                 float scene_d = ob_packed_depth(texel);
 #else
-                float scene_d = texelFetch(linear_depth, q, 0).r;
+                float scene_d = ob_tap_depth(linear_depth, q);
 #endif
                 if (scene_d > 0.0) {
                     scene_p = ob_view_position(vec2(q) + 0.5, scene_d, frame.ao_inv_size, frame.ao_proj_info);

@@ -70,10 +70,16 @@ static void settings_for(ob_settings *s, const char *method, const char *radius)
     ob_settings_set(s, set);
 }
 
-static void test_corner(ob_renderer *r, const char *m)
+/* `extra`: one more "PARAM=VALUE" of the method's, or NULL. */
+static void test_corner_with(ob_renderer *r, const char *m, const char *extra)
 {
     ob_settings s;
     settings_for(&s, m, "1.5");
+    if (extra) {
+        char set[64];
+        snprintf(set, sizeof set, "%s.%s", m, extra);
+        CHECK(ob_settings_set(&s, set) == OB_OK, "%s", set);
+    }
     bool crytek = !strcmp(m, "crytek");
     float *ao = render(r, &corner_cam, &s, OB_IMAGE_AO_F32);
 
@@ -88,7 +94,7 @@ static void test_corner(ob_renderer *r, const char *m)
     /* Toward the crease with the wall x = 0: monotone, and darker by a clear margin. */
     const float xs[] = {1.8f, 1.2f, 0.8f, 0.5f, 0.3f, 0.15f, 0.08f};
     float prev = 2.0f, first = 0.0f, last = 0.0f;
-    printf("  %-8s open %.3f  crease walk:", m, (double)open);
+    printf("  %-8s open %.3f  crease walk%s%s:", m, (double)open, extra ? " with " : "", extra ? extra : "");
     for (size_t i = 0; i < sizeof xs / sizeof xs[0]; ++i) {
         float v = at(ao, &corner_cam, xs[i], 0.0f, 2.0f);
         printf(" %.3f", (double)v);
@@ -104,7 +110,7 @@ static void test_corner(ob_renderer *r, const char *m)
     CHECK(first - last > 0.1f * first, "%s: the crease darkens (%g far, %g near)", m, (double)first, (double)last);
     free(ao);
 
-    if (crytek) {
+    if (crytek && !extra) {
         ob_settings c = s;
         CHECK(ob_settings_set(&c, "crytek.correction=on") == OB_OK, "correction on");
         ao = render(r, &corner_cam, &c, OB_IMAGE_AO_F32);
@@ -113,6 +119,8 @@ static void test_corner(ob_renderer *r, const char *m)
         free(ao);
     }
 }
+
+static void test_corner(ob_renderer *r, const char *m) { test_corner_with(r, m, NULL); }
 
 /* Concave (block meets floor) against convex (block's top edge) on the Cornell box's short
  * block, front face, raw AO averaged along the edge. */
@@ -210,6 +218,112 @@ static void test_radius_scale(ob_renderer *r, const char *m, float scene_radius)
     free(z);
 }
 
+/* Deinterleaved sampling (issue 18; methods/deinterleave.c), for every method with a
+ * `deinterleave` parameter, on the engine path (ob_compute_ao) at 99 x 73, a size whose last
+ * texel row and column of the 16 layers hold fewer classes: the output texture is cleared to -1
+ * first, so a pixel no class wrote is seen. Against the plain program on the same textures: near
+ * taps are the same pixels and far taps move by up to 2 pixels, so the images may differ pixel by
+ * pixel but not on average (no class may read lighter or darker as a whole), and the sky and an
+ * open plane stay open (test_corner with it on). */
+enum { DW = 99, DH = 73 };
+
+/* The AO of method m with `deinterleave` on or off on the textures: raw (ob_compute_ao, whose
+ * method writes tex[2] itself) or after the settings' 4x4 box (ob_compute_ao_filtered, where the
+ * method writes the renderer's scratch target and the filter tex[2]). */
+static float *deinterleave_run(ob_renderer *r, const GLuint tex[3], const float proj[16], const char *m, bool on,
+                               bool filtered)
+{
+    ob_settings s;
+    settings_for(&s, m, NULL);
+    char set[64];
+    snprintf(set, sizeof set, "%s.deinterleave=%s", m, on ? "on" : "off");
+    CHECK(ob_settings_set(&s, set) == OB_OK, "%s", set);
+    const float minus_one = -1.0f;
+    glClearTexImage(tex[2], 0, GL_RED, GL_FLOAT, &minus_one);
+    ob_error e = filtered ? ob_compute_ao_filtered(r, tex[0], tex[1], proj, &s, tex[2])
+                          : ob_compute_ao(r, tex[0], tex[1], proj, &s, tex[2]);
+    const char *msg = NULL;
+    ob_get_error(&msg);
+    CHECK(e == OB_OK, "%s: %s", set, msg ? msg : "?");
+    float *ao = malloc(sizeof(float) * DW * DH);
+    glGetTextureImage(tex[2], 0, GL_RED, GL_FLOAT, (GLsizei)(sizeof(float) * DW * DH), ao);
+    return ao;
+}
+
+static void test_deinterleave(ob_context *ctx, ob_scene *cornell, ob_renderer *corner_r, const char *m)
+{
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = DW, .height = DH});
+    CHECK(r != NULL, "%s: a %dx%d renderer", m, DW, DH);
+    if (!r) return;
+    ob_renderer_set_scene(r, cornell);
+    ob_settings g;
+    ob_settings_init(&g, "none");
+    CHECK(ob_render_frame(r, &cornell_cam, &g) == OB_OK, "the G-buffer");
+    float *depth = malloc(sizeof(float) * DW * DH), *n3 = malloc(sizeof(float) * 3 * DW * DH),
+          *n4 = malloc(sizeof(float) * 4 * DW * DH);
+    CHECK(ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, sizeof(float) * DW * DH) == OB_OK &&
+              ob_read_image(r, OB_IMAGE_NORMAL_F32, n3, sizeof(float) * 3 * DW * DH) == OB_OK,
+          "read depth and normals");
+    for (int i = 0; i < DW * DH; ++i) {
+        memcpy(n4 + 4 * i, n3 + 3 * i, 3 * sizeof(float));
+        n4[4 * i + 3] = 0.0f;
+    }
+    GLuint tex[3];
+    glCreateTextures(GL_TEXTURE_2D, 3, tex);
+    glTextureStorage2D(tex[0], 1, GL_R32F, DW, DH);
+    glTextureStorage2D(tex[1], 1, GL_RGBA32F, DW, DH);
+    glTextureStorage2D(tex[2], 1, GL_R32F, DW, DH);
+    glTextureSubImage2D(tex[0], 0, 0, 0, DW, DH, GL_RED, GL_FLOAT, depth);
+    glTextureSubImage2D(tex[1], 0, 0, 0, DW, DH, GL_RGBA, GL_FLOAT, n4);
+    mat4 proj;
+    glm_perspective(glm_rad(cornell_cam.fov_y_deg), (float)DW / (float)DH, cornell_cam.near_z, cornell_cam.far_z, proj);
+
+    float *raw = deinterleave_run(r, tex, (const float *)proj, m, true, false);
+    float *plain = deinterleave_run(r, tex, (const float *)proj, m, false, true);
+    float *split = deinterleave_run(r, tex, (const float *)proj, m, true, true);
+    int unwritten = 0, sky_closed = 0, geometry = 0;
+    double diff = 0.0, shift = 0.0;
+    for (int i = 0; i < DW * DH; ++i) {
+        unwritten += !(raw[i] >= 0.0f && raw[i] <= 1.0f);
+        if (depth[i] <= 0.0f) {
+            sky_closed += split[i] != 1.0f;
+            continue;
+        }
+        diff += fabs((double)split[i] - (double)plain[i]);
+        shift += (double)split[i] - (double)plain[i];
+        ++geometry;
+    }
+    diff /= geometry > 0 ? geometry : 1;
+    shift /= geometry > 0 ? geometry : 1;
+    printf("  %-8s deinterleaved at %dx%d: mean |on - off| %.4f, mean shift %+.4f\n", m, DW, DH, diff, shift);
+    CHECK(unwritten == 0, "%s deinterleaved: %d of %d pixels unwritten or outside [0,1]", m, unwritten, DW * DH);
+    CHECK(sky_closed == 0, "%s deinterleaved: %d sky pixels not 1", m, sky_closed);
+    /* After the 4x4 box (ob_compute_ao_filtered), which cancels the tile's noise in both: the
+     * far taps' moves leave 0.001-0.018 (alchemy, whose near samples weigh most, the most); the
+     * mean shift is what a lost near field shows (every tap within 2 pixels snapped onto the pixel
+     * itself read lighter). */
+    CHECK(diff < 0.03, "%s deinterleaved: mean |difference| %.4f from the plain program", m, diff);
+    CHECK(fabs(shift) < 0.01, "%s deinterleaved: reads %+.4f on average against the plain program", m, shift);
+    free(raw);
+    free(plain);
+    free(split);
+    free(depth);
+    free(n3);
+    free(n4);
+    glDeleteTextures(3, tex);
+    ob_destroy_renderer(r);
+
+    test_corner_with(corner_r, m, "deinterleave=on");
+}
+
+static bool has_param(int index, const char *name)
+{
+    const ob_method_info *info = ob_method_at(index);
+    for (int k = 0; k < info->param_count; ++k)
+        if (!strcmp(info->params[k].name, name)) return true;
+    return false;
+}
+
 /* A method takes a sample count when the kit can map one onto its parameters. */
 static bool takes_samples(int index)
 {
@@ -259,6 +373,9 @@ int main(void)
         test_corner(rc, m);
         test_edges(rb, m);
         /* Only methods with a sample count can be asked to converge with it. */
+        /* ob_compute_ao runs the methods that read depth and normals alone; test_ssdo.c has ssdo's. */
+        if (has_param(i, "deinterleave") && !(ob_method_impl_at(i)->reads & OB_READS_RADIANCE))
+            test_deinterleave(ctx, cornell, rc, m);
         if (takes_samples(i)) test_convergence(rc, m);
         else printf("  %-8s takes no sample count: convergence not tested\n", m);
         ++tested;

@@ -192,7 +192,7 @@ static void test_fused(ob_renderer *r)
  * (shaders/sample_pack.glsl) are the textures' own values, so M and the bounce must be the same bits,
  * for both methods, at full and half AO resolution (where a sender's radiance is its AO texel's
  * full-resolution pixel), and with the extra view (whose senders replace the packed ones). */
-static void test_packed(ob_renderer *r, const char *m, float scale, bool extra)
+static void test_packed(ob_renderer *r, const char *m, float scale, bool extra, bool deinterleave)
 {
     ob_settings on, off;
     settings_for(&on, m);
@@ -201,6 +201,11 @@ static void test_packed(ob_renderer *r, const char *m, float scale, bool extra)
     char key[64];
     if (extra) {
         snprintf(key, sizeof key, "%s.extra_view=on", m);
+        CHECK(ob_settings_set(&on, key) == OB_OK, "%s", key);
+    }
+    if (deinterleave) {
+        /* Deinterleaved, the packed texel is read at the same class pixel as the layer's depth. */
+        snprintf(key, sizeof key, "%s.deinterleave=on", m);
         CHECK(ob_settings_set(&on, key) == OB_OK, "%s", key);
     }
     off = on;
@@ -216,13 +221,53 @@ static void test_packed(ob_renderer *r, const char *m, float scale, bool extra)
         bounce += b1[i];
         occluded += 1.0 - m1[i];
     }
-    printf("  %s packed vs not at %g%s: M %s, bounce %s (sum %.1f)\n", m, (double)scale, extra ? ", extra view" : "",
+    printf("  %s packed vs not at %g%s%s: M %s, bounce %s (sum %.1f)\n", m, (double)scale, extra ? ", extra view" : "",
+           deinterleave ? ", deinterleaved" : "",
            memcmp(m1, m2, n * sizeof(float)) ? "differs" : "same bits", memcmp(b1, b2, n * sizeof(float)) ? "differs" : "same bits",
            bounce);
     CHECK(!memcmp(m1, m2, n * sizeof(float)), "%s packed at %g: M is the plain program's bit for bit", m, (double)scale);
     CHECK(!memcmp(b1, b2, n * sizeof(float)), "%s packed at %g: the bounce is the plain program's bit for bit", m,
           (double)scale);
     CHECK(bounce > 0.0 && occluded > 0.0, "%s: there is occlusion (%g) and a bounce (%g) to compare", m, occluded, bounce);
+    free(m1);
+    free(b1);
+    free(m2);
+    free(b2);
+}
+
+/* `deinterleave` on against off (methods/deinterleave.c; test_methods.c tests the AO methods'
+ * on the engine path, where every pixel's write is checked): near taps are the same pixels, far
+ * ones move by up to 2 pixels, so after the default filter M may differ pixel by pixel but not on
+ * average, and the bounce keeps its size. ssdo runs both of its dispatches deinterleaved. */
+static void test_deinterleaved(ob_renderer *r, const char *m, float scale)
+{
+    ob_settings on, off;
+    settings_for(&on, m);
+    CHECK(ob_settings_set_ao_scale(&on, scale) == OB_OK, "ao scale %g", (double)scale);
+    off = on;
+    char key[64];
+    snprintf(key, sizeof key, "%s.fused=off", m);
+    if (!strcmp(m, "ssdo")) CHECK(ob_settings_set(&on, key) == OB_OK && ob_settings_set(&off, key) == OB_OK, "%s", key);
+    snprintf(key, sizeof key, "%s.deinterleave=on", m);
+    CHECK(ob_settings_set(&on, key) == OB_OK, "%s", key);
+    float *m1 = render(r, &on, OB_IMAGE_AO_RGB_F32), *b1 = render(r, &on, OB_IMAGE_BOUNCE_F32);
+    float *m2 = render(r, &off, OB_IMAGE_AO_RGB_F32), *b2 = render(r, &off, OB_IMAGE_BOUNCE_F32);
+    size_t n = (size_t)W * H * 3;
+    double diff = 0.0, shift = 0.0, bounce_on = 0.0, bounce_off = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        diff += fabs((double)m1[i] - (double)m2[i]);
+        shift += (double)m1[i] - (double)m2[i];
+        bounce_on += b1[i];
+        bounce_off += b2[i];
+    }
+    diff /= (double)n;
+    shift /= (double)n;
+    double ratio = bounce_on / (bounce_off > 0.0 ? bounce_off : 1.0);
+    printf("  %s deinterleaved at %g: mean |dM| %.4f, shift %+.4f, bounce on / off %.3f\n", m, (double)scale, diff, shift,
+           ratio);
+    CHECK(diff < 0.03, "%s deinterleaved: mean |dM| %.4f from the plain program", m, diff);
+    CHECK(fabs(shift) < 0.01, "%s deinterleaved: M %+.4f on average against the plain program", m, shift);
+    CHECK(bounce_off > 0.0 && ratio > 0.9 && ratio < 1.1, "%s deinterleaved: bounce %.3f x the plain program's", m, ratio);
     free(m1);
     free(b1);
     free(m2);
@@ -315,10 +360,14 @@ int main(void)
     test_light_moves(r, cornell);
     test_agreement(r);
     test_fused(r);
-    test_packed(r, "ssdo", 1.0f, false);
-    test_packed(r, "ssdo_merged", 1.0f, false);
-    test_packed(r, "ssdo_merged", 0.5f, false);
-    test_packed(r, "ssdo", 1.0f, true);
+    test_packed(r, "ssdo", 1.0f, false, false);
+    test_packed(r, "ssdo_merged", 1.0f, false, false);
+    test_packed(r, "ssdo_merged", 0.5f, false, false);
+    test_packed(r, "ssdo", 1.0f, true, false);
+    test_packed(r, "ssdo", 1.0f, false, true);
+    test_packed(r, "ssdo_merged", 0.5f, false, true);
+    test_deinterleaved(r, "ssdo", 1.0f);
+    test_deinterleaved(r, "ssdo_merged", 0.5f);
     test_lobe_programs(r, "ssdo");
     test_lobe_programs(r, "ssdo_merged");
     test_ranges(r, "ssdo", 1.0f);

@@ -9,7 +9,7 @@
 #include "methods/method.h"
 #include "sampling/sampling.h"
 
-enum { P_RADIUS, P_SAMPLES, P_SIGMA, P_K, P_BETA, P_EPSILON, P_TURNS, P_NOISE, P_COUNT };
+enum { P_RADIUS, P_SAMPLES, P_SIGMA, P_K, P_BETA, P_EPSILON, P_TURNS, P_NOISE, P_DEINTERLEAVE, P_COUNT };
 
 static const ob_param_info alchemy_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -28,11 +28,13 @@ static const ob_param_info alchemy_params[P_COUNT] = {
     [P_TURNS] = {"turns", OB_PARAM_FLOAT, 1.0f, 64.0f, 10.0f, "turns", "spiral turns over the samples (seed 004: 10)", false},
     [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "per-pixel spiral rotation: 4x4 texture or interleaved gradient noise",
                  false, ob_noise_options},
+    [P_DEINTERLEAVE] = OB_DEINTERLEAVE_PARAM,
 };
 
 
 typedef struct alchemy_state {
     ob_method_kit kit;
+    ob_deinterleaved split; /* `deinterleave` (methods/deinterleave.c) */
 } alchemy_state;
 
 static ob_error alchemy_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
@@ -53,11 +55,18 @@ static ob_error alchemy_run(void *p, const ob_ao_inputs *in, const float *params
     /* Adaptive sample counts: the spiral's samples scale with the edge pass's multiplier. */
     c.adaptive = in->sample_multiplier != 0 ? 1 : 0;
     c.adaptive_base = ob_adaptive_base(c.samples);
+    const bool split = params[P_DEINTERLEAVE] != 0.0f;
+    if (split && ob_deinterleaved_prepare(&s->split, "alchemy.glsl", in) != OB_OK) return ob_peek_error(NULL);
     ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
     ob_method_kit_bind_multiplier(&s->kit, in);
-    ob_dispatch_2d(in->width, in->height, OB_ALCHEMY_GROUP_X, OB_ALCHEMY_GROUP_Y);
+    if (split)
+        ob_deinterleaved_dispatch(s->split.program, in, OB_ALCHEMY_GROUP_X, OB_ALCHEMY_GROUP_Y);
+    else
+        ob_dispatch_2d(in->width, in->height, OB_ALCHEMY_GROUP_X, OB_ALCHEMY_GROUP_Y);
     return OB_OK;
 }
+
+static void alchemy_destroy(void *p) { ob_deinterleaved_release(&((alchemy_state *)p)->split); }
 
 const ob_method_impl ob_method_alchemy = {
     .info = {.name = "alchemy",
@@ -71,5 +80,6 @@ const ob_method_impl ob_method_alchemy = {
     .reads = OB_READS_DEPTH | OB_READS_NORMALS,
     .writes = OB_WRITES_VISIBILITY,
     .run = alchemy_run,
+    .destroy = alchemy_destroy,
     .adapts = true,
 };

@@ -9,7 +9,7 @@
 #include "methods/method.h"
 #include "sampling/sampling.h"
 
-enum { P_RADIUS, P_BIAS, P_INTENSITY, P_SAMPLES, P_CORRECTION, P_SAMPLING, P_NOISE, P_COUNT };
+enum { P_RADIUS, P_BIAS, P_INTENSITY, P_SAMPLES, P_CORRECTION, P_SAMPLING, P_NOISE, P_DEINTERLEAVE, P_COUNT };
 
 static const ob_param_info crytek_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -26,6 +26,7 @@ static const ob_param_info crytek_params[P_COUNT] = {
                     false, ob_sampling_options},
     [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "per-pixel rotation: 4x4 texture or interleaved gradient noise",
                  false, ob_noise_options},
+    [P_DEINTERLEAVE] = OB_DEINTERLEAVE_PARAM,
 };
 
 #define KERNEL_SEED 0xC4E7u
@@ -33,6 +34,7 @@ static const ob_param_info crytek_params[P_COUNT] = {
 typedef struct crytek_state {
     ob_method_kit kit;
     int kernel_count, kernel_sampling; /* what the cached kernel was built for */
+    ob_deinterleaved split; /* `deinterleave` (methods/deinterleave.c) */
     ob_crytek_constants constants;
 } crytek_state;
 
@@ -63,12 +65,19 @@ static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params,
     c->noise = (int)params[P_NOISE];
     c->adaptive = plan.adaptive ? 1 : 0;
     c->adaptive_base = plan.base;
+    const bool split = params[P_DEINTERLEAVE] != 0.0f;
+    if (split && ob_deinterleaved_prepare(&s->split, "crytek.glsl", in) != OB_OK) return ob_peek_error(NULL);
     size_t used = offsetof(ob_crytek_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     ob_method_kit_use(&s->kit, c, used, in, out, GL_R32F);
     ob_method_kit_bind_multiplier(&s->kit, in);
-    ob_dispatch_2d(in->width, in->height, OB_CRYTEK_GROUP_X, OB_CRYTEK_GROUP_Y);
+    if (split)
+        ob_deinterleaved_dispatch(s->split.program, in, OB_CRYTEK_GROUP_X, OB_CRYTEK_GROUP_Y);
+    else
+        ob_dispatch_2d(in->width, in->height, OB_CRYTEK_GROUP_X, OB_CRYTEK_GROUP_Y);
     return OB_OK;
 }
+
+static void crytek_destroy(void *p) { ob_deinterleaved_release(&((crytek_state *)p)->split); }
 
 static int crytek_kernel(const float *params, float *xyzw, int max)
 {
@@ -90,6 +99,7 @@ const ob_method_impl ob_method_crytek = {
     .writes = OB_WRITES_VISIBILITY,
     .init = crytek_init,
     .run = crytek_run,
+    .destroy = crytek_destroy,
     .adapts = true,
     .kernel = crytek_kernel,
 };

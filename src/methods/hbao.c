@@ -11,7 +11,7 @@
 #include "methods/method.h"
 #include "sampling/sampling.h"
 
-enum { P_RADIUS, P_DIRECTIONS, P_STEPS, P_MAX_RADIUS_PX, P_ANGLE_BIAS, P_INTENSITY, P_NOISE, P_COUNT };
+enum { P_RADIUS, P_DIRECTIONS, P_STEPS, P_MAX_RADIUS_PX, P_ANGLE_BIAS, P_INTENSITY, P_NOISE, P_DEINTERLEAVE, P_COUNT };
 
 static const ob_param_info hbao_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -40,11 +40,13 @@ static const ob_param_info hbao_params[P_COUNT] = {
     [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "",
                  "per-pixel rotation and step jitter: 4x4 texture (+ 4x4 Bayer jitter) or interleaved gradient noise",
                  false, ob_noise_options},
+    [P_DEINTERLEAVE] = OB_DEINTERLEAVE_PARAM,
 };
 
 
 typedef struct hbao_state {
     ob_method_kit kit;
+    ob_deinterleaved split; /* `deinterleave` (methods/deinterleave.c) */
     ob_hbao_constants constants;
 } hbao_state;
 
@@ -67,11 +69,18 @@ static ob_error hbao_run(void *p, const ob_ao_inputs *in, const float *params, c
     /* Adaptive sample counts: the directions scale with the edge pass's multiplier. */
     c->adaptive = in->sample_multiplier != 0 ? 1 : 0;
     c->adaptive_base = (c->directions + 1) / 3 > 1 ? (c->directions + 1) / 3 : 1;
+    const bool split = params[P_DEINTERLEAVE] != 0.0f;
+    if (split && ob_deinterleaved_prepare(&s->split, "hbao.glsl", in) != OB_OK) return ob_peek_error(NULL);
     ob_method_kit_use(&s->kit, c, sizeof *c, in, out, GL_R32F);
     ob_method_kit_bind_multiplier(&s->kit, in);
-    ob_dispatch_2d(in->width, in->height, OB_HBAO_GROUP_X, OB_HBAO_GROUP_Y);
+    if (split)
+        ob_deinterleaved_dispatch(s->split.program, in, OB_HBAO_GROUP_X, OB_HBAO_GROUP_Y);
+    else
+        ob_dispatch_2d(in->width, in->height, OB_HBAO_GROUP_X, OB_HBAO_GROUP_Y);
     return OB_OK;
 }
+
+static void hbao_destroy(void *p) { ob_deinterleaved_release(&((hbao_state *)p)->split); }
 
 static int clamp_int(long v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : (int)v; }
 
@@ -118,6 +127,7 @@ const ob_method_impl ob_method_hbao = {
     .reads = OB_READS_DEPTH | OB_READS_NORMALS,
     .writes = OB_WRITES_VISIBILITY,
     .run = hbao_run,
+    .destroy = hbao_destroy,
     .set_samples = hbao_set_samples,
     .count_samples = hbao_count_samples,
     .count_rays = hbao_count_rays,

@@ -246,4 +246,34 @@ bool ob_packed_samples_wanted(ob_packed_samples *p, float mode);
 ob_error ob_packed_samples_run(ob_packed_samples *p, const ob_ao_inputs *in, int unit);
 void ob_packed_samples_release(ob_packed_samples *p);
 
+/* Deinterleaved sampling (methods/deinterleave.c; Bavoil 2014) for the random-kernel methods'
+ * `deinterleave` parameter (ssao, crytek, hbao, alchemy): the depth split into the 16 classes of
+ * the 4x4 noise tile (shaders/deinterleave.glsl), and the method's OB_DEINTERLEAVED program, whose
+ * taps read the nearest pixel of their own class from one compact layer
+ * (shaders/deinterleaved_taps.glsl). A selectable baseline beside the plain program, for a GPU's
+ * texture cache; off by default (docs/methods.md, "Deinterleaved sampling"). */
+typedef struct ob_deinterleaved {
+    GLuint split;   /* deinterleave.glsl, made on first use */
+    GLuint program; /* the method's OB_DEINTERLEAVED variant, made on first use (0: the method's own) */
+    GLuint layers;  /* R32F 2D array: 16 layers of ceil(w / 4) x ceil(h / 4) */
+    int width, height;
+} ob_deinterleaved;
+extern const char *const ob_deinterleave_options[]; /* off, on */
+#define OB_DEINTERLEAVE_PARAM                                                                                 \
+    {"deinterleave", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "",                                                     \
+     "deinterleaved sampling (Bavoil 2014): taps read the nearest pixel of their own 4x4 noise class from "   \
+     "the depth split into 16 compact layers, for a GPU's texture cache at large radii; off = the plain "     \
+     "program",                                                                                                \
+     false, ob_deinterleave_options}
+#define OB_DEINTERLEAVED_DEFINE "#define OB_DEINTERLEAVED 1\n"
+/* Splits in->linear_depth into d->layers and binds them to texture unit 4 after a barrier; makes
+ * `shader`'s OB_DEINTERLEAVED program into d->program on first use (NULL: the method makes its
+ * own, with OB_DEINTERLEAVED_DEFINE among its variants' defines: ssdo). Uses image unit 0 and
+ * texture unit 0: run it before the method's kit_use. Fails with the error set. */
+ob_error ob_deinterleaved_prepare(ob_deinterleaved *d, const char *shader, const ob_ao_inputs *in);
+/* After the method's own bindings: `program` (a deinterleaved one) over the 16 classes' texels,
+ * in groups of gx x gy texels of one class each. */
+void ob_deinterleaved_dispatch(GLuint program, const ob_ao_inputs *in, int gx, int gy);
+void ob_deinterleaved_release(ob_deinterleaved *d);
+
 #endif

@@ -19,7 +19,7 @@
 #include "sampling/sampling.h"
 #include "ssdo_params.h"
 
-enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_EXTRA_VIEW, P_FUSED, P_PACKED, P_COUNT };
+enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_EXTRA_VIEW, P_FUSED, P_PACKED, P_DEINTERLEAVE, P_COUNT };
 
 
 /* The lobe exponent of the default programs, which compile it in (shaders/ssdo.glsl: three
@@ -70,22 +70,27 @@ static const ob_param_info ssdo_params[P_COUNT] = {
      * skips those fetches where no lane of a group is occluded and would read 16 bytes a sample
      * for 4, so auto packs only on a software rasteriser; off is the baseline. */
     [P_PACKED] = OB_PACKED_PARAM(""),
+    /* The taps' depth from the 16 noise classes' layers (methods/deinterleave.c); with `packed`
+     * the packed texel is read at the same (class) pixel, so both give the same bits. */
+    [P_DEINTERLEAVE] = OB_DEINTERLEAVE_PARAM,
 };
 
 #define KERNEL_SEED 0x55D0u
 
-/* 2 x 2 x 3 x 2 x 2 programs, indexed by bits (the ambient mode's two bits take 3 values): see
- * ssdo_state.variants. */
-#define VARIANTS 64
+/* 2 x 2 x 3 x 2 x 2 x 2 programs, indexed by bits (the ambient mode's two bits take 3 values):
+ * see ssdo_state.variants. */
+#define VARIANTS 128
 
 typedef struct ssdo_state {
     ob_method_kit kit;
     /* The program variants with the second layer (bit 0), the extra view (bit 1), the ambient
      * mode (bits 2-3: constant, hemisphere, environment), a lobe other than DEFAULT_LOBE (bit 4:
-     * pow) and the packed samples (bit 5), made on first use; [0] is the kit's own program
-     * (constant ambient, one layer, one view, the default lobe, unpacked). */
+     * pow), the packed samples (bit 5) and deinterleaved taps (bit 6), made on first use; [0] is
+     * the kit's own program (constant ambient, one layer, one view, the default lobe, unpacked,
+     * plain taps). */
     GLuint variants[VARIANTS];
     ob_packed_samples packed; /* `packed`: methods/packed.c, bound at unit 10 */
+    ob_deinterleaved split;   /* `deinterleave`: methods/deinterleave.c, bound at unit 4 */
     int kernel_count; /* the cached kernel was built for these */
     int kernel_pdf;
     bool merged;
@@ -146,6 +151,7 @@ static void ssdo_destroy(void *p)
     for (int v = 1; v < VARIANTS; ++v)
         if (s->variants[v]) glDeleteProgram(s->variants[v]);
     ob_packed_samples_release(&s->packed);
+    ob_deinterleaved_release(&s->split);
 }
 
 static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
@@ -196,14 +202,17 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
                                                                               : 0;
     const bool pow_lobe = c->lobe != DEFAULT_LOBE;
     const bool packed = ob_packed_samples_wanted(&s->packed, params[P_PACKED]);
-    const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0) | mode << 2 | (pow_lobe ? 16 : 0) | (packed ? 32 : 0);
+    const bool split = params[P_DEINTERLEAVE] != 0.0f;
+    const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0) | mode << 2 | (pow_lobe ? 16 : 0) | (packed ? 32 : 0) |
+                  (split ? 64 : 0);
     if (v) {
         static const char *const ambient[3] = {"", "#define OB_SSDO_AMBIENT_HEMISPHERE 1\n",
                                                "#define OB_SSDO_AMBIENT_ENVIRONMENT 1\n"};
-        char defines[240];
-        snprintf(defines, sizeof defines, "%s%s%s%s%s", c->layers ? "#define OB_SSDO_LAYERS 1\n" : "",
+        char defines[280];
+        snprintf(defines, sizeof defines, "%s%s%s%s%s%s", c->layers ? "#define OB_SSDO_LAYERS 1\n" : "",
                  c->extra_view ? "#define OB_SSDO_EXTRA_VIEW 1\n" : "", ambient[mode],
-                 pow_lobe ? "#define OB_SSDO_LOBE_POW 1\n" : "", packed ? "#define OB_SSDO_PACKED 1\n" : "");
+                 pow_lobe ? "#define OB_SSDO_LOBE_POW 1\n" : "", packed ? "#define OB_SSDO_PACKED 1\n" : "",
+                 split ? OB_DEINTERLEAVED_DEFINE : "");
         variant = ob_method_variant(&s->variants[v], "ssdo.glsl", defines);
         if (!variant) return ob_peek_error(NULL);
     }
@@ -211,6 +220,7 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
         ob_error err = ob_packed_samples_run(&s->packed, in, 10); /* ssdo.glsl's packed_samples */
         if (err != OB_OK) return err;
     }
+    if (split && ob_deinterleaved_prepare(&s->split, NULL, in) != OB_OK) return ob_peek_error(NULL);
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     const bool fused = params[P_FUSED] != 0.0f && bounce;
     c->stage = s->merged ? OB_SSDO_STAGE_MERGED : fused ? OB_SSDO_STAGE_BOTH : OB_SSDO_STAGE_DIRECT;
@@ -224,15 +234,23 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     /* The renderer gives every declared output a target, so image 1 is valid with the bounce off
      * too (the merged stage then writes zeros there; nothing reads them). */
     glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    if (variant) glUseProgram(variant);
-    ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
+    if (split)
+        ob_deinterleaved_dispatch(variant, in, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
+    else {
+        if (variant) glUseProgram(variant);
+        ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
+    }
     if (s->merged || !bounce || fused) return OB_OK;
     /* Pass 2 reads nothing pass 1 wrote (the senders' radiance is the lighting pass's), so no
      * barrier: the same samples, the bounce of eq. 3.4. */
     c->stage = OB_SSDO_STAGE_BOUNCE;
     ob_compute_pass_use(&s->kit.pass, c, used);
-    if (variant) glUseProgram(variant);
-    ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
+    if (split)
+        ob_deinterleaved_dispatch(variant, in, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
+    else {
+        if (variant) glUseProgram(variant);
+        ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
+    }
     return OB_OK;
 }
 

@@ -19,12 +19,11 @@
 #ifdef OB_DEINTERLEAVED
 layout(binding = 4) uniform sampler2DArray depth_layers; /* deinterleave.glsl's, R32F */
 
+/* This invocation's class: its pixel offset in the 4x4 tile. */
+ivec2 ob_invocation_class() { return ivec2(int(gl_GlobalInvocationID.z) & 3, int(gl_GlobalInvocationID.z) >> 2); }
+
 /* This invocation's AO pixel. */
-ivec2 ob_invocation_pixel()
-{
-    ivec2 c = ivec2(int(gl_GlobalInvocationID.z) & 3, int(gl_GlobalInvocationID.z) >> 2);
-    return 4 * ivec2(gl_GlobalInvocationID.xy) + c;
-}
+ivec2 ob_invocation_pixel() { return 4 * ivec2(gl_GlobalInvocationID.xy) + ob_invocation_class(); }
 
 #define OB_DEINTERLEAVED_NEAR 4 /* one class period: nearer taps read their own pixel */
 
@@ -33,9 +32,8 @@ ivec2 ob_invocation_pixel()
  * image. */
 ivec2 ob_tap_pixel(ivec2 q, ivec2 size)
 {
-    ivec2 c = ivec2(int(gl_GlobalInvocationID.z) & 3, int(gl_GlobalInvocationID.z) >> 2);
-    ivec2 pix = 4 * ivec2(gl_GlobalInvocationID.xy) + c;
-    if (all(lessThan(abs(q - pix), ivec2(OB_DEINTERLEAVED_NEAR)))) return q;
+    ivec2 c = ob_invocation_class();
+    if (all(lessThan(abs(q - ob_invocation_pixel()), ivec2(OB_DEINTERLEAVED_NEAR)))) return q;
     ivec2 t = clamp((q - c + 2) >> 2, ivec2(0), (size - 1 - c) >> 2);
     return 4 * t + c;
 }
@@ -44,8 +42,7 @@ ivec2 ob_tap_pixel(ivec2 q, ivec2 size)
  * class's pixels, else (a near tap) from the full texture. */
 float ob_tap_depth(sampler2D depth, ivec2 q)
 {
-    ivec2 c = ivec2(int(gl_GlobalInvocationID.z) & 3, int(gl_GlobalInvocationID.z) >> 2);
-    if (all(equal(q & 3, c))) return texelFetch(depth_layers, ivec3(q >> 2, int(gl_GlobalInvocationID.z)), 0).r;
+    if (all(equal(q & 3, ob_invocation_class()))) return texelFetch(depth_layers, ivec3(q >> 2, int(gl_GlobalInvocationID.z)), 0).r;
     return texelFetch(depth, q, 0).r;
 }
 #else

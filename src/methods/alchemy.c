@@ -59,10 +59,7 @@ static ob_error alchemy_run(void *p, const ob_ao_inputs *in, const float *params
     if (split && ob_deinterleaved_prepare(&s->split, "alchemy.glsl", in) != OB_OK) return ob_peek_error(NULL);
     ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
     ob_method_kit_bind_multiplier(&s->kit, in);
-    if (split)
-        ob_deinterleaved_dispatch(s->split.program, in, OB_ALCHEMY_GROUP_X, OB_ALCHEMY_GROUP_Y);
-    else
-        ob_dispatch_2d(in->width, in->height, OB_ALCHEMY_GROUP_X, OB_ALCHEMY_GROUP_Y);
+    ob_method_dispatch(split ? s->split.program : 0, split, in, OB_ALCHEMY_GROUP_X, OB_ALCHEMY_GROUP_Y);
     return OB_OK;
 }
 

@@ -45,9 +45,13 @@ ob_error ob_deinterleaved_prepare(ob_deinterleaved *d, const char *shader, const
     return OB_OK;
 }
 
-void ob_deinterleaved_dispatch(GLuint program, const ob_ao_inputs *in, int gx, int gy)
+void ob_method_dispatch(GLuint program, bool deinterleaved, const ob_ao_inputs *in, int gx, int gy)
 {
-    glUseProgram(program);
+    if (program) glUseProgram(program);
+    if (!deinterleaved) {
+        ob_dispatch_2d(in->width, in->height, gx, gy);
+        return;
+    }
     const int w = (in->width + 3) / 4, h = (in->height + 3) / 4;
     glDispatchCompute((GLuint)((w + gx - 1) / gx), (GLuint)((h + gy - 1) / gy), 16);
 }

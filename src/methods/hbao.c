@@ -73,10 +73,7 @@ static ob_error hbao_run(void *p, const ob_ao_inputs *in, const float *params, c
     if (split && ob_deinterleaved_prepare(&s->split, "hbao.glsl", in) != OB_OK) return ob_peek_error(NULL);
     ob_method_kit_use(&s->kit, c, sizeof *c, in, out, GL_R32F);
     ob_method_kit_bind_multiplier(&s->kit, in);
-    if (split)
-        ob_deinterleaved_dispatch(s->split.program, in, OB_HBAO_GROUP_X, OB_HBAO_GROUP_Y);
-    else
-        ob_dispatch_2d(in->width, in->height, OB_HBAO_GROUP_X, OB_HBAO_GROUP_Y);
+    ob_method_dispatch(split ? s->split.program : 0, split, in, OB_HBAO_GROUP_X, OB_HBAO_GROUP_Y);
     return OB_OK;
 }
 

@@ -247,7 +247,7 @@ ob_error ob_packed_samples_run(ob_packed_samples *p, const ob_ao_inputs *in, int
 void ob_packed_samples_release(ob_packed_samples *p);
 
 /* Deinterleaved sampling (methods/deinterleave.c; Bavoil 2014) for the random-kernel methods'
- * `deinterleave` parameter (ssao, crytek, hbao, alchemy): the depth split into the 16 classes of
+ * `deinterleave` parameter (ssao, crytek, hbao, alchemy, ssdo, ssdo_merged): the depth split into the 16 classes of
  * the 4x4 noise tile (shaders/deinterleave.glsl), and the method's OB_DEINTERLEAVED program, whose
  * taps read the nearest pixel of their own class from one compact layer
  * (shaders/deinterleaved_taps.glsl). A selectable baseline beside the plain program, for a GPU's
@@ -271,9 +271,10 @@ extern const char *const ob_deinterleave_options[]; /* off, on */
  * own, with OB_DEINTERLEAVED_DEFINE among its variants' defines: ssdo). Uses image unit 0 and
  * texture unit 0: run it before the method's kit_use. Fails with the error set. */
 ob_error ob_deinterleaved_prepare(ob_deinterleaved *d, const char *shader, const ob_ao_inputs *in);
-/* After the method's own bindings: `program` (a deinterleaved one) over the 16 classes' texels,
- * in groups of gx x gy texels of one class each. */
-void ob_deinterleaved_dispatch(GLuint program, const ob_ao_inputs *in, int gx, int gy);
+/* A method's dispatch after its own bindings: `program` (0 = the one bound) over the AO grid in
+ * groups of gx x gy pixels, or, `deinterleaved`, over the 16 classes' texels in groups of gx x gy
+ * texels of one class each (then `program` is a deinterleaved one). */
+void ob_method_dispatch(GLuint program, bool deinterleaved, const ob_ao_inputs *in, int gx, int gy);
 void ob_deinterleaved_release(ob_deinterleaved *d);
 
 #endif

@@ -70,10 +70,7 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, c
     size_t used = offsetof(ob_ssao_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     ob_method_kit_use(&s->kit, c, used, in, out, GL_R32F);
     ob_method_kit_bind_multiplier(&s->kit, in);
-    if (split)
-        ob_deinterleaved_dispatch(s->split.program, in, OB_SSAO_GROUP_X, OB_SSAO_GROUP_Y);
-    else
-        ob_dispatch_2d(in->width, in->height, OB_SSAO_GROUP_X, OB_SSAO_GROUP_Y);
+    ob_method_dispatch(split ? s->split.program : 0, split, in, OB_SSAO_GROUP_X, OB_SSAO_GROUP_Y);
     return OB_OK;
 }
 

@@ -234,23 +234,13 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     /* The renderer gives every declared output a target, so image 1 is valid with the bounce off
      * too (the merged stage then writes zeros there; nothing reads them). */
     glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    if (split)
-        ob_deinterleaved_dispatch(variant, in, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
-    else {
-        if (variant) glUseProgram(variant);
-        ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
-    }
+    ob_method_dispatch(variant, split, in, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
     if (s->merged || !bounce || fused) return OB_OK;
     /* Pass 2 reads nothing pass 1 wrote (the senders' radiance is the lighting pass's), so no
      * barrier: the same samples, the bounce of eq. 3.4. */
     c->stage = OB_SSDO_STAGE_BOUNCE;
     ob_compute_pass_use(&s->kit.pass, c, used);
-    if (split)
-        ob_deinterleaved_dispatch(variant, in, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
-    else {
-        if (variant) glUseProgram(variant);
-        ob_dispatch_2d(in->width, in->height, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
-    }
+    ob_method_dispatch(variant, split, in, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
     return OB_OK;
 }
 

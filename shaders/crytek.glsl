@@ -42,11 +42,14 @@ void main()
     /* Adaptive (seed 003 §4.1): base x 1, 2 or 3 from the edge pass; the Halton kernel's prefixes
      * are kernels of their own. */
     int count = crytek.adaptive != 0 ? crytek.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r) : crytek.samples;
+    /* The projection read once, into registers: read from the constant block inside the loop,
+     * llvmpipe loaded the matrix again for every sample (ssdo.glsl). */
+    mat4 ao_proj = frame.ao_proj;
     float occlusion = 0.0;
     for (int i = 0; i < count; ++i) {
         vec3 k = crytek.kernel[i].xyz;
         vec3 s = p + vec3(r2 * k.xy, k.z) * radius;
-        vec4 clip = frame.ao_proj * vec4(s, 1.0);
+        vec4 clip = ao_proj * vec4(s, 1.0);
         if (clip.w <= 0.0) continue;
         vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;

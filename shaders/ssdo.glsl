@@ -55,17 +55,27 @@ layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
 
 const float PI = 3.14159265;
 
+/* The number of lights, frame.light_count, is compiled in (methods/ssdo.c picks the program by
+ * it; the program without the define is the one for no light). With a constant trip count the
+ * loops below unroll and light_dir and light_e stay in registers; with the uniform count they were
+ * arrays indexed by a loop variable, which llvmpipe reads lane by lane from memory (and a GPU from
+ * local memory): with fzk-haus's three lights that cost ssdo a third of its pass on llvmpipe
+ * (bench/results/2026-11-23-llvmpipe-instructions.md). */
+#ifndef OB_SSDO_LIGHTS
+#define OB_SSDO_LIGHTS 0
+#endif
+
 /* The lights as seen from one point, in view space: direction and irradiance (colour x
  * intensity x falloff x the lobe's normalisation). They depend on P only, so they are worked out
  * once per pixel and each sample pays one dot and one pow per light. */
-vec3 light_dir[OB_MAX_LIGHTS];
-vec3 light_e[OB_MAX_LIGHTS];
+vec3 light_dir[OB_SSDO_LIGHTS > 0 ? OB_SSDO_LIGHTS : 1];
+vec3 light_e[OB_SSDO_LIGHTS > 0 ? OB_SSDO_LIGHTS : 1];
 
 void lights_at(vec3 p, mat3 to_view)
 {
     float k = ssdo.lobe;
     float lobe_norm = (k + 1.0) / (2.0 * PI);
-    for (int i = 0; i < frame.light_count; ++i) {
+    for (int i = 0; i < OB_SSDO_LIGHTS; ++i) {
         vec3 l;
         /* The same falloff, window and cone as lighting.glsl. */
         float falloff = ob_light_falloff(int(frame.light_color[i].w), frame.light_position[i], frame.light_direction[i].xyz,
@@ -88,7 +98,7 @@ vec3 incoming(vec3 w, vec3 up, mat3 to_world)
 #else
     vec3 l_in = frame.ambient.rgb;
 #endif
-    for (int i = 0; i < frame.light_count; ++i) {
+    for (int i = 0; i < OB_SSDO_LIGHTS; ++i) {
 #ifdef OB_SSDO_LOBE_POW
         l_in += light_e[i] * pow(max(dot(w, light_dir[i]), 0.0), ssdo.lobe);
 #else
@@ -110,10 +120,12 @@ vec3 incoming(vec3 w, vec3 up, mat3 to_world)
  * in free space: no occluder. Behind that surface too, it stays occluded, and the sender of its
  * bounce is whichever view's surface point lies nearer s; the extra view's is the one this view
  * sees at a grazing angle or not at all. Outside the extra image nothing changes. */
+mat4 extra_from_view, extra_to_view, extra_proj; /* the ssdo block's, read once in main (see ao_proj there) */
+
 void extra_test(vec3 s, float bias, inout vec3 scene_p, inout float occ, inout vec3 send_n, inout vec3 send_l)
 {
-    vec4 se = ssdo.extra_from_view * vec4(s, 1.0);
-    vec4 ce = ssdo.extra_proj * se;
+    vec4 se = extra_from_view * vec4(s, 1.0);
+    vec4 ce = extra_proj * se;
     if (ce.w <= 0.0) return;
     vec2 uv = ce.xy / ce.w * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return;
@@ -125,10 +137,10 @@ void extra_test(vec3 s, float bias, inout vec3 scene_p, inout float occ, inout v
         return;
     }
     vec3 pe = ob_view_position(vec2(qe) + 0.5, de, 1.0 / vec2(size), ssdo.extra_proj_info);
-    vec3 pe_here = (ssdo.extra_to_view * vec4(pe, 1.0)).xyz;
+    vec3 pe_here = (extra_to_view * vec4(pe, 1.0)).xyz;
     if (distance(pe_here, s) < distance(scene_p, s)) {
         scene_p = pe_here;
-        send_n = mat3(ssdo.extra_to_view) * texelFetch(extra_normal, qe, 0).xyz;
+        send_n = mat3(extra_to_view) * texelFetch(extra_normal, qe, 0).xyz;
         send_l = texelFetch(extra_direct, qe, 0).rgb;
     }
 }
@@ -176,6 +188,15 @@ void main()
     /* Patches closer than their own radius sqrt(A_s / pi) = r / sqrt(N) would make 1/d^2 blow up. */
     float min_d2 = radius * radius / float(max(count, 1));
     ivec2 full_size = textureSize(direct_map, 0);
+    /* The projection read once, into registers: read from the constant block inside the loop,
+     * llvmpipe loaded the matrix again for every sample, 22 % of the pass's instructions
+     * (bench/results/2026-11-23-llvmpipe-instructions.md). */
+    mat4 ao_proj = frame.ao_proj;
+#ifdef OB_SSDO_EXTRA_VIEW
+    extra_from_view = ssdo.extra_from_view;
+    extra_to_view = ssdo.extra_to_view;
+    extra_proj = ssdo.extra_proj;
+#endif
     vec3 lit = vec3(0.0), total = vec3(0.0), bounce = vec3(0.0);
     float vis = 0.0, vis_all = 0.0;
     for (int i = 0; i < count; ++i) {
@@ -191,7 +212,7 @@ void main()
         vec3 send_n = vec3(0.0), send_l = vec3(0.0);
 #endif
         vec3 s = p + dir * (radius * ssdo.kernel[i].w);
-        vec4 clip = frame.ao_proj * vec4(s, 1.0);
+        vec4 clip = ao_proj * vec4(s, 1.0);
 #ifdef OB_SSDO_PACKED
         uvec4 texel = uvec4(0u); /* sample_pack.glsl's: depth, normal and radiance of q */
 #endif

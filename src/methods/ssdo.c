@@ -77,17 +77,18 @@ static const ob_param_info ssdo_params[P_COUNT] = {
 
 #define KERNEL_SEED 0x55D0u
 
-/* 2 x 2 x 3 x 2 x 2 x 2 programs, indexed by bits (the ambient mode's two bits take 3 values):
- * see ssdo_state.variants. */
-#define VARIANTS 128
+/* 2 x 2 x 3 x 2 x 2 x 2 programs, indexed by bits (the ambient mode's two bits take 3 values),
+ * for each number of lights 0 ... OB_MAX_LIGHTS: see ssdo_state.variants. */
+#define VARIANT_BITS 128
+#define VARIANTS (VARIANT_BITS * (OB_MAX_LIGHTS + 1))
 
 typedef struct ssdo_state {
     ob_method_kit kit;
     /* The program variants with the second layer (bit 0), the extra view (bit 1), the ambient
      * mode (bits 2-3: constant, hemisphere, environment), a lobe other than DEFAULT_LOBE (bit 4:
-     * pow), the packed samples (bit 5) and deinterleaved taps (bit 6), made on first use; [0] is
-     * the kit's own program (constant ambient, one layer, one view, the default lobe, unpacked,
-     * plain taps). */
+     * pow), the packed samples (bit 5) and deinterleaved taps (bit 6), plus VARIANT_BITS x the
+     * number of lights, made on first use; [0] is the kit's own program (no light, constant
+     * ambient, one layer, one view, the default lobe, unpacked, plain taps). */
     GLuint variants[VARIANTS];
     ob_packed_samples packed; /* `packed`: methods/packed.c, bound at unit 10 */
     ob_deinterleaved split;   /* `deinterleave`: methods/deinterleave.c, bound at unit 4 */
@@ -203,16 +204,19 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     const bool pow_lobe = c->lobe != DEFAULT_LOBE;
     const bool packed = ob_packed_samples_wanted(&s->packed, params[P_PACKED]);
     const bool split = params[P_DEINTERLEAVE] != 0.0f;
-    const int v = (c->layers ? 1 : 0) | (c->extra_view ? 2 : 0) | mode << 2 | (pow_lobe ? 16 : 0) | (packed ? 32 : 0) |
-                  (split ? 64 : 0);
+    /* The number of lights too: the per-sample light loop then unrolls (shaders/ssdo.glsl). */
+    const int lights = in->frame->light_count;
+    const int v = ((c->layers ? 1 : 0) | (c->extra_view ? 2 : 0) | mode << 2 | (pow_lobe ? 16 : 0) | (packed ? 32 : 0) |
+                   (split ? 64 : 0)) +
+                  VARIANT_BITS * lights;
     if (v) {
         static const char *const ambient[3] = {"", "#define OB_SSDO_AMBIENT_HEMISPHERE 1\n",
                                                "#define OB_SSDO_AMBIENT_ENVIRONMENT 1\n"};
-        char defines[280];
-        snprintf(defines, sizeof defines, "%s%s%s%s%s%s", c->layers ? "#define OB_SSDO_LAYERS 1\n" : "",
-                 c->extra_view ? "#define OB_SSDO_EXTRA_VIEW 1\n" : "", ambient[mode],
-                 pow_lobe ? "#define OB_SSDO_LOBE_POW 1\n" : "", packed ? "#define OB_SSDO_PACKED 1\n" : "",
-                 split ? OB_DEINTERLEAVED_DEFINE : "");
+        char defines[320];
+        snprintf(defines, sizeof defines, "%s%s%s%s%s%s#define OB_SSDO_LIGHTS %d\n",
+                 c->layers ? "#define OB_SSDO_LAYERS 1\n" : "", c->extra_view ? "#define OB_SSDO_EXTRA_VIEW 1\n" : "",
+                 ambient[mode], pow_lobe ? "#define OB_SSDO_LOBE_POW 1\n" : "",
+                 packed ? "#define OB_SSDO_PACKED 1\n" : "", split ? OB_DEINTERLEAVED_DEFINE : "", lights);
         variant = ob_method_variant(&s->variants[v], "ssdo.glsl", defines);
         if (!variant) return ob_peek_error(NULL);
     }

@@ -1,8 +1,8 @@
 #version 450 core
 /* Temporal accumulation at the AO resolution (issue 17; the reprojection cache of Nehab et al.
  * 2007 with the neighbourhood clamp of Karis 2014, "High Quality Temporal Supersampling"):
- *   1. reproject: this pixel's world point (from this frame's depth, frame.inv_view) into the
- *      previous frame's AO grid (tp.prev_view, tp.prev_ao_proj). The scene is static, so the camera
+ *   1. reproject: this pixel's point (from this frame's depth) into the previous frame's view
+ *      (tp.to_prev_view) and AO grid (tp.prev_ao_proj). The scene is static, so the camera
  *      alone moves a point; a moving object would need its own per-object motion vector (its
  *      previous model matrix through the G-buffer), which this pass would add to the camera's;
  *   2. reject disocclusions per bilinear tap: a tap of the previous frame counts when its point lies
@@ -168,12 +168,11 @@ void main()
 #endif
     /* 1: the previous frame's view space and AO grid position (pixel centres at + 0.5). */
     vec3 p = ob_view_position(vec2(pix) + 0.5, d, frame.ao_inv_size, frame.ao_proj_info);
-    vec3 world = (frame.inv_view * vec4(p, 1.0)).xyz;
-    vec3 pp = (tp.prev_view * vec4(world, 1.0)).xyz;
+    vec3 pp = (tp.to_prev_view * vec4(p, 1.0)).xyz;
     vec4 clip = tp.prev_ao_proj * vec4(pp, 1.0);
     vec2 at = (clip.xy / clip.w * 0.5 + 0.5) * frame.ao_size;
     imageStore(motion, pix, vec4(at - (vec2(pix) + 0.5), 0.0, 0.0));
-    vec3 np = mat3(tp.prev_view) * (mat3(frame.inv_view) * n);
+    vec3 np = mat3(tp.to_prev_view) * n;
     /* The four bilinear taps around it: tap i is base + (i & 1, i >> 1). */
     vec2 f = at - 0.5;
     ivec2 base = ivec2(floor(f));

@@ -292,7 +292,7 @@ static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const method_
     const bool valid = r->history_valid && !memcmp(&key, &r->history_key, sizeof key);
     const int frames = s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
     ob_temporal_constants c;
-    ob_temporal_fill(&c, r->prev_view, r->prev_ao_proj, valid, frames);
+    ob_temporal_fill(&c, r->prev_view, r->frame_constants.inv_view, r->prev_ao_proj, valid, frames);
     const int h = t->history_index;
     ob_temporal_chain chain = {.current = main_in, .result = main_out, .rgb = plan->rgb,
                                .history = plan->rgb ? t->history_rgb[h] : t->history[h],

@@ -107,10 +107,11 @@ enum { OB_TEMPORAL_PROGRAMS = 6 };
 typedef struct ob_temporal_pass {
     ob_compute_pass programs[OB_TEMPORAL_PROGRAMS]; /* a slot whose .program is 0 is not made yet */
 } ob_temporal_pass;
-/* The camera of the previous frame and the history rules (pure; no GL): prev_view and
- * prev_ao_proj column-major, history_frames N >= 1. */
-void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const float prev_ao_proj[16],
-                      bool history_valid, int history_frames);
+/* The camera of the previous frame and the history rules (pure; no GL): prev_view (world -> the
+ * previous view), inv_view (this frame's view -> world) and prev_ao_proj column-major,
+ * history_frames N >= 1. */
+void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const float inv_view[16],
+                      const float prev_ao_proj[16], bool history_valid, int history_frames);
 ob_error ob_temporal_init(ob_temporal_pass *p);
 /* The main chain: `current` (R32F or RGBA16F) and `history` (RG32F or RGBA16F, with the age) in,
  * `result` and `next_history` out (the same formats); the bounce (bounce_current != 0): RGBA16F

@@ -1,6 +1,7 @@
 /* Temporal accumulation (issue 17): the reprojection cache of Nehab et al. 2007 with Karis 2014's
  * neighbourhood clamp, at the AO resolution. Shader: shaders/temporal.glsl (it says what each step
  * does and what moving objects would need); the frame's use of it: src/core/frame.c. */
+#include <cglm/cglm.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -23,11 +24,19 @@
  * estimate is another one. 1 / log2(1 + 1/6) = 4.50 (docs/temporal.md, "Footprint"). */
 #define FOOTPRINT_FALLOFF 4.50f
 
-void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const float prev_ao_proj[16],
-                      bool history_valid, int history_frames)
+void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const float inv_view[16],
+                      const float prev_ao_proj[16], bool history_valid, int history_frames)
 {
     memset(c, 0, sizeof *c);
-    memcpy(c->prev_view, prev_view, sizeof c->prev_view);
+    /* One matrix from this view to the previous one instead of two through world space: on
+     * llvmpipe the two matrices and their products were a tenth of the shader's instructions
+     * (bench/results/2026-11-23-llvmpipe-instructions.md), and the product skips world
+     * coordinates, which lose bits far from the origin. */
+    mat4 prev, inv, to_prev;
+    memcpy(prev, prev_view, sizeof prev);
+    memcpy(inv, inv_view, sizeof inv);
+    glm_mat4_mul(prev, inv, to_prev);
+    memcpy(c->to_prev_view, to_prev, sizeof c->to_prev_view);
     memcpy(c->prev_ao_proj, prev_ao_proj, sizeof c->prev_ao_proj);
     /* 1/P00, 1/P11, P20, P21 (column-major), as ob_proj_info and common.glsl's ob_view_position. */
     c->prev_ao_proj_info[0] = 1.0f / prev_ao_proj[0];

@@ -57,10 +57,10 @@ const float PI = 3.14159265;
 
 /* The number of lights, frame.light_count, is compiled in (methods/ssdo.c picks the program by
  * it; the program without the define is the one for no light). With a constant trip count the
- * loops below unroll and light_dir and light_e stay in registers; with the uniform count they were
- * arrays indexed by a loop variable, which llvmpipe reads lane by lane from memory (and a GPU from
- * local memory): with fzk-haus's three lights that cost ssdo a third of its pass on llvmpipe
- * (bench/results/2026-11-23-llvmpipe-instructions.md). */
+ * loops below unroll and light_dir and light_e stay in registers. With the uniform count they
+ * were arrays indexed by a loop variable, which llvmpipe reads lane by lane from memory (a GPU
+ * compiler may put them in local memory): with fzk-haus's three lights that cost ssdo a third of
+ * its pass on llvmpipe (bench/results/2026-11-23-llvmpipe-instructions.md). */
 #ifndef OB_SSDO_LIGHTS
 #define OB_SSDO_LIGHTS 0
 #endif

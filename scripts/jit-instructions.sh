@@ -25,8 +25,18 @@ count() { # METHOD OUT: callgrind one frame, the JIT functions' counts one per l
         "${@:3}" >"$dir/$1.log" 2>&1 || { echo "$0: render --method $1 failed:" >&2; tail -3 "$dir/$1.log" >&2; exit 1; }
     callgrind_annotate --threshold=100 "$dir/$1.cg" | awk '/\[\?\?\?\]/ { gsub(",", "", $1); print $1 }' >"$2"
 }
-count none "$dir/none.txt" "$@"
-count "$method" "$dir/method.txt" "$@"
+# The baseline frame takes the same options but the method's --set ones (none refuses them).
+opts=("$@") base=()
+while [ $# -gt 0 ]; do
+    case $1 in
+    --set) shift ;;
+    --set=*) ;;
+    *) base+=("$1") ;;
+    esac
+    shift
+done
+count none "$dir/none.txt" "${base[@]}"
+count "$method" "$dir/method.txt" "${opts[@]}"
 python3 - "$dir/none.txt" "$dir/method.txt" "$method" <<'PY'
 import collections, sys
 base = collections.Counter(int(x) for x in open(sys.argv[1]).read().split())

@@ -11,12 +11,12 @@
  *     same sigma would differ 1000x; with r = 1 this is the paper's equation exactly.
  *   - z_C is the view-space z (negative in front of the camera, as in the paper), so the bias
  *     term subtracts beta * depth: seed 004 §3.4's code adds beta*z to the normal instead.
- * `deinterleave on` compiles OB_DEINTERLEAVED: far taps read the nearest pixel of their own 4x4 class
- * (deinterleaved_taps.glsl). */
+ * `deinterleave on` compiles OB_DEINTERLEAVED: far taps read the nearest pixel of their own 4x4 class;
+ * `depth_mips on` OB_TAPS_DEPTH_MIPS: taps 20 px or more out read the depth MIP chain (taps.glsl). */
 #include "alchemy_params.h"
 #include "common.glsl"
 #include "noise.glsl"
-#include "deinterleaved_taps.glsl"
+#include "taps.glsl"
 
 layout(local_size_x = OB_ALCHEMY_GROUP_X, local_size_y = OB_ALCHEMY_GROUP_Y) in;
 
@@ -28,7 +28,7 @@ layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 
 void main()
 {
-    ivec2 pix = ob_invocation_pixel(); /* deinterleaved_taps.glsl */
+    ivec2 pix = ob_invocation_pixel(); /* taps.glsl */
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
     float d = texelFetch(linear_depth, pix, 0).r;
@@ -60,7 +60,7 @@ void main()
         vec2 q = vec2(pix) + 0.5 + sqrt(alpha) * r_px * vec2(cos(theta), sin(theta));
         ivec2 qi = ivec2(floor(q));
         if (any(lessThan(qi, ivec2(0))) || any(greaterThanEqual(qi, size))) continue;
-        qi = ob_tap_pixel(qi, size); /* deinterleaved_taps.glsl */
+        qi = ob_tap_pixel(qi, size); /* taps.glsl */
         float qd = ob_tap_depth(linear_depth, qi);
         if (qd <= 0.0) continue;
         vec3 v = (ob_view_position(vec2(qi) + 0.5, qd, frame.ao_inv_size, frame.ao_proj_info) - c) / r;

@@ -8,12 +8,12 @@
  * Half of a sphere around a point on a plane lies inside the plane, so flat surfaces read about
  * 0.5: that is the method (its characteristic grey look), not a bug. The optional correction of
  * seed 003 §5.4 rescales AO' = min(1, 2 AO) so open planes read 1, wasting half the samples.
- * `deinterleave on` compiles OB_DEINTERLEAVED: far taps read the nearest pixel of their own 4x4 class
- * (deinterleaved_taps.glsl). */
+ * `deinterleave on` compiles OB_DEINTERLEAVED: far taps read the nearest pixel of their own 4x4 class;
+ * `depth_mips on` OB_TAPS_DEPTH_MIPS: taps 20 px or more out read the depth MIP chain (taps.glsl). */
 #include "crytek_params.h"
 #include "common.glsl"
 #include "noise.glsl"
-#include "deinterleaved_taps.glsl"
+#include "taps.glsl"
 
 layout(local_size_x = OB_CRYTEK_GROUP_X, local_size_y = OB_CRYTEK_GROUP_Y) in;
 
@@ -24,7 +24,7 @@ layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 
 void main()
 {
-    ivec2 pix = ob_invocation_pixel(); /* deinterleaved_taps.glsl */
+    ivec2 pix = ob_invocation_pixel(); /* taps.glsl */
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
     float d = texelFetch(linear_depth, pix, 0).r;

@@ -3,11 +3,11 @@
  * Interleaved Sampling", NVIDIA): the AO grid's linear depth split into 16 layers, one per
  * class of the 4x4 noise tile. Layer c = (cx, cy), c = cx + 4 cy, texel t holds AO pixel
  * 4 t + (cx, cy), so a class's pixels are adjacent in memory. A method's deinterleaved program
- * (OB_DEINTERLEAVED, deinterleaved_taps.glsl) runs one layer per dispatch slice: its neighbouring
+ * (OB_DEINTERLEAVED, taps.glsl) runs one layer per dispatch slice: its neighbouring
  * invocations share the class's one rotation, so their taps land on neighbouring texels of one
  * layer, where the plain program's 16 rotations scatter a group's taps over the whole radius
  * (what a GPU's texture cache pays for at large radii). Texels past the image (a size that is not
- * a multiple of 4) hold 0, no geometry; the taps never read them (deinterleaved_taps.glsl clamps
+ * a multiple of 4) hold 0, no geometry; the taps never read them (taps.glsl clamps
  * to the class's last pixel). Source: src/methods/deinterleave.c. */
 #include "frame_params.h"
 

@@ -5,10 +5,8 @@
 #define OB_DEPTH_MIPS_PARAMS_H
 #include "ob_shared.h"
 
-/* Levels made by the one dispatch: 0 (a copy of the input) to 4, so a far tap reads a 16x16
- * footprint of level 0 from one texel. XeGTAO keeps 5 as well (XE_GTAO_DEPTH_MIP_LEVELS); with its
- * tap level log2(offset px) - 3.3 it reaches level 4 for taps about 160 px away. */
-#define OB_DEPTH_MIPS_LEVELS 5
+/* OB_DEPTH_MIPS_LEVELS, the levels made by the one dispatch, is in ob_shared.h (the readers' taps
+ * need it too). */
 /* A work group is GROUP x GROUP threads; each reads a 2x2 quad of level 0 and owns one level-1
  * texel, so the group covers a TILE x TILE tile of level 0 and reduces it to one level-4 texel
  * in shared memory. 8x8 = 64 threads: two NVIDIA warps or one AMD wave64. */

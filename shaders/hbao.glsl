@@ -15,11 +15,12 @@
  *
  * AO is visibility: 1 = open. Sky (depth 0) writes 1.
  * `deinterleave on` compiles OB_DEINTERLEAVED: far steps read the nearest pixel of their own 4x4 class
- * (deinterleaved_taps.glsl; Bavoil 2014, as NVIDIA's HBAO+ marches its quarter-resolution layers). */
+ * (Bavoil 2014, as NVIDIA's HBAO+ marches its quarter-resolution layers); `depth_mips on`
+ * OB_TAPS_DEPTH_MIPS: steps 20 px or more out read the depth MIP chain (SAO §2.2). Both in taps.glsl. */
 #include "hbao_params.h"
 #include "common.glsl"
 #include "noise.glsl"
-#include "deinterleaved_taps.glsl"
+#include "taps.glsl"
 
 layout(local_size_x = OB_HBAO_GROUP_X, local_size_y = OB_HBAO_GROUP_Y) in;
 
@@ -73,7 +74,7 @@ float hbao_sin_tangent(vec3 p, float pn, vec3 n, vec2 d)
 
 void main()
 {
-    ivec2 pix = ob_invocation_pixel(); /* deinterleaved_taps.glsl */
+    ivec2 pix = ob_invocation_pixel(); /* taps.glsl */
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
 

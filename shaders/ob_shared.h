@@ -55,6 +55,18 @@ typedef float ob_gl_mat4[16];
  * methods read their block's sample multiplier at pixel / OB_EDGE_BLOCK. */
 #define OB_EDGE_BLOCK 4
 
+/* A tap d px from its pixel reads level floor(log2 d - 3.3) of the depth MIP chain
+ * (passes/depth_mips.c): full resolution nearer than 2^4.3 ≈ 20 px, and beyond, texels of 2^L px
+ * at least 2^(L + 3.3) px out, a tenth of the distance or less (XeGTAO's DepthMIPSamplingOffset,
+ * same reasoning). The slice march (slice_march.glsl, via methods/slices.c) and the random-kernel
+ * methods' taps (taps.glsl) both. */
+#define OB_DEPTH_MIPS_TAP_OFFSET 3.3
+/* Levels of the depth MIP chain made by its one dispatch: 0 (a copy of the input) to 4, so a far
+ * tap reads a 16x16 footprint of level 0 from one texel. XeGTAO keeps 5 as well
+ * (XE_GTAO_DEPTH_MIP_LEVELS); with the tap level log2(offset px) - 3.3 it reaches level 4 for taps
+ * about 160 px away. */
+#define OB_DEPTH_MIPS_LEVELS 5
+
 /* Uniform-buffer binding points: a pass's own constants, and the per-frame block (frame_params.h)
  * that every pass may read beside them. */
 #define OB_BINDING_PASS 0

@@ -157,9 +157,8 @@ ivec2 ob_march_self = ivec2(-1);
  * chain picks one child per level, SAO's rotated grid (shaders/depth_mips.glsl: texel p of level
  * L is texel 2p + (p.y & 1, p.x & 1) of level L - 1), so following the same picks back down finds
  * the one pixel whose depth a coarse texel holds, and the sample is reconstructed where that
- * surface point really is: exact on planes, as at level 0. (Where the pick was sky and a
- * sibling's depth stood in, the centre is a pixel off.) Beyond a level's last texel (odd sizes)
- * the chain holds nothing: clamp, as the pass does (GL's level size, max(1, size >> L)). */
+ * surface point really is: exact on planes, as at level 0 (a sky pick is sky: no sample). Beyond
+ * a level's last texel (odd sizes) the chain holds nothing: clamp, as the pass does (GL's level size, max(1, size >> L)). */
 float ob_march_depth(sampler2D depth, ivec2 q, int level, ivec2 size, out vec2 centre)
 {
     ivec2 ql = min(q >> level, max(size >> level, ivec2(1)) - 1);

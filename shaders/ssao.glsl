@@ -10,12 +10,12 @@
  *   - one addition: the occluder must lie above P's tangent plane (see the loop), which removes
  *     the grazing-angle self-occlusion that the bias alone only hides;
  *   - AO = (1 - occluded / N) ^ intensity: visibility in [0,1].
- * `deinterleave on` compiles OB_DEINTERLEAVED: far taps read the nearest pixel of their own 4x4 class
- * (deinterleaved_taps.glsl). */
+ * `deinterleave on` compiles OB_DEINTERLEAVED: far taps read the nearest pixel of their own 4x4 class;
+ * `depth_mips on` OB_TAPS_DEPTH_MIPS: taps 20 px or more out read the depth MIP chain (taps.glsl). */
 #include "ssao_params.h"
 #include "common.glsl"
 #include "noise.glsl"
-#include "deinterleaved_taps.glsl"
+#include "taps.glsl"
 
 layout(local_size_x = OB_SSAO_GROUP_X, local_size_y = OB_SSAO_GROUP_Y) in;
 
@@ -27,7 +27,7 @@ layout(binding = 0, r32f) uniform writeonly image2D ao_out;
 
 void main()
 {
-    ivec2 pix = ob_invocation_pixel(); /* deinterleaved_taps.glsl */
+    ivec2 pix = ob_invocation_pixel(); /* taps.glsl */
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
 

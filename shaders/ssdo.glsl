@@ -49,7 +49,7 @@ layout(binding = 9) uniform sampler2D extra_direct; /*   RGBA16F direct radiance
 #include "packed_samples.glsl"
 layout(binding = 10) uniform usampler2D packed_samples;
 #endif
-#include "deinterleaved_taps.glsl" /* `deinterleave on`: OB_DEINTERLEAVED */
+#include "taps.glsl" /* `deinterleave on`: OB_DEINTERLEAVED */
 layout(binding = 0, rgba16f) uniform writeonly image2D m_out;
 layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
 
@@ -149,7 +149,7 @@ void extra_test(vec3 s, float bias, inout vec3 scene_p, inout float occ, inout v
 
 void main()
 {
-    ivec2 pix = ob_invocation_pixel(); /* deinterleaved_taps.glsl */
+    ivec2 pix = ob_invocation_pixel(); /* taps.glsl */
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
     int stage = ssdo.stage;

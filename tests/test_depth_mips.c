@@ -2,10 +2,11 @@
  * goes through the GPU pass (src/passes/depth_mips.c + shaders/depth_mips.glsl, tiles reduced in
  * shared memory) and through its CPU twin (ob_depth_mips_reference, level by level over the whole
  * image); the two must agree bit for bit on every level, and each must pass the same checks:
- *   - level 0 is the input; each texel of level L is one of its four children in level L-1 (so
- *     every level holds only depths that some pixel under it has);
+ *   - level 0 is the input; each texel of level L is the child in level L-1 that SAO's rotated grid
+ *     picks, sky included (so every level holds only depths that some pixel under it has, and the
+ *     one pixel its picks lead to has it: the readers reconstruct the tap there);
  *   - across a depth step, no level holds a depth strictly between the near and the far one;
- *   - a 2x2 of sky (0) gives 0, a 2x2 mixing sky and geometry keeps geometry;
+ *   - a picked sky child gives 0 even beside geometry, a 2x2 of sky gives 0;
  *   - odd, tiny and partial-tile sizes (37x23, 33x17, 8x160, 1x1, 2x1, 160x120), and a run at a new
  *     size remakes the texture with that size's levels.
  * `test_depth_mips --bench` prints the pass's GPU time (median of 20) at 640x480 and 1280x720. */
@@ -93,16 +94,13 @@ static int check_chain(const char *impl, const char *what, const float *depth, c
         ob_depth_mips_level_size(c->width, c->height, l, &w, &h);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
-                float v = c->level[l][y * w + x], d[4] = {0}, farthest = 0.0f;
-                bool child = false;
+                float v = c->level[l][y * w + x], d[4] = {0};
                 for (int k = 0; k < 4; ++k) {
                     int cx = 2 * x + (k & 1), cy = 2 * y + (k >> 1);
                     d[k] = c->level[l - 1][(cy < bh ? cy : bh - 1) * bw + (cx < bw ? cx : bw - 1)];
-                    child |= d[k] == v;
-                    farthest = d[k] > farthest ? d[k] : farthest;
                 }
-                /* A pick, never a blend; sky only when all four are sky. */
-                bool ok = child && ((v == 0.0f) == (farthest == 0.0f));
+                /* The rotated grid's pick, child (y & 1, x & 1), sky or not; never a blend. */
+                bool ok = v == d[(x & 1) * 2 + (y & 1)];
                 if (!ok && bad++ < 3)
                     CHECK(ok, "%s %s: level %d texel (%d,%d) = %g from children %g %g %g %g", impl, what, l, x, y,
                           (double)v, (double)d[0], (double)d[1], (double)d[2], (double)d[3]);
@@ -219,17 +217,18 @@ static void test_sky(void)
 {
     /* 4x4, one 2x2 per level-1 texel. The rotated grid picks child (y & 1, x & 1) of texel (x, y):
      *   (0,0): all sky                                   -> 0
-     *   (1,0): picks pixel (2,1) = sky; geometry 3 and 5 -> the farthest, 5
-     *   (0,1): picks pixel (1,2) = 4; geometry 4 and 8   -> 4 (the pick, geometry kept)
+     *   (1,0): picks pixel (2,1) = sky; geometry 3 and 5 -> 0, the pick (no depth moves to a
+     *          pixel that is not its own)
+     *   (0,1): picks pixel (1,2) = 4; geometry 4 and 8   -> 4
      *   (1,1): all geometry, picks pixel (3,3)           -> 9
-     * Level 2 (1x1) picks level-1 texel (0,0) = sky, so it takes the farthest of 0, 5, 4, 9. */
+     * Level 2 (1x1) picks level-1 texel (0,0) = sky: 0, though 4 and 9 are geometry. */
     static const float depth[16] = {
         0.0f, 0.0f, 3.0f, 0.0f, /* y = 0 */
         0.0f, 0.0f, 0.0f, 5.0f, /* y = 1 */
         0.0f, 4.0f, 6.0f, 7.0f, /* y = 2 */
         8.0f, 0.0f, 8.5f, 9.0f, /* y = 3 */
     };
-    const float want1[4] = {0.0f, 5.0f, 4.0f, 9.0f};
+    const float want1[4] = {0.0f, 0.0f, 4.0f, 9.0f};
     chain out[2];
     run_both("sky 4x4", depth, 4, 4, out);
     for (int i = 0; i < 2; ++i) {
@@ -237,7 +236,7 @@ static void test_sky(void)
         for (int k = 0; k < 4; ++k)
             CHECK(out[i].level[1][k] == want1[k], "%s sky: level 1 texel %d = %g, want %g", impls[i].name, k,
                   (double)out[i].level[1][k], (double)want1[k]);
-        CHECK(out[i].level[2][0] == 9.0f, "%s sky: level 2 = %g, want 9 (mixed keeps the farthest geometry)",
+        CHECK(out[i].level[2][0] == 0.0f, "%s sky: level 2 = %g, want 0 (its pick is sky)",
               impls[i].name, (double)out[i].level[2][0]);
     }
     chain_free(&out[0]);

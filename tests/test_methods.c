@@ -218,25 +218,42 @@ static void test_radius_scale(ob_renderer *r, const char *m, float scene_radius)
     free(z);
 }
 
-/* Deinterleaved sampling (issue 18; methods/deinterleave.c), for every method with a
- * `deinterleave` parameter, on the engine path (ob_compute_ao) at 99 x 73, a size whose last
- * texel row and column of the 16 layers hold fewer classes: the output texture is cleared to -1
- * first, so a pixel no class wrote is seen. Against the plain program on the same textures: near
- * taps are the same pixels and far taps move by up to 2 pixels, so the images may differ pixel by
- * pixel but not on average (no class may read lighter or darker as a whole), and the sky and an
- * open plane stay open (test_corner with it on). */
+/* The cache-aware tap programs (issue 18; methods/deinterleave.c, shaders/taps.glsl), for every
+ * method with a `deinterleave` or `depth_mips` parameter, on the engine path (ob_compute_ao) at
+ * 99 x 73, a size whose last texel row and column of the 16 layers hold fewer classes and whose
+ * MIP levels are odd: the output texture is cleared to -1 first, so a pixel no class wrote is
+ * seen. Against the plain program on the same textures: near taps are the same pixels and far taps
+ * move (by up to 2 pixels deinterleaved, to the pixel a coarser MIP texel picked), so the images
+ * may differ pixel by pixel but not on average (no class may read lighter or darker as a whole),
+ * and the sky and an open plane stay open (test_corner with it on). At five times cornell's
+ * radius, so that R reaches past the 20 px from which taps read level 1 of the chain on the nearer
+ * walls; a program that changes nothing (the chain not read) fails. */
 enum { DW = 99, DH = 73 };
+#define TAPS_RADIUS "0.5"
 
-/* The AO of method m with `deinterleave` on or off on the textures: raw (ob_compute_ao, whose
- * method writes tex[2] itself) or after the settings' 4x4 box (ob_compute_ao_filtered, where the
- * method writes the renderer's scratch target and the filter tex[2]). */
-static float *deinterleave_run(ob_renderer *r, const GLuint tex[3], const float proj[16], const char *m, bool on,
-                               bool filtered)
+/* An engine's textures at DW x DH: tex[0] its R32F linear depth, tex[1] its normals (xyzw per
+ * pixel), tex[2] an R32F output. */
+static void engine_textures(const float *depth, const float *n4, GLuint tex[3])
+{
+    glCreateTextures(GL_TEXTURE_2D, 3, tex);
+    glTextureStorage2D(tex[0], 1, GL_R32F, DW, DH);
+    glTextureStorage2D(tex[1], 1, GL_RGBA32F, DW, DH);
+    glTextureStorage2D(tex[2], 1, GL_R32F, DW, DH);
+    glTextureSubImage2D(tex[0], 0, 0, 0, DW, DH, GL_RED, GL_FLOAT, depth);
+    glTextureSubImage2D(tex[1], 0, 0, 0, DW, DH, GL_RGBA, GL_FLOAT, n4);
+}
+
+/* The AO of method m with tap program `param` (deinterleave, depth_mips) on or off on the textures:
+ * raw (ob_compute_ao, whose method writes tex[2] itself) or after the settings' 4x4 box
+ * (ob_compute_ao_filtered, where the method writes the renderer's scratch target and the filter
+ * tex[2]). */
+static float *taps_run(ob_renderer *r, const GLuint tex[3], const float proj[16], const char *m, const char *param,
+                       bool on, bool filtered)
 {
     ob_settings s;
-    settings_for(&s, m, NULL);
+    settings_for(&s, m, TAPS_RADIUS);
     char set[64];
-    snprintf(set, sizeof set, "%s.deinterleave=%s", m, on ? "on" : "off");
+    snprintf(set, sizeof set, "%s.%s=%s", m, param, on ? "on" : "off");
     CHECK(ob_settings_set(&s, set) == OB_OK, "%s", set);
     const float minus_one = -1.0f;
     glClearTexImage(tex[2], 0, GL_RED, GL_FLOAT, &minus_one);
@@ -250,7 +267,7 @@ static float *deinterleave_run(ob_renderer *r, const GLuint tex[3], const float 
     return ao;
 }
 
-static void test_deinterleave(ob_context *ctx, ob_scene *cornell, ob_renderer *corner_r, const char *m)
+static void test_taps(ob_context *ctx, ob_scene *cornell, ob_renderer *corner_r, const char *m, const char *param)
 {
     ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = DW, .height = DH});
     CHECK(r != NULL, "%s: a %dx%d renderer", m, DW, DH);
@@ -269,18 +286,13 @@ static void test_deinterleave(ob_context *ctx, ob_scene *cornell, ob_renderer *c
         n4[4 * i + 3] = 0.0f;
     }
     GLuint tex[3];
-    glCreateTextures(GL_TEXTURE_2D, 3, tex);
-    glTextureStorage2D(tex[0], 1, GL_R32F, DW, DH);
-    glTextureStorage2D(tex[1], 1, GL_RGBA32F, DW, DH);
-    glTextureStorage2D(tex[2], 1, GL_R32F, DW, DH);
-    glTextureSubImage2D(tex[0], 0, 0, 0, DW, DH, GL_RED, GL_FLOAT, depth);
-    glTextureSubImage2D(tex[1], 0, 0, 0, DW, DH, GL_RGBA, GL_FLOAT, n4);
+    engine_textures(depth, n4, tex);
     mat4 proj;
     glm_perspective(glm_rad(cornell_cam.fov_y_deg), (float)DW / (float)DH, cornell_cam.near_z, cornell_cam.far_z, proj);
 
-    float *raw = deinterleave_run(r, tex, (const float *)proj, m, true, false);
-    float *plain = deinterleave_run(r, tex, (const float *)proj, m, false, true);
-    float *split = deinterleave_run(r, tex, (const float *)proj, m, true, true);
+    float *raw = taps_run(r, tex, (const float *)proj, m, param, true, false);
+    float *plain = taps_run(r, tex, (const float *)proj, m, param, false, true);
+    float *split = taps_run(r, tex, (const float *)proj, m, param, true, true);
     int unwritten = 0, sky_closed = 0, geometry = 0;
     double diff = 0.0, shift = 0.0;
     for (int i = 0; i < DW * DH; ++i) {
@@ -295,15 +307,19 @@ static void test_deinterleave(ob_context *ctx, ob_scene *cornell, ob_renderer *c
     }
     diff /= geometry > 0 ? geometry : 1;
     shift /= geometry > 0 ? geometry : 1;
-    printf("  %-8s deinterleaved at %dx%d: mean |on - off| %.4f, mean shift %+.4f\n", m, DW, DH, diff, shift);
-    CHECK(unwritten == 0, "%s deinterleaved: %d of %d pixels unwritten or outside [0,1]", m, unwritten, DW * DH);
-    CHECK(sky_closed == 0, "%s deinterleaved: %d sky pixels not 1", m, sky_closed);
+    const bool changed = memcmp(split, plain, sizeof(float) * DW * DH) != 0;
+    printf("  %-8s %s at %dx%d: mean |on - off| %.4f, mean shift %+.4f\n", m, param, DW, DH, diff, shift);
+    CHECK(unwritten == 0, "%s %s: %d of %d pixels unwritten or outside [0,1]", m, param, unwritten, DW * DH);
+    CHECK(sky_closed == 0, "%s %s: %d sky pixels not 1", m, param, sky_closed);
+    CHECK(changed, "%s %s: the same image as the plain program (its far taps read nothing else)", m, param);
     /* After the 4x4 box (ob_compute_ao_filtered), which cancels the tile's noise in both: the
-     * far taps' moves leave 0.001-0.018 (alchemy, whose near samples weigh most, the most); the
-     * mean shift is what a lost near field shows (every tap within 2 pixels snapped onto the pixel
-     * itself read lighter). */
-    CHECK(diff < 0.03, "%s deinterleaved: mean |difference| %.4f from the plain program", m, diff);
-    CHECK(fabs(shift) < 0.01, "%s deinterleaved: reads %+.4f on average against the plain program", m, shift);
+     * far taps' moves leave 0.007-0.024 deinterleaved and 0.001-0.016 from the MIP chain (alchemy,
+     * whose near samples weigh most, the most; gtao and vbao 0.007). A mean shift is what a lost
+     * near field shows (every tap within 2 pixels snapped onto the pixel itself read lighter), or
+     * a depth read at another pixel than the tap's (the MIP chain's first sky rule: alchemy
+     * -0.014, gtao and vbao -0.006; now within 0.002). */
+    CHECK(diff < 0.03, "%s %s: mean |difference| %.4f from the plain program", m, param, diff);
+    CHECK(fabs(shift) < 0.01, "%s %s: reads %+.4f on average against the plain program", m, param, shift);
     free(raw);
     free(plain);
     free(split);
@@ -313,7 +329,75 @@ static void test_deinterleave(ob_context *ctx, ob_scene *cornell, ob_renderer *c
     glDeleteTextures(3, tex);
     ob_destroy_renderer(r);
 
-    test_corner_with(corner_r, m, "deinterleave=on");
+    char extra[32];
+    snprintf(extra, sizeof extra, "%s=on", param);
+    test_corner_with(corner_r, m, extra);
+}
+
+/* A tap program reads the pixel it names: on a plane seen at a grazing angle, where the depth changes
+ * fastest from pixel to pixel, taps that moved (to a class pixel, to the pixel a MIP texel picked)
+ * must still lie on the plane, so the plane reads as open as with the plain program. A tap
+ * reconstructed where it aimed with the depth of where it read lies off the plane by the depth's
+ * change in between and occludes. Engine path, raw AO, R = 1.5 x the eye's height over the plane,
+ * so that far taps reach level 2 of the chain (40 px) in the nearer rows. Not crytek, whose plane
+ * level (half its sphere inside) depends on where its taps land. */
+static void test_taps_plane(ob_context *ctx, const char *m, const char *param)
+{
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = DW, .height = DH});
+    CHECK(r != NULL, "%s: a %dx%d renderer", m, DW, DH);
+    if (!r) return;
+    mat4 proj;
+    glm_perspective(glm_rad(60.0f), (float)DW / (float)DH, 0.05f, 100.0f, proj);
+    /* The plane n.P = -1 under the eye, tilted sideways: depth along each pixel's view ray
+     * (x / P00, y / P11, -1) in NDC, bottom row first; sky where the ray misses it. */
+    const float n[3] = {0.2f, 0.98f, 0.0f};
+    float *depth = malloc(sizeof(float) * DW * DH), *n4 = malloc(sizeof(float) * 4 * DW * DH);
+    int plane = 0;
+    for (int y = 0; y < DH; ++y)
+        for (int x = 0; x < DW; ++x) {
+            const float ray[3] = {(2.0f * ((float)x + 0.5f) / DW - 1.0f) / proj[0][0],
+                                  (2.0f * ((float)y + 0.5f) / DH - 1.0f) / proj[1][1], -1.0f};
+            const float along = n[0] * ray[0] + n[1] * ray[1] + n[2] * ray[2];
+            const float t = along < -1e-3f ? -1.0f / along : 0.0f;
+            depth[y * DW + x] = t > 0.0f && t < 60.0f ? t : 0.0f;
+            plane += depth[y * DW + x] > 0.0f;
+            memcpy(n4 + 4 * (y * DW + x), n, sizeof n);
+            n4[4 * (y * DW + x) + 3] = 0.0f;
+        }
+    GLuint tex[3];
+    engine_textures(depth, n4, tex);
+    double mean[2] = {0.0, 0.0};
+    float lowest[2] = {1.0f, 1.0f};
+    for (int on = 0; on < 2; ++on) {
+        ob_settings s;
+        ob_settings_init(&s, m);
+        char set[64];
+        snprintf(set, sizeof set, "%s.%s=%s", m, param, on ? "on" : "off");
+        CHECK(ob_settings_set(&s, "radius=1.5") == OB_OK && ob_settings_set(&s, set) == OB_OK, "%s", set);
+        ob_error e = ob_compute_ao(r, tex[0], tex[1], (const float *)proj, &s, tex[2]);
+        const char *msg = NULL;
+        ob_get_error(&msg);
+        CHECK(e == OB_OK, "%s: %s", set, msg ? msg : "?");
+        float *ao = malloc(sizeof(float) * DW * DH);
+        glGetTextureImage(tex[2], 0, GL_RED, GL_FLOAT, (GLsizei)(sizeof(float) * DW * DH), ao);
+        for (int i = 0; i < DW * DH; ++i) {
+            if (depth[i] <= 0.0f) continue;
+            mean[on] += ao[i];
+            lowest[on] = ao[i] < lowest[on] ? ao[i] : lowest[on];
+        }
+        mean[on] /= plane > 0 ? plane : 1;
+        free(ao);
+    }
+    printf("  %-8s %s on a grazing plane (%d px): mean %.4f -> %.4f, lowest %.4f -> %.4f\n", m, param, plane, mean[0],
+           mean[1], (double)lowest[0], (double)lowest[1]);
+    CHECK(fabs(mean[1] - mean[0]) < 0.002, "%s %s: a plane reads %.4f on average, %.4f with the plain program", m, param,
+          mean[1], mean[0]);
+    CHECK(lowest[1] >= lowest[0] - 0.002f, "%s %s: a plane pixel reads %.4f, the plain program's lowest %.4f", m, param,
+          (double)lowest[1], (double)lowest[0]);
+    free(depth);
+    free(n4);
+    glDeleteTextures(3, tex);
+    ob_destroy_renderer(r);
 }
 
 static bool has_param(int index, const char *name)
@@ -374,8 +458,12 @@ int main(void)
         test_edges(rb, m);
         /* Only methods with a sample count can be asked to converge with it. */
         /* ob_compute_ao runs the methods that read depth and normals alone; test_ssdo.c has ssdo's. */
-        if (has_param(i, "deinterleave") && !(ob_method_impl_at(i)->reads & OB_READS_RADIANCE))
-            test_deinterleave(ctx, cornell, rc, m);
+        const bool engine = !(ob_method_impl_at(i)->reads & OB_READS_RADIANCE);
+        if (has_param(i, "deinterleave") && engine) test_taps(ctx, cornell, rc, m, "deinterleave");
+        if (has_param(i, "depth_mips") && engine) test_taps(ctx, cornell, rc, m, "depth_mips");
+        const bool open_plane = strcmp(m, "crytek") != 0;
+        if (has_param(i, "deinterleave") && engine && open_plane) test_taps_plane(ctx, m, "deinterleave");
+        if (has_param(i, "depth_mips") && engine && open_plane) test_taps_plane(ctx, m, "depth_mips");
         if (takes_samples(i)) test_convergence(rc, m);
         else printf("  %-8s takes no sample count: convergence not tested\n", m);
         ++tested;

@@ -712,7 +712,8 @@ ob_error ob_set_shader_directory(const char *dir);
  * OB_ERR_INVALID_ARGUMENT). linear_depth is R32F positive view depth, normal is RGBA16F/RGBA32F
  * view-space normal, both of the renderer's size; ao_out is an R32F texture of that size (written
  * with image stores, which need the format to match). proj is the column-major projection matrix
- * used to rasterise them; view space is taken as world space (no lights are involved). No guard
+ * used to rasterise them; view space is taken as world space (no lights are involved). A method
+ * with `depth_mips` on gets the MIP chain of linear_depth, made here (one more dispatch). No guard
  * band here (ob_settings.guard is ignored; the renderer's own targets drop theirs): a host that wants
  * one makes the renderer at the enlarged size (W + 2g) x (H + 2g), rasterises its textures at that
  * size with P00, P20 scaled by W / (W + 2g) and P11, P21 by H / (H + 2g), passes that projection,

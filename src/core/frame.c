@@ -209,6 +209,21 @@ static ob_error plan_method(ob_renderer *r, const ob_settings *s, method_plan *p
     return err;
 }
 
+/* The prefiltered MIP chain of an AO grid's depth (SAO's trick; passes/depth_mips.c), one dispatch,
+ * for a method that reads it (OB_READS_DEPTH_MIPS): the frame's own depth or an engine's. */
+static ob_error make_depth_mips(ob_renderer *r, GLuint depth, int width, int height, GLuint *mips, int *levels)
+{
+    if (!r->depth_mips_ready) {
+        if (ob_depth_mips_init(&r->depth_mips) != OB_OK) return ob_peek_error(NULL);
+        r->depth_mips_ready = true;
+    }
+    ob_error err = ob_depth_mips_run(&r->depth_mips, depth, width, height);
+    if (err != OB_OK) return err;
+    *mips = r->depth_mips.texture;
+    *levels = r->depth_mips.levels;
+    return OB_OK;
+}
+
 static ob_error run_method(ob_renderer *r, const method_plan *p, const ob_ao_inputs *in, const ob_ao_outputs *out)
 {
     r->last_method = p->index;
@@ -402,16 +417,9 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     GLuint mips = 0;
     int mip_levels = 0;
     if (plan->reads & OB_READS_DEPTH_MIPS) {
-        /* The prefiltered chain of the AO grid's depth (SAO's trick), one dispatch. */
         ob_timer_begin(&r->timers, "depth_mips");
-        if (!r->depth_mips_ready) {
-            if (ob_depth_mips_init(&r->depth_mips) != OB_OK) return ob_peek_error(NULL);
-            r->depth_mips_ready = true;
-        }
-        err = ob_depth_mips_run(&r->depth_mips, t->depth, g->width, g->height);
+        err = make_depth_mips(r, t->depth, g->width, g->height, &mips, &mip_levels);
         if (err != OB_OK) return err;
-        mips = r->depth_mips.texture;
-        mip_levels = r->depth_mips.levels;
     }
     if (plan->rgb || (plan->impl->writes & OB_WRITES_BOUNCE) || plan->bent) {
         err = ob_renderer_rgb_targets(r, t, plan->rgb || (plan->impl->writes & OB_WRITES_BOUNCE), plan->bent);
@@ -660,8 +668,16 @@ static ob_error compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t n
     /* Filtered: the method into the renderer's own full-size target, then the filter into the
      * caller's. */
     const ao_targets *t = ob_renderer_targets(r, 0);
+    /* The engine's depth gets the MIP chain too when the method reads one (depth_mips on). */
+    GLuint mips = 0;
+    int mip_levels = 0;
+    if (plan.reads & OB_READS_DEPTH_MIPS) {
+        err = make_depth_mips(r, linear_depth_tex, r->width, r->height, &mips, &mip_levels);
+        if (err != OB_OK) return err;
+    }
     const ob_ao_inputs in = {.frame = &r->frame_constants, .linear_depth = linear_depth_tex, .view_normal = normal_tex,
-                             .width = r->width, .height = r->height};
+                             .width = r->width, .height = r->height, .depth_mips = mips,
+                             .depth_mip_levels = mip_levels};
     const ob_ao_outputs out = {.visibility = filtered ? t->raw : ao_out_tex};
     const GLbitfield barrier = GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
     glMemoryBarrier(barrier);

@@ -9,7 +9,10 @@
 #include "methods/method.h"
 #include "sampling/sampling.h"
 
-enum { P_RADIUS, P_SAMPLES, P_SIGMA, P_K, P_BETA, P_EPSILON, P_TURNS, P_NOISE, P_DEINTERLEAVE, P_COUNT };
+enum { P_RADIUS, P_SAMPLES, P_SIGMA, P_K, P_BETA, P_EPSILON, P_TURNS, P_NOISE, P_DEINTERLEAVE, P_DEPTH_MIPS, P_COUNT };
+
+/* The depth MIP chain only with `depth_mips` on (alchemy_active_reads). */
+#define ALCHEMY_READS (OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS)
 
 static const ob_param_info alchemy_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -29,12 +32,13 @@ static const ob_param_info alchemy_params[P_COUNT] = {
     [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "per-pixel spiral rotation: 4x4 texture or interleaved gradient noise",
                  false, ob_noise_options},
     [P_DEINTERLEAVE] = OB_DEINTERLEAVE_PARAM,
+    [P_DEPTH_MIPS] = OB_TAPS_DEPTH_MIPS_PARAM,
 };
 
 
 typedef struct alchemy_state {
     ob_method_kit kit;
-    ob_deinterleaved split; /* `deinterleave` (methods/deinterleave.c) */
+    ob_taps taps; /* `deinterleave`, `depth_mips` (methods/deinterleave.c) */
 } alchemy_state;
 
 static ob_error alchemy_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
@@ -55,15 +59,20 @@ static ob_error alchemy_run(void *p, const ob_ao_inputs *in, const float *params
     /* Adaptive sample counts: the spiral's samples scale with the edge pass's multiplier. */
     c.adaptive = in->sample_multiplier != 0 ? 1 : 0;
     c.adaptive_base = ob_adaptive_base(c.samples);
-    const bool split = params[P_DEINTERLEAVE] != 0.0f;
-    if (split && ob_deinterleaved_prepare(&s->split, "alchemy.glsl", in) != OB_OK) return ob_peek_error(NULL);
+    const bool split = params[P_DEINTERLEAVE] != 0.0f, mips = params[P_DEPTH_MIPS] != 0.0f;
+    if (ob_taps_prepare(&s->taps, "alchemy", "alchemy.glsl", in, split, mips) != OB_OK) return ob_peek_error(NULL);
     ob_method_kit_use(&s->kit, &c, sizeof c, in, out, GL_R32F);
     ob_method_kit_bind_multiplier(&s->kit, in);
-    ob_method_dispatch(split ? s->split.program : 0, split, in, OB_ALCHEMY_GROUP_X, OB_ALCHEMY_GROUP_Y);
+    ob_taps_dispatch(&s->taps, in, OB_ALCHEMY_GROUP_X, OB_ALCHEMY_GROUP_Y);
     return OB_OK;
 }
 
-static void alchemy_destroy(void *p) { ob_deinterleaved_release(&((alchemy_state *)p)->split); }
+static void alchemy_destroy(void *p) { ob_taps_release(&((alchemy_state *)p)->taps); }
+
+static uint32_t alchemy_active_reads(const float *params)
+{
+    return ALCHEMY_READS & (params[P_DEPTH_MIPS] != 0.0f ? ~0u : ~(uint32_t)OB_READS_DEPTH_MIPS);
+}
 
 const ob_method_impl ob_method_alchemy = {
     .info = {.name = "alchemy",
@@ -74,7 +83,8 @@ const ob_method_impl ob_method_alchemy = {
     .shader = "alchemy.glsl",
     .constants_size = sizeof(ob_alchemy_constants),
     .state_size = sizeof(alchemy_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS,
+    .reads = ALCHEMY_READS,
+    .active_reads = alchemy_active_reads,
     .writes = OB_WRITES_VISIBILITY,
     .run = alchemy_run,
     .destroy = alchemy_destroy,

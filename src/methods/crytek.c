@@ -9,7 +9,13 @@
 #include "methods/method.h"
 #include "sampling/sampling.h"
 
-enum { P_RADIUS, P_BIAS, P_INTENSITY, P_SAMPLES, P_CORRECTION, P_SAMPLING, P_NOISE, P_DEINTERLEAVE, P_COUNT };
+enum {
+    P_RADIUS, P_BIAS, P_INTENSITY, P_SAMPLES, P_CORRECTION, P_SAMPLING,
+    P_NOISE, P_DEINTERLEAVE, P_DEPTH_MIPS, P_COUNT
+};
+
+/* The depth MIP chain only with `depth_mips` on (crytek_active_reads). */
+#define CRYTEK_READS (OB_READS_DEPTH | OB_READS_DEPTH_MIPS)
 
 static const ob_param_info crytek_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -27,6 +33,7 @@ static const ob_param_info crytek_params[P_COUNT] = {
     [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "per-pixel rotation: 4x4 texture or interleaved gradient noise",
                  false, ob_noise_options},
     [P_DEINTERLEAVE] = OB_DEINTERLEAVE_PARAM,
+    [P_DEPTH_MIPS] = OB_TAPS_DEPTH_MIPS_PARAM,
 };
 
 #define KERNEL_SEED 0xC4E7u
@@ -34,7 +41,7 @@ static const ob_param_info crytek_params[P_COUNT] = {
 typedef struct crytek_state {
     ob_method_kit kit;
     int kernel_count, kernel_sampling; /* what the cached kernel was built for */
-    ob_deinterleaved split; /* `deinterleave` (methods/deinterleave.c) */
+    ob_taps taps; /* `deinterleave`, `depth_mips` (methods/deinterleave.c) */
     ob_crytek_constants constants;
 } crytek_state;
 
@@ -65,16 +72,21 @@ static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params,
     c->noise = (int)params[P_NOISE];
     c->adaptive = plan.adaptive ? 1 : 0;
     c->adaptive_base = plan.base;
-    const bool split = params[P_DEINTERLEAVE] != 0.0f;
-    if (split && ob_deinterleaved_prepare(&s->split, "crytek.glsl", in) != OB_OK) return ob_peek_error(NULL);
+    const bool split = params[P_DEINTERLEAVE] != 0.0f, mips = params[P_DEPTH_MIPS] != 0.0f;
+    if (ob_taps_prepare(&s->taps, "crytek", "crytek.glsl", in, split, mips) != OB_OK) return ob_peek_error(NULL);
     size_t used = offsetof(ob_crytek_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     ob_method_kit_use(&s->kit, c, used, in, out, GL_R32F);
     ob_method_kit_bind_multiplier(&s->kit, in);
-    ob_method_dispatch(split ? s->split.program : 0, split, in, OB_CRYTEK_GROUP_X, OB_CRYTEK_GROUP_Y);
+    ob_taps_dispatch(&s->taps, in, OB_CRYTEK_GROUP_X, OB_CRYTEK_GROUP_Y);
     return OB_OK;
 }
 
-static void crytek_destroy(void *p) { ob_deinterleaved_release(&((crytek_state *)p)->split); }
+static void crytek_destroy(void *p) { ob_taps_release(&((crytek_state *)p)->taps); }
+
+static uint32_t crytek_active_reads(const float *params)
+{
+    return CRYTEK_READS & (params[P_DEPTH_MIPS] != 0.0f ? ~0u : ~(uint32_t)OB_READS_DEPTH_MIPS);
+}
 
 static int crytek_kernel(const float *params, float *xyzw, int max)
 {
@@ -92,7 +104,8 @@ const ob_method_impl ob_method_crytek = {
     .shader = "crytek.glsl",
     .constants_size = sizeof(ob_crytek_constants),
     .state_size = sizeof(crytek_state),
-    .reads = OB_READS_DEPTH,
+    .reads = CRYTEK_READS,
+    .active_reads = crytek_active_reads,
     .writes = OB_WRITES_VISIBILITY,
     .init = crytek_init,
     .run = crytek_run,

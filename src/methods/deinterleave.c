@@ -1,8 +1,11 @@
-/* Deinterleaved sampling (issue 18; Bavoil 2014, "Deinterleaved Texturing for Cache-Efficient
+/* Where a random-kernel method's taps read depth (shaders/taps.glsl): the plain program, the
+ * deinterleaved one or the depth MIP chain's (ob_taps_prepare).
+ *
+ * Deinterleaved sampling (issue 18; Bavoil 2014, "Deinterleaved Texturing for Cache-Efficient
  * Interleaved Sampling"), the `deinterleave` parameter of the random-kernel methods: one pass
  * splits the AO grid's depth into the 16 classes of the 4x4 noise tile, one layer each
  * (shaders/deinterleave.glsl), and the method's OB_DEINTERLEAVED program runs class by class, its
- * taps reading the nearest pixel of their class (shaders/deinterleaved_taps.glsl). Neighbouring
+ * taps reading the nearest pixel of their class (shaders/taps.glsl). Neighbouring
  * invocations then share one rotation and read neighbouring texels, which is what a GPU's texture
  * cache gains at large radii (NVIDIA measured 2.86x on HBAO's pass at 1080p); llvmpipe's
  * rasteriser gains nothing from it (docs/methods.md). The method writes its AO pixel where it is,
@@ -62,4 +65,35 @@ void ob_deinterleaved_release(ob_deinterleaved *d)
     if (d->program) glDeleteProgram(d->program);
     if (d->layers) glDeleteTextures(1, &d->layers);
     *d = (ob_deinterleaved){0};
+}
+
+ob_error ob_taps_prepare(ob_taps *t, const char *method, const char *shader, const ob_ao_inputs *in, bool deinterleave,
+                         bool depth_mips)
+{
+    if (deinterleave && depth_mips)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT,
+                            "%s: deinterleave and depth_mips cannot both be on (two ways to read a far tap)", method);
+    t->program = 0;
+    t->deinterleaved = deinterleave;
+    if (deinterleave) {
+        if (ob_deinterleaved_prepare(&t->split, shader, in) != OB_OK) return ob_peek_error(NULL);
+        t->program = t->split.program;
+    } else if (depth_mips) {
+        if (!ob_method_variant(&t->mips, shader, "#define OB_TAPS_DEPTH_MIPS 1\n")) return ob_peek_error(NULL);
+        t->program = t->mips;
+        glBindTextureUnit(4, in->depth_mips ? in->depth_mips : in->linear_depth);
+    }
+    return OB_OK;
+}
+
+void ob_taps_dispatch(const ob_taps *t, const ob_ao_inputs *in, int gx, int gy)
+{
+    ob_method_dispatch(t->program, t->deinterleaved, in, gx, gy);
+}
+
+void ob_taps_release(ob_taps *t)
+{
+    ob_deinterleaved_release(&t->split);
+    if (t->mips) glDeleteProgram(t->mips);
+    *t = (ob_taps){0};
 }

@@ -11,7 +11,13 @@
 #include "methods/method.h"
 #include "sampling/sampling.h"
 
-enum { P_RADIUS, P_DIRECTIONS, P_STEPS, P_MAX_RADIUS_PX, P_ANGLE_BIAS, P_INTENSITY, P_NOISE, P_DEINTERLEAVE, P_COUNT };
+enum {
+    P_RADIUS, P_DIRECTIONS, P_STEPS, P_MAX_RADIUS_PX, P_ANGLE_BIAS, P_INTENSITY,
+    P_NOISE, P_DEINTERLEAVE, P_DEPTH_MIPS, P_COUNT
+};
+
+/* The depth MIP chain only with `depth_mips` on (hbao_active_reads). */
+#define HBAO_READS (OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS)
 
 static const ob_param_info hbao_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -41,12 +47,13 @@ static const ob_param_info hbao_params[P_COUNT] = {
                  "per-pixel rotation and step jitter: 4x4 texture (+ 4x4 Bayer jitter) or interleaved gradient noise",
                  false, ob_noise_options},
     [P_DEINTERLEAVE] = OB_DEINTERLEAVE_PARAM,
+    [P_DEPTH_MIPS] = OB_TAPS_DEPTH_MIPS_PARAM,
 };
 
 
 typedef struct hbao_state {
     ob_method_kit kit;
-    ob_deinterleaved split; /* `deinterleave` (methods/deinterleave.c) */
+    ob_taps taps; /* `deinterleave`, `depth_mips` (methods/deinterleave.c) */
     ob_hbao_constants constants;
 } hbao_state;
 
@@ -69,15 +76,20 @@ static ob_error hbao_run(void *p, const ob_ao_inputs *in, const float *params, c
     /* Adaptive sample counts: the directions scale with the edge pass's multiplier. */
     c->adaptive = in->sample_multiplier != 0 ? 1 : 0;
     c->adaptive_base = (c->directions + 1) / 3 > 1 ? (c->directions + 1) / 3 : 1;
-    const bool split = params[P_DEINTERLEAVE] != 0.0f;
-    if (split && ob_deinterleaved_prepare(&s->split, "hbao.glsl", in) != OB_OK) return ob_peek_error(NULL);
+    const bool split = params[P_DEINTERLEAVE] != 0.0f, mips = params[P_DEPTH_MIPS] != 0.0f;
+    if (ob_taps_prepare(&s->taps, "hbao", "hbao.glsl", in, split, mips) != OB_OK) return ob_peek_error(NULL);
     ob_method_kit_use(&s->kit, c, sizeof *c, in, out, GL_R32F);
     ob_method_kit_bind_multiplier(&s->kit, in);
-    ob_method_dispatch(split ? s->split.program : 0, split, in, OB_HBAO_GROUP_X, OB_HBAO_GROUP_Y);
+    ob_taps_dispatch(&s->taps, in, OB_HBAO_GROUP_X, OB_HBAO_GROUP_Y);
     return OB_OK;
 }
 
-static void hbao_destroy(void *p) { ob_deinterleaved_release(&((hbao_state *)p)->split); }
+static void hbao_destroy(void *p) { ob_taps_release(&((hbao_state *)p)->taps); }
+
+static uint32_t hbao_active_reads(const float *params)
+{
+    return HBAO_READS & (params[P_DEPTH_MIPS] != 0.0f ? ~0u : ~(uint32_t)OB_READS_DEPTH_MIPS);
+}
 
 static int clamp_int(long v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : (int)v; }
 
@@ -121,7 +133,8 @@ const ob_method_impl ob_method_hbao = {
     .shader = "hbao.glsl",
     .constants_size = sizeof(ob_hbao_constants),
     .state_size = sizeof(hbao_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS,
+    .reads = HBAO_READS,
+    .active_reads = hbao_active_reads,
     .writes = OB_WRITES_VISIBILITY,
     .run = hbao_run,
     .destroy = hbao_destroy,

@@ -250,7 +250,7 @@ void ob_packed_samples_release(ob_packed_samples *p);
  * `deinterleave` parameter (ssao, crytek, hbao, alchemy, ssdo, ssdo_merged): the depth split into the 16 classes of
  * the 4x4 noise tile (shaders/deinterleave.glsl), and the method's OB_DEINTERLEAVED program, whose
  * taps read the nearest pixel of their own class from one compact layer
- * (shaders/deinterleaved_taps.glsl). A selectable baseline beside the plain program, for a GPU's
+ * (shaders/taps.glsl). A selectable baseline beside the plain program, for a GPU's
  * texture cache; off by default (docs/methods.md, "Deinterleaved sampling"). */
 typedef struct ob_deinterleaved {
     GLuint split;   /* deinterleave.glsl, made on first use */
@@ -276,5 +276,33 @@ ob_error ob_deinterleaved_prepare(ob_deinterleaved *d, const char *shader, const
  * texels of one class each (then `program` is a deinterleaved one). */
 void ob_method_dispatch(GLuint program, bool deinterleaved, const ob_ao_inputs *in, int gx, int gy);
 void ob_deinterleaved_release(ob_deinterleaved *d);
+
+/* Depth MIP taps (shaders/taps.glsl, OB_TAPS_DEPTH_MIPS; SAO §2.2) for the `depth_mips` parameter
+ * of ssao, crytek, hbao and alchemy: a tap d px from the pixel reads level floor(log2 d - 3.3) of
+ * the frame's depth MIP chain (passes/depth_mips.c), the same chain and levels as the slice
+ * methods' march. A selectable baseline beside the plain program, off by default
+ * (docs/methods.md, "Depth MIP prefilter"). */
+#define OB_TAPS_DEPTH_MIPS_PARAM                                                                              \
+    {"depth_mips", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",                                                 \
+     "taps 20 px or more from the pixel read the prefiltered depth MIP chain (SAO's trick) instead of full "  \
+     "resolution; not with deinterleave",                                                                     \
+     false}
+/* A random-kernel method's program for where its taps read depth: plain, deinterleaved or from the
+ * MIP chain (each made on first use). */
+typedef struct ob_taps {
+    ob_deinterleaved split; /* `deinterleave` */
+    GLuint mips;            /* the OB_TAPS_DEPTH_MIPS variant */
+    GLuint program;         /* this frame's choice: 0 = the kit's plain program */
+    bool deinterleaved;     /* this frame dispatches by class */
+} ob_taps;
+/* Chooses and prepares this frame's program for `method`'s shader: the deinterleaved split (see
+ * ob_deinterleaved_prepare: run before the kit's bindings) or the MIP chain bound at texture unit 4
+ * (in->depth_mips; the depth itself, one level, where the frame has no chain: every tap reads level
+ * 0). Both on is OB_ERR_INVALID_ARGUMENT, naming the method: two ways to read one tap. */
+ob_error ob_taps_prepare(ob_taps *t, const char *method, const char *shader, const ob_ao_inputs *in, bool deinterleave,
+                         bool depth_mips);
+/* ob_method_dispatch with the chosen program. */
+void ob_taps_dispatch(const ob_taps *t, const ob_ao_inputs *in, int gx, int gy);
+void ob_taps_release(ob_taps *t);
 
 #endif

@@ -11,9 +11,6 @@
  * low-discrepancy offsets for successive frames. */
 #define R2_A1 0.7548776662466927f
 #define R2_A2 0.5698402909980532f
-/* A step reads full-resolution depth until it is 2^3.3 ≈ 10 px out: the coarser level's texel is
- * then well under a tenth of the step (XeGTAO's DepthMIPSamplingOffset, same reasoning). */
-#define MIP_OFFSET 3.3f
 
 ob_error ob_slice_set_samples(const char *method, float *params, uint32_t *params_set, int samples, int p_slices,
                               int p_steps, int max_slices, int max_steps)
@@ -49,7 +46,7 @@ ob_slice_frame ob_slice_frame_make(const ob_ao_inputs *in)
     uint32_t frame_index = in->frame->frame_index;
     f.slice_offset = fmodf((float)(frame_index % 4096u) * R2_A1, 1.0f);
     f.step_offset = fmodf((float)(frame_index % 4096u) * R2_A2, 1.0f);
-    f.mip_scale = exp2f(-MIP_OFFSET);
+    f.mip_scale = exp2f(-(float)OB_DEPTH_MIPS_TAP_OFFSET) /* shaders/ob_shared.h */;
     f.max_mip = in->depth_mips ? in->depth_mip_levels - 1 : 0;
     return f;
 }

@@ -8,7 +8,13 @@
 #include "sampling/sampling.h"
 #include "ssao_params.h"
 
-enum { P_RADIUS, P_BIAS, P_INTENSITY, P_SAMPLES, P_SAMPLING, P_DIRECTIONS, P_NOISE, P_DEINTERLEAVE, P_COUNT };
+enum {
+    P_RADIUS, P_BIAS, P_INTENSITY, P_SAMPLES, P_SAMPLING, P_DIRECTIONS,
+    P_NOISE, P_DEINTERLEAVE, P_DEPTH_MIPS, P_COUNT
+};
+
+/* The depth MIP chain only with `depth_mips` on (ssao_active_reads). */
+#define SSAO_READS (OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS)
 
 static const ob_param_info ssao_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
@@ -31,6 +37,7 @@ static const ob_param_info ssao_params[P_COUNT] = {
     [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "per-pixel rotation: 4x4 texture or interleaved gradient noise",
                  false, ob_noise_options},
     [P_DEINTERLEAVE] = OB_DEINTERLEAVE_PARAM,
+    [P_DEPTH_MIPS] = OB_TAPS_DEPTH_MIPS_PARAM,
 };
 
 /* Fixed seeds: the same command gives the same AO bytes. */
@@ -40,7 +47,7 @@ typedef struct ssao_state {
     ob_method_kit kit;
     int kernel_count; /* the cached kernel was built for these */
     int kernel_sampling, kernel_directions;
-    ob_deinterleaved split; /* `deinterleave` (methods/deinterleave.c) */
+    ob_taps taps; /* `deinterleave`, `depth_mips` (methods/deinterleave.c) */
     ob_ssao_constants constants;
 } ssao_state;
 
@@ -64,17 +71,22 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, c
     c->noise = (int)params[P_NOISE];
     c->adaptive = plan.adaptive ? 1 : 0;
     c->adaptive_base = plan.base;
-    const bool split = params[P_DEINTERLEAVE] != 0.0f;
-    if (split && ob_deinterleaved_prepare(&s->split, "ssao.glsl", in) != OB_OK) return ob_peek_error(NULL);
+    const bool split = params[P_DEINTERLEAVE] != 0.0f, mips = params[P_DEPTH_MIPS] != 0.0f;
+    if (ob_taps_prepare(&s->taps, "ssao", "ssao.glsl", in, split, mips) != OB_OK) return ob_peek_error(NULL);
     /* Upload only the kernel entries in use. */
     size_t used = offsetof(ob_ssao_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     ob_method_kit_use(&s->kit, c, used, in, out, GL_R32F);
     ob_method_kit_bind_multiplier(&s->kit, in);
-    ob_method_dispatch(split ? s->split.program : 0, split, in, OB_SSAO_GROUP_X, OB_SSAO_GROUP_Y);
+    ob_taps_dispatch(&s->taps, in, OB_SSAO_GROUP_X, OB_SSAO_GROUP_Y);
     return OB_OK;
 }
 
-static void ssao_destroy(void *p) { ob_deinterleaved_release(&((ssao_state *)p)->split); }
+static void ssao_destroy(void *p) { ob_taps_release(&((ssao_state *)p)->taps); }
+
+static uint32_t ssao_active_reads(const float *params)
+{
+    return SSAO_READS & (params[P_DEPTH_MIPS] != 0.0f ? ~0u : ~(uint32_t)OB_READS_DEPTH_MIPS);
+}
 
 static int ssao_kernel(const float *params, float *xyzw, int max)
 {
@@ -93,7 +105,8 @@ const ob_method_impl ob_method_ssao = {
     .shader = "ssao.glsl",
     .constants_size = sizeof(ob_ssao_constants),
     .state_size = sizeof(ssao_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS,
+    .reads = SSAO_READS,
+    .active_reads = ssao_active_reads,
     .writes = OB_WRITES_VISIBILITY,
     .run = ssao_run,
     .destroy = ssao_destroy,

@@ -30,14 +30,10 @@ void ob_depth_mips_fill(ob_depth_mips_constants *c, int width, int height)
     c->levels = ob_depth_mips_level_count(width, height);
 }
 
-/* The shader's reduce(): SAO's rotated-grid child, or the farthest geometry when that child is sky. */
+/* The shader's reduce(): SAO's rotated-grid child, sky included. */
 static float reduce(const float d[4], int x, int y)
 {
-    float picked = d[2 * (x & 1) + (y & 1)]; /* child (y & 1, x & 1); d is (0,0), (1,0), (0,1), (1,1) */
-    if (picked > 0.0f) return picked;
-    float farthest = d[0];
-    for (int k = 1; k < 4; ++k) farthest = d[k] > farthest ? d[k] : farthest;
-    return farthest;
+    return d[2 * (x & 1) + (y & 1)]; /* child (y & 1, x & 1); d is (0,0), (1,0), (0,1), (1,1) */
 }
 
 int ob_depth_mips_reference(const float *depth, int width, int height, float *const levels[OB_DEPTH_MIPS_LEVELS])

@@ -153,20 +153,14 @@ float ob_slice_step_px(int j, float jitter, int steps, float radius_px)
 ivec2 ob_march_self = ivec2(-1);
 
 #ifdef OB_MARCH_DEPTH_MIPS
-/* Depth at texel q of MIP `level` and the centre of the full-resolution pixel it came from. The
- * chain picks one child per level, SAO's rotated grid (shaders/depth_mips.glsl: texel p of level
- * L is texel 2p + (p.y & 1, p.x & 1) of level L - 1), so following the same picks back down finds
- * the one pixel whose depth a coarse texel holds, and the sample is reconstructed where that
- * surface point really is: exact on planes, as at level 0 (a sky pick is sky: no sample). Beyond
- * a level's last texel (odd sizes) the chain holds nothing: clamp, as the pass does (GL's level size, max(1, size >> L)). */
+#include "depth_mips_read.glsl"
+/* Depth under AO pixel q at MIP `level`, and the centre of the full-resolution pixel it came from
+ * (ob_depth_mip_source), where the sample is reconstructed; a sky pick is sky: no sample. */
 float ob_march_depth(sampler2D depth, ivec2 q, int level, ivec2 size, out vec2 centre)
 {
-    ivec2 ql = min(q >> level, max(size >> level, ivec2(1)) - 1);
-    float sd = texelFetch(depth, ql, level).r;
-    ivec2 c = ql;
-    for (int l = level; l > 0; --l) c = 2 * c + ivec2(c.y & 1, c.x & 1);
-    centre = vec2(c) + 0.5;
-    return sd;
+    ivec2 texel;
+    centre = vec2(ob_depth_mip_source(q, level, size, texel)) + 0.5;
+    return texelFetch(depth, texel, level).r;
 }
 #endif
 

@@ -1,5 +1,5 @@
-/* Where a random-kernel method's taps read depth (ssao, crytek, hbao, alchemy; ssdo the first
- * program alone): the full-resolution texture, or one of two cache-aware programs for far taps
+/* Where a random-kernel method's taps read depth (ssao, crytek, hbao, alchemy; ssdo and
+ * ssdo_merged have the deinterleaved program only): the full-resolution texture, or one of two cache-aware programs for far taps
  * (issue 18), each kept beside the plain one as a selectable baseline. A method calls
  * ob_invocation_pixel() for its pixel, then for each tap aimed at pixel q ob_tap_pixel(q, size)
  * for the pixel whose surface point the tap is and ob_tap_depth(linear_depth, that pixel) for its
@@ -22,9 +22,9 @@
  * OB_TAPS_DEPTH_MIPS (`depth_mips on`; McGuire, Mara & Luebke 2012, "Scalable Ambient Obscurance"
  * §2.2): a tap d pixels from the invocation's pixel reads level floor(log2(d) - 3.3) of the depth
  * MIP chain (OB_DEPTH_MIPS_TAP_OFFSET; level 0, the full resolution, nearer than 2^4.3 ≈ 20 px),
- * so far taps of neighbouring pixels share texels. The chain picks one real pixel per texel
- * (depth_mips.glsl), and ob_tap_pixel follows the picks back to it: the tap is that pixel's surface
- * point, exactly as the slice methods' march reads the chain (slice_march.glsl ob_march_depth).
+ * so far taps of neighbouring pixels share texels. The chain picks one real pixel per texel, and
+ * ob_tap_pixel follows the picks back to it (depth_mips_read.glsl, shared with the slice march):
+ * the tap is that pixel's surface point.
  *
  * Without either the functions are the plain reads, so a method writes its taps once. */
 #ifndef OB_TAPS_GLSL
@@ -60,6 +60,7 @@ float ob_tap_depth(sampler2D depth, ivec2 q)
     return texelFetch(depth, q, 0).r;
 }
 #elif defined(OB_TAPS_DEPTH_MIPS)
+#include "depth_mips_read.glsl"
 layout(binding = 4) uniform sampler2D depth_mip_chain; /* passes/depth_mips.c: R32F, level 0 = the AO grid's depth */
 
 ivec2 ob_invocation_pixel() { return ivec2(gl_GlobalInvocationID.xy); }
@@ -68,20 +69,13 @@ ivec2 ob_invocation_pixel() { return ivec2(gl_GlobalInvocationID.xy); }
 int ob_tap_level = 0;
 ivec2 ob_tap_texel = ivec2(0);
 
-/* The pixel whose depth the chain's texel under q holds at the tap's level. Beyond a level's last
- * texel (odd sizes) the chain holds nothing: clamped, as depth_mips.glsl does (GL's level size,
- * max(1, size >> L)). */
+/* The pixel whose depth the chain's texel under q holds at the tap's level (depth_mips_read.glsl). */
 ivec2 ob_tap_pixel(ivec2 q, ivec2 size)
 {
     float d = length(vec2(q - ob_invocation_pixel()));
     /* Below 1, findMSB gives -1: level 0. */
     ob_tap_level = clamp(findMSB(int(d * exp2(-OB_DEPTH_MIPS_TAP_OFFSET))), 0, textureQueryLevels(depth_mip_chain) - 1);
-    ob_tap_texel = min(q >> ob_tap_level, max(size >> ob_tap_level, ivec2(1)) - 1);
-    ivec2 c = ob_tap_texel;
-    /* A constant trip count with selects, not a loop over this lane's level: llvmpipe runs a
-     * data-dependent loop for as long as its slowest lane. */
-    for (int l = 0; l < OB_DEPTH_MIPS_LEVELS - 1; ++l) c = l < ob_tap_level ? 2 * c + ivec2(c.y & 1, c.x & 1) : c;
-    return c;
+    return ob_depth_mip_source(q, ob_tap_level, size, ob_tap_texel);
 }
 
 /* The depth at the pixel ob_tap_pixel returned last: its level's texel. */

@@ -312,6 +312,26 @@ void ob_gap_note(inout ob_gap g, bool inside, bool beyond_higher, float dist_px)
 float ob_gap_mid(ob_gap g) { return 0.5 * (g.lo + g.hi); }
 bool ob_gap_open(ob_gap g) { return g.hi > 0.0; }
 
+/* The bisections each side still needs after the march: `steps` where it has a gap, else 0. */
+ivec2 ob_gap_refinements(ob_gap pos, ob_gap neg, int steps)
+{
+    return ivec2(ob_gap_open(pos) ? steps : 0, ob_gap_open(neg) ? steps : 0);
+}
+
+/* The side the next bisection step takes, one step a pass: the side with more left (+ on a tie),
+ * so a pixel with gaps on both sides alternates +, -, +, - (the order of a loop doing both sides
+ * each pass) and one with a single gap spends every pass on it. Marks it taken in `left` and
+ * returns that side's gap; a pixel with none left gets a closed gap (its step changes nothing).
+ * A loop doing both sides each pass ran, on llvmpipe, both steps for every lane of a SIMD group
+ * with any gap, though a crease pixel has its gap on one side only (the wall's). */
+ob_gap ob_gap_next_side(ob_gap pos, ob_gap neg, inout ivec2 left, out bool positive)
+{
+    bool busy = left.x + left.y > 0;
+    positive = left.x >= left.y;
+    left -= busy ? (positive ? ivec2(1, 0) : ivec2(0, 1)) : ivec2(0);
+    return busy ? (positive ? pos : neg) : ob_gap_none();
+}
+
 /* Keep the half in which the surface leaves the sphere: [mid, hi] when mid was inside R. */
 void ob_gap_halve(inout ob_gap g, bool inside)
 {

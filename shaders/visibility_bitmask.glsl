@@ -169,14 +169,20 @@ void main()
             bitmask_step(s, centre + off, dist_px, p, true, false, mask, rise.x, gap_pos, slice_bounce);
             bitmask_step(s, centre - off, dist_px, p, false, false, mask, rise.y, gap_neg, slice_bounce);
         }
-        for (int b = 0; b < REFINE_STEPS; ++b) {
-            /* Without a gap on either side a refinement step changes nothing: skipped. The one
-             * branch of the march: most pixels (open surfaces) have no gap, so whole SIMD groups
-             * skip its fetches, and a group whose lanes disagree runs it as a select would. */
-            if (!ob_gap_open(gap_pos) && !ob_gap_open(gap_neg)) break;
-            float mid_pos = ob_gap_mid(gap_pos), mid_neg = ob_gap_mid(gap_neg);
-            bitmask_step(s, centre + s.dir * mid_pos, mid_pos, p, true, true, mask, rise.x, gap_pos, slice_bounce);
-            bitmask_step(s, centre - s.dir * mid_neg, mid_neg, p, false, true, mask, rise.y, gap_neg, slice_bounce);
+        /* Each side with a gap gets REFINE_STEPS bisections, one step per pass of the loop
+         * (ob_gap_next_side). The one branch of the march: most pixels (open surfaces) have no
+         * gap, so whole SIMD groups skip the loop, and a group runs it as often as its busiest
+         * lane needs. */
+        ivec2 left = ob_gap_refinements(gap_pos, gap_neg, REFINE_STEPS);
+        for (int b = 0; b < 2 * REFINE_STEPS; ++b) {
+            if (left.x + left.y == 0) break;
+            bool positive;
+            ob_gap g = ob_gap_next_side(gap_pos, gap_neg, left, positive);
+            float r = positive ? rise.x : rise.y, mid = ob_gap_mid(g);
+            bitmask_step(s, centre + (positive ? mid : -mid) * s.dir, mid, p, positive, true, mask, r, g, slice_bounce);
+            gap_pos = positive ? g : gap_pos;
+            gap_neg = positive ? gap_neg : g;
+            rise = positive ? vec2(r, rise.y) : vec2(rise.x, r);
         }
         /* The open half circle's cosine measure: â(n + π/2) + â(n - π/2) = cos n + n sin n. */
         float open = s.cos_n + s.ang_n * s.sin_n;

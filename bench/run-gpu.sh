@@ -5,7 +5,7 @@
 # libobscura, the FZK-Haus model and the commit). Everything it writes lands in $OUT (or
 # bench/results/gpu) and is packed as results.tgz after every step, so a step that runs out of
 # time loses only itself.
-#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|tests|fzk|temporal|deinterleave|all]...   (default all; the smoke render always)
+#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|tests|fzk|temporal|deinterleave|miptaps|all]...   (default all; the smoke render always)
 # Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-egl.md).
 set -u
 steps=${*:-all}
@@ -126,4 +126,10 @@ di() { local v=$1; printf -- '--set %s.deinterleave=%s ' ssao "$v" hbao "$v" cry
 want deinterleave && run deinterleave_off 150 "${split[@]}" $(di off)
 # shellcheck disable=SC2046
 want deinterleave && run deinterleave_on 150 "${split[@]}" $(di on)
+# Issue 18's depth MIP taps for the same four (shaders/taps.glsl, `depth_mips`): the same sweep
+# again with them on; deinterleave_off is its baseline. On llvmpipe they cost 1.4-1.6x
+# (bench/results/2026-11-23-llvmpipe-mip-taps.md): a GPU's cache is what they are for.
+dm() { local v=$1; printf -- '--set %s.depth_mips=%s ' ssao "$v" hbao "$v" crytek "$v" alchemy "$v"; }
+# shellcheck disable=SC2046
+want miptaps && run miptaps_on 150 "${split[@]}" $(dm on)
 exit 0

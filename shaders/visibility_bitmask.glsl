@@ -46,6 +46,12 @@ layout(binding = 4) uniform sampler2D radiance;     /* full-resolution RGBA16F d
 layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
 #endif
 
+/* The coverage rule (OB_SECTOR_COVERAGE_*, vbao's `coverage`) is the program's, a constant, so
+ * ob_sector_bits works out only its own: `touch` here, the others variants (methods/slices.c). */
+#ifndef OB_VB_COVERAGE
+#define OB_VB_COVERAGE OB_SECTOR_COVERAGE_TOUCH
+#endif
+
 /* Bisections of the gap in which the surface leaves the sphere of radius R (ob_gap). */
 const int REFINE_STEPS = 2;
 
@@ -89,7 +95,7 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     vec3 entry;
     bool column = hit && !inside && ob_column_entry(w, u, vb.radius, thick, entry);
     float rise_front = ob_rise_angle_of(column ? entry : w, t, s.n_slice), rise_back = ob_rise_angle_of(wb, t, s.n_slice);
-    uint bits = inside || column ? ob_sample_bits(rise_front, rise_back, s.ang_n, positive, vb.coverage) : 0u;
+    uint bits = inside || column ? ob_sample_bits(rise_front, rise_back, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
 #ifdef OB_VBGI
     /* The sender's direct radiance through the directions it is the first to occlude. Their
      * cosine measure is the interval's exact one (two cosines, ob_run_measure) times the share of its

@@ -511,6 +511,40 @@ static void check_vbgi_packed(ob_context *ctx)
     ob_destroy_scene(scene);
 }
 
+/* The coverage rules are programs (OB_VB_COVERAGE, methods/slices.c), not a uniform: each must be
+ * the one asked for. On the slab, with everything else the default, `touch` sets every sector an
+ * interval touches, `half` those whose centre it covers and `all` only those it covers whole, so
+ * the mean AO over the image must rise strictly from one to the next. A rule that reached the
+ * wrong program (the kit's `touch` for all three, say) gives equal means. */
+static void check_coverage_rules(ob_context *ctx)
+{
+    const char *rules[] = {"touch", "half", "all"};
+    double mean[3] = {0};
+    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "slab"});
+    CHECK(scene != NULL, "slab scene");
+    for (int k = 0; scene && k < 3; ++k) {
+        char set[40];
+        snprintf(set, sizeof set, "vbao.coverage=%s", rules[k]);
+        const char *sets[] = {set, NULL};
+        ob_settings s;
+        frame f;
+        if (!settings_for(&s, "vbao", sets) || !render_frame(ctx, scene, "front", &s, OB_IMAGE_AO_RAW_F32, &f)) break;
+        int count = 0;
+        for (size_t i = 0; i < (size_t)W * H; ++i)
+            if (f.depth[i] > 0.0f) {
+                mean[k] += f.img[i];
+                ++count;
+            }
+        mean[k] /= count > 0 ? count : 1;
+        frame_free(&f);
+    }
+    printf("  vbao mean AO on the slab by coverage: touch %.4f, half %.4f, all %.4f\n", mean[0], mean[1], mean[2]);
+    CHECK(mean[0] > 0.5 && mean[0] + 1e-3 < mean[1] && mean[1] + 1e-3 < mean[2],
+          "vbao's coverage rules each their own: touch %.4f < half %.4f < all %.4f (by 1e-3)", mean[0], mean[1],
+          mean[2]);
+    ob_destroy_scene(scene);
+}
+
 int main(void)
 {
     ob_context *ctx = check_context();
@@ -572,6 +606,7 @@ int main(void)
     }
 
     check_vbgi_packed(ctx);
+    check_coverage_rules(ctx);
 
     ob_destroy_context(ctx);
     return check_finish("test_vbao");

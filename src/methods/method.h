@@ -209,7 +209,11 @@ enum {
     OB_SLICE_LAYERS = 2, /* OB_MARCH_LAYERS: the second depth layer bounds each sample's thickness */
     OB_SLICE_BENT = 4,   /* OB_GTAO_BENT: gtao also writes the bent normal */
     OB_SLICE_PACKED = 8, /* OB_MARCH_PACKED: samples read ob_packed_samples at unit 10 (vbgi; no MIPs) */
-    OB_SLICE_VARIANTS = 16
+    /* vbao and vbgi: OB_SECTOR_COVERAGE_* in the two bits from here (OB_VB_COVERAGE; 0, `touch`, is
+     * the kit's own program). Each sample worked out all three rules and selected one: 6 % of vbao's
+     * instructions at 16 taps. */
+    OB_SLICE_COVERAGE_SHIFT = 4,
+    OB_SLICE_VARIANTS = 64
 };
 /* The run of a slice method after its constants are filled: the kit's uploads and bindings, the
  * program for `features` (OB_SLICE_*: the kit's own for none, else a variant of `shader` made on

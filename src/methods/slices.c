@@ -2,6 +2,7 @@
  * slices x steps, the per-frame jitter offsets and the program variants of their optional features.
  * Their shaders share shaders/slice_march.glsl. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -65,11 +66,17 @@ ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], co
 {
     features &= OB_SLICE_VARIANTS - 1;
     if (features) {
-        char defines[160] = "";
+        char defines[256] = "";
         if (features & OB_SLICE_MIPS) strcat(defines, "#define OB_MARCH_DEPTH_MIPS 1\n");
         if (features & OB_SLICE_LAYERS) strcat(defines, "#define OB_MARCH_LAYERS 1\n");
         if (features & OB_SLICE_BENT) strcat(defines, "#define OB_GTAO_BENT 1\n");
         if (features & OB_SLICE_PACKED) strcat(defines, "#define OB_MARCH_PACKED 1\n");
+        const unsigned coverage = features >> OB_SLICE_COVERAGE_SHIFT;
+        if (coverage) {
+            char line[48];
+            snprintf(line, sizeof line, "#define OB_VB_COVERAGE %u\n", coverage);
+            strcat(defines, line);
+        }
         if (!ob_method_variant(&variants[features], shader, defines)) return ob_peek_error(NULL);
     }
     ob_method_kit_use(kit, constants, size, in, out, GL_R32F);

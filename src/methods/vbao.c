@@ -95,7 +95,6 @@ static void fill_constants(ob_vb_constants *c, const float *params, bool gi, con
     c->thickness_slope = params[P_THICKNESS_SLOPE];
     c->layers = params[P_LAYERS] >= 2.0f ? 1 : 0;
     c->weighting = (int)params[P_WEIGHTING];
-    c->coverage = (int)params[P_COVERAGE];
     c->slices = (int)params[P_SLICES];
     c->steps = (int)params[P_STEPS];
     c->noise = (int)params[P_NOISE];
@@ -158,8 +157,9 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
     /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
     ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
     const bool packed = s->gi && c.max_mip == 0 && ob_packed_samples_wanted(&s->packed, params[P_PACKED]);
-    const unsigned features =
-        (c.max_mip > 0 ? OB_SLICE_MIPS : 0u) | (c.layers ? OB_SLICE_LAYERS : 0u) | (packed ? OB_SLICE_PACKED : 0u);
+    const unsigned features = (c.max_mip > 0 ? OB_SLICE_MIPS : 0u) | (c.layers ? OB_SLICE_LAYERS : 0u) |
+                              (packed ? OB_SLICE_PACKED : 0u) |
+                              (unsigned)params[P_COVERAGE] << OB_SLICE_COVERAGE_SHIFT;
     if (packed) {
         ob_error err = ob_packed_samples_run(&s->packed, in, 10); /* slice_march.glsl's ob_packed_samples */
         if (err != OB_OK) return err;

@@ -68,6 +68,7 @@ typedef struct bench_row {
      * min, max over the same number of measured frames after the same warm-up; floor_taps 0 = not
      * measured (the method takes no sample count, or no --floor). */
     double floor_med, floor_min, floor_max;
+    double floor_ratio; /* the median over the measured frames of AO pass / the floor frame beside it */
     int floor_taps, floor_rays;
     int baseline;         /* index of this camera's none row, -1 when none */
     int study;            /* 0 the sweep, 1 scaling over resolution, 2 scaling over triangles */
@@ -116,8 +117,9 @@ static void bench_usage(FILE *f, const cli_common *defaults)
           "  --sizes WxH,WxH       --scaling's resolutions (default 640x480,1280x720,1920x1080,\n"
           "                        2560x1440,3840x2160)\n"
           "  --floor               also time a bare N-tap compute kernel (shaders/floor.glsl) at each\n"
-          "                        configuration's N, radius and AO grid, after the same warm-up, and\n"
-          "                        report AO pass / floor (the floor of the machine at hand)\n"
+          "                        configuration's N, radius and AO grid, one floor frame after each\n"
+          "                        of the method's, and report AO pass / floor (the median of the\n"
+          "                        frames' ratios: the floor of the machine at hand, at that moment)\n"
           "  --json FILE           every number, with GL renderer/version, CPU, commit and date\n"
           "  --csv FILE            one row per configuration and pass\n"
           "\n"
@@ -301,29 +303,24 @@ static bench_row *new_row(bench_state *st)
     return r;
 }
 
-/* --floor, right after the configuration's own frames (whose depth and normals it reads): the same
- * warm-up and measured frame counts of the floor kernel, each frame waited for like the method's;
- * stereo sums both eyes as the passes do. */
-static int measure_floor(ob_renderer **eyes, int eye_count, const ob_settings *s, const bench_opts *o,
-                         double *scratch, bench_row *row)
+/* --floor: one frame of the bare kernel on eye e right after that eye's frame (whose depth and
+ * normals it reads), waited for like the method's; its ms (0 when f is a warm-up frame). The floor
+ * and the method alternate frame by frame, so both see the same machine: timed as a block after
+ * the method's frames, the floor on the shared 2-core machine came out at ~13 or ~25 ms from one
+ * configuration to the next (a core taken or not), and the ratio with it. */
+static int floor_frame(ob_renderer *eye, const ob_settings *s, bool measured, bench_row *row, double *ms)
 {
-    for (int f = 0; f < o->warmup + o->frames; ++f) {
-        bool measured = f >= o->warmup;
-        if (measured) scratch[f - o->warmup] = 0.0;
-        for (int e = 0; e < eye_count; ++e) {
-            ob_floor_info info = {0};
-            if (ob_render_floor(eyes[e], s, &info) != OB_OK) return cli_fail_from_library();
-            row->floor_taps = info.taps;
-            row->floor_rays = info.rays;
-            if (!measured) continue;
-            if (ob_wait_timings(eyes[e]) != OB_OK) return cli_fail_from_library();
-            ob_pass_timing t[MAX_PASSES];
-            int n = ob_query_timings(eyes[e], t, MAX_PASSES);
-            for (int p = 0; p < n; ++p)
-                if (!strcmp(t[p].name, "floor")) scratch[f - o->warmup] += t[p].ms;
-        }
-    }
-    stats(scratch, o->frames, &row->floor_med, &row->floor_min, &row->floor_max);
+    ob_floor_info info = {0};
+    *ms = 0.0;
+    if (ob_render_floor(eye, s, &info) != OB_OK) return cli_fail_from_library();
+    row->floor_taps = info.taps;
+    row->floor_rays = info.rays;
+    if (!measured) return EXIT_OK;
+    if (ob_wait_timings(eye) != OB_OK) return cli_fail_from_library();
+    ob_pass_timing t[MAX_PASSES];
+    int n = ob_query_timings(eye, t, MAX_PASSES);
+    for (int p = 0; p < n; ++p)
+        if (!strcmp(t[p].name, "floor")) *ms += t[p].ms;
     return EXIT_OK;
 }
 
@@ -335,17 +332,21 @@ static struct {
     const ob_scene *scene;
 } moving;
 
-/* Warm-up, then o->frames measured frames on every eye. scratch holds frames x (MAX_PASSES + 1). */
+/* Warm-up, then o->frames measured frames on every eye, each followed by a floor frame with
+ * --floor (floor_frame). scratch holds frames x (MAX_PASSES + 3). */
 static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, const ob_settings *s, const bench_opts *o,
                    double *scratch, bench_row *row)
 {
     int frames = o->frames;
     double *frame_ms = scratch + (size_t)MAX_PASSES * (size_t)frames;
+    double *floor_ms = frame_ms + frames, *ratio = floor_ms + frames;
+    const bool floor = o->floor && row->samples > 0;
     for (int f = 0; f < o->warmup + frames; ++f) {
         bool measured = f >= o->warmup;
         int m = f - o->warmup;
         if (measured) {
             frame_ms[m] = 0.0;
+            floor_ms[m] = 0.0;
             for (int p = 0; p < MAX_PASSES; ++p) scratch[(size_t)p * (size_t)frames + (size_t)m] = 0.0;
         }
         for (int e = 0; e < eye_count; ++e) {
@@ -367,14 +368,34 @@ static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, con
                 frame_ms[m] += t[p].ms;
             }
         }
+        /* Stereo sums both eyes' floors as the passes do. */
+        for (int e = 0; floor && e < eye_count; ++e) {
+            double ms;
+            int code = floor_frame(eyes[e], s, measured, row, &ms);
+            if (code != EXIT_OK) return code;
+            if (measured) floor_ms[m] += ms;
+        }
     }
     row->ao_ms = 0.0;
+    int ao_pass = -1;
     for (int p = 0; p < row->pass_count; ++p) {
         stats(scratch + (size_t)p * (size_t)frames, frames, &row->med[p], &row->min[p], &row->max[p]);
-        if (!strcmp(row->pass[p], "ao")) row->ao_ms = row->med[p];
+        if (!strcmp(row->pass[p], "ao")) {
+            row->ao_ms = row->med[p];
+            ao_pass = p;
+        }
     }
     stats(frame_ms, frames, &row->frame_med, &row->frame_min, &row->frame_max);
-    return o->floor && row->samples > 0 ? measure_floor(eyes, eye_count, s, o, scratch, row) : EXIT_OK;
+    if (floor) {
+        /* The ratio is the median of each frame's AO pass over the floor frame beside it. */
+        for (int m = 0; m < frames; ++m)
+            ratio[m] = ao_pass >= 0 && floor_ms[m] > 0.0 ? scratch[(size_t)ao_pass * (size_t)frames + (size_t)m] / floor_ms[m]
+                                                         : 0.0;
+        stats(floor_ms, frames, &row->floor_med, &row->floor_min, &row->floor_max);
+        double lo, hi;
+        stats(ratio, frames, &row->floor_ratio, &lo, &hi);
+    }
+    return EXIT_OK;
 }
 
 /* The settings of one configuration: its combination's, then the sweep's N and r (samples 0 /
@@ -549,8 +570,9 @@ static const bench_row *table_cell(const bench_state *st, int camera, const cli_
     return hit;
 }
 
-/* --floor: the method's table again, each cell AO pass / floor (floor ms, its taps), rows N as
- * asked (the floor's N is the method's actual sample count). */
+/* --floor: the method's table again, each cell AO pass / floor (the median over the frames of each
+ * one's ratio; the floor's median ms, its taps), rows N as asked (the floor's N is the method's
+ * actual sample count). */
 static void print_floor_table(const bench_state *st, int camera, const cli_config *cfg, const int *ns, int nn,
                               const float *rs, int rn)
 {
@@ -561,8 +583,8 @@ static void print_floor_table(const bench_state *st, int camera, const cli_confi
         for (int q = 0; q < rn; ++q) {
             const bench_row *hit = table_cell(st, camera, cfg, ns[j], rs[q]);
             char cell[48] = "-";
-            if (hit && hit->floor_taps > 0 && hit->floor_med > 0.0)
-                snprintf(cell, sizeof cell, "%.2fx (%.3f, %d)", hit->ao_ms / hit->floor_med, hit->floor_med,
+            if (hit && hit->floor_taps > 0 && hit->floor_ratio > 0.0)
+                snprintf(cell, sizeof cell, "%.2fx (%.3f, %d)", hit->floor_ratio, hit->floor_med,
                          hit->floor_taps);
             printf(" %20s", cell);
         }
@@ -694,7 +716,7 @@ static cJSON *row_json(const bench_row *r, const bench_row *none, const ob_scene
         cJSON_AddNumberToObject(fl, "median", r->floor_med);
         cJSON_AddNumberToObject(fl, "min", r->floor_min);
         cJSON_AddNumberToObject(fl, "max", r->floor_max);
-        if (r->floor_med > 0.0) cJSON_AddNumberToObject(j, "floor_ratio", r->ao_ms / r->floor_med);
+        if (r->floor_ratio > 0.0) cJSON_AddNumberToObject(j, "floor_ratio", r->floor_ratio);
         else cJSON_AddNullToObject(j, "floor_ratio");
         cJSON_AddNumberToObject(j, "floor_taps", r->floor_taps);
         cJSON_AddStringToObject(j, "floor_pattern", r->floor_rays > 0 ? "rays" : "disk");
@@ -762,7 +784,7 @@ static int write_csv(int index, const bench_state *st, const ob_scene *scene, in
             char fms[32] = "", fratio[32] = "";
             if (!frame && r->floor_taps > 0 && !strcmp(r->pass[p], "ao")) {
                 snprintf(fms, sizeof fms, "%.4f", r->floor_med);
-                if (r->floor_med > 0.0) snprintf(fratio, sizeof fratio, "%.4f", r->ao_ms / r->floor_med);
+                if (r->floor_ratio > 0.0) snprintf(fratio, sizeof fratio, "%.4f", r->floor_ratio);
             }
             len += (size_t)snprintf(buf + len, cap - len,
                                     "%s,%s,%s,%s,%s,%s,%s,%g,%d,%d,%d,%u,%s,%.4f,%.4f,%.4f,%s,%s,%s,%s,%s,%s\n",
@@ -819,7 +841,7 @@ static const char *floor_note(const bench_row *r)
 {
     static char note[48];
     note[0] = '\0';
-    if (r->floor_taps > 0 && r->floor_med > 0.0) snprintf(note, sizeof note, ", %.2fx floor", r->ao_ms / r->floor_med);
+    if (r->floor_taps > 0 && r->floor_ratio > 0.0) snprintf(note, sizeof note, ", %.2fx floor", r->floor_ratio);
     return note;
 }
 
@@ -898,7 +920,7 @@ static int bench_run(int argc, char **argv)
         goto cleanup;
     }
 
-    scratch = calloc((size_t)o.frames * (MAX_PASSES + 1), sizeof(double));
+    scratch = calloc((size_t)o.frames * (MAX_PASSES + 3), sizeof(double));
     int eye_count = o.stereo ? 2 : 1;
     const double t0 = now_s();
     st.start = t0;

@@ -320,7 +320,11 @@ for m, pattern in (("ssao", "disk"), ("hbao", "rays")):
     c = by[m]
     f = c["floor_ms"]
     assert 0 < f["min"] <= f["median"] <= f["max"] and math.isfinite(f["max"]), (m, f)
-    assert abs(c["floor_ratio"] - c["ao_ms"] / f["median"]) < 1e-9 * c["floor_ratio"], (m, c["floor_ratio"])
+    # The median of each frame's AO pass over the floor frame beside it: inside what any frame's
+    # ratio can be.
+    ao = next(p for p in c["passes"] if p["name"] == "ao")
+    lo, hi = ao["min"] / f["max"], ao["max"] / f["min"]
+    assert lo * (1 - 1e-9) <= c["floor_ratio"] <= hi * (1 + 1e-9), (m, lo, c["floor_ratio"], hi)
     assert c["floor_taps"] == 16 and c["floor_pattern"] == pattern, (m, c["floor_taps"], c["floor_pattern"])
 PY
 else

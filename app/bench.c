@@ -388,9 +388,8 @@ static int measure(ob_renderer **eyes, const ob_camera *cams, int eye_count, con
     stats(frame_ms, frames, &row->frame_med, &row->frame_min, &row->frame_max);
     if (floor) {
         /* The ratio is the median of each frame's AO pass over the floor frame beside it. */
-        for (int m = 0; m < frames; ++m)
-            ratio[m] = ao_pass >= 0 && floor_ms[m] > 0.0 ? scratch[(size_t)ao_pass * (size_t)frames + (size_t)m] / floor_ms[m]
-                                                         : 0.0;
+        const double *ao = ao_pass >= 0 ? scratch + (size_t)ao_pass * (size_t)frames : NULL;
+        for (int m = 0; m < frames; ++m) ratio[m] = ao && floor_ms[m] > 0.0 ? ao[m] / floor_ms[m] : 0.0;
         stats(floor_ms, frames, &row->floor_med, &row->floor_min, &row->floor_max);
         double lo, hi;
         stats(ratio, frames, &row->floor_ratio, &lo, &hi);

@@ -69,10 +69,7 @@ static ob_error alchemy_run(void *p, const ob_ao_inputs *in, const float *params
 
 static void alchemy_destroy(void *p) { ob_taps_release(&((alchemy_state *)p)->taps); }
 
-static uint32_t alchemy_active_reads(const float *params)
-{
-    return ALCHEMY_READS & (params[P_DEPTH_MIPS] != 0.0f ? ~0u : ~(uint32_t)OB_READS_DEPTH_MIPS);
-}
+static uint32_t alchemy_active_reads(const float *params) { return ob_taps_reads(params[P_DEPTH_MIPS]); }
 
 const ob_method_impl ob_method_alchemy = {
     .info = {.name = "alchemy",

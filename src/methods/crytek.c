@@ -83,10 +83,7 @@ static ob_error crytek_run(void *p, const ob_ao_inputs *in, const float *params,
 
 static void crytek_destroy(void *p) { ob_taps_release(&((crytek_state *)p)->taps); }
 
-static uint32_t crytek_active_reads(const float *params)
-{
-    return CRYTEK_READS & (params[P_DEPTH_MIPS] != 0.0f ? ~0u : ~(uint32_t)OB_READS_DEPTH_MIPS);
-}
+static uint32_t crytek_active_reads(const float *params) { return ob_taps_reads(params[P_DEPTH_MIPS]); }
 
 static int crytek_kernel(const float *params, float *xyzw, int max)
 {

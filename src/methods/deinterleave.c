@@ -91,6 +91,8 @@ void ob_taps_dispatch(const ob_taps *t, const ob_ao_inputs *in, int gx, int gy)
     ob_method_dispatch(t->program, t->deinterleaved, in, gx, gy);
 }
 
+uint32_t ob_taps_reads(float depth_mips) { return depth_mips != 0.0f ? ~0u : ~(uint32_t)OB_READS_DEPTH_MIPS; }
+
 void ob_taps_release(ob_taps *t)
 {
     ob_deinterleaved_release(&t->split);

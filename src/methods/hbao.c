@@ -86,10 +86,7 @@ static ob_error hbao_run(void *p, const ob_ao_inputs *in, const float *params, c
 
 static void hbao_destroy(void *p) { ob_taps_release(&((hbao_state *)p)->taps); }
 
-static uint32_t hbao_active_reads(const float *params)
-{
-    return HBAO_READS & (params[P_DEPTH_MIPS] != 0.0f ? ~0u : ~(uint32_t)OB_READS_DEPTH_MIPS);
-}
+static uint32_t hbao_active_reads(const float *params) { return ob_taps_reads(params[P_DEPTH_MIPS]); }
 
 static int clamp_int(long v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : (int)v; }
 

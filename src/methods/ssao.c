@@ -83,10 +83,7 @@ static ob_error ssao_run(void *p, const ob_ao_inputs *in, const float *params, c
 
 static void ssao_destroy(void *p) { ob_taps_release(&((ssao_state *)p)->taps); }
 
-static uint32_t ssao_active_reads(const float *params)
-{
-    return SSAO_READS & (params[P_DEPTH_MIPS] != 0.0f ? ~0u : ~(uint32_t)OB_READS_DEPTH_MIPS);
-}
+static uint32_t ssao_active_reads(const float *params) { return ob_taps_reads(params[P_DEPTH_MIPS]); }
 
 static int ssao_kernel(const float *params, float *xyzw, int max)
 {

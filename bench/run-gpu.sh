@@ -120,16 +120,18 @@ want temporal && run temporal_methods 120 "${walk[@]}" --methods vbao,vbgi,ssao,
 # (where the plain program's taps scatter the most), FZK-Haus's stair at 1080p. llvmpipe gains
 # nothing from it (docs/methods.md, "Deinterleaved sampling"): this is where it is measured.
 split=(--scene fzk-haus --size 1920x1080 --cameras stair --radius 4,8 --quality low,medium,high,ultra --frames 200
-    --warmup 20 --floor --filters none --methods ssao,hbao,crytek,alchemy)
-di() { local v=$1; printf -- '--set %s.deinterleave=%s ' ssao "$v" hbao "$v" crytek "$v" alchemy "$v"; }
+    --warmup 20 --floor --filters none --methods ssao,hbao,crytek,alchemy,ssdo,ssdo_merged)
+each() { local p=$1 v=$2 m; for m in ssao hbao crytek alchemy ssdo ssdo_merged; do printf -- '--set %s.%s=%s ' "$m" "$p" "$v"; done; }
+di() { each deinterleave "$1"; }
 # shellcheck disable=SC2046 # di's words are separate arguments on purpose
 want deinterleave && run deinterleave_off 150 "${split[@]}" $(di off)
 # shellcheck disable=SC2046
 want deinterleave && run deinterleave_on 150 "${split[@]}" $(di on)
-# Issue 18's depth MIP taps for the same four (shaders/taps.glsl, `depth_mips`): the same sweep
-# again with them on; deinterleave_off is its baseline. On llvmpipe they cost 1.4-1.6x
-# (bench/results/2026-11-23-llvmpipe-mip-taps.md): a GPU's cache is what they are for.
-dm() { local v=$1; printf -- '--set %s.depth_mips=%s ' ssao "$v" hbao "$v" crytek "$v" alchemy "$v"; }
+# Issue 18's depth MIP taps for the same six (shaders/taps.glsl, `depth_mips`): the same sweep
+# again with them on; deinterleave_off is its baseline (ssdo's `packed` is off on a GPU either
+# way). On llvmpipe they cost 1.4-1.6x, ssdo's about 1.1x (bench/results/2026-11-23-llvmpipe-mip-taps.md,
+# 2026-11-23-llvmpipe-ssdo-mips-temporal-all.md): a GPU's cache is what they are for.
+dm() { each depth_mips "$1"; }
 # shellcheck disable=SC2046
 want miptaps && run miptaps_on 150 "${split[@]}" $(dm on)
 exit 0

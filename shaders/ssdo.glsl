@@ -49,7 +49,7 @@ layout(binding = 9) uniform sampler2D extra_direct; /*   RGBA16F direct radiance
 #include "packed_samples.glsl"
 layout(binding = 10) uniform usampler2D packed_samples;
 #endif
-#include "taps.glsl" /* `deinterleave on`: OB_DEINTERLEAVED */
+#include "taps.glsl" /* `deinterleave on`: OB_DEINTERLEAVED; `depth_mips on`: OB_TAPS_DEPTH_MIPS */
 layout(binding = 0, rgba16f) uniform writeonly image2D m_out;
 layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
 
@@ -220,7 +220,9 @@ void main()
             vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
             if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
                 /* Deinterleaved, the nearest pixel of this pixel's class (its depth from the class's
-                 * layer; a packed texel, the sender's normal and light from their full textures). */
+                 * layer; a packed texel, the sender's normal and light from their full textures);
+                 * from the MIP chain, the pixel the chain picked at the tap's level (its depth from
+                 * that level, the sender's normal and light from their full textures). */
                 q = ob_tap_pixel(ivec2(uv * frame.ao_size), size);
 #ifdef OB_SSDO_PACKED
                 texel = texelFetch(packed_samples, q, 0);

@@ -1,7 +1,6 @@
-/* Where a random-kernel method's taps read depth (ssao, crytek, hbao, alchemy; ssdo and
- * ssdo_merged have the deinterleaved program only): the full-resolution texture, or one of two
- * cache-aware programs for far taps (issue 18), each kept beside the plain one as a selectable
- * baseline. A method calls
+/* Where a random-kernel method's taps read depth (ssao, crytek, hbao, alchemy, ssdo,
+ * ssdo_merged): the full-resolution texture, or one of two cache-aware programs for far taps
+ * (issue 18), each kept beside the plain one as a selectable baseline. A method calls
  * ob_invocation_pixel() for its pixel, then for each tap aimed at pixel q ob_tap_pixel(q, size)
  * for the pixel whose surface point the tap is and ob_tap_depth(linear_depth, that pixel) for its
  * depth, and reconstructs the point at that pixel's centre, so a plane stays a plane in every

@@ -235,20 +235,27 @@ static void test_packed(ob_renderer *r, const char *m, float scale, bool extra, 
     free(b2);
 }
 
-/* `deinterleave` on against off (methods/deinterleave.c; test_methods.c tests the AO methods'
- * on the engine path, where every pixel's write is checked): near taps are the same pixels, far
- * ones move by up to 2 pixels, so after the default filter M may differ pixel by pixel but not on
- * average, and the bounce keeps its size. ssdo runs both of its dispatches deinterleaved. */
-static void test_deinterleaved(ob_renderer *r, const char *m, float scale)
+/* The cache-aware tap programs against the plain one (methods/deinterleave.c, shaders/taps.glsl;
+ * test_methods.c tests the AO methods' on the engine path, where every pixel's write is checked):
+ * `deinterleave` moves far taps by up to 2 pixels, `depth_mips` to the pixel a coarser MIP texel
+ * picked, near taps are the same pixels, so after the default filter M may differ pixel by pixel
+ * but not on average, and the bounce keeps its size. ssdo runs both of its dispatches with it.
+ * depth_mips at five times cornell's radius, so that R reaches past the 20 px from which taps read
+ * level 1 of the chain; a program that changes nothing (the chain not read) fails. Both on is an
+ * error that names the method. */
+static void test_taps(ob_renderer *r, const char *m, const char *param, float scale)
 {
     ob_settings on, off;
     settings_for(&on, m);
     CHECK(ob_settings_set_ao_scale(&on, scale) == OB_OK, "ao scale %g", (double)scale);
-    off = on;
     char key[64];
     snprintf(key, sizeof key, "%s.fused=off", m);
-    if (!strcmp(m, "ssdo")) CHECK(ob_settings_set(&on, key) == OB_OK && ob_settings_set(&off, key) == OB_OK, "%s", key);
-    snprintf(key, sizeof key, "%s.deinterleave=on", m);
+    if (!strcmp(m, "ssdo")) CHECK(ob_settings_set(&on, key) == OB_OK, "%s", key);
+    const bool mips = !strcmp(param, "depth_mips");
+    snprintf(key, sizeof key, "%s.radius=0.5", m);
+    if (mips) CHECK(ob_settings_set(&on, key) == OB_OK, "%s", key);
+    off = on;
+    snprintf(key, sizeof key, "%s.%s=on", m, param);
     CHECK(ob_settings_set(&on, key) == OB_OK, "%s", key);
     float *m1 = render(r, &on, OB_IMAGE_AO_RGB_F32), *b1 = render(r, &on, OB_IMAGE_BOUNCE_F32);
     float *m2 = render(r, &off, OB_IMAGE_AO_RGB_F32), *b2 = render(r, &off, OB_IMAGE_BOUNCE_F32);
@@ -263,15 +270,25 @@ static void test_deinterleaved(ob_renderer *r, const char *m, float scale)
     diff /= (double)n;
     shift /= (double)n;
     double ratio = bounce_on / (bounce_off > 0.0 ? bounce_off : 1.0);
-    printf("  %s deinterleaved at %g: mean |dM| %.4f, shift %+.4f, bounce on / off %.3f\n", m, (double)scale, diff, shift,
+    printf("  %s %s at %g: mean |dM| %.4f, shift %+.4f, bounce on / off %.3f\n", m, param, (double)scale, diff, shift,
            ratio);
-    CHECK(diff < 0.03, "%s deinterleaved: mean |dM| %.4f from the plain program", m, diff);
-    CHECK(fabs(shift) < 0.01, "%s deinterleaved: M %+.4f on average against the plain program", m, shift);
-    CHECK(bounce_off > 0.0 && ratio > 0.9 && ratio < 1.1, "%s deinterleaved: bounce %.3f x the plain program's", m, ratio);
+    CHECK(memcmp(m1, m2, n * sizeof(float)) != 0, "%s %s: the same M as the plain program (its far taps read nothing else)",
+          m, param);
+    CHECK(diff < 0.03, "%s %s: mean |dM| %.4f from the plain program", m, param, diff);
+    CHECK(fabs(shift) < 0.01, "%s %s: M %+.4f on average against the plain program", m, param, shift);
+    CHECK(bounce_off > 0.0 && ratio > 0.9 && ratio < 1.1, "%s %s: bounce %.3f x the plain program's", m, param, ratio);
     free(m1);
     free(b1);
     free(m2);
     free(b2);
+
+    snprintf(key, sizeof key, "%s.%s=on", m, mips ? "deinterleave" : "depth_mips");
+    CHECK(ob_settings_set(&on, key) == OB_OK, "%s", key);
+    ob_error e = ob_render_frame(r, &cam, &on);
+    const char *msg = NULL;
+    ob_get_error(&msg);
+    CHECK(e == OB_ERR_INVALID_ARGUMENT && msg && strstr(msg, m) && strstr(msg, "deinterleave and depth_mips"),
+          "%s with both tap programs on: error %d '%s'", m, (int)e, msg ? msg : "");
 }
 
 /* The default lobe (k = 8) is compiled in as three squarings; any other k takes the pow program.
@@ -366,8 +383,10 @@ int main(void)
     test_packed(r, "ssdo", 1.0f, true, false);
     test_packed(r, "ssdo", 1.0f, false, true);
     test_packed(r, "ssdo_merged", 0.5f, false, true);
-    test_deinterleaved(r, "ssdo", 1.0f);
-    test_deinterleaved(r, "ssdo_merged", 0.5f);
+    test_taps(r, "ssdo", "deinterleave", 1.0f);
+    test_taps(r, "ssdo_merged", "deinterleave", 0.5f);
+    test_taps(r, "ssdo", "depth_mips", 1.0f);
+    test_taps(r, "ssdo_merged", "depth_mips", 0.5f);
     test_lobe_programs(r, "ssdo");
     test_lobe_programs(r, "ssdo_merged");
     test_ranges(r, "ssdo", 1.0f);

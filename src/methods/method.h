@@ -282,9 +282,9 @@ void ob_method_dispatch(GLuint program, bool deinterleaved, const ob_ao_inputs *
 void ob_deinterleaved_release(ob_deinterleaved *d);
 
 /* Depth MIP taps (shaders/taps.glsl, OB_TAPS_DEPTH_MIPS; SAO §2.2) for the `depth_mips` parameter
- * of ssao, crytek, hbao and alchemy: a tap d px from the pixel reads level floor(log2 d - 3.3) of
- * the frame's depth MIP chain (passes/depth_mips.c), the same chain and levels as the slice
- * methods' march. A selectable baseline beside the plain program, off by default
+ * of ssao, crytek, hbao, alchemy (through ob_taps) and ssdo, ssdo_merged (their own variants): a
+ * tap d px from the pixel reads level floor(log2 d - 3.3) of the frame's depth MIP chain
+ * (passes/depth_mips.c), the same chain and levels as the slice methods' march. A selectable baseline beside the plain program, off by default
  * (docs/methods.md, "Depth MIP prefilter"). */
 #define OB_TAPS_DEPTH_MIPS_PARAM                                                                              \
     {"depth_mips", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",                                                 \

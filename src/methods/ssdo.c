@@ -19,7 +19,8 @@
 #include "sampling/sampling.h"
 #include "ssdo_params.h"
 
-enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_EXTRA_VIEW, P_FUSED, P_PACKED, P_DEINTERLEAVE, P_COUNT };
+enum { P_RADIUS, P_BIAS, P_SAMPLES, P_BOUNCE, P_BOUNCE_STRENGTH, P_LOBE, P_LAYERS, P_EXTRA_VIEW, P_FUSED, P_PACKED, P_DEINTERLEAVE,
+       P_DEPTH_MIPS, P_COUNT };
 
 
 /* The lobe exponent of the default programs, which compile it in (shaders/ssdo.glsl: three
@@ -69,26 +70,30 @@ static const ob_param_info ssdo_params[P_COUNT] = {
      * (bench/results/2026-11-23-llvmpipe-crease-block-ssdo-lobe.md). A GPU
      * skips those fetches where no lane of a group is occluded and would read 16 bytes a sample
      * for 4, so auto packs only on a software rasteriser; off is the baseline. */
-    [P_PACKED] = OB_PACKED_PARAM(""),
+    [P_PACKED] = OB_PACKED_PARAM("; not with depth_mips"),
     /* The taps' depth from the 16 noise classes' layers (methods/deinterleave.c); with `packed`
      * the packed texel is read at the same (class) pixel, so both give the same bits. */
     [P_DEINTERLEAVE] = OB_DEINTERLEAVE_PARAM,
+    /* Far taps' depth from the MIP chain (shaders/taps.glsl); the sender's normal and light are
+     * read at the pixel the chain picked, from their full textures. It takes the place of
+     * `packed` (the chain's levels are not packed), as in vbgi. */
+    [P_DEPTH_MIPS] = OB_TAPS_DEPTH_MIPS_PARAM,
 };
 
 #define KERNEL_SEED 0x55D0u
 
-/* 2 x 2 x 3 x 2 x 2 x 2 programs, indexed by bits (the ambient mode's two bits take 3 values),
- * for each number of lights 0 ... OB_MAX_LIGHTS: see ssdo_state.variants. */
-#define VARIANT_BITS 128
+/* 2 x 2 x 3 x 2 x 2 x 2 x 2 programs, indexed by bits (the ambient mode's two bits take 3
+ * values), for each number of lights 0 ... OB_MAX_LIGHTS: see ssdo_state.variants. */
+#define VARIANT_BITS 256
 #define VARIANTS (VARIANT_BITS * (OB_MAX_LIGHTS + 1))
 
 typedef struct ssdo_state {
     ob_method_kit kit;
     /* The program variants with the second layer (bit 0), the extra view (bit 1), the ambient
      * mode (bits 2-3: constant, hemisphere, environment), a lobe other than DEFAULT_LOBE (bit 4:
-     * pow), the packed samples (bit 5) and deinterleaved taps (bit 6), plus VARIANT_BITS x the
-     * number of lights, made on first use; [0] is the kit's own program (no light, constant
-     * ambient, one layer, one view, the default lobe, unpacked, plain taps). */
+     * pow), the packed samples (bit 5), deinterleaved taps (bit 6) and MIP taps (bit 7), plus
+     * VARIANT_BITS x the number of lights, made on first use; [0] is the kit's own program (no
+     * light, constant ambient, one layer, one view, the default lobe, unpacked, plain taps). */
     GLuint variants[VARIANTS];
     ob_packed_samples packed; /* `packed`: methods/packed.c, bound at unit 10 */
     ob_deinterleaved split;   /* `deinterleave`: methods/deinterleave.c, bound at unit 4 */
@@ -133,14 +138,16 @@ static void build_kernel(ssdo_state *s, int count, ob_direction_pdf pdf)
     s->kernel_pdf = (int)pdf;
 }
 
-/* `bounce` off: no bounce to write, filter or upsample. */
-/* The second depth layer only when asked for. */
+/* The second depth layer, the extra view and the MIP chain only when asked for. */
 static uint32_t ssdo_active_reads(const float *params)
 {
-    return OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | (params[P_LAYERS] >= 2.0f ? OB_READS_SECOND_LAYER : 0u) |
-           (params[P_EXTRA_VIEW] != 0.0f ? OB_READS_EXTRA_VIEW : 0u);
+    return (OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS |
+            (params[P_LAYERS] >= 2.0f ? OB_READS_SECOND_LAYER : 0u) |
+            (params[P_EXTRA_VIEW] != 0.0f ? OB_READS_EXTRA_VIEW : 0u)) &
+           ob_taps_reads(params[P_DEPTH_MIPS]);
 }
 
+/* `bounce` off: no bounce to write, filter or upsample. */
 static uint32_t ssdo_active_writes(const float *params)
 {
     return OB_WRITES_VISIBILITY_RGB | (params[P_BOUNCE] != 0.0f ? OB_WRITES_BOUNCE : 0u);
@@ -202,21 +209,26 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
                      : in->frame->ambient_mode == OB_AMBIENT_MODE_ENVIRONMENT ? 2
                                                                               : 0;
     const bool pow_lobe = c->lobe != DEFAULT_LOBE;
-    const bool packed = ob_packed_samples_wanted(&s->packed, params[P_PACKED]);
-    const bool split = params[P_DEINTERLEAVE] != 0.0f;
+    const bool split = params[P_DEINTERLEAVE] != 0.0f, mips = params[P_DEPTH_MIPS] != 0.0f;
+    if (split && mips)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT,
+                            "%s: deinterleave and depth_mips cannot both be on (two ways to read a far tap)",
+                            s->merged ? "ssdo_merged" : "ssdo");
+    const bool packed = !mips && ob_packed_samples_wanted(&s->packed, params[P_PACKED]);
     /* The number of lights too: the per-sample light loop then unrolls (shaders/ssdo.glsl). */
     const int lights = in->frame->light_count;
     const int v = ((c->layers ? 1 : 0) | (c->extra_view ? 2 : 0) | mode << 2 | (pow_lobe ? 16 : 0) | (packed ? 32 : 0) |
-                   (split ? 64 : 0)) +
+                   (split ? 64 : 0) | (mips ? 128 : 0)) +
                   VARIANT_BITS * lights;
     if (v) {
         static const char *const ambient[3] = {"", "#define OB_SSDO_AMBIENT_HEMISPHERE 1\n",
                                                "#define OB_SSDO_AMBIENT_ENVIRONMENT 1\n"};
-        char defines[320];
-        snprintf(defines, sizeof defines, "%s%s%s%s%s%s#define OB_SSDO_LIGHTS %d\n",
+        char defines[352];
+        snprintf(defines, sizeof defines, "%s%s%s%s%s%s%s#define OB_SSDO_LIGHTS %d\n",
                  c->layers ? "#define OB_SSDO_LAYERS 1\n" : "", c->extra_view ? "#define OB_SSDO_EXTRA_VIEW 1\n" : "",
                  ambient[mode], pow_lobe ? "#define OB_SSDO_LOBE_POW 1\n" : "",
-                 packed ? "#define OB_SSDO_PACKED 1\n" : "", split ? OB_DEINTERLEAVED_DEFINE : "", lights);
+                 packed ? "#define OB_SSDO_PACKED 1\n" : "", split ? OB_DEINTERLEAVED_DEFINE : "",
+                 mips ? "#define OB_TAPS_DEPTH_MIPS 1\n" : "", lights);
         variant = ob_method_variant(&s->variants[v], "ssdo.glsl", defines);
         if (!variant) return ob_peek_error(NULL);
     }
@@ -225,6 +237,8 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
         if (err != OB_OK) return err;
     }
     if (split && ob_deinterleaved_prepare(&s->split, NULL, in) != OB_OK) return ob_peek_error(NULL);
+    /* taps.glsl's chain; the depth itself (every tap at level 0) where the frame made none. */
+    if (mips) glBindTextureUnit(4, in->depth_mips ? in->depth_mips : in->linear_depth);
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     const bool fused = params[P_FUSED] != 0.0f && bounce;
     c->stage = s->merged ? OB_SSDO_STAGE_MERGED : fused ? OB_SSDO_STAGE_BOTH : OB_SSDO_STAGE_DIRECT;
@@ -276,7 +290,8 @@ const ob_method_impl ob_method_ssdo = {
     .shader = "ssdo.glsl",
     .constants_size = sizeof(ob_ssdo_constants),
     .state_size = sizeof(ssdo_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER | OB_READS_EXTRA_VIEW,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER | OB_READS_EXTRA_VIEW |
+             OB_READS_DEPTH_MIPS,
     .active_reads = ssdo_active_reads,
     .destroy = ssdo_destroy,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,
@@ -296,7 +311,8 @@ const ob_method_impl ob_method_ssdo_merged = {
     .shader = "ssdo.glsl",
     .constants_size = sizeof(ob_ssdo_constants),
     .state_size = sizeof(ssdo_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER | OB_READS_EXTRA_VIEW,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_SECOND_LAYER | OB_READS_EXTRA_VIEW |
+             OB_READS_DEPTH_MIPS,
     .active_reads = ssdo_active_reads,
     .destroy = ssdo_destroy,
     .writes = OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE,

@@ -256,7 +256,7 @@ static const struct {
     {"--ambient-color", 0},        {"--ao-light", 0},    {"--shadow", 0},
     {"--multibounce", 0},          {"--settings", 0},    {"--textures", 0},
     {"--vsm-bits", 0},             {"--guard", 0},       {"--temporal", 0},
-    {"--temporal-at", 0},          {"--temporal-frames", 0},
+    {"--temporal-at", 0},          {"--temporal-frames", 0}, {"--upsample", 0},
     {"--path", CLI_TAKES_PATH},    {"--orbit", CLI_TAKES_PATH}, {"--path-frames", CLI_TAKES_PATH},
     {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
@@ -354,6 +354,12 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         c->path_frames = (int)n;
     } else if (!strcmp(a, "--temporal")) {
         if (!cli_parse_on_off(v, &c->temporal)) return cli_fail(EXIT_USAGE, "--temporal: expected on or off, got '%s'", v);
+    } else if (!strcmp(a, "--upsample")) {
+        static const char *const names[] = {"auto", "plain", "block"};
+        int n = 0;
+        while (n < 3 && strcmp(v, names[n])) ++n;
+        if (n == 3) return cli_fail(EXIT_USAGE, "--upsample: expected auto, plain or block, got '%s'", v);
+        c->upsample = n;
     } else if (!strcmp(a, "--temporal-at")) {
         if (!strcmp(v, "before")) c->temporal_at = OB_TEMPORAL_BEFORE_FILTER;
         else if (!strcmp(v, "after")) c->temporal_at = OB_TEMPORAL_AFTER_FILTER;
@@ -546,6 +552,10 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "                        method's noise with the frame index (default off)\n"
           "  --temporal-at before|after  accumulate before (default) or after the spatial filter\n"
           "  --temporal-frames N   history length, 1..256 (default 16)\n"
+          "  --upsample auto|plain|block  the upsampler's program at --ao-scale 0.5 or 0.25 (the same\n"
+          "                        bits): block reads the AO grid once per k x k pixels, plain once\n"
+          "                        per pixel (the baseline); auto (default): block on a software\n"
+          "                        rasteriser, plain on a GPU\n"
           "  --adaptive on|off     per-pixel sample counts from an edge pre-pass (default off; every\n"
           "                        method takes them, see docs/filters.md)\n"
           "  --light SPEC          replaces the scene's lights (repeatable, up to 8), e.g.\n"
@@ -664,6 +674,7 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
     s->guard = c->guard_px;
     s->temporal = c->temporal;
     s->temporal_at = c->temporal_at;
+    s->upsample = c->upsample;
     s->temporal_frames = c->temporal_frames;
     /* Every method adapts today; a new one that does not is named here rather than silently
      * ignoring the option. none takes no samples at all: nothing to say (bench's baseline frames

@@ -115,6 +115,8 @@ typedef struct cli_common {
     bool temporal;
     int temporal_at;
     int temporal_frames;
+    /* --upsample auto|plain|block (ob_settings.upsample) */
+    int upsample;
     /* --path NAME (a sidecar path) or --orbit DEG (about the camera's target), over --path-frames
      * frames (default CLI_PATH_FRAMES) */
     const char *path;

@@ -5,7 +5,18 @@
  *
  * with the full-resolution depth and normal as the guide I: g = exp(-(dd/(d sigma_d))^2) x
  * max(0, n_p . n_q)^8, and c a tent over the AO grid. A 3x3 kernel, not separated, as seed
- * 003 §5.3 does to keep edges sharp. AO sample q sits at full-resolution pixel k q + o. */
+ * 003 §5.3 does to keep edges sharp. AO sample q sits at full-resolution pixel k q + o.
+ *
+ * Two programs with the same arithmetic in the same order (tests/test_filters.c: the same bits):
+ *   - plain: one invocation per full-resolution pixel, 3 fetches per AO sample of its 3x3 (27 a
+ *     pixel), the baseline;
+ *   - OB_UPSAMPLE_BLOCK = k (2 or 4, the grid's factor): one invocation per k x k block of full
+ *     pixels, which reads the 4x4 AO samples around the block once into registers (48 fetches for
+ *     k^2 pixels: 12 a pixel at k = 2, 3 at k = 4) and takes each pixel's 3x3 from them. The
+ *     block's pixels lie within (k - 1) / k < 1 AO sample of each other, so their nearest samples
+ *     are one of two neighbours per axis, and the 3x3 windows of all of them fit in 4x4. On
+ *     llvmpipe a fetch costs about as much as the weights' arithmetic, and the plain program made
+ *     the upsampler dearer than the AO pass at 1/4 scale (docs/filters.md, "Subsampling"). */
 #include "resample_params.h"
 
 /* Compiled a second time with OB_FILTER_RGB for SSDO's RGBA16F modulation factor and bounce:
@@ -32,6 +43,38 @@ layout(binding = 3) uniform sampler2D low_normal;
 layout(binding = 4) uniform sampler2D low_ao;
 layout(binding = 0, OB_UP_FORMAT) uniform writeonly image2D ao_out;
 
+/* The tent over the AO grid along one axis: sample coordinate q, pixel's grid coordinate u. */
+float tent(int q, float u) { return max(0.0, 1.0 - abs(float(q) - u) / 1.5); }
+
+/* One AO sample of pixel p's 3x3 (depth qd, normal qn, value qa, tent weight c), p with depth d
+ * and normal n: adds its weight c g (eq. 3.12) and keeps the sample nearest in depth. The sky
+ * (qd <= 0) has no AO to give. Both programs call it in the same order with the same operands,
+ * so they agree bit for bit. */
+void accumulate(float c, float qd, vec3 qn, OB_UP_T qa, float d, vec3 n, inout OB_UP_T sum, inout float weight,
+                inout float best, inout OB_UP_T best_ao)
+{
+    if (qd <= 0.0) return;
+    float rel = abs(qd - d) / d;
+    /* cos^8 by squaring: pow() is several times dearer on llvmpipe. */
+    float cn = max(0.0, dot(n, qn));
+    cn *= cn;
+    cn *= cn;
+    float g = exp(-(rel / rs.upsample_depth_sigma) * (rel / rs.upsample_depth_sigma)) * cn * cn;
+    sum += qa * c * g;
+    weight += c * g;
+    /* Fallback when no neighbour is similar enough (a thin feature the AO grid missed): the
+     * neighbour nearest in depth, so foreground never takes background AO. */
+    if (rel < best) {
+        best = rel;
+        best_ao = qa;
+    }
+}
+
+/* p's position on the AO grid (sample q lies at full pixel k q + o) and its nearest sample. */
+vec2 grid_position(ivec2 pix) { return (vec2(pix) - float(rs.ao_o)) / float(rs.ao_k); }
+ivec2 nearest_sample(vec2 u) { return clamp(ivec2(round(u)), ivec2(0), rs.ao_size - 1); }
+
+#ifndef OB_UPSAMPLE_BLOCK
 void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
@@ -42,36 +85,91 @@ void main()
         return;
     }
     vec3 n = texelFetch(full_normal, pix, 0).xyz;
-    ivec2 low_size = rs.ao_size;
-    /* p's position on the AO grid: sample q lies at full pixel k q + o. */
-    vec2 u = (vec2(pix) - float(rs.ao_o)) / float(rs.ao_k);
-    ivec2 centre = clamp(ivec2(round(u)), ivec2(0), low_size - 1);
+    vec2 u = grid_position(pix);
+    ivec2 centre = nearest_sample(u);
     OB_UP_T sum = OB_UP_T(0.0), best_ao = OB_UP_SKY;
     float weight = 0.0;
     float best = 1e30;
     for (int y = -1; y <= 1; ++y) {
         for (int x = -1; x <= 1; ++x) {
-            ivec2 q = clamp(centre + ivec2(x, y), ivec2(0), low_size - 1);
-            float qd = texelFetch(low_depth, q, 0).r;
-            if (qd <= 0.0) continue; /* the sky has no AO to give */
-            OB_UP_T qa = OB_UP_FETCH(low_ao, q);
-            float rel = abs(qd - d) / d;
-            vec2 off = abs(vec2(q) - u);
-            float c = max(0.0, 1.0 - off.x / 1.5) * max(0.0, 1.0 - off.y / 1.5);
-            /* cos^8 by squaring: pow() is several times dearer on llvmpipe. */
-            float cn = max(0.0, dot(n, texelFetch(low_normal, q, 0).xyz));
-            cn *= cn;
-            cn *= cn;
-            float g = exp(-(rel / rs.upsample_depth_sigma) * (rel / rs.upsample_depth_sigma)) * cn * cn;
-            sum += qa * c * g;
-            weight += c * g;
-            /* Fallback when no neighbour is similar enough (a thin feature the AO grid missed):
-             * the neighbour nearest in depth, so foreground never takes background AO. */
-            if (rel < best) {
-                best = rel;
-                best_ao = qa;
-            }
+            ivec2 q = clamp(centre + ivec2(x, y), ivec2(0), rs.ao_size - 1);
+            accumulate(tent(q.x, u.x) * tent(q.y, u.y), texelFetch(low_depth, q, 0).r, texelFetch(low_normal, q, 0).xyz,
+                       OB_UP_FETCH(low_ao, q), d, n, sum, weight, best, best_ao);
         }
     }
     imageStore(ao_out, pix, vec4(weight > 1e-4 ? sum / weight : best_ao));
 }
+#else
+const int K = OB_UPSAMPLE_BLOCK; /* full pixels per AO sample and axis: rs.ao_k */
+
+void main()
+{
+    ivec2 first = ivec2(gl_GlobalInvocationID.xy) * K; /* the block's first full pixel */
+    if (any(greaterThanEqual(first, rs.full_size))) return;
+    /* The block's pixels' nearest samples are `low` or low + 1 per axis (nearest_sample is
+     * monotonic, and the block spans (K - 1) / K of a sample), so their 3x3 windows lie in the 4x4
+     * from low - 1. Each entry is the clamped sample the plain program reads there. Arrays indexed
+     * by constants only, so they stay in registers. */
+    ivec2 low = nearest_sample(grid_position(first));
+    float patch_d[16];
+    vec3 patch_n[16];
+    OB_UP_T patch_a[16];
+    for (int b = 0; b < 4; ++b) {
+        for (int a = 0; a < 4; ++a) {
+            ivec2 q = clamp(low - 1 + ivec2(a, b), ivec2(0), rs.ao_size - 1);
+            patch_d[4 * b + a] = texelFetch(low_depth, q, 0).r;
+            patch_n[4 * b + a] = texelFetch(low_normal, q, 0).xyz;
+            patch_a[4 * b + a] = OB_UP_FETCH(low_ao, q);
+        }
+    }
+    /* Row by row: a row's pixels share their grid y, so the three patch rows their windows use
+     * are chosen once per row (next.y) and the tent's y factors once; per pixel only the column
+     * (next.x) is chosen, one select per value of each of its 9 samples. */
+    for (int j = 0; j < K; ++j) {
+        int py = first.y + j;
+        if (py >= rs.full_size.y) break;
+        float uy = grid_position(ivec2(0, py)).y;
+        int cy = nearest_sample(vec2(0.0, uy)).y;
+        bool next_y = cy > low.y;
+        vec3 tent_y;
+        for (int y = 0; y < 3; ++y) tent_y[y] = tent(clamp(cy + y - 1, 0, rs.ao_size.y - 1), uy);
+        float row_d[12];
+        vec3 row_n[12];
+        OB_UP_T row_a[12];
+        for (int r = 0; r < 3; ++r) {
+            for (int a = 0; a < 4; ++a) {
+                row_d[4 * r + a] = next_y ? patch_d[4 * (r + 1) + a] : patch_d[4 * r + a];
+                row_n[4 * r + a] = next_y ? patch_n[4 * (r + 1) + a] : patch_n[4 * r + a];
+                row_a[4 * r + a] = next_y ? patch_a[4 * (r + 1) + a] : patch_a[4 * r + a];
+            }
+        }
+        for (int i = 0; i < K; ++i) {
+            ivec2 pix = ivec2(first.x + i, py);
+            if (pix.x >= rs.full_size.x) break;
+            float d = texelFetch(full_depth, pix, 0).r;
+            if (d <= 0.0) {
+                imageStore(ao_out, pix, vec4(OB_UP_SKY));
+                continue;
+            }
+            vec3 n = texelFetch(full_normal, pix, 0).xyz;
+            float ux = grid_position(pix).x;
+            int cx = nearest_sample(vec2(ux, 0.0)).x;
+            bool next_x = cx > low.x; /* this pixel's window starts one sample further on */
+            vec3 tent_x;
+            for (int x = 0; x < 3; ++x) tent_x[x] = tent(clamp(cx + x - 1, 0, rs.ao_size.x - 1), ux);
+            OB_UP_T sum = OB_UP_T(0.0), best_ao = OB_UP_SKY;
+            float weight = 0.0;
+            float best = 1e30;
+            for (int y = 0; y < 3; ++y) {
+                for (int x = 0; x < 3; ++x) {
+                    float qd = next_x ? row_d[4 * y + x + 1] : row_d[4 * y + x];
+                    vec3 qn = next_x ? row_n[4 * y + x + 1] : row_n[4 * y + x];
+                    OB_UP_T qa = next_x ? row_a[4 * y + x + 1] : row_a[4 * y + x];
+                    accumulate(tent_x[x] * tent_y[y], qd, qn, qa, d, n, sum, weight, best, best_ao);
+                }
+            }
+            imageStore(ao_out, pix, vec4(weight > 1e-4 ? sum / weight : best_ao));
+        }
+    }
+}
+#endif

@@ -63,9 +63,19 @@ expect 2 "temporal-at: expected before or after" -- "${R[@]}" --temporal-at midd
 expect 2 "temporal-frames: expected a history length" -- "${R[@]}" --temporal-frames 0
 expect 2 "temporal-frames: expected a history length" -- "${R[@]}" --temporal-frames 300
 expect 2 "temporal_frames = 0 is out of range" -- "${R[@]}" --set temporal_frames=0
+expect 2 "upsample: expected auto, plain or block, got 'fast'" -- "${R[@]}" --upsample fast
+expect 2 "upsample expects auto, plain or block, got 'fast'" -- "${R[@]}" --set upsample=fast
 expect 2 "textures: expected on or off" -- "${R[@]}" --textures maybe
 expect 2 "vsm-bits: expected 16 or 32" -- "${R[@]}" --shadow vsm --vsm-bits 8
 expect 2 "view" -- "${R[@]}" --view bogus
+# --upsample's programs give the same image (tests/test_filters.c compares the values).
+if "$OBSCURA" render --scene corner --size 22x18 --ao-scale 0.25 --upsample plain --out "$dir/up-plain.png" &&
+    "$OBSCURA" render --scene corner --size 22x18 --ao-scale 0.25 --upsample block --out "$dir/up-block.png"; then
+    cmp -s "$dir/up-plain.png" "$dir/up-block.png" && ok || bad "--upsample block and plain differ"
+else
+    bad "render --upsample failed"
+fi
+rm -f "$dir/up-plain.png" "$dir/up-block.png"
 # The --view error and render --help name every view the library has (list --json's, from ob_view_name).
 "$OBSCURA" render --scene corner --size 8x8 --out "$dir/out.png" --view bogus 2>"$dir/view.err"
 "$OBSCURA" render --help >"$dir/view.help"

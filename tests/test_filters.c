@@ -387,7 +387,9 @@ static void test_crease_corner(ob_context *ctx)
     ob_destroy_scene(scene);
 }
 
-/* Upsampling on synthetic textures: a depth step at full resolution, the AO grid at half. */
+/* Upsampling on synthetic textures: a depth step at full resolution, the AO grid at half and a
+ * quarter, through the plain and the block program (shaders/upsample.glsl), which must also agree
+ * with each other. */
 static void test_upsample_silhouette(void)
 {
     static float fdepth[W * H], fnormal[W * H * 4];
@@ -415,22 +417,83 @@ static void test_upsample_silhouette(void)
         GLuint ln = upload(GL_RGBA16F, g.width, g.height, GL_RGBA, lnormal);
         GLuint la = upload(GL_R32F, g.width, g.height, GL_RED, lao);
         GLuint out = ob_make_texture_2d(GL_R32F, W, H);
-        ob_compute_pass pass;
-        CHECK(ob_upsample_init(&pass) == OB_OK, "upsample program");
-        ob_upsample_run(&pass, &g, fd, fn, ld, ln, la, out);
-        float up[W * H];
-        download(out, W, H, up);
-        int wrong = 0;
-        for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x) {
-                float want = x <= edge ? 0.3f : 1.0f;
-                wrong += fabsf(up[y * W + x] - want) > 1e-3f;
-            }
-        CHECK(wrong == 0, "k = %d: %d pixels took the other side's AO across the silhouette", k, wrong);
-        ob_compute_pass_destroy(&pass);
+        ob_upsample pass;
+        CHECK(ob_upsample_init(&pass, false) == OB_OK, "upsample program");
+        static float up[2][W * H];
+        for (int program = 0; program < 2; ++program) {
+            const char *name = program ? "block" : "plain";
+            CHECK(ob_upsample_run(&pass, program ? OB_UPSAMPLE_BLOCK : OB_UPSAMPLE_PLAIN, &g, fd, fn, ld, ln, la, out,
+                                  1.0f) == OB_OK,
+                  "k = %d: the %s program runs", k, name);
+            glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+            download(out, W, H, up[program]);
+            int wrong = 0;
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) {
+                    float want = x <= edge ? 0.3f : 1.0f;
+                    wrong += fabsf(up[program][y * W + x] - want) > 1e-3f;
+                }
+            CHECK(wrong == 0, "k = %d, %s: %d pixels took the other side's AO across the silhouette", k, name, wrong);
+        }
+        /* The block program was made for this k and used (a fallback to the plain one would
+         * pass the comparison below alone). */
+        CHECK(pass.block[k == 4].program != 0, "k = %d: no block program was made", k);
+        CHECK(!memcmp(up[0], up[1], sizeof up[0]), "k = %d: the block program differs from the plain one", k);
+        ob_upsample_destroy(&pass);
         GLuint t[6] = {fd, fn, ld, ln, la, out};
         glDeleteTextures(6, t);
     }
+}
+
+/* The two upsampling programs through the renderer (`upsample` plain and block), on a real view
+ * at a size that is no multiple of 4 (a partial last block) at AO scale 1/2 and 1/4: the same
+ * visibility, and for ssdo the same M and bounce (the RGB programs). */
+static void test_upsample_programs(ob_context *ctx)
+{
+    enum { UW = 99, UH = 73 };
+    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "cornell"});
+    CHECK(scene != NULL, "cornell loads");
+    if (!scene) return;
+    ob_camera cam;
+    ob_find_camera(scene, "front", &cam);
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = UW, .height = UH});
+    ob_renderer_set_scene(r, scene);
+    const char *methods[2] = {"vbao", "ssdo"};
+    /* vbao's visibility (the R32F programs); ssdo's M and bounce (the RGBA16F ones). */
+    const ob_image_kind kinds[2][2] = {{OB_IMAGE_AO_F32, OB_IMAGE_AO_F32}, {OB_IMAGE_AO_RGB_F32, OB_IMAGE_BOUNCE_F32}};
+    float *a = malloc(ob_image_size(r, OB_IMAGE_AO_RGB_F32)), *b = malloc(ob_image_size(r, OB_IMAGE_AO_RGB_F32));
+    for (int m = 0; m < 2; ++m)
+        for (float scale = 0.5f; scale >= 0.25f; scale *= 0.5f) {
+            ob_settings s[2];
+            for (int program = 0; program < 2; ++program) {
+                ob_settings_init(&s[program], methods[m]);
+                ob_settings_set_ao_scale(&s[program], scale);
+                CHECK(ob_settings_set(&s[program], program ? "upsample=block" : "upsample=plain") == OB_OK, "upsample=");
+            }
+            for (int kind = 0; kind < (m ? 2 : 1); ++kind) {
+                const size_t bytes = ob_image_size(r, kinds[m][kind]);
+                CHECK(ob_render_frame(r, &cam, &s[0]) == OB_OK && ob_read_image(r, kinds[m][kind], a, bytes) == OB_OK,
+                      "%s plain", methods[m]);
+                CHECK(ob_render_frame(r, &cam, &s[1]) == OB_OK && ob_read_image(r, kinds[m][kind], b, bytes) == OB_OK,
+                      "%s block", methods[m]);
+                double worst = 0.0, sum = 0.0;
+                for (size_t i = 0; i < bytes / sizeof(float); ++i) {
+                    worst = fmax(worst, fabs((double)a[i] - b[i]));
+                    sum += a[i];
+                }
+                printf("  upsample %s at %g, %s: block against plain max |d| %.2g (mean %.4f)\n", methods[m],
+                       (double)scale, kind ? "bounce" : "AO", worst, sum / (double)(bytes / sizeof(float)));
+                CHECK(worst <= 1e-6, "%s at %g: the block upsampler differs from the plain one by %.2g", methods[m],
+                      (double)scale, worst);
+            }
+        }
+    ob_settings bad;
+    ob_settings_init(&bad, "vbao");
+    CHECK(ob_settings_set(&bad, "upsample=fast") == OB_ERR_INVALID_ARGUMENT, "upsample=fast is refused");
+    free(a);
+    free(b);
+    ob_destroy_renderer(r);
+    ob_destroy_scene(scene);
 }
 
 static double rmse_masked(const float *a, const float *b, const float *depth, int n)
@@ -604,6 +667,7 @@ int main(void)
     test_crease_plane();
     test_crease_rgb();
     test_upsample_silhouette();
+    test_upsample_programs(ctx);
     test_scenes(ctx);
     test_crease_corner(ctx);
     test_crease_tiled(ctx);

@@ -454,7 +454,17 @@ typedef struct ob_settings {
     bool temporal;
     int temporal_at;              /* ob_temporal_at: before (default) or after the spatial filter */
     int temporal_frames;          /* history length N, 1..OB_TEMPORAL_FRAMES_MAX (0 = OB_TEMPORAL_FRAMES_DEFAULT) */
+    /* How the upsampler reads the AO grid at ao_divisor 2 or 4 (ob_upsample_program; the same
+     * bits either way): "upsample=auto|plain|block" in ob_settings_set. */
+    int upsample;
 } ob_settings;
+
+/* The upsampler's program (ob_settings.upsample; docs/filters.md, "Subsampling"). */
+typedef enum ob_upsample_program {
+    OB_UPSAMPLE_AUTO = 0, /* block on a software rasteriser, plain on a GPU */
+    OB_UPSAMPLE_PLAIN,    /* one invocation per pixel, 27 fetches each: the baseline */
+    OB_UPSAMPLE_BLOCK,    /* one invocation per k x k pixels, the 4x4 AO samples around them read once */
+} ob_upsample_program;
 
 /* Where the accumulation runs in the AO chain (ob_settings.temporal_at). */
 typedef enum ob_temporal_at {

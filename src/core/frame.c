@@ -524,19 +524,20 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     }
     if (g->k > 1) {
         ob_timer_begin(&r->timers, "upsample");
+        const GLuint full_depth = r->gbuffer.linear_depth, full_normal = r->gbuffer.normal;
+        const int up = s->upsample;
         if (plan->bent)
-            ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
-                                t->bent_filtered, r->bent, 0.0f);
-        if (!plan->rgb) {
-            ob_upsample_run(&r->upsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
-                            t->filtered, r->ao);
-        } else {
-            ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
-                                t->filtered_rgb, r->ao_rgb, 1.0f);
-        }
-        if (plan->bounce)
-            ob_upsample_run_rgb(&r->upsample_rgb, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal,
-                                t->bounce_filtered, r->bounce, 0.0f);
+            err = ob_upsample_run(&r->upsample_rgb, up, g, full_depth, full_normal, t->depth, t->normal,
+                                  t->bent_filtered, r->bent, 0.0f);
+        if (err == OB_OK)
+            err = plan->rgb ? ob_upsample_run(&r->upsample_rgb, up, g, full_depth, full_normal, t->depth, t->normal,
+                                              t->filtered_rgb, r->ao_rgb, 1.0f)
+                            : ob_upsample_run(&r->upsample, up, g, full_depth, full_normal, t->depth, t->normal,
+                                              t->filtered, r->ao, 1.0f);
+        if (err == OB_OK && plan->bounce)
+            err = ob_upsample_run(&r->upsample_rgb, up, g, full_depth, full_normal, t->depth, t->normal,
+                                  t->bounce_filtered, r->bounce, 0.0f);
+        if (err != OB_OK) return err;
         glMemoryBarrier(barrier);
     }
     if (plan->rgb && !plan->bounce) {

@@ -99,8 +99,8 @@ void ob_destroy_renderer(ob_renderer *r)
     if (r->temporal_ready) ob_temporal_destroy(&r->temporal);
     ob_gbuffer_destroy(&r->gbuffer);
     ob_compute_pass_destroy(&r->downsample);
-    ob_compute_pass_destroy(&r->upsample);
-    ob_compute_pass_destroy(&r->upsample_rgb);
+    ob_upsample_destroy(&r->upsample);
+    ob_upsample_destroy(&r->upsample_rgb);
     ob_compute_pass_destroy(&r->edges);
     ob_compute_pass_destroy(&r->fill);
     ob_compute_pass_destroy(&r->fill_rgb);
@@ -151,7 +151,7 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
         return NULL;
     }
     if (ob_gbuffer_init(&r->gbuffer, d.width, d.height) != OB_OK || ob_compose_init(&r->compose) != OB_OK ||
-        ob_downsample_init(&r->downsample) != OB_OK || ob_upsample_init(&r->upsample) != OB_OK ||
+        ob_downsample_init(&r->downsample) != OB_OK || ob_upsample_init(&r->upsample, false) != OB_OK ||
         ob_edges_init(&r->edges) != OB_OK || ob_fill_init(&r->fill, false) != OB_OK ||
         ob_fill_init(&r->fill_rgb, true) != OB_OK || ob_lighting_init(&r->lighting) != OB_OK ||
         ob_shadows_init(&r->shadows) != OB_OK || ob_hdr_init(&r->hdr, d.width, d.height) != OB_OK) {
@@ -334,7 +334,7 @@ ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t, bool directional
         need(&r->bent, r->inner_width, r->inner_height);
     }
     if (!r->upsample_rgb_ready) {
-        if (ob_upsample_init_rgb(&r->upsample_rgb) != OB_OK) return ob_peek_error(NULL);
+        if (ob_upsample_init(&r->upsample_rgb, true) != OB_OK) return ob_peek_error(NULL);
         r->upsample_rgb_ready = true;
     }
     GLenum e = glGetError();

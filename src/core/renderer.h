@@ -55,9 +55,10 @@ struct ob_renderer {
     int guard;
     int inner_width, inner_height;
     ob_gbuffer gbuffer;
-    ob_compute_pass downsample, upsample, edges;
+    ob_compute_pass downsample, edges;
+    ob_upsample upsample;
     ob_compute_pass fill, fill_rgb; /* fill.c: none's visibility 1, the bounce's 0 */
-    ob_compute_pass upsample_rgb;  /* made with the first directional frame */
+    ob_upsample upsample_rgb;      /* made with the first directional frame */
     bool upsample_rgb_ready;
     ob_compose_pass compose;
     ob_lighting_pass lighting;

@@ -140,6 +140,18 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
         s->guard = (int)px;
         return OB_OK;
     }
+    if (key_len == strlen("upsample") && !strncmp(key, "upsample", key_len)) {
+        /* The frame's upsampler program, no prefix: auto, plain or block (ob_upsample_program). */
+        const char *v = eq + 1;
+        while (isspace((unsigned char)*v)) ++v;
+        static const char *const names[] = {"auto", "plain", "block"};
+        for (int i = 0; i < 3; ++i)
+            if (!strcmp(v, names[i])) {
+                s->upsample = i;
+                return OB_OK;
+            }
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "upsample expects auto, plain or block, got '%s'", eq + 1);
+    }
     if (key_len > 8 && !strncmp(key, "temporal", 8) && !memchr(key, '.', key_len)) {
         /* The frame's temporal accumulation, no prefix: temporal=on|off, temporal_at=before|after,
          * temporal_frames=N. */
@@ -236,6 +248,7 @@ float ob_settings_get(const ob_settings *s, const char *param)
     if (!strcmp(param, "guard")) return (float)s->guard;
     if (!strcmp(param, "temporal")) return s->temporal ? 1.0f : 0.0f;
     if (!strcmp(param, "temporal_at")) return (float)s->temporal_at;
+    if (!strcmp(param, "upsample")) return (float)s->upsample;
     if (!strcmp(param, "temporal_frames"))
         return (float)(s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT);
     int pi = find_param(m, param, strlen(param));

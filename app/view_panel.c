@@ -164,10 +164,16 @@ static void panel_method(viewer *v)
         profiler_reset(&v->prof);
     }
     gui_tooltip("run the method and the filter at this fraction of the size, then joint bilateral upsampling");
+    if (si > 0) {
+        static const char *const programs[] = {"auto", "plain", "block"};
+        if (gui_combo("upsample", &v->s.upsample, programs, 3)) profiler_reset(&v->prof);
+        gui_tooltip("the upsampler's program, the same image either way: block reads the AO grid once per k x k "
+                    "pixels, plain once per pixel; auto takes block on a software rasteriser (docs/filters.md)");
+    }
     gui_checkbox("adaptive samples", &v->s.adaptive);
     gui_tooltip("an edge pre-pass gives edge pixels 2x or 3x the base count (ssao, crytek)");
     gui_checkbox("temporal", &v->s.temporal);
-    gui_tooltip("accumulate the AO over frames: reprojected history, disocclusion by depth and normal, 3x3 clamp "
+    gui_tooltip("accumulate the AO over frames: reprojected history, disocclusion by depth and normal, 4x4 clamp "
                 "(docs/temporal.md); turns every method's noise with the frame index. The history_age view shows it");
     if (cli_common_moves(&v->o.common)) {
         gui_checkbox("play path", &v->path_playing);

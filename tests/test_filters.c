@@ -316,20 +316,35 @@ static void test_crease_rgb(void)
     glDeleteTextures(8, t);
 }
 
+/* Scene `name` seen from camera `camera` by a new w x h renderer; NULL after a failed CHECK
+ * (then nothing is left to destroy). */
+static ob_renderer *view_renderer(ob_context *ctx, const char *name, const char *camera, int w, int h, ob_scene **scene,
+                                  ob_camera *cam)
+{
+    *scene = ob_load_scene(&(ob_scene_desc){.name = name});
+    CHECK(*scene && ob_find_camera(*scene, camera, cam) == OB_OK, "%s:%s", name, camera);
+    ob_renderer *r = *scene ? ob_make_renderer(ctx, &(ob_renderer_desc){.width = w, .height = h}) : NULL;
+    CHECK(!*scene || r, "a %dx%d renderer", w, h);
+    if (!r) {
+        ob_destroy_scene(*scene);
+        *scene = NULL;
+        return NULL;
+    }
+    ob_renderer_set_scene(r, *scene);
+    return r;
+}
+
 /* Issue 13: on the corner scene the floor beside a wall keeps the method's own AO. Band: floor
  * (y = 0) pixels with h = min(x, z) < 0.05 R, found from the depth read-back; mean of the filtered
  * AO minus the raw AO over it, for each method. */
 static void test_crease_corner(ob_context *ctx)
 {
     enum { CW = 200, CH = 150 };
-    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "corner"});
-    CHECK(scene != NULL, "corner loads");
-    if (!scene) return;
+    ob_scene *scene;
     ob_camera cam;
-    ob_find_camera(scene, "diagonal", &cam);
+    ob_renderer *r = view_renderer(ctx, "corner", "diagonal", CW, CH, &scene, &cam);
+    if (!r) return;
     const float R = ob_query_scene_ao_radius(scene);
-    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = CW, .height = CH});
-    ob_renderer_set_scene(r, scene);
     size_t n = (size_t)CW * CH;
     float *depth = malloc(n * sizeof(float)), *raw = malloc(n * sizeof(float)), *ao = malloc(n * sizeof(float));
     bool *band = calloc(n, sizeof(bool));
@@ -451,13 +466,10 @@ static void test_upsample_silhouette(void)
 static void test_upsample_programs(ob_context *ctx)
 {
     enum { UW = 99, UH = 73 };
-    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "cornell"});
-    CHECK(scene != NULL, "cornell loads");
-    if (!scene) return;
+    ob_scene *scene;
     ob_camera cam;
-    ob_find_camera(scene, "front", &cam);
-    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = UW, .height = UH});
-    ob_renderer_set_scene(r, scene);
+    ob_renderer *r = view_renderer(ctx, "cornell", "front", UW, UH, &scene, &cam);
+    if (!r) return;
     const char *methods[2] = {"vbao", "ssdo"};
     /* vbao's visibility (the R32F programs); ssdo's M and bounce (the RGBA16F ones). */
     const ob_image_kind kinds[2][2] = {{OB_IMAGE_AO_F32, OB_IMAGE_AO_F32}, {OB_IMAGE_AO_RGB_F32, OB_IMAGE_BOUNCE_F32}};
@@ -513,13 +525,10 @@ static void test_scenes(ob_context *ctx)
     enum { SW = 160, SH = 120 };
     const char *scenes[2][2] = {{"cornell", "front"}, {"fzk-haus", "stair"}};
     for (int sc = 0; sc < 2; ++sc) {
-        ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = scenes[sc][0]});
-        CHECK(scene != NULL, "%s loads", scenes[sc][0]);
-        if (!scene) continue;
+        ob_scene *scene;
         ob_camera cam;
-        ob_find_camera(scene, scenes[sc][1], &cam);
-        ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = SW, .height = SH});
-        ob_renderer_set_scene(r, scene);
+        ob_renderer *r = view_renderer(ctx, scenes[sc][0], scenes[sc][1], SW, SH, &scene, &cam);
+        if (!r) continue;
         size_t n = (size_t)SW * SH;
         float *depth = malloc(n * sizeof(float)), *ref = malloc(n * sizeof(float)), *got = malloc(n * sizeof(float));
         ob_settings s;
@@ -611,15 +620,10 @@ static void test_scenes(ob_context *ctx)
 static void test_crease_tiled(ob_context *ctx)
 {
     enum { TW = 101, TH = 77 };
-    ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "cornell"});
+    ob_scene *scene;
     ob_camera cam;
-    CHECK(scene && ob_find_camera(scene, "front", &cam) == OB_OK, "cornell:front");
-    ob_renderer *r = scene ? ob_make_renderer(ctx, &(ob_renderer_desc){.width = TW, .height = TH}) : NULL;
-    if (!r) {
-        ob_destroy_scene(scene);
-        return;
-    }
-    ob_renderer_set_scene(r, scene);
+    ob_renderer *r = view_renderer(ctx, "cornell", "front", TW, TH, &scene, &cam);
+    if (!r) return;
     size_t n = (size_t)TW * TH * 3;
     float *plain = malloc(n * sizeof(float)), *other = malloc(n * sizeof(float));
     const char *const programs[] = {"crease.tiled=off", "crease.tiled=on", "crease.tiled=block"};

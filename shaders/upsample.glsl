@@ -16,7 +16,10 @@
  *     block's pixels lie within (k - 1) / k < 1 AO sample of each other, so their nearest samples
  *     are one of two neighbours per axis, and the 3x3 windows of all of them fit in 4x4. On
  *     llvmpipe a fetch costs about as much as the weights' arithmetic, and the plain program made
- *     the upsampler dearer than the AO pass at 1/4 scale (docs/filters.md, "Subsampling"). */
+ *     the upsampler dearer than the AO pass at 1/4 scale (docs/filters.md, "Subsampling").
+ * Either program also takes OB_UPSAMPLE_PAIR: a second RGBA16F value (vbgi's and ssdo's bounce,
+ * gtao's bent normals; 0 on the sky) upsampled in the same dispatch with the same weights, which
+ * depend only on the geometry: one pass computes them once for both (the same bits as two). */
 #include "resample_params.h"
 
 /* Compiled a second time with OB_FILTER_RGB for SSDO's RGBA16F modulation factor and bounce:
@@ -42,16 +45,48 @@ layout(binding = 2) uniform sampler2D low_depth;
 layout(binding = 3) uniform sampler2D low_normal;
 layout(binding = 4) uniform sampler2D low_ao;
 layout(binding = 0, OB_UP_FORMAT) uniform writeonly image2D ao_out;
+#ifdef OB_UPSAMPLE_PAIR
+layout(binding = 5) uniform sampler2D low_second; /* RGBA16F */
+layout(binding = 1, rgba16f) uniform writeonly image2D second_out;
+#define SECOND_FETCH(q) texelFetch(low_second, q, 0)
+#else
+#define SECOND_FETCH(q) vec4(0.0) /* nothing reads it: the compiler drops its arithmetic */
+#endif
+
+/* The value(s) of an upsampled pixel: the main one and the pair's second, with the weights' sum
+ * and the fallback (the sample nearest in depth). */
+struct upsampled {
+    OB_UP_T sum, best_value;
+    vec4 sum2, best2;
+    float weight, best;
+};
+upsampled nothing_yet() { return upsampled(OB_UP_T(0.0), OB_UP_SKY, vec4(0.0), vec4(0.0), 0.0, 1e30); }
+
+/* Writes pixel pix's value(s); sky pixels take OB_UP_SKY and 0. */
+void store(ivec2 pix, upsampled u)
+{
+    imageStore(ao_out, pix, vec4(u.weight > 1e-4 ? u.sum / u.weight : u.best_value));
+#ifdef OB_UPSAMPLE_PAIR
+    imageStore(second_out, pix, u.weight > 1e-4 ? u.sum2 / u.weight : u.best2);
+#endif
+}
+
+void store_sky(ivec2 pix)
+{
+    imageStore(ao_out, pix, vec4(OB_UP_SKY));
+#ifdef OB_UPSAMPLE_PAIR
+    imageStore(second_out, pix, vec4(0.0));
+#endif
+}
 
 /* The tent over the AO grid along one axis: sample coordinate q, pixel's grid coordinate u. */
 float tent(int q, float u) { return max(0.0, 1.0 - abs(float(q) - u) / 1.5); }
 
-/* One AO sample of pixel p's 3x3 (depth qd, normal qn, value qa, tent weight c), p with depth d
- * and normal n: adds its weight c g (eq. 3.12) and keeps the sample nearest in depth. The sky
- * (qd <= 0) has no AO to give. Both programs call it in the same order with the same operands,
- * so they agree bit for bit. */
-void accumulate(float c, float qd, vec3 qn, OB_UP_T qa, float d, vec3 n, inout OB_UP_T sum, inout float weight,
-                inout float best, inout OB_UP_T best_ao)
+/* One AO sample of pixel p's 3x3 (depth qd, normal qn, values qa and qb, tent weight c), p with
+ * depth d and normal n: adds its weight c g (eq. 3.12) and keeps the sample nearest in depth. The
+ * sky (qd <= 0) has no AO to give. Both programs call it in the same order with the same
+ * operands, so they agree bit for bit. */
+void accumulate(float c, float qd, vec3 qn, OB_UP_T qa, vec4 qb, float d, vec3 n, inout upsampled u)
 {
     if (qd <= 0.0) return;
     float rel = abs(qd - d) / d;
@@ -60,13 +95,15 @@ void accumulate(float c, float qd, vec3 qn, OB_UP_T qa, float d, vec3 n, inout O
     cn *= cn;
     cn *= cn;
     float g = exp(-(rel / rs.upsample_depth_sigma) * (rel / rs.upsample_depth_sigma)) * cn * cn;
-    sum += qa * c * g;
-    weight += c * g;
+    u.sum += qa * c * g;
+    u.sum2 += qb * c * g;
+    u.weight += c * g;
     /* Fallback when no neighbour is similar enough (a thin feature the AO grid missed): the
      * neighbour nearest in depth, so foreground never takes background AO. */
-    if (rel < best) {
-        best = rel;
-        best_ao = qa;
+    if (rel < u.best) {
+        u.best = rel;
+        u.best_value = qa;
+        u.best2 = qb;
     }
 }
 
@@ -81,23 +118,21 @@ void main()
     if (any(greaterThanEqual(pix, rs.full_size))) return;
     float d = texelFetch(full_depth, pix, 0).r;
     if (d <= 0.0) {
-        imageStore(ao_out, pix, vec4(OB_UP_SKY));
+        store_sky(pix);
         return;
     }
     vec3 n = texelFetch(full_normal, pix, 0).xyz;
     vec2 u = grid_position(pix);
     ivec2 centre = nearest_sample(u);
-    OB_UP_T sum = OB_UP_T(0.0), best_ao = OB_UP_SKY;
-    float weight = 0.0;
-    float best = 1e30;
+    upsampled value = nothing_yet();
     for (int y = -1; y <= 1; ++y) {
         for (int x = -1; x <= 1; ++x) {
             ivec2 q = clamp(centre + ivec2(x, y), ivec2(0), rs.ao_size - 1);
             accumulate(tent(q.x, u.x) * tent(q.y, u.y), texelFetch(low_depth, q, 0).r, texelFetch(low_normal, q, 0).xyz,
-                       OB_UP_FETCH(low_ao, q), d, n, sum, weight, best, best_ao);
+                       OB_UP_FETCH(low_ao, q), SECOND_FETCH(q), d, n, value);
         }
     }
-    imageStore(ao_out, pix, vec4(weight > 1e-4 ? sum / weight : best_ao));
+    store(pix, value);
 }
 #else
 const int K = OB_UPSAMPLE_BLOCK; /* full pixels per AO sample and axis: rs.ao_k */
@@ -114,12 +149,14 @@ void main()
     float patch_d[16];
     vec3 patch_n[16];
     OB_UP_T patch_a[16];
+    vec4 patch_b[16];
     for (int b = 0; b < 4; ++b) {
         for (int a = 0; a < 4; ++a) {
             ivec2 q = clamp(low - 1 + ivec2(a, b), ivec2(0), rs.ao_size - 1);
             patch_d[4 * b + a] = texelFetch(low_depth, q, 0).r;
             patch_n[4 * b + a] = texelFetch(low_normal, q, 0).xyz;
             patch_a[4 * b + a] = OB_UP_FETCH(low_ao, q);
+            patch_b[4 * b + a] = SECOND_FETCH(q);
         }
     }
     /* Row by row: a row's pixels share their grid y, so the three patch rows their windows use
@@ -136,11 +173,13 @@ void main()
         float row_d[12];
         vec3 row_n[12];
         OB_UP_T row_a[12];
+        vec4 row_b[12];
         for (int r = 0; r < 3; ++r) {
             for (int a = 0; a < 4; ++a) {
                 row_d[4 * r + a] = next_y ? patch_d[4 * (r + 1) + a] : patch_d[4 * r + a];
                 row_n[4 * r + a] = next_y ? patch_n[4 * (r + 1) + a] : patch_n[4 * r + a];
                 row_a[4 * r + a] = next_y ? patch_a[4 * (r + 1) + a] : patch_a[4 * r + a];
+                row_b[4 * r + a] = next_y ? patch_b[4 * (r + 1) + a] : patch_b[4 * r + a];
             }
         }
         for (int i = 0; i < K; ++i) {
@@ -148,7 +187,7 @@ void main()
             if (pix.x >= rs.full_size.x) break;
             float d = texelFetch(full_depth, pix, 0).r;
             if (d <= 0.0) {
-                imageStore(ao_out, pix, vec4(OB_UP_SKY));
+                store_sky(pix);
                 continue;
             }
             vec3 n = texelFetch(full_normal, pix, 0).xyz;
@@ -157,18 +196,17 @@ void main()
             bool next_x = cx > low.x; /* this pixel's window starts one sample further on */
             vec3 tent_x;
             for (int x = 0; x < 3; ++x) tent_x[x] = tent(clamp(cx + x - 1, 0, rs.ao_size.x - 1), ux);
-            OB_UP_T sum = OB_UP_T(0.0), best_ao = OB_UP_SKY;
-            float weight = 0.0;
-            float best = 1e30;
+            upsampled value = nothing_yet();
             for (int y = 0; y < 3; ++y) {
                 for (int x = 0; x < 3; ++x) {
                     float qd = next_x ? row_d[4 * y + x + 1] : row_d[4 * y + x];
                     vec3 qn = next_x ? row_n[4 * y + x + 1] : row_n[4 * y + x];
                     OB_UP_T qa = next_x ? row_a[4 * y + x + 1] : row_a[4 * y + x];
-                    accumulate(tent_x[x] * tent_y[y], qd, qn, qa, d, n, sum, weight, best, best_ao);
+                    vec4 qb = next_x ? row_b[4 * y + x + 1] : row_b[4 * y + x];
+                    accumulate(tent_x[x] * tent_y[y], qd, qn, qa, qb, d, n, value);
                 }
             }
-            imageStore(ao_out, pix, vec4(weight > 1e-4 ? sum / weight : best_ao));
+            store(pix, value);
         }
     }
 }

@@ -438,7 +438,7 @@ static void test_upsample_silhouette(void)
         for (int program = 0; program < 2; ++program) {
             const char *name = program ? "block" : "plain";
             CHECK(ob_upsample_run(&pass, program ? OB_UPSAMPLE_BLOCK : OB_UPSAMPLE_PLAIN, &g, fd, fn, ld, ln, la, out,
-                                  1.0f) == OB_OK,
+                                  1.0f, 0, 0) == OB_OK,
                   "k = %d: the %s program runs", k, name);
             glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
             download(out, W, H, up[program]);
@@ -452,11 +452,40 @@ static void test_upsample_silhouette(void)
         }
         /* The block program was made for this k and used (a fallback to the plain one would
          * pass the comparison below alone). */
-        CHECK(pass.block[k == 4].program != 0, "k = %d: no block program was made", k);
+        CHECK(pass.programs[0][k == 4 ? 2 : 1].program != 0, "k = %d: no block program was made", k);
         CHECK(!memcmp(up[0], up[1], sizeof up[0]), "k = %d: the block program differs from the plain one", k);
+
+        /* A pair (frame.c: the bounce in the AO's dispatch): its second value, an RGBA16F texture
+         * that varies across the image, is what the RGB program makes of it alone, and its AO
+         * what the single program made, in either program. */
+        static float lsecond[W * H * 4], alone[W * H * 4], second[W * H * 4], paired[W * H];
+        for (int i = 0; i < g.width * g.height; ++i)
+            for (int c = 0; c < 4; ++c) lsecond[4 * i + c] = lao[i] * (float)(c + 1) * 0.25f + (float)(i % 7) * 0.01f;
+        GLuint ls = upload(GL_RGBA16F, g.width, g.height, GL_RGBA, lsecond);
+        GLuint rgb_out = ob_make_texture_2d(GL_RGBA16F, W, H), second_out = ob_make_texture_2d(GL_RGBA16F, W, H);
+        ob_upsample rgb;
+        CHECK(ob_upsample_init(&rgb, true) == OB_OK, "RGB upsample program");
+        CHECK(ob_upsample_run(&rgb, OB_UPSAMPLE_PLAIN, &g, fd, fn, ld, ln, ls, rgb_out, 0.0f, 0, 0) == OB_OK, "RGB alone");
+        glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+        glGetTextureImage(rgb_out, 0, GL_RGBA, GL_FLOAT, (GLsizei)sizeof alone, alone);
+        for (int program = 0; program < 2; ++program) {
+            CHECK(ob_upsample_run(&pass, program ? OB_UPSAMPLE_BLOCK : OB_UPSAMPLE_PLAIN, &g, fd, fn, ld, ln, la, out,
+                                  1.0f, ls, second_out) == OB_OK,
+                  "k = %d: a pair", k);
+            glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+            download(out, W, H, paired);
+            glGetTextureImage(second_out, 0, GL_RGBA, GL_FLOAT, (GLsizei)sizeof second, second);
+            CHECK(!memcmp(paired, up[0], sizeof paired), "k = %d, %s pair: its AO differs from the single pass's", k,
+                  program ? "block" : "plain");
+            CHECK(!memcmp(second, alone, sizeof second), "k = %d, %s pair: its second value differs from the RGB pass's",
+                  k, program ? "block" : "plain");
+        }
+        CHECK(pass.programs[1][0].program != 0 && pass.programs[1][k == 4 ? 2 : 1].program != 0,
+              "k = %d: the pair programs were made", k);
+        ob_upsample_destroy(&rgb);
         ob_upsample_destroy(&pass);
-        GLuint t[6] = {fd, fn, ld, ln, la, out};
-        glDeleteTextures(6, t);
+        GLuint t[9] = {fd, fn, ld, ln, la, out, ls, rgb_out, second_out};
+        glDeleteTextures(9, t);
     }
 }
 

@@ -526,17 +526,25 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         ob_timer_begin(&r->timers, "upsample");
         const GLuint full_depth = r->gbuffer.linear_depth, full_normal = r->gbuffer.normal;
         const int up = s->upsample;
-        if (plan->bent)
+        /* The bounce, else the bent normals, rides in the main value's dispatch: the weights depend
+         * on the geometry alone, so one pass computes them once for both (the same bits as two,
+         * tests/test_filters.c). With both, the bent normals have a pass of their own. */
+        GLuint second_low = 0, second_out = 0;
+        if (plan->bounce) {
+            second_low = t->bounce_filtered;
+            second_out = r->bounce;
+        } else if (plan->bent) {
+            second_low = t->bent_filtered;
+            second_out = r->bent;
+        }
+        if (plan->bent && plan->bounce)
             err = ob_upsample_run(&r->upsample_rgb, up, g, full_depth, full_normal, t->depth, t->normal,
-                                  t->bent_filtered, r->bent, 0.0f);
+                                  t->bent_filtered, r->bent, 0.0f, 0, 0);
         if (err == OB_OK)
             err = plan->rgb ? ob_upsample_run(&r->upsample_rgb, up, g, full_depth, full_normal, t->depth, t->normal,
-                                              t->filtered_rgb, r->ao_rgb, 1.0f)
+                                              t->filtered_rgb, r->ao_rgb, 1.0f, second_low, second_out)
                             : ob_upsample_run(&r->upsample, up, g, full_depth, full_normal, t->depth, t->normal,
-                                              t->filtered, r->ao, 1.0f);
-        if (err == OB_OK && plan->bounce)
-            err = ob_upsample_run(&r->upsample_rgb, up, g, full_depth, full_normal, t->depth, t->normal,
-                                  t->bounce_filtered, r->bounce, 0.0f);
+                                              t->filtered, r->ao, 1.0f, second_low, second_out);
         if (err != OB_OK) return err;
         glMemoryBarrier(barrier);
     }

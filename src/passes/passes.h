@@ -84,19 +84,23 @@ void ob_downsample_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_dept
                        GLuint low_normal);
 
 /* Joint bilateral upsampling of the AO to full resolution (seed 003 eq. 3.12): R32F, or RGBA16F
- * for SSDO's M and bounce and the bent normals (`rgb`). The plain program and the block programs
- * for k = 2 and 4 (shaders/upsample.glsl), the latter made on first use. */
+ * for SSDO's M (`rgb`). Programs (shaders/upsample.glsl), [pair][plain, block k = 2, block k = 4],
+ * made on first use but the plain single one: `pair` also upsamples a second RGBA16F value (the
+ * bounce or the bent normals) with the same weights in the same dispatch. */
 typedef struct ob_upsample {
-    ob_compute_pass plain, block[2]; /* block[0]: k = 2, block[1]: k = 4 */
+    ob_compute_pass programs[2][3];
     bool rgb;
     bool software; /* the context is a software rasteriser: what OB_UPSAMPLE_AUTO follows */
 } ob_upsample;
 ob_error ob_upsample_init(ob_upsample *u, bool rgb);
 /* Upsamples low_ao (the grid's AO resolution) to ao_out with `program` (ob_upsample_program); sky
- * pixels get `sky` in the RGB pass (1 for M, 0 for the bounce), 1 in the R32F one. The block
- * program needs k = 2 or 4; another k takes the plain one. */
+ * pixels get `sky` in the RGB pass (1 for M), 1 in the R32F one. With low_second (RGBA16F, 0 = none)
+ * also upsamples it to second_out, 0 on the sky: in the same dispatch, but for an RGB main value
+ * in the block program (two dispatches). The block program needs k = 2 or 4; another k takes the
+ * plain one. */
 ob_error ob_upsample_run(ob_upsample *u, int program, const ob_ao_grid *g, GLuint full_depth, GLuint full_normal,
-                         GLuint low_depth, GLuint low_normal, GLuint low_ao, GLuint ao_out, float sky);
+                         GLuint low_depth, GLuint low_normal, GLuint low_ao, GLuint ao_out, float sky, GLuint low_second,
+                         GLuint second_out);
 void ob_upsample_destroy(ob_upsample *u);
 
 /* Adaptive sample counts: a multiplier 1/2/3 per OB_EDGE_BLOCK^2 AO pixels (seed 003 §4.1). */

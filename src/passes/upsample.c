@@ -2,6 +2,7 @@
  * shaders/upsample.glsl: the plain program and the block programs (one invocation per k x k
  * pixels), the same bits (tests/test_filters.c). */
 #include <stdio.h>
+#include <string.h>
 
 #include "core/error.h"
 #include "passes/passes.h"
@@ -15,29 +16,39 @@
 ob_error ob_upsample_init(ob_upsample *u, bool rgb)
 {
     *u = (ob_upsample){.rgb = rgb, .software = ob_renderer_is_software((const char *)glGetString(GL_RENDERER))};
-    return ob_compute_pass_init(&u->plain, "upsample.glsl", rgb ? "#define OB_FILTER_RGB 1\n" : NULL,
+    return ob_compute_pass_init(&u->programs[0][0], "upsample.glsl", rgb ? "#define OB_FILTER_RGB 1\n" : NULL,
                                 sizeof(ob_resample_constants));
 }
 
 ob_error ob_upsample_run(ob_upsample *u, int program, const ob_ao_grid *g, GLuint full_depth, GLuint full_normal,
-                         GLuint low_depth, GLuint low_normal, GLuint low_ao, GLuint ao_out, float sky)
+                         GLuint low_depth, GLuint low_normal, GLuint low_ao, GLuint ao_out, float sky, GLuint low_second,
+                         GLuint second_out)
 {
     /* auto: the block program where a fetch costs as much as arithmetic, a software rasteriser
-     * (on llvmpipe at 1280x720 the pass is 1.7-1.9x faster at k = 4, 1.25-1.6x at k = 2,
-     * docs/filters.md); a GPU's texture cache serves the plain one's neighbouring invocations,
-     * not measured there yet. */
-    if (program == OB_UPSAMPLE_AUTO) program = u->software ? OB_UPSAMPLE_BLOCK : OB_UPSAMPLE_PLAIN;
+     * (on llvmpipe at 1280x720 the pass is 1.6-1.9x faster, docs/filters.md), but for two RGBA
+     * values at k = 2, where one plain dispatch beats two block ones (below; 1.3x); a GPU's
+     * texture cache serves the plain one's neighbouring invocations, not measured there yet. */
+    const bool pair = low_second != 0;
+    if (program == OB_UPSAMPLE_AUTO)
+        program = u->software && !(pair && u->rgb && g->k == 2) ? OB_UPSAMPLE_BLOCK : OB_UPSAMPLE_PLAIN;
     const bool block = program == OB_UPSAMPLE_BLOCK && (g->k == 2 || g->k == 4);
-    ob_compute_pass *p = &u->plain;
-    if (block) {
-        p = &u->block[g->k == 4];
-        if (!p->program) {
-            char defines[80];
-            snprintf(defines, sizeof defines, "%s#define OB_UPSAMPLE_BLOCK %d\n", u->rgb ? "#define OB_FILTER_RGB 1\n" : "",
-                     g->k);
-            if (ob_compute_pass_init(p, "upsample.glsl", defines, sizeof(ob_resample_constants)) != OB_OK)
-                return ob_peek_error(NULL);
-        }
+    if (pair && block && u->rgb) {
+        /* Two RGBA values in one block program (ssdo's M and bounce) hold two 4x4 patches and
+         * their row copies, ~40 vec4 per lane, and spilled on llvmpipe: 1.9-2.3x slower than two
+         * block passes at 1280x720 (docs/filters.md). So they take a pass each here. */
+        ob_error err = ob_upsample_run(u, program, g, full_depth, full_normal, low_depth, low_normal, low_ao, ao_out, sky, 0, 0);
+        if (err != OB_OK) return err;
+        return ob_upsample_run(u, program, g, full_depth, full_normal, low_depth, low_normal, low_second, second_out, 0.0f,
+                               0, 0);
+    }
+    ob_compute_pass *p = &u->programs[pair][block ? (g->k == 4 ? 2 : 1) : 0];
+    if (!p->program) {
+        char defines[128];
+        snprintf(defines, sizeof defines, "%s%s", u->rgb ? "#define OB_FILTER_RGB 1\n" : "",
+                 pair ? "#define OB_UPSAMPLE_PAIR 1\n" : "");
+        if (block) snprintf(defines + strlen(defines), sizeof defines - strlen(defines), "#define OB_UPSAMPLE_BLOCK %d\n", g->k);
+        if (ob_compute_pass_init(p, "upsample.glsl", defines, sizeof(ob_resample_constants)) != OB_OK)
+            return ob_peek_error(NULL);
     }
     ob_resample_constants c;
     ob_resample_fill(&c, g);
@@ -50,6 +61,10 @@ ob_error ob_upsample_run(ob_upsample *u, int program, const ob_ao_grid *g, GLuin
     glBindTextureUnit(3, low_normal);
     glBindTextureUnit(4, low_ao);
     glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, u->rgb ? GL_RGBA16F : GL_R32F);
+    if (pair) {
+        glBindTextureUnit(5, low_second);
+        glBindImageTexture(1, second_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    }
     const int k = block ? g->k : 1; /* full pixels per invocation and axis */
     ob_dispatch_2d((g->full_width + k - 1) / k, (g->full_height + k - 1) / k, OB_RESAMPLE_GROUP_X, OB_RESAMPLE_GROUP_Y);
     return OB_OK;
@@ -57,7 +72,6 @@ ob_error ob_upsample_run(ob_upsample *u, int program, const ob_ao_grid *g, GLuin
 
 void ob_upsample_destroy(ob_upsample *u)
 {
-    ob_compute_pass_destroy(&u->plain);
-    ob_compute_pass_destroy(&u->block[0]);
-    ob_compute_pass_destroy(&u->block[1]);
+    for (int pair = 0; pair < 2; ++pair)
+        for (int i = 0; i < 3; ++i) ob_compute_pass_destroy(&u->programs[pair][i]);
 }

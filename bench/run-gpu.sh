@@ -5,8 +5,10 @@
 # libobscura, the FZK-Haus model and the commit). Everything it writes lands in $OUT (or
 # bench/results/gpu) and is packed as results.tgz after every step, so a step that runs out of
 # time loses only itself.
-#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|tests|fzk|temporal|deinterleave|miptaps|all]...   (default all; the smoke render always)
+#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|tests|fzk|temporal|deinterleave|miptaps|upsample|all]...
+#   (default all; the smoke render always)
 # Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-egl.md).
+# shellcheck disable=SC2054 # the commas separate an option's values (--quality low,high), not array elements
 set -u
 steps=${*:-all}
 gpu=${OB_GPU:-hw} # sw only to try the script itself on a machine without a GPU
@@ -130,8 +132,15 @@ want deinterleave && run deinterleave_on 150 "${split[@]}" $(di on)
 # Issue 18's depth MIP taps for the same six (shaders/taps.glsl, `depth_mips`): the same sweep
 # again with them on; deinterleave_off is its baseline (ssdo's `packed` is off on a GPU either
 # way). On llvmpipe they cost 1.4-1.6x, ssdo's about 1.1x (bench/results/2026-11-23-llvmpipe-mip-taps.md,
-# 2026-11-23-llvmpipe-ssdo-mips-temporal-all.md): a GPU's cache is what they are for.
+# 2026-11-23-llvmpipe-ssdo-mips-temporal-upsample.md): a GPU's cache is what they are for.
 dm() { each depth_mips "$1"; }
 # shellcheck disable=SC2046
 want miptaps && run miptaps_on 150 "${split[@]}" $(dm on)
+# Issue 18's upsampler programs (docs/filters.md, "Subsampling"): auto takes the plain one on a
+# GPU; the block one (one invocation per k x k pixels) was 1.3-2.7x faster on llvmpipe. Both at
+# AO scale 1/2 and 1/4 after vbao, vbgi and ssdo (a second value in the same dispatch).
+ups=(--scene fzk-haus --size 1920x1080 --cameras stair --methods vbao,vbgi,ssdo --ao-scales 0.5,0.25 --frames 200
+    --warmup 20 --shadow none)
+want upsample && run upsample_plain 120 "${ups[@]}" --upsample plain
+want upsample && run upsample_block 120 "${ups[@]}" --upsample block
 exit 0

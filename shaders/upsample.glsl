@@ -82,28 +82,42 @@ void store_sky(ivec2 pix)
 /* The tent over the AO grid along one axis: sample coordinate q, pixel's grid coordinate u. */
 float tent(int q, float u) { return max(0.0, 1.0 - abs(float(q) - u) / 1.5); }
 
-/* One AO sample of pixel p's 3x3 (depth qd, normal qn, values qa and qb, tent weight c), p with
- * depth d and normal n: adds its weight c g (eq. 3.12) and keeps the sample nearest in depth. The
- * sky (qd <= 0) has no AO to give. Both programs call it in the same order with the same
- * operands, so they agree bit for bit. */
-void accumulate(float c, float qd, vec3 qn, OB_UP_T qa, vec4 qb, float d, vec3 n, inout upsampled u)
+/* An AO sample: its depth, normal, value and the pair's second value. */
+struct ao_sample {
+    float depth;
+    vec3 normal;
+    OB_UP_T value;
+    vec4 second;
+};
+
+ao_sample fetch_sample(ivec2 q)
 {
-    if (qd <= 0.0) return;
-    float rel = abs(qd - d) / d;
+    return ao_sample(texelFetch(low_depth, q, 0).r, texelFetch(low_normal, q, 0).xyz, OB_UP_FETCH(low_ao, q),
+                     SECOND_FETCH(q));
+}
+
+/* One AO sample s of pixel p's 3x3 with tent weight c, p with depth d and normal n: adds its
+ * weight c g (eq. 3.12) and keeps the sample nearest in depth. The sky (depth <= 0) has no AO to
+ * give. Both programs call it in the same order with the same operands, so they agree bit for
+ * bit. */
+void accumulate(float c, ao_sample s, float d, vec3 n, inout upsampled u)
+{
+    if (s.depth <= 0.0) return;
+    float rel = abs(s.depth - d) / d;
     /* cos^8 by squaring: pow() is several times dearer on llvmpipe. */
-    float cn = max(0.0, dot(n, qn));
+    float cn = max(0.0, dot(n, s.normal));
     cn *= cn;
     cn *= cn;
     float g = exp(-(rel / rs.upsample_depth_sigma) * (rel / rs.upsample_depth_sigma)) * cn * cn;
-    u.sum += qa * c * g;
-    u.sum2 += qb * c * g;
+    u.sum += s.value * c * g;
+    u.sum2 += s.second * c * g;
     u.weight += c * g;
     /* Fallback when no neighbour is similar enough (a thin feature the AO grid missed): the
      * neighbour nearest in depth, so foreground never takes background AO. */
     if (rel < u.best) {
         u.best = rel;
-        u.best_value = qa;
-        u.best2 = qb;
+        u.best_value = s.value;
+        u.best2 = s.second;
     }
 }
 
@@ -128,8 +142,7 @@ void main()
     for (int y = -1; y <= 1; ++y) {
         for (int x = -1; x <= 1; ++x) {
             ivec2 q = clamp(centre + ivec2(x, y), ivec2(0), rs.ao_size - 1);
-            accumulate(tent(q.x, u.x) * tent(q.y, u.y), texelFetch(low_depth, q, 0).r, texelFetch(low_normal, q, 0).xyz,
-                       OB_UP_FETCH(low_ao, q), SECOND_FETCH(q), d, n, value);
+            accumulate(tent(q.x, u.x) * tent(q.y, u.y), fetch_sample(q), d, n, value);
         }
     }
     store(pix, value);
@@ -146,20 +159,10 @@ void main()
      * from low - 1. Each entry is the clamped sample the plain program reads there. Arrays indexed
      * by constants only, so they stay in registers. */
     ivec2 low = nearest_sample(grid_position(first));
-    float patch_d[16];
-    vec3 patch_n[16];
-    OB_UP_T patch_a[16];
-    vec4 patch_b[16];
-    for (int b = 0; b < 4; ++b) {
-        for (int a = 0; a < 4; ++a) {
-            ivec2 q = clamp(low - 1 + ivec2(a, b), ivec2(0), rs.ao_size - 1);
-            patch_d[4 * b + a] = texelFetch(low_depth, q, 0).r;
-            patch_n[4 * b + a] = texelFetch(low_normal, q, 0).xyz;
-            patch_a[4 * b + a] = OB_UP_FETCH(low_ao, q);
-            patch_b[4 * b + a] = SECOND_FETCH(q);
-        }
-    }
-    /* Row by row: a row's pixels share their grid y, so the three patch rows their windows use
+    ao_sample around[16];
+    for (int b = 0; b < 4; ++b)
+        for (int a = 0; a < 4; ++a) around[4 * b + a] = fetch_sample(clamp(low - 1 + ivec2(a, b), ivec2(0), rs.ao_size - 1));
+    /* Row by row: a row's pixels share their grid y, so the three rows of `around` their windows use
      * are chosen once per row (next.y) and the tent's y factors once; per pixel only the column
      * (next.x) is chosen, one select per value of each of its 9 samples. */
     for (int j = 0; j < K; ++j) {
@@ -170,18 +173,9 @@ void main()
         bool next_y = cy > low.y;
         vec3 tent_y;
         for (int y = 0; y < 3; ++y) tent_y[y] = tent(clamp(cy + y - 1, 0, rs.ao_size.y - 1), uy);
-        float row_d[12];
-        vec3 row_n[12];
-        OB_UP_T row_a[12];
-        vec4 row_b[12];
-        for (int r = 0; r < 3; ++r) {
-            for (int a = 0; a < 4; ++a) {
-                row_d[4 * r + a] = next_y ? patch_d[4 * (r + 1) + a] : patch_d[4 * r + a];
-                row_n[4 * r + a] = next_y ? patch_n[4 * (r + 1) + a] : patch_n[4 * r + a];
-                row_a[4 * r + a] = next_y ? patch_a[4 * (r + 1) + a] : patch_a[4 * r + a];
-                row_b[4 * r + a] = next_y ? patch_b[4 * (r + 1) + a] : patch_b[4 * r + a];
-            }
-        }
+        ao_sample rows[12];
+        for (int r = 0; r < 3; ++r)
+            for (int a = 0; a < 4; ++a) rows[4 * r + a] = next_y ? around[4 * (r + 1) + a] : around[4 * r + a];
         for (int i = 0; i < K; ++i) {
             ivec2 pix = ivec2(first.x + i, py);
             if (pix.x >= rs.full_size.x) break;
@@ -198,13 +192,8 @@ void main()
             for (int x = 0; x < 3; ++x) tent_x[x] = tent(clamp(cx + x - 1, 0, rs.ao_size.x - 1), ux);
             upsampled value = nothing_yet();
             for (int y = 0; y < 3; ++y) {
-                for (int x = 0; x < 3; ++x) {
-                    float qd = next_x ? row_d[4 * y + x + 1] : row_d[4 * y + x];
-                    vec3 qn = next_x ? row_n[4 * y + x + 1] : row_n[4 * y + x];
-                    OB_UP_T qa = next_x ? row_a[4 * y + x + 1] : row_a[4 * y + x];
-                    vec4 qb = next_x ? row_b[4 * y + x + 1] : row_b[4 * y + x];
-                    accumulate(tent_x[x] * tent_y[y], qd, qn, qa, qb, d, n, value);
-                }
+                for (int x = 0; x < 3; ++x)
+                    accumulate(tent_x[x] * tent_y[y], next_x ? rows[4 * y + x + 1] : rows[4 * y + x], d, n, value);
             }
             store(pix, value);
         }

@@ -12,6 +12,21 @@
 #include "common.glsl"
 #include "light_eval.glsl"
 
+/* The frame's choices, compiled in (passes/compose.c makes a program per combination on first
+ * use): llvmpipe runs an if block whose uniform condition is false as it runs any other, and the
+ * environment's SH irradiance and background lookup, the bent normal, the multi-bounce fit and the
+ * directional terms cost the default frame (constant ambient, one AO value) most of its compose
+ * pass (bench/results/2026-11-23-llvmpipe-ssdo-mips-temporal-upsample.md).
+ *   OB_COMPOSE_AMBIENT      OB_AMBIENT_MODE_* (default constant)
+ *   OB_COMPOSE_DIRECTIONAL  ao_map holds a directional method's RGB modulation factor M
+ *   OB_COMPOSE_BOUNCE       add the one-bounce light x albedo (a method that writes a bounce)
+ *   OB_COMPOSE_BENT         look the ambient up along the method's bent normal (unit 7)
+ *   OB_COMPOSE_MULTIBOUNCE  visibility through Jimenez et al. 2016's multi-bounce fit
+ *   OB_COMPOSE_ALL_LIGHT    AO darkens all light, not only the ambient term */
+#ifndef OB_COMPOSE_AMBIENT
+#define OB_COMPOSE_AMBIENT OB_AMBIENT_MODE_CONSTANT
+#endif
+
 layout(local_size_x = OB_COMPOSE_GROUP_X, local_size_y = OB_COMPOSE_GROUP_Y) in;
 
 layout(binding = 0) uniform sampler2D linear_depth;
@@ -50,43 +65,62 @@ void main()
     if (any(greaterThanEqual(out_pix, ivec2(frame.size) - 2 * cmp.guard))) return;
     ivec2 pix = out_pix + cmp.guard;
     float d = texelFetch(linear_depth, pix, 0).r;
-    int mode = frame.ambient_mode;
     if (d <= 0.0) {
+#if OB_COMPOSE_AMBIENT == OB_AMBIENT_MODE_CONSTANT
+        vec3 bg = frame.background.rgb;
+#else
         vec3 view_dir = normalize(mat3(frame.inv_view) * ob_view_position(vec2(pix) + 0.5, 1.0, frame.inv_size, frame.proj_info));
-        vec3 bg = mode == OB_AMBIENT_MODE_ENVIRONMENT ? ob_environment_radiance(view_dir)
-                : mode == OB_AMBIENT_MODE_HEMISPHERE  ? mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * view_dir.y)
-                                                      : frame.background.rgb;
+#if OB_COMPOSE_AMBIENT == OB_AMBIENT_MODE_ENVIRONMENT
+        vec3 bg = ob_environment_radiance(view_dir);
+#else
+        vec3 bg = mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * view_dir.y);
+#endif
+#endif
         imageStore(hdr_out, out_pix, vec4(bg, 1.0));
         return;
     }
-    vec3 n = normalize(mat3(frame.inv_view) * texelFetch(view_normal, pix, 0).xyz);
     vec3 albedo = texelFetch(albedo_map, pix, 0).rgb;
-    float ao = texelFetch(ao_map, pix, 0).r;
     vec3 direct = texelFetch(direct_map, pix, 0).rgb;
 
+#if OB_COMPOSE_AMBIENT == OB_AMBIENT_MODE_CONSTANT
+    vec3 ambient = frame.ambient.rgb;
+#else
     /* The ambient light arrives through the unoccluded part of the hemisphere: with a bent normal
      * (Jimenez et al. 2016 §5, "Bent normals"), look it up along that cone's mean direction
      * instead of the normal. Filtering averaged it, so it is renormalised here. */
-    vec3 na = n;
-    if (cmp.bent_normal != 0) {
-        vec3 b = texelFetch(bent_map, pix, 0).xyz;
-        if (dot(b, b) > 1e-8) na = normalize(mat3(frame.inv_view) * b);
-    }
-    vec3 ambient = frame.ambient.rgb;
-    if (mode == OB_AMBIENT_MODE_HEMISPHERE) ambient = mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * na.y);
-    else if (mode == OB_AMBIENT_MODE_ENVIRONMENT) ambient = max(ob_sh_irradiance(frame.sh, na), vec3(0.0));
+    vec3 na = normalize(mat3(frame.inv_view) * texelFetch(view_normal, pix, 0).xyz);
+#ifdef OB_COMPOSE_BENT
+    vec3 b = texelFetch(bent_map, pix, 0).xyz;
+    if (dot(b, b) > 1e-8) na = normalize(mat3(frame.inv_view) * b);
+#endif
+#if OB_COMPOSE_AMBIENT == OB_AMBIENT_MODE_HEMISPHERE
+    vec3 ambient = mix(frame.ground.rgb, frame.sky.rgb, 0.5 + 0.5 * na.y);
+#else
+    vec3 ambient = max(ob_sh_irradiance(frame.sh, na), vec3(0.0));
+#endif
+#endif
 
-    vec3 color;
-    if (cmp.directional != 0) {
-        vec3 m = texelFetch(ao_map, pix, 0).rgb;
-        color = (direct + ambient * albedo) * m;
-        if (cmp.add_bounce != 0) color += texelFetch(bounce_map, pix, 0).rgb * albedo;
-    } else {
-        vec3 vis = cmp.multibounce != 0 ? ob_multibounce(ao, albedo) : vec3(ao);
-        color = (cmp.ao_all_light != 0 ? direct * vis : direct) + ambient * albedo * vis;
-        /* vbgi: a bounce beside a scalar visibility. The ambient's occlusion is not the direct
-         * light's (shadows are), so the direct light stays as it is. */
-        if (cmp.add_bounce != 0) color += texelFetch(bounce_map, pix, 0).rgb * albedo;
-    }
+#ifdef OB_COMPOSE_DIRECTIONAL
+    vec3 m = texelFetch(ao_map, pix, 0).rgb;
+    vec3 color = (direct + ambient * albedo) * m;
+#else
+    float ao = texelFetch(ao_map, pix, 0).r;
+#ifdef OB_COMPOSE_MULTIBOUNCE
+    vec3 vis = ob_multibounce(ao, albedo);
+#else
+    vec3 vis = vec3(ao);
+#endif
+#ifdef OB_COMPOSE_ALL_LIGHT
+    vec3 color = direct * vis + ambient * albedo * vis;
+#else
+    vec3 color = direct + ambient * albedo * vis;
+#endif
+#endif
+    /* A method's bounce, stored as what a white receiver reflects (ssdo beside M, vbgi beside a
+     * scalar visibility, whose ambient occlusion is not the direct light's: shadows are, so the
+     * direct light stays as it is). */
+#ifdef OB_COMPOSE_BOUNCE
+    color += texelFetch(bounce_map, pix, 0).rgb * albedo;
+#endif
     imageStore(hdr_out, out_pix, vec4(color, 1.0));
 }

@@ -568,9 +568,11 @@ compose:;
                                   .height = r->height,
                                   .guard = r->guard,
                                   .ao_all_light = s->ao_all_light,
-                                  .multibounce = s->multibounce};
+                                  .multibounce = s->multibounce,
+                                  .ambient_mode = (int)s->ambient_mode};
     ob_timer_begin(&r->timers, "compose");
-    ob_compose_run(&r->compose, &ci, r->radiance);
+    err = ob_compose_run(&r->compose, &ci, r->radiance);
+    if (err != OB_OK) return err;
     glMemoryBarrier(barrier);
     ob_hdr_run(&r->hdr, r->radiance, &s->hdr, r->final, &r->timers);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | barrier);

@@ -1,5 +1,6 @@
 /* Compose: direct light + ambient x AO (or SSDO's direct x M + bounce) into HDR radiance (DESIGN.md "The frame"). Shader:
  * shaders/compose.glsl. */
+#include <stdio.h>
 #include <string.h>
 
 #include "compose_params.h"
@@ -8,20 +9,34 @@
 
 ob_error ob_compose_init(ob_compose_pass *c)
 {
-    return ob_compute_pass_init(&c->pass, "compose.glsl", NULL, sizeof(ob_compose_constants));
+    memset(c, 0, sizeof *c);
+    return ob_compute_pass_init(&c->variants[0], "compose.glsl", NULL, sizeof(ob_compose_constants));
 }
 
-void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_out)
+ob_error ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_out)
 {
+    /* The frame's choices are the program's (compose.glsl): llvmpipe runs every uniform branch for
+     * every pixel, so a program carries only its own terms. */
+    const int mode = in->ambient_mode == OB_AMBIENT_MODE_HEMISPHERE     ? 1
+                     : in->ambient_mode == OB_AMBIENT_MODE_ENVIRONMENT ? 2
+                                                                       : 0;
+    const int bits = (in->directional ? 1 : 0) | (in->bounce ? 2 : 0) | (in->bent_normal ? 4 : 0) |
+                     (in->multibounce ? 8 : 0) | (in->ao_all_light ? 16 : 0);
+    ob_compute_pass *p = &c->variants[mode + 3 * bits];
+    if (!p->program) {
+        char defines[320];
+        snprintf(defines, sizeof defines, "#define OB_COMPOSE_AMBIENT %d\n%s%s%s%s%s", mode,
+                 in->directional ? "#define OB_COMPOSE_DIRECTIONAL 1\n" : "", in->bounce ? "#define OB_COMPOSE_BOUNCE 1\n" : "",
+                 in->bent_normal ? "#define OB_COMPOSE_BENT 1\n" : "",
+                 in->multibounce ? "#define OB_COMPOSE_MULTIBOUNCE 1\n" : "",
+                 in->ao_all_light ? "#define OB_COMPOSE_ALL_LIGHT 1\n" : "");
+        if (ob_compute_pass_init(p, "compose.glsl", defines, sizeof(ob_compose_constants)) != OB_OK)
+            return ob_peek_error(NULL);
+    }
     ob_compose_constants k;
     memset(&k, 0, sizeof k);
-    k.ao_all_light = in->ao_all_light ? 1 : 0;
-    k.directional = in->directional ? 1 : 0;
-    k.add_bounce = in->bounce ? 1 : 0;
-    k.multibounce = in->multibounce ? 1 : 0;
-    k.bent_normal = in->bent_normal ? 1 : 0;
     k.guard = in->guard;
-    ob_compute_pass_use(&c->pass, &k, sizeof k);
+    ob_compute_pass_use(p, &k, sizeof k);
     glBindTextureUnit(0, in->linear_depth);
     glBindTextureUnit(1, in->normal);
     glBindTextureUnit(2, in->albedo);
@@ -33,6 +48,10 @@ void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_
     glBindTextureUnit(7, in->bent_normal ? in->bent_normal : in->direct);
     glBindImageTexture(0, hdr_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(in->width, in->height, OB_COMPOSE_GROUP_X, OB_COMPOSE_GROUP_Y);
+    return OB_OK;
 }
 
-void ob_compose_destroy(ob_compose_pass *c) { ob_compute_pass_destroy(&c->pass); }
+void ob_compose_destroy(ob_compose_pass *c)
+{
+    for (int v = 0; v < OB_COMPOSE_VARIANTS; ++v) ob_compute_pass_destroy(&c->variants[v]);
+}

@@ -245,7 +245,11 @@ void ob_environment_sh(const float *rgb, int w, int h, float out[9][3]);
 void ob_environment_destroy(ob_environment *e);
 
 /* ---- compose: compose.c, shaders/compose.glsl ----------------------------------------------- */
-typedef struct ob_compose_pass { ob_compute_pass pass; } ob_compose_pass;
+/* A program per combination of the frame's choices (compose.glsl's OB_COMPOSE_* defines): the
+ * ambient mode (3) x directional, bounce, bent normal, multi-bounce and AO on all light (bits), made
+ * on first use but [0] (constant ambient, one AO value, nothing else). */
+#define OB_COMPOSE_VARIANTS (3 << 5)
+typedef struct ob_compose_pass { ob_compute_pass variants[OB_COMPOSE_VARIANTS]; } ob_compose_pass;
 
 /* The camera, the size and the ambient light are the frame block's (frame_params.h). */
 typedef struct ob_compose_inputs {
@@ -260,11 +264,12 @@ typedef struct ob_compose_inputs {
     bool ao_all_light;      /* AO multiplies the direct light too */
     bool multibounce;       /* the visibility goes through the multi-bounce fit (compose.glsl) */
     GLuint bent_normal;     /* RGBA16F view-space bent normal for the ambient lookup; 0 = the normal */
+    int ambient_mode;       /* OB_AMBIENT_MODE_*: the frame block's ambient_mode, compiled in */
 } ob_compose_inputs;
 
 ob_error ob_compose_init(ob_compose_pass *c);
 /* Writes linear HDR radiance (RGBA16F). */
-void ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_out);
+ob_error ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_out);
 void ob_compose_destroy(ob_compose_pass *c);
 
 /* ---- HDR (seed 003 §2.2, §5.5, §6.5): luminance.c, bloom.c, tonemap.c, driven by hdr.c ------

@@ -25,19 +25,22 @@ void main()
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pix, tmo.size))) return;
     vec3 c = ob_hdr_sanitize(texelFetch(radiance, pix, 0).rgb);
+    /* One sRGB encoding at the end for both branches: llvmpipe runs both sides of a uniform
+     * branch, and the encoding's pow was, written out in each, taken twice a pixel. */
+    vec3 mapped;
     if (tmo.hdr_enabled == 0) {
-        imageStore(final_out, pix, vec4(ob_linear_to_srgb(tmo.exposure * c), 1.0));
-        return;
+        mapped = tmo.exposure * c;
+    } else {
+        c *= hdr.result.z; /* eq. 2.2: exposure alpha / L_avg, from the luminance pass */
+        if (tmo.bloom_strength > 0.0) {
+            /* Step 6: bilinear upsampling; full pixel centre p + 0.5 lies at (p + 0.5) / FACTOR in
+             * bloom pixels, exact for odd sizes too. */
+            vec2 uv = (vec2(pix) + 0.5) * tmo.bloom_uv_scale;
+            c += tmo.bloom_strength * textureLod(bloom, uv, 0.0).rgb;
+        }
+        float l = ob_luminance(c);
+        /* Step 8. The ratio can push a saturated channel past 1; ob_linear_to_srgb clamps it. */
+        mapped = l > 0.0 ? c * (reinhard(l, tmo.l_white) / l) : vec3(0.0);
     }
-    c *= hdr.result.z; /* eq. 2.2: exposure alpha / L_avg, from the luminance pass */
-    if (tmo.bloom_strength > 0.0) {
-        /* Step 6: bilinear upsampling; full pixel centre p + 0.5 lies at (p + 0.5) / FACTOR in
-         * bloom pixels, exact for odd sizes too. */
-        vec2 uv = (vec2(pix) + 0.5) * tmo.bloom_uv_scale;
-        c += tmo.bloom_strength * textureLod(bloom, uv, 0.0).rgb;
-    }
-    float l = ob_luminance(c);
-    /* Step 8. The ratio can push a saturated channel past 1; ob_linear_to_srgb clamps it. */
-    vec3 mapped = l > 0.0 ? c * (reinhard(l, tmo.l_white) / l) : vec3(0.0);
     imageStore(final_out, pix, vec4(ob_linear_to_srgb(mapped), 1.0));
 }

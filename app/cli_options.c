@@ -355,10 +355,9 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
     } else if (!strcmp(a, "--temporal")) {
         if (!cli_parse_on_off(v, &c->temporal)) return cli_fail(EXIT_USAGE, "--temporal: expected on or off, got '%s'", v);
     } else if (!strcmp(a, "--upsample")) {
-        static const char *const names[] = {"auto", "plain", "block"};
         int n = 0;
-        while (n < 3 && strcmp(v, names[n])) ++n;
-        if (n == 3) return cli_fail(EXIT_USAGE, "--upsample: expected auto, plain or block, got '%s'", v);
+        while (n < OB_UPSAMPLE_PROGRAM_COUNT && strcmp(v, ob_upsample_program_name((ob_upsample_program)n))) ++n;
+        if (n == OB_UPSAMPLE_PROGRAM_COUNT) return cli_fail(EXIT_USAGE, "--upsample: expected auto, plain or block, got '%s'", v);
         c->upsample = n;
     } else if (!strcmp(a, "--temporal-at")) {
         if (!strcmp(v, "before")) c->temporal_at = OB_TEMPORAL_BEFORE_FILTER;

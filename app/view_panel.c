@@ -165,8 +165,9 @@ static void panel_method(viewer *v)
     }
     gui_tooltip("run the method and the filter at this fraction of the size, then joint bilateral upsampling");
     if (si > 0) {
-        static const char *const programs[] = {"auto", "plain", "block"};
-        if (gui_combo("upsample", &v->s.upsample, programs, 3)) profiler_reset(&v->prof);
+        const char *programs[OB_UPSAMPLE_PROGRAM_COUNT];
+        for (int i = 0; i < OB_UPSAMPLE_PROGRAM_COUNT; ++i) programs[i] = ob_upsample_program_name((ob_upsample_program)i);
+        if (gui_combo("upsample", &v->s.upsample, programs, OB_UPSAMPLE_PROGRAM_COUNT)) profiler_reset(&v->prof);
         gui_tooltip("the upsampler's program, the same image either way: block reads the AO grid once per k x k "
                     "pixels, plain once per pixel; auto takes block on a software rasteriser (docs/filters.md)");
     }

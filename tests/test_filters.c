@@ -531,6 +531,13 @@ static void test_upsample_programs(ob_context *ctx)
     ob_settings bad;
     ob_settings_init(&bad, "vbao");
     CHECK(ob_settings_set(&bad, "upsample=fast") == OB_ERR_INVALID_ARGUMENT, "upsample=fast is refused");
+    /* Every program's name is what "upsample=" takes, and gives that program back. */
+    for (int i = 0; i < OB_UPSAMPLE_PROGRAM_COUNT; ++i) {
+        char set[32];
+        snprintf(set, sizeof set, "upsample=%s", ob_upsample_program_name((ob_upsample_program)i));
+        CHECK(ob_settings_set(&bad, set) == OB_OK && bad.upsample == i, "%s gives program %d", set, i);
+    }
+    CHECK(!strcmp(ob_upsample_program_name(OB_UPSAMPLE_PROGRAM_COUNT), ""), "an out-of-range program has no name");
     free(a);
     free(b);
     ob_destroy_renderer(r);

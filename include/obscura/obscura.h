@@ -464,7 +464,10 @@ typedef enum ob_upsample_program {
     OB_UPSAMPLE_AUTO = 0, /* block on a software rasteriser, plain on a GPU */
     OB_UPSAMPLE_PLAIN,    /* one invocation per pixel, 27 fetches each: the baseline */
     OB_UPSAMPLE_BLOCK,    /* one invocation per k x k pixels, the 4x4 AO samples around them read once */
+    OB_UPSAMPLE_PROGRAM_COUNT
 } ob_upsample_program;
+/* "auto", "plain", "block" (--upsample and "upsample=" take these names); "" if out of range. */
+const char *ob_upsample_program_name(ob_upsample_program program);
 
 /* Where the accumulation runs in the AO chain (ob_settings.temporal_at). */
 typedef enum ob_temporal_at {

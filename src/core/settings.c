@@ -144,9 +144,8 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
         /* The frame's upsampler program, no prefix: auto, plain or block (ob_upsample_program). */
         const char *v = eq + 1;
         while (isspace((unsigned char)*v)) ++v;
-        static const char *const names[] = {"auto", "plain", "block"};
-        for (int i = 0; i < 3; ++i)
-            if (!strcmp(v, names[i])) {
+        for (int i = 0; i < OB_UPSAMPLE_PROGRAM_COUNT; ++i)
+            if (!strcmp(v, ob_upsample_program_name((ob_upsample_program)i))) {
                 s->upsample = i;
                 return OB_OK;
             }

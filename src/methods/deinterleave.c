@@ -67,12 +67,20 @@ void ob_deinterleaved_release(ob_deinterleaved *d)
     *d = (ob_deinterleaved){0};
 }
 
-ob_error ob_taps_prepare(ob_taps *t, const char *method, const char *shader, const ob_ao_inputs *in, bool deinterleave,
-                         bool depth_mips)
+ob_error ob_taps_exclusive(const char *method, bool deinterleave, bool depth_mips)
 {
     if (deinterleave && depth_mips)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT,
                             "%s: deinterleave and depth_mips cannot both be on (two ways to read a far tap)", method);
+    return OB_OK;
+}
+
+void ob_taps_bind_mips(const ob_ao_inputs *in) { glBindTextureUnit(4, in->depth_mips ? in->depth_mips : in->linear_depth); }
+
+ob_error ob_taps_prepare(ob_taps *t, const char *method, const char *shader, const ob_ao_inputs *in, bool deinterleave,
+                         bool depth_mips)
+{
+    if (ob_taps_exclusive(method, deinterleave, depth_mips) != OB_OK) return ob_peek_error(NULL);
     t->program = 0;
     t->deinterleaved = deinterleave;
     if (deinterleave) {
@@ -81,7 +89,7 @@ ob_error ob_taps_prepare(ob_taps *t, const char *method, const char *shader, con
     } else if (depth_mips) {
         if (!ob_method_variant(&t->mips, shader, "#define OB_TAPS_DEPTH_MIPS 1\n")) return ob_peek_error(NULL);
         t->program = t->mips;
-        glBindTextureUnit(4, in->depth_mips ? in->depth_mips : in->linear_depth);
+        ob_taps_bind_mips(in);
     }
     return OB_OK;
 }

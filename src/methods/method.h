@@ -307,6 +307,10 @@ ob_error ob_taps_prepare(ob_taps *t, const char *method, const char *shader, con
                          bool depth_mips);
 /* ob_method_dispatch with the chosen program. */
 void ob_taps_dispatch(const ob_taps *t, const ob_ao_inputs *in, int gx, int gy);
+/* For a method that makes its own variants (ssdo): ob_taps_prepare's error for both programs on,
+ * and its binding of the MIP chain (or the depth, one level) at unit 4. */
+ob_error ob_taps_exclusive(const char *method, bool deinterleave, bool depth_mips);
+void ob_taps_bind_mips(const ob_ao_inputs *in);
 /* A random-kernel method's active_reads from its `depth_mips` value: everything but the MIP chain
  * when off (ob_method_active_reads masks the method's own reads with it). */
 uint32_t ob_taps_reads(float depth_mips);

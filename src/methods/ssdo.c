@@ -210,10 +210,7 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
                                                                               : 0;
     const bool pow_lobe = c->lobe != DEFAULT_LOBE;
     const bool split = params[P_DEINTERLEAVE] != 0.0f, mips = params[P_DEPTH_MIPS] != 0.0f;
-    if (split && mips)
-        return ob_set_error(OB_ERR_INVALID_ARGUMENT,
-                            "%s: deinterleave and depth_mips cannot both be on (two ways to read a far tap)",
-                            s->merged ? "ssdo_merged" : "ssdo");
+    if (ob_taps_exclusive(s->merged ? "ssdo_merged" : "ssdo", split, mips) != OB_OK) return ob_peek_error(NULL);
     const bool packed = !mips && ob_packed_samples_wanted(&s->packed, params[P_PACKED]);
     /* The number of lights too: the per-sample light loop then unrolls (shaders/ssdo.glsl). */
     const int lights = in->frame->light_count;
@@ -237,8 +234,7 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
         if (err != OB_OK) return err;
     }
     if (split && ob_deinterleaved_prepare(&s->split, NULL, in) != OB_OK) return ob_peek_error(NULL);
-    /* taps.glsl's chain; the depth itself (every tap at level 0) where the frame made none. */
-    if (mips) glBindTextureUnit(4, in->depth_mips ? in->depth_mips : in->linear_depth);
+    if (mips) ob_taps_bind_mips(in); /* taps.glsl's chain */
     size_t used = offsetof(ob_ssdo_constants, kernel) + (size_t)count * sizeof c->kernel[0];
     const bool fused = params[P_FUSED] != 0.0f && bounce;
     c->stage = s->merged ? OB_SSDO_STAGE_MERGED : fused ? OB_SSDO_STAGE_BOTH : OB_SSDO_STAGE_DIRECT;

@@ -70,6 +70,12 @@ ob_error ob_upsample_run(ob_upsample *u, int program, const ob_ao_grid *g, GLuin
     return OB_OK;
 }
 
+const char *ob_upsample_program_name(ob_upsample_program program)
+{
+    static const char *const names[OB_UPSAMPLE_PROGRAM_COUNT] = {"auto", "plain", "block"};
+    return (int)program >= 0 && program < OB_UPSAMPLE_PROGRAM_COUNT ? names[program] : "";
+}
+
 void ob_upsample_destroy(ob_upsample *u)
 {
     for (int pair = 0; pair < 2; ++pair)

@@ -16,44 +16,97 @@
  *   5. blend: age' = min(age t + 1, N), out = mix(history, current, max(1 / age', 1 / N)), so a new
  *      history is the plain mean of its first N frames, then an exponential of length N; t = 1
  *      unless the point's pixel footprint changed since the last frame (see 5 below).
- * The history carries its age: RG32F (value, age) for visibility, RGBA16F (rgb, age) for RGB (M;
- * OB_TEMPORAL_RGB). A method's bounce (vbgi, ssdo) rides in the same dispatch (OB_TEMPORAL_BOUNCE):
- * it shares 1, 2 and 5's age with the main chain, which is the same point and the same taps, and
- * has its own clamp box and resampling; its history's .a holds the same age. Before the filter the
- * visibility chain writes no `result`: the filter reads the new history's .r (4 bytes a pixel less
- * to store; the OB_TEMPORAL_NO_RESULT program). A sky pixel passes through with age 0. `motion`
- * gets the reprojection offset in AO pixels (previous position - this one) for the tests and the
- * debug views. */
+ * The history carries its age: for visibility an R32F value and an R16F age beside it (one RG32F
+ * texture was one store fewer, but llvmpipe's gather of an RG32F texel ran three times the
+ * instructions of an R32F one, and the pass makes five: docs/temporal.md, "Cost"); for RGB (M;
+ * OB_TEMPORAL_RGB) RGBA16F (rgb, age). A method's bounce (vbgi, ssdo) rides in the same dispatch
+ * (OB_TEMPORAL_BOUNCE): it shares 1, 2 and 5's age with the main chain, which is the same point
+ * and the same taps, and has its own clamp box and resampling; its history's .a holds the same
+ * age. Before the filter the visibility chain writes no `result`: the filter reads the new history
+ * (4 bytes a pixel less to store; the OB_TEMPORAL_NO_RESULT program). A sky pixel passes through
+ * with age 0.
+ * The OB_TEMPORAL_MOTION program is step 1 alone: it writes the reprojection offset in AO pixels
+ * (previous position - this one; 0 on the sky) to `motion` when someone reads it back
+ * (OB_IMAGE_MOTION_F32: the tests), instead of a store in every accumulation. */
 #include "temporal_params.h"
 #include "common.glsl"
 
 layout(local_size_x = OB_TEMPORAL_GROUP_X, local_size_y = OB_TEMPORAL_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D current;     /* this frame's value (r or rgb) */
-layout(binding = 1) uniform sampler2D history;     /* the previous frame's accumulation + age */
 layout(binding = 2) uniform sampler2D depth;       /* this frame's linear depth, AO grid */
+
+/* 1: this frame's view-space point at pixel pix (linear depth d > 0) in the previous frame's view
+ * (pp) and AO grid (the returned position, pixel centres at + 0.5); clip_w <= 0 when it lies behind
+ * the previous camera. */
+vec2 reproject(ivec2 pix, float d, out vec3 pp, out float clip_w)
+{
+    vec3 p = ob_view_position(vec2(pix) + 0.5, d, frame.ao_inv_size, frame.ao_proj_info);
+    pp = (tp.to_prev_view * vec4(p, 1.0)).xyz;
+    vec4 clip = tp.prev_ao_proj * vec4(pp, 1.0);
+    clip_w = clip.w;
+    return (clip.xy / clip.w * 0.5 + 0.5) * frame.ao_size;
+}
+
+#ifdef OB_TEMPORAL_MOTION
+layout(binding = 2, rg16f) uniform writeonly image2D motion;
+
+void main()
+{
+    ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pix, ivec2(frame.ao_size)))) return;
+    float d = texelFetch(depth, pix, 0).r;
+    vec3 pp;
+    float clip_w;
+    vec2 at = d > 0.0 ? reproject(pix, d, pp, clip_w) : vec2(pix) + 0.5;
+    imageStore(motion, pix, vec4(at - (vec2(pix) + 0.5), 0.0, 0.0));
+}
+#else
+layout(binding = 0) uniform sampler2D current;     /* this frame's value (r or rgb) */
+layout(binding = 1) uniform sampler2D history;     /* the previous frame's accumulation (+ age: RGB) */
 layout(binding = 3) uniform sampler2D normal;      /* this frame's view normal, AO grid */
-/* The previous frame's view normal (xyz) and linear depth (w), AO grid: one RGBA16F fetch per tap
- * instead of two, written by the previous frame's dispatch (no copy pass). 16-bit depth is exact
- * to 2^-11 relative, far inside the 1 % plane tolerance. */
-layout(binding = 4) uniform sampler2D prev_geometry;
+/* The previous frame's linear depth (R32F) and view normal (R32UI, pack_normal), AO grid, written
+ * by the previous frame's dispatch (no copy pass): one gather of each gives the four taps' (2).
+ * One RGBA16F texture (normal, depth) took llvmpipe four fetches at three gathers' cost each and
+ * its costliest store (docs/temporal.md, "Cost"). */
+layout(binding = 4) uniform sampler2D prev_depth;
+layout(binding = 8) uniform usampler2D prev_normal;
 #ifdef OB_TEMPORAL_RGB
 layout(binding = 0, rgba16f) uniform writeonly image2D result;
 layout(binding = 1, rgba16f) uniform writeonly image2D next_history;
-#define VALUE(v) (v).rgb
 #else
 layout(binding = 0, r32f) uniform writeonly image2D result;
-layout(binding = 1, rg32f) uniform writeonly image2D next_history;
-#define VALUE(v) (v).rrr
+layout(binding = 1, r32f) uniform writeonly image2D next_history;
+layout(binding = 7) uniform sampler2D history_age;            /* R16F, the previous frame's */
+layout(binding = 2, r16f) uniform writeonly image2D next_age; /* this frame's */
 #endif
-layout(binding = 2, rg16f) uniform writeonly image2D motion;
-layout(binding = 3, rgba16f) uniform writeonly image2D next_geometry; /* this frame's, for the next */
+layout(binding = 3, r32f) uniform writeonly image2D next_depth; /* this frame's, for the next */
+layout(binding = 6, r32ui) uniform writeonly uimage2D next_normal;
 #ifdef OB_TEMPORAL_BOUNCE
 layout(binding = 5) uniform sampler2D bounce_current; /* RGBA16F, 0 on the sky */
 layout(binding = 6) uniform sampler2D bounce_history; /* RGBA16F (rgb, age) */
 layout(binding = 4, rgba16f) uniform writeonly image2D bounce_result;
 layout(binding = 5, rgba16f) uniform writeonly image2D bounce_next_history;
 #endif
+
+/* A view normal in octahedral coordinates (Meyer et al. 2010, "On Floating-Point Normal Vectors";
+ * Cigolle et al. 2014, "A Survey of Efficient Representations for Independent Unit Vectors", §3.1)
+ * as two snorm16: within ~1e-4 rad, far inside the 25 degree normal test. */
+uint pack_normal(vec3 n)
+{
+    n /= max(abs(n.x) + abs(n.y) + abs(n.z), 1e-6); /* the sky's normal may be 0 */
+    vec2 e = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return packSnorm2x16(e);
+}
+
+/* pack_normal's direction back, not unit length (the test below divides by its length). */
+vec3 unpack_normal(uint code)
+{
+    vec2 e = unpackSnorm2x16(code);
+    vec3 m = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    float t = max(-m.z, 0.0);
+    m.xy += vec2(m.x >= 0.0 ? -t : t, m.y >= 0.0 ? -t : t);
+    return m;
+}
 
 /* Catmull-Rom's weights (Karis 2014) of the taps at offsets -1, 0, 1, 2 for a point at fraction t
  * past tap 0, along one axis. */
@@ -117,10 +170,30 @@ void main()
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = ivec2(frame.ao_size);
     if (any(greaterThanEqual(pix, size))) return;
-    vec3 cur = VALUE(texelFetch(current, pix, 0));
-    float d = texelFetch(depth, pix, 0).r;
+    /* 4's box: this frame's geometry pixels (the sky holds no AO) in the 4x4 window at offsets -1..2
+     * around this one: one whole period of every method's 4x4 noise tile, so the box holds a value
+     * of every rotation or jitter the tile gives here. A 3x3 box sees 9 of the 16, and with a
+     * skewed per-pixel estimate (ssao's occlusion is a count of 16 samples: mostly near the mode,
+     * rarely far darker) its min/max misses the rare side and clamps the history's mean toward the
+     * mode, frame after frame: ssao's accumulated AO came out brighter than any single frame. The
+     * window is four 2x2 gathers; a gather returns texels (0,1), (1,1), (1,0), (0,0) of its 2x2 as
+     * x, y, z, w, and this pixel is texel (1, 1) of the first: its depth and (one value) its value
+     * are that gather's .y, not two more fetches, each of which cost llvmpipe twice a gather. */
+    vec4 box_depth[4];
+    for (int i = 0; i < 4; ++i)
+        box_depth[i] = textureGather(depth, (vec2(pix) + 2.0 * vec2(i & 1, i >> 1)) * frame.ao_inv_size, 0);
+    float d = box_depth[0].y;
+#ifdef OB_TEMPORAL_RGB
+    vec3 cur = texelFetch(current, pix, 0).rgb;
+#else
+    vec4 box_value[4];
+    for (int i = 0; i < 4; ++i)
+        box_value[i] = textureGather(current, (vec2(pix) + 2.0 * vec2(i & 1, i >> 1)) * frame.ao_inv_size, 0);
+    vec3 cur = vec3(box_value[0].y);
+#endif
     vec3 n = texelFetch(normal, pix, 0).xyz;
-    imageStore(next_geometry, pix, vec4(n, d));
+    imageStore(next_depth, pix, vec4(d, 0.0, 0.0, 0.0));
+    imageStore(next_normal, pix, uvec4(pack_normal(n), 0u, 0u, 0u));
 #ifdef OB_TEMPORAL_BOUNCE
     vec3 bounce_cur = texelFetch(bounce_current, pix, 0).rgb;
 #endif
@@ -132,46 +205,34 @@ void main()
         imageStore(next_history, pix, vec4(cur, 0.0));
 #else
         imageStore(next_history, pix, vec4(cur.r, 0.0, 0.0, 0.0));
+        imageStore(next_age, pix, vec4(0.0));
 #endif
 #ifdef OB_TEMPORAL_BOUNCE
         imageStore(bounce_result, pix, vec4(bounce_cur, 1.0));
         imageStore(bounce_next_history, pix, vec4(bounce_cur, 0.0));
 #endif
-        imageStore(motion, pix, vec4(0.0));
         return;
     }
-    /* 4's box: this frame's geometry pixels (the sky holds no AO) in the 4x4 window at offsets -1..2
-     * around this one: one whole period of every method's 4x4 noise tile, so the box holds a value
-     * of every rotation or jitter the tile gives here. A 3x3 box sees 9 of the 16, and with a
-     * skewed per-pixel estimate (ssao's occlusion is a count of 16 samples: mostly near the mode,
-     * rarely far darker) its min/max misses the rare side and clamps the history's mean toward the
-     * mode, frame after frame: ssao's accumulated AO came out brighter than any single frame. */
-    vec4 box_depth[4];
-    for (int i = 0; i < 4; ++i)
-        box_depth[i] = textureGather(depth, (vec2(pix) + 2.0 * vec2(i & 1, i >> 1)) * frame.ao_inv_size, 0);
+    /* 4's min and max */
     vec3 lo, hi;
 #ifdef OB_TEMPORAL_RGB
     rgb_box(current, pix, size, box_depth, cur, lo, hi);
 #else
-    /* One value: four 2x2 gathers of it beside the depth's (8 fetches, not 32). */
+    /* One value: its four gathers beside the depth's (8 fetches, not 32). */
     lo = cur;
     hi = cur;
-    for (int i = 0; i < 4; ++i) {
-        vec4 vq = textureGather(current, (vec2(pix) + 2.0 * vec2(i & 1, i >> 1)) * frame.ao_inv_size, 0);
+    for (int i = 0; i < 4; ++i)
         for (int k = 0; k < 4; ++k) {
-            lo.r = box_depth[i][k] > 0.0 ? min(lo.r, vq[k]) : lo.r;
-            hi.r = box_depth[i][k] > 0.0 ? max(hi.r, vq[k]) : hi.r;
+            lo.r = box_depth[i][k] > 0.0 ? min(lo.r, box_value[i][k]) : lo.r;
+            hi.r = box_depth[i][k] > 0.0 ? max(hi.r, box_value[i][k]) : hi.r;
         }
-    }
     lo = lo.rrr;
     hi = hi.rrr;
 #endif
-    /* 1: the previous frame's view space and AO grid position (pixel centres at + 0.5). */
-    vec3 p = ob_view_position(vec2(pix) + 0.5, d, frame.ao_inv_size, frame.ao_proj_info);
-    vec3 pp = (tp.to_prev_view * vec4(p, 1.0)).xyz;
-    vec4 clip = tp.prev_ao_proj * vec4(pp, 1.0);
-    vec2 at = (clip.xy / clip.w * 0.5 + 0.5) * frame.ao_size;
-    imageStore(motion, pix, vec4(at - (vec2(pix) + 0.5), 0.0, 0.0));
+    /* 1 */
+    vec3 pp;
+    float clip_w;
+    vec2 at = reproject(pix, d, pp, clip_w);
     vec3 np = mat3(tp.to_prev_view) * n;
     /* The four bilinear taps around it: tap i is base + (i & 1, i >> 1). */
     vec2 f = at - 0.5;
@@ -186,21 +247,26 @@ void main()
      * has a constant trip count and no branch, so it unrolls and tap_weight stays in registers: a
      * data-dependent bound and `continue`s kept it a loop over a private array, which llvmpipe
      * indexes lane by lane. */
-    bool any_history = tp.history_valid != 0 && clip.w > 0.0;
+    bool any_history = tp.history_valid != 0 && clip_w > 0.0;
+    /* The four taps' depths and normals: tap i is texel (i & 1, i >> 1) of the 2x2 at base, the
+     * gathers' w, z, x, y. Off the grid the gathers repeat the edge, and `inside` drops the tap. */
+    vec2 taps_at = (vec2(base) + 1.0) * frame.ao_inv_size;
+    vec4 tap_depth = textureGather(prev_depth, taps_at, 0).wzxy;
+    uvec4 tap_normal = textureGather(prev_normal, taps_at, 0).wzxy;
     float tap_weight[4];
     for (int i = 0; i < 4; ++i) {
         ivec2 o = ivec2(i & 1, i >> 1);
         ivec2 q = base + o;
         bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
-        vec4 g = texelFetch(prev_geometry, clamp(q, ivec2(0), size - 1), 0);
-        vec3 qp = ob_view_position(vec2(q) + 0.5, g.w, frame.ao_inv_size, tp.prev_ao_proj_info);
+        vec3 qp = ob_view_position(vec2(q) + 0.5, tap_depth[i], frame.ao_inv_size, tp.prev_ao_proj_info);
         /* A tap within OB_TEMPORAL_NEAR_PIXELS footprints of the point in 3D is its neighbourhood
          * whatever its plane: across a crease the other face's tap is as near as this face's, and
          * rejecting it would leave only the taps away from the crease (brighter), biasing every
          * crease brighter frame after frame. Farther taps must be the same surface. */
         bool near = dot(qp - pp, qp - pp) <= footprint * footprint;
-        bool same = abs(dot(qp - pp, np)) <= tolerance && dot(g.xyz, np) >= tp.normal_cos;
-        bool counts = any_history && inside && g.w > 0.0 && (near || same);
+        vec3 m = unpack_normal(tap_normal[i]);
+        bool same = abs(dot(qp - pp, np)) <= tolerance && dot(m, np) >= tp.normal_cos * length(m);
+        bool counts = any_history && inside && tap_depth[i] > 0.0 && (near || same);
         tap_weight[i] = counts ? (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y) : 0.0;
     }
     float weight = tap_weight[0] + tap_weight[1] + tap_weight[2] + tap_weight[3];
@@ -221,7 +287,7 @@ void main()
     /* One value: the whole separable 4x4 cubic from four 2x2 gathers of the value (texel (a, b) of
      * the window is base - 1 + (a, b)), and the bilinear fallback and the age from the inner 2x2
      * (the same texels, and one gather of the age). Five fetches, none filtered: bilinear fetches
-     * of RG32F cost llvmpipe four texel reads and the filter arithmetic each. A gather returns
+     * cost llvmpipe four texel reads and the filter arithmetic each. A gather returns
      * texels (0,1), (1,1), (1,0), (0,0) of its 2x2 as x, y, z, w. */
     float inv_weight = kept ? 1.0 / weight : 0.0;
     vec4 wx = catmull_rom(w.x), wy = catmull_rom(w.y); /* the window's columns and rows 0..3 */
@@ -237,7 +303,7 @@ void main()
         if (i == 2) inner.z = v.z;
         if (i == 3) inner.w = v.w;
     }
-    vec4 ages = textureGather(history, (vec2(base) + 1.0) * frame.ao_inv_size, 1);
+    vec4 ages = textureGather(history_age, taps_at, 0);
     vec4 tw = vec4(tap_weight[0], tap_weight[1], tap_weight[2], tap_weight[3]);
     float h_age = dot(tw, ages.wzxy) * inv_weight;
     vec3 h = vec3(weight > 0.999 ? cubic : dot(tw, inner) * inv_weight);
@@ -262,7 +328,8 @@ void main()
 #ifdef OB_TEMPORAL_RGB
     imageStore(next_history, pix, vec4(v, age));
 #else
-    imageStore(next_history, pix, vec4(v.r, age, 0.0, 0.0));
+    imageStore(next_history, pix, vec4(v.r, 0.0, 0.0, 0.0));
+    imageStore(next_age, pix, vec4(age, 0.0, 0.0, 0.0));
 #endif
 #ifdef OB_TEMPORAL_BOUNCE
     /* The bounce: the same taps, age and blend; its own box and history. */
@@ -274,3 +341,4 @@ void main()
     imageStore(bounce_next_history, pix, vec4(bounce_v, age));
 #endif
 }
+#endif

@@ -73,10 +73,10 @@ void main()
         break;
     }
     case OB_VIEW_MODE_HISTORY_AGE: {
-        /* The AO grid's history (src / ao_k, as the samples view finds a block): age in .g of the
-         * scalar RG32F history, .a of the RGBA16F one (directional). */
+        /* The AO grid's history (src / ao_k, as the samples view finds a block): the scalar
+         * chain's R16F age texture, or .a of the RGBA16F history (directional). */
         vec4 h = texelFetch(source, src / vw.ao_k, 0);
-        c = vec3((directional ? h.a : h.g) * vw.inv_history_frames);
+        c = vec3((directional ? h.a : h.r) * vw.inv_history_frames);
         break;
     }
     default: break;

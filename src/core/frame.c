@@ -311,15 +311,17 @@ static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const method_
     const int h = t->history_index;
     ob_temporal_chain chain = {.current = main_in, .result = main_out, .rgb = plan->rgb,
                                .history = plan->rgb ? t->history_rgb[h] : t->history[h],
-                               .next_history = plan->rgb ? t->history_rgb[1 - h] : t->history[1 - h]};
+                               .next_history = plan->rgb ? t->history_rgb[1 - h] : t->history[1 - h],
+                               .age = plan->rgb ? 0 : t->history_age[h],
+                               .next_age = plan->rgb ? 0 : t->history_age[1 - h]};
     if (plan->bounce) {
         chain.bounce_current = bounce_in;
         chain.bounce_result = bounce_out;
         chain.bounce_history = t->bounce_history[h];
         chain.bounce_next_history = t->bounce_history[1 - h];
     }
-    ob_error err = ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, t->geometry[h], t->geometry[1 - h],
-                                   t->motion, &chain);
+    ob_error err = ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, &t->geometry[h], &t->geometry[1 - h],
+                                   &chain);
     if (err != OB_OK) return err;
     t->history_index = 1 - h;
     r->history_key = key;
@@ -472,7 +474,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
         const GLuint main_accum = plan->rgb ? t->accum_rgb : t->accum;
         if (s->temporal_at == OB_TEMPORAL_BEFORE_FILTER) {
             ob_timer_begin(&r->timers, "temporal");
-            /* Visibility: the filter reads the new history's value (.r of RG32F) itself, no copy. */
+            /* Visibility: the filter reads the new history's value itself, no copy. */
             err = run_temporal(r, s, plan, t, main_in, plan->rgb ? main_accum : 0, bounce_in, t->bounce_accum);
             if (err != OB_OK) return err;
             glMemoryBarrier(barrier);

@@ -77,7 +77,7 @@ static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_vi
     case OB_VIEW_HISTORY_AGE:
         /* Black (no history frames) when the last frame did not accumulate. */
         if (r->last_temporal && t->temporal_ready) {
-            in->source = r->last_rgb ? t->history_rgb[t->history_index] : t->history[t->history_index];
+            in->source = r->last_rgb ? t->history_rgb[t->history_index] : t->history_age[t->history_index];
             in->history_frames = r->last_temporal_frames;
         } else {
             in->source = r->gbuffer.linear_depth;

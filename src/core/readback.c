@@ -187,21 +187,27 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
             memset(dst, 0, need);
             break;
         }
-        /* The visible AO grid, as OB_IMAGE_AO_RAW_F32. The age is the history's .g (RG32F) or .a
-         * (RGBA16F); core GL reads neither alone, so through RGBA. */
+        /* The visible AO grid, as OB_IMAGE_AO_RAW_F32. The age is the R16F age texture's .r or the
+         * RGBA16F history's .a; read through RGBA either way. */
         const ob_ao_grid v = ob_ao_grid_make(r->width, r->height, t->grid.k);
         const int o = r->guard / t->grid.k;
         if (kind == OB_IMAGE_MOTION_F32) {
+            /* Made here: the accumulation writes no motion (passes.h). The frame block is the last
+             * frame's (the frame binds it last, but a host may have bound its own since). */
+            glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_FRAME, r->frame_ubo);
+            ob_error e = ob_temporal_motion(&r->temporal, &t->grid, t->depth, t->motion);
+            if (e != OB_OK) return e;
+            glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
             glGetTextureSubImage(t->motion, 0, o, o, 0, v.width, v.height, 1, GL_RG, GL_FLOAT, (GLsizei)need, dst);
             break;
         }
         size_t n = (size_t)v.width * (size_t)v.height;
         float *rgba = malloc(n * 4 * sizeof(float));
         if (!rgba) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading an image");
-        GLuint h = r->last_rgb ? t->history_rgb[t->history_index] : t->history[t->history_index];
+        GLuint h = r->last_rgb ? t->history_rgb[t->history_index] : t->history_age[t->history_index];
         glGetTextureSubImage(h, 0, o, o, 0, v.width, v.height, 1, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
         float *out = dst;
-        for (size_t i = 0; i < n; ++i) out[i] = rgba[4 * i + (r->last_rgb ? 3 : 1)];
+        for (size_t i = 0; i < n; ++i) out[i] = rgba[4 * i + (r->last_rgb ? 3 : 0)];
         free(rgba);
         break;
     }

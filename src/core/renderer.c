@@ -18,10 +18,11 @@ static void release_scales(ob_renderer *r)
         GLuint rgb[7] = {t->raw_rgb, t->filtered_rgb, t->scratch_rgb, t->bounce_raw, t->bounce_filtered,
                          t->bent_raw, t->bent_filtered};
         glDeleteTextures(7, rgb);
-        GLuint temporal[12] = {t->accum, t->history[0], t->history[1], t->accum_rgb, t->history_rgb[0],
-                               t->history_rgb[1], t->bounce_accum, t->bounce_history[0], t->bounce_history[1],
-                               t->geometry[0], t->geometry[1], t->motion};
-        glDeleteTextures(12, temporal);
+        GLuint temporal[16] = {t->accum,           t->history[0],        t->history[1],     t->history_age[0],
+                               t->history_age[1],  t->accum_rgb,         t->history_rgb[0], t->history_rgb[1],
+                               t->bounce_accum,    t->bounce_history[0], t->bounce_history[1], t->geometry[0].depth,
+                               t->geometry[1].depth, t->motion, t->geometry[0].normal, t->geometry[1].normal};
+        glDeleteTextures(16, temporal);
         if (t->grid.k > 1) {
             GLuint own[2] = {t->depth, t->normal};
             glDeleteTextures(2, own);
@@ -356,18 +357,22 @@ ob_error ob_renderer_temporal_targets(ob_renderer *r, ao_targets *t)
     t->accum_rgb = ob_make_texture_2d(GL_RGBA16F, w, h);
     t->bounce_accum = ob_make_texture_2d(GL_RGBA16F, w, h);
     for (int i = 0; i < 2; ++i) {
-        t->history[i] = ob_make_texture_2d(GL_RG32F, w, h);
+        t->history[i] = ob_make_texture_2d(GL_R32F, w, h);
+        t->history_age[i] = ob_make_texture_2d(GL_R16F, w, h);
         t->history_rgb[i] = ob_make_texture_2d(GL_RGBA16F, w, h);
         t->bounce_history[i] = ob_make_texture_2d(GL_RGBA16F, w, h);
-        /* Filtered: the temporal pass's Catmull-Rom resampling is five bilinear fetches. */
-        GLuint filtered[3] = {t->history[i], t->history_rgb[i], t->bounce_history[i]};
-        for (int k = 0; k < 3; ++k) {
+        /* Filtered: an RGB chain's Catmull-Rom resampling is five bilinear fetches (visibility's is
+         * gathers). */
+        GLuint filtered[2] = {t->history_rgb[i], t->bounce_history[i]};
+        for (int k = 0; k < 2; ++k) {
             glTextureParameteri(filtered[k], GL_TEXTURE_MIN_FILTER, GL_LINEAR);
             glTextureParameteri(filtered[k], GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         }
     }
-    t->geometry[0] = ob_make_texture_2d(GL_RGBA16F, w, h);
-    t->geometry[1] = ob_make_texture_2d(GL_RGBA16F, w, h);
+    for (int i = 0; i < 2; ++i) {
+        t->geometry[i].depth = ob_make_texture_2d(GL_R32F, w, h);
+        t->geometry[i].normal = ob_make_texture_2d(GL_R32UI, w, h);
+    }
     t->motion = ob_make_texture_2d(GL_RG16F, w, h);
     t->history_index = 0;
     t->temporal_ready = true;

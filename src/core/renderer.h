@@ -27,10 +27,10 @@ typedef struct ao_targets {
      * the stage between accumulation and filter (the accumulation's output before the filter, the
      * filter's before the accumulation) and two histories with the age, read and written in turn
      * (history_index holds the last frame's); the last frame's depth and normals; the motion. */
-    GLuint accum, history[2];                 /* visibility: R32F; RG32F (value, age) */
+    GLuint accum, history[2], history_age[2]; /* visibility: R32F; R32F value, R16F age */
     GLuint accum_rgb, history_rgb[2];         /* M: RGBA16F; RGBA16F (rgb, age) */
     GLuint bounce_accum, bounce_history[2];   /* the bounce: the same */
-    GLuint geometry[2];                       /* RGBA16F view normal, depth: [history_index] the last frame's */
+    ob_temporal_geometry geometry[2];         /* depth, packed normal: [history_index] the last frame's */
     GLuint motion;                            /* RG16F (offset in AO pixels) */
     int history_index;
     bool temporal_ready;

@@ -110,12 +110,14 @@ void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLui
 /* ---- temporal accumulation: temporal.c, shaders/temporal.glsl (issue 17) --------------------
  * At the AO resolution, one dispatch for the main chain (visibility or M) and a method's bounce
  * together: reprojected history, disocclusion by depth and normal, a 4x4 clamp, a blend of history
- * length N. The history textures carry the age (RG32F value, age; RGBA16F rgb, age). A program per
+ * length N. The history's age: an R16F texture beside the R32F value, or RGBA16F (rgb, age). A program per
  * shape of the chains (made on first use): scalar with or without a result, RGB; each with or
  * without the bounce. */
 enum { OB_TEMPORAL_PROGRAMS = 6 };
 typedef struct ob_temporal_pass {
     ob_compute_pass programs[OB_TEMPORAL_PROGRAMS]; /* a slot whose .program is 0 is not made yet */
+    ob_compute_pass motion_program;                 /* ob_temporal_motion's, made on first use */
+    ob_temporal_constants last;                     /* the last run's, for ob_temporal_motion */
 } ob_temporal_pass;
 /* The camera of the previous frame and the history rules (pure; no GL): prev_view (world -> the
  * previous view), inv_view (this frame's view -> world) and prev_ao_proj column-major,
@@ -123,20 +125,29 @@ typedef struct ob_temporal_pass {
 void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const float inv_view[16],
                       const float prev_ao_proj[16], bool history_valid, int history_frames);
 ob_error ob_temporal_init(ob_temporal_pass *p);
-/* The main chain: `current` (R32F or RGBA16F) and `history` (RG32F or RGBA16F, with the age) in,
- * `result` and `next_history` out (the same formats); the bounce (bounce_current != 0): RGBA16F
- * throughout, with a result always. `motion` (RG16F) gets the reprojection offset. depth/normal
- * are this frame's at the AO resolution; prev_geometry (RGBA16F normal xyz, depth w) the previous
- * frame's, next_geometry this frame's for the next (a different texture). */
+/* The main chain: `current` (R32F or RGBA16F) and `history` (R32F, its age R16F in `age`; or
+ * RGBA16F with the age in .a) in, `result`, `next_history` and `next_age` out (the same formats); the bounce (bounce_current != 0): RGBA16F
+ * throughout, with a result always. depth/normal
+ * are this frame's at the AO resolution; `prev` the previous
+ * frame's depth and packed normal, `next` where this frame's go for the next (other textures). */
 typedef struct ob_temporal_chain {
     GLuint current, history, next_history;
+    GLuint age, next_age; /* visibility only */
     GLuint result; /* 0: none, the next history's .r is the output (visibility only) */
     bool rgb;
     GLuint bounce_current, bounce_history, bounce_next_history, bounce_result;
 } ob_temporal_chain;
+typedef struct ob_temporal_geometry {
+    GLuint depth;  /* R32F linear depth */
+    GLuint normal; /* R32UI view normal, octahedral snorm16 x 2 (temporal.glsl's pack_normal) */
+} ob_temporal_geometry;
 ob_error ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth,
-                         GLuint normal, GLuint prev_geometry, GLuint next_geometry, GLuint motion,
+                         GLuint normal, const ob_temporal_geometry *prev, const ob_temporal_geometry *next,
                          const ob_temporal_chain *chain);
+/* The last run's reprojection offset, in AO pixels (where each pixel's point was in the previous
+ * frame's AO grid - its centre; 0 on the sky), into `motion` (RG16F): the accumulation itself
+ * writes none. `depth` is the last run's, and the frame block still the last frame's. */
+ob_error ob_temporal_motion(ob_temporal_pass *p, const ob_ao_grid *g, GLuint depth, GLuint motion);
 void ob_temporal_destroy(ob_temporal_pass *p);
 
 /* ---- depth MIP prefilter: depth_mips.c, shaders/depth_mips.glsl (issue 13) -------------------

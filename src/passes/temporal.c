@@ -57,13 +57,13 @@ ob_error ob_temporal_init(ob_temporal_pass *p)
 }
 
 ob_error ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, const ob_ao_grid *g, GLuint depth,
-                         GLuint normal, GLuint prev_geometry, GLuint next_geometry, GLuint motion,
+                         GLuint normal, const ob_temporal_geometry *prev, const ob_temporal_geometry *next,
                          const ob_temporal_chain *chain)
 {
     /* Compile-time shapes, not uniform tests: llvmpipe runs a uniformly false branch masked, so a
      * store behind one still costs its store. Without a result image, the program that has none;
      * a method's bounce rides in the same dispatch (its own second dispatch redid the
-     * reprojection, the tap tests and the geometry and motion stores). */
+     * reprojection, the tap tests and the geometry store). */
     static const char *const shapes[3] = {"", "#define OB_TEMPORAL_NO_RESULT 1\n", "#define OB_TEMPORAL_RGB 1\n"};
     const int shape = chain->rgb ? 2 : chain->result ? 0 : 1;
     const bool bounce = chain->bounce_current != 0;
@@ -75,14 +75,17 @@ ob_error ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, co
             return ob_peek_error(NULL);
     }
     ob_compute_pass_use(&p->programs[k], c, sizeof *c);
-    const GLuint units[7] = {chain->current,       chain->history, depth, normal, prev_geometry,
-                             chain->bounce_current, chain->bounce_history};
-    for (int i = 0; i < (bounce ? 7 : 5); ++i) glBindTextureUnit((GLuint)i, units[i]);
-    glBindImageTexture(3, next_geometry, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    p->last = *c;
+    const GLuint units[9] = {chain->current,        chain->history,         depth,      normal,          prev->depth,
+                             chain->bounce_current, chain->bounce_history, chain->age, prev->normal};
+    for (int i = 0; i < 9; ++i)
+        if (units[i]) glBindTextureUnit((GLuint)i, units[i]);
+    glBindImageTexture(3, next->depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(6, next->normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
     if (chain->result)
         glBindImageTexture(0, chain->result, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_R32F);
-    glBindImageTexture(1, chain->next_history, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_RG32F);
-    glBindImageTexture(2, motion, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+    glBindImageTexture(1, chain->next_history, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_R32F);
+    if (!chain->rgb) glBindImageTexture(2, chain->next_age, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     if (bounce) {
         glBindImageTexture(4, chain->bounce_result, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(5, chain->bounce_next_history, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -91,7 +94,21 @@ ob_error ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, co
     return OB_OK;
 }
 
+ob_error ob_temporal_motion(ob_temporal_pass *p, const ob_ao_grid *g, GLuint depth, GLuint motion)
+{
+    if (!p->motion_program.program &&
+        ob_compute_pass_init(&p->motion_program, "temporal.glsl", "#define OB_TEMPORAL_MOTION 1\n",
+                             sizeof(ob_temporal_constants)) != OB_OK)
+        return ob_peek_error(NULL);
+    ob_compute_pass_use(&p->motion_program, &p->last, sizeof p->last);
+    glBindTextureUnit(2, depth);
+    glBindImageTexture(2, motion, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+    ob_dispatch_2d(g->width, g->height, OB_TEMPORAL_GROUP_X, OB_TEMPORAL_GROUP_Y);
+    return OB_OK;
+}
+
 void ob_temporal_destroy(ob_temporal_pass *p)
 {
     for (int k = 0; k < OB_TEMPORAL_PROGRAMS; ++k) ob_compute_pass_destroy(&p->programs[k]);
+    ob_compute_pass_destroy(&p->motion_program);
 }

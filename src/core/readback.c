@@ -187,8 +187,8 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
             memset(dst, 0, need);
             break;
         }
-        /* The visible AO grid, as OB_IMAGE_AO_RAW_F32. The age is the R16F age texture's .r or the
-         * RGBA16F history's .a; read through RGBA either way. */
+        /* The visible AO grid, as OB_IMAGE_AO_RAW_F32. The age is the R16F age texture (one value)
+         * or the RGBA16F history's .a (core GL reads no .a alone, so through RGBA). */
         const ob_ao_grid v = ob_ao_grid_make(r->width, r->height, t->grid.k);
         const int o = r->guard / t->grid.k;
         if (kind == OB_IMAGE_MOTION_F32) {
@@ -201,13 +201,18 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
             glGetTextureSubImage(t->motion, 0, o, o, 0, v.width, v.height, 1, GL_RG, GL_FLOAT, (GLsizei)need, dst);
             break;
         }
+        if (!r->last_rgb) {
+            glGetTextureSubImage(t->history_age[t->history_index], 0, o, o, 0, v.width, v.height, 1, GL_RED, GL_FLOAT,
+                                 (GLsizei)need, dst);
+            break;
+        }
         size_t n = (size_t)v.width * (size_t)v.height;
         float *rgba = malloc(n * 4 * sizeof(float));
         if (!rgba) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading an image");
-        GLuint h = r->last_rgb ? t->history_rgb[t->history_index] : t->history_age[t->history_index];
-        glGetTextureSubImage(h, 0, o, o, 0, v.width, v.height, 1, GL_RGBA, GL_FLOAT, (GLsizei)(n * 4 * sizeof(float)), rgba);
+        glGetTextureSubImage(t->history_rgb[t->history_index], 0, o, o, 0, v.width, v.height, 1, GL_RGBA, GL_FLOAT,
+                             (GLsizei)(n * 4 * sizeof(float)), rgba);
         float *out = dst;
-        for (size_t i = 0; i < n; ++i) out[i] = rgba[4 * i + (r->last_rgb ? 3 : 0)];
+        for (size_t i = 0; i < n; ++i) out[i] = rgba[4 * i + 3];
         free(rgba);
         break;
     }

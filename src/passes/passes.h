@@ -110,9 +110,9 @@ void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLui
 /* ---- temporal accumulation: temporal.c, shaders/temporal.glsl (issue 17) --------------------
  * At the AO resolution, one dispatch for the main chain (visibility or M) and a method's bounce
  * together: reprojected history, disocclusion by depth and normal, a 4x4 clamp, a blend of history
- * length N. The history's age: an R16F texture beside the R32F value, or RGBA16F (rgb, age). A program per
- * shape of the chains (made on first use): scalar with or without a result, RGB; each with or
- * without the bounce. */
+ * length N. The history's age: an R16F texture beside the R32F value, or RGBA16F (rgb, age). A
+ * program per shape of the chains (made on first use): scalar with or without a result, RGB;
+ * each with or without the bounce. */
 enum { OB_TEMPORAL_PROGRAMS = 6 };
 typedef struct ob_temporal_pass {
     ob_compute_pass programs[OB_TEMPORAL_PROGRAMS]; /* a slot whose .program is 0 is not made yet */
@@ -126,14 +126,14 @@ void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const
                       const float prev_ao_proj[16], bool history_valid, int history_frames);
 ob_error ob_temporal_init(ob_temporal_pass *p);
 /* The main chain: `current` (R32F or RGBA16F) and `history` (R32F, its age R16F in `age`; or
- * RGBA16F with the age in .a) in, `result`, `next_history` and `next_age` out (the same formats); the bounce (bounce_current != 0): RGBA16F
- * throughout, with a result always. depth/normal
- * are this frame's at the AO resolution; `prev` the previous
- * frame's depth and packed normal, `next` where this frame's go for the next (other textures). */
+ * RGBA16F with the age in .a) in, `result`, `next_history` and `next_age` out (the same formats);
+ * the bounce (bounce_current != 0): RGBA16F throughout, with a result always. depth/normal are
+ * this frame's at the AO resolution; `prev` the previous frame's depth and packed normal, `next`
+ * where this frame's go for the next (other textures). */
 typedef struct ob_temporal_chain {
     GLuint current, history, next_history;
     GLuint age, next_age; /* visibility only */
-    GLuint result; /* 0: none, the next history's .r is the output (visibility only) */
+    GLuint result;        /* 0: none, the next history is the output (visibility only) */
     bool rgb;
     GLuint bounce_current, bounce_history, bounce_next_history, bounce_result;
 } ob_temporal_chain;

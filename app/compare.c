@@ -744,6 +744,10 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
                     cJSON_AddNumberToObject(x, "rmse_last", vs[q]->rmse_last);
                     cJSON_AddNumberToObject(x, "rmse_worst", vs[q]->rmse_worst);
                     cJSON_AddNumberToObject(x, "worst_frame", vs[q]->worst_frame);
+                    cJSON_AddNumberToObject(x, "rmse_mean", vs[q]->rmse_mean);
+                    cJSON *curve = cJSON_AddArrayToObject(x, "rmse_frames");
+                    for (int t = 0; vs[q]->rmse_frames && t < vr->flicker_ref.frames; ++t)
+                        cJSON_AddItemToArray(curve, cJSON_CreateNumber(vs[q]->rmse_frames[t]));
                     cJSON_AddNumberToObject(x, "temporal_ms", vs[q]->temporal_ms);
                 }
                 cJSON_AddItemToArray(rows, e);
@@ -968,21 +972,26 @@ static void write_flicker_table(FILE *f, const compare_opts *o, const view_resul
                "warped error: mean |AO<sub>t</sub> &minus; reprojected AO<sub>t&minus;1</sub>| over pixels seen in both "
                "(the ratio is of these), and the same minus the reference's own (%.4f: AO<sub>R</sub> belongs to the "
                "surface point, so on a static scene the reference's change is its Monte Carlo noise and "
-               "resampling); RMSE against the reference on the last and the worst frame.</p>\n",
+               "resampling); RMSE against the reference on the last and the worst frame, and its mean over the "
+               "path's frames (a screen-space estimate depends on the view, and the accumulation averages the "
+               "last views: the last frame alone can land where the single frame's error dips).</p>\n",
             vr->flicker_ref.frames, FLICKER_STILL_FRAMES, vr->flicker_ref.warped);
     fputs("<table class=\"sortable\"><thead><tr><th>method</th><th>static noise off</th><th>on</th><th>ratio</th>"
           "<th>warped error off</th><th>on</th><th>ratio</th><th>minus reference off</th><th>on</th><th>RMSE last off</th><th>on</th>"
-          "<th>RMSE worst off (frame)</th><th>on (frame)</th><th>temporal ms</th></tr></thead><tbody>\n",
+          "<th>RMSE worst off (frame)</th><th>on (frame)</th><th>RMSE mean off</th><th>on</th><th>temporal ms</th>"
+          "</tr></thead><tbody>\n",
           f);
     for (int k = 0; k < vr->method_count; ++k) {
         const cli_flicker_variant *a = &vr->flicker[k].off, *b = &vr->flicker[k].on;
         fputs("<tr><td>", f);
         html_escape(f, vr->methods[k].label);
         fprintf(f, "</td><td>%.4f</td><td>%.4f</td><td>%.1fx</td><td>%.4f</td><td>%.4f</td><td>%.1fx</td>"
-                   "<td>%+.4f</td><td>%+.4f</td><td>%.4f</td><td>%.4f</td><td>%.4f (%d)</td><td>%.4f (%d)</td><td>%.2f</td></tr>\n",
+                   "<td>%+.4f</td><td>%+.4f</td><td>%.4f</td><td>%.4f</td><td>%.4f (%d)</td><td>%.4f (%d)</td><td>%.4f</td><td>%.4f</td>"
+                   "<td>%.2f</td></tr>\n",
                 a->static_noise, b->static_noise, b->static_noise > 0.0 ? a->static_noise / b->static_noise : 0.0,
                 a->warped, b->warped, b->warped > 0.0 ? a->warped / b->warped : 0.0, a->warped_excess, b->warped_excess,
-                a->rmse_last, b->rmse_last, a->rmse_worst, a->worst_frame, b->rmse_worst, b->worst_frame, b->temporal_ms);
+                a->rmse_last, b->rmse_last, a->rmse_worst, a->worst_frame, b->rmse_worst, b->worst_frame, a->rmse_mean,
+                b->rmse_mean, b->temporal_ms);
     }
     fputs("</tbody></table>\n<div class=\"grid\">", f);
     for (int k = 0; k < vr->method_count; ++k) {

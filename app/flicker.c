@@ -104,7 +104,8 @@ static int run_variant(const cli_flicker_desc *d, const path_frame *frames, int 
     const size_t px = (size_t)w * (size_t)h;
     memset(out, 0, sizeof *out);
     out->worst_ao = malloc(px * sizeof(float));
-    if (!out->worst_ao) return cli_fail(EXIT_RUNTIME, "out of memory");
+    out->rmse_frames = malloc((size_t)count * sizeof(double));
+    if (!out->worst_ao || !out->rmse_frames) return cli_fail(EXIT_RUNTIME, "out of memory");
     ob_renderer_reset_history(r);
     double warped = 0.0;
     for (int t = 0; t < count; ++t) {
@@ -115,6 +116,8 @@ static int run_variant(const cli_flicker_desc *d, const path_frame *frames, int 
         ob_read_image(r, OB_IMAGE_AO_F32, cur, px * sizeof(float));
         ms[t] = pass_ms(r, "temporal");
         double e = rmse(cur, frames[t].ref, frames[t].f.depth, px);
+        out->rmse_frames[t] = e;
+        out->rmse_mean += e / (double)count;
         if (t == 0 || e > out->rmse_worst) {
             out->rmse_worst = e;
             out->worst_frame = t;
@@ -211,11 +214,12 @@ int cli_flicker_run(const cli_flicker_desc *d, const cli_config *configs, int co
         if (code == EXIT_OK) {
             const cli_flicker_variant *a = &rows[k].off, *b = &rows[k].on;
             printf("flicker %s: static noise %.4f -> %.4f (%.1fx), warped error %.4f -> %.4f (%.1fx; reference %.4f), "
-                   "RMSE last %.4f -> %.4f, worst %.4f (frame %d) -> %.4f (frame %d)\n",
+                   "RMSE last %.4f -> %.4f, worst %.4f (frame %d) -> %.4f (frame %d), mean %.4f -> %.4f\n",
                    configs[k].label, a->static_noise, b->static_noise,
                    b->static_noise > 0.0 ? a->static_noise / b->static_noise : 0.0, a->warped, b->warped,
                    b->warped > 0.0 ? a->warped / b->warped : 0.0, ref->warped, a->rmse_last,
-                   b->rmse_last, a->rmse_worst, a->worst_frame, b->rmse_worst, b->worst_frame);
+                   b->rmse_last, a->rmse_worst, a->worst_frame, b->rmse_worst, b->worst_frame, a->rmse_mean,
+                   b->rmse_mean);
         }
     }
     for (int t = 0; frames && t < n; ++t) {
@@ -236,6 +240,9 @@ void cli_flicker_free(cli_flicker_row *rows, int count)
     for (int k = 0; rows && k < count; ++k) {
         free(rows[k].off.worst_ao);
         free(rows[k].on.worst_ao);
+        free(rows[k].off.rmse_frames);
+        free(rows[k].on.rmse_frames);
         rows[k].off.worst_ao = rows[k].on.worst_ao = NULL;
+        rows[k].off.rmse_frames = rows[k].on.rmse_frames = NULL;
     }
 }

@@ -6,7 +6,10 @@
  *   - warped temporal error: along the path, the mean |AO_t - AO_t-1 reprojected| over pixels seen
  *     in both frames (the previous frame's depth at the reprojected point is the point's own),
  *     minus the same for the ray-traced reference along the path (its change is real);
- *   - RMSE against the reference on the last frame, and the worst frame's RMSE and index.
+ *   - RMSE against the reference on the last frame, and the worst frame's RMSE and index; and every
+ *     frame's, with their mean: a screen-space estimate depends on the view, so the accumulated
+ *     image is an average over the last views, and the last frame alone can land where the
+ *     single frame's error dips (docs/temporal.md, "An unseen view").
  * "Off" is the spatial filter alone with the same moving noise (a history of one frame: every
  * method's noise turns with the frame index as under --temporal on, nothing is kept), so both
  * variants have the same noise and only the accumulation differs. */
@@ -21,8 +24,9 @@ typedef struct cli_flicker_variant {
     double static_noise;    /* mean per-pixel std-dev over the still frames */
     double warped;          /* mean |AO_t - reproject(AO_t-1)|, the method's own, averaged over the path */
     double warped_excess;   /* warped minus the reference's */
-    double rmse_last, rmse_worst;
+    double rmse_last, rmse_worst, rmse_mean;
     int worst_frame;
+    double *rmse_frames;    /* every path frame's RMSE (path_frames of them), malloc'd: free it */
     double temporal_ms;     /* median GPU ms of the accumulation pass along the path (0 off) */
     float *worst_ao;        /* the worst frame's AO (W x H, bottom row first), malloc'd: free it */
 } cli_flicker_variant;

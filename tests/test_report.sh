@@ -290,10 +290,13 @@ off, on = row["temporal_off"], row["temporal_on"]
 assert off["static_noise"] > 2 * on["static_noise"] > 0, row
 for x in (off, on):
     assert 0 <= x["worst_frame"] < 3 and x["rmse_worst"] >= x["rmse_last"] > 0, x
+    curve = x["rmse_frames"]
+    assert len(curve) == 3 and curve[-1] == x["rmse_last"] and max(curve) == x["rmse_worst"], x
+    assert curve[x["worst_frame"]] == x["rmse_worst"] and abs(x["rmse_mean"] - sum(curve) / 3) < 1e-9, x
     assert abs(x["warped_error"] - (x["warped_error_raw"] - fl["reference_warped_error"])) < 1e-9, x
 assert on["temporal_ms"] > 0 and off["temporal_ms"] == 0, row
 html = open(os.path.join(report, "index.html")).read()
-assert "Flicker along an orbit of 10" in html and "_temporal_worst.png" in html
+assert "Flicker along an orbit of 10" in html and "_temporal_worst.png" in html and "RMSE mean off" in html
 assert any(n.endswith("_temporal_worst.png") for n in os.listdir(os.path.join(report, v["dir"]))), v["dir"]
 PY
 then ok; else bad "compare --orbit: $(tail -2 "$dir/flicker.err")"; fi

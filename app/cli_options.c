@@ -256,7 +256,7 @@ static const struct {
     {"--ambient-color", 0},        {"--ao-light", 0},    {"--shadow", 0},
     {"--multibounce", 0},          {"--settings", 0},    {"--textures", 0},
     {"--vsm-bits", 0},             {"--guard", 0},       {"--temporal", 0},
-    {"--temporal-at", 0},          {"--temporal-frames", 0}, {"--upsample", 0},
+    {"--temporal-at", 0},          {"--temporal-frames", 0}, {"--temporal-detail", 0}, {"--upsample", 0},
     {"--path", CLI_TAKES_PATH},    {"--orbit", CLI_TAKES_PATH}, {"--path-frames", CLI_TAKES_PATH},
     {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
@@ -370,6 +370,12 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
             return cli_fail(EXIT_USAGE, "--temporal-frames: expected a history length of 1..%d frames, got '%s'",
                             OB_TEMPORAL_FRAMES_MAX, v);
         c->temporal_frames = (int)n;
+    } else if (!strcmp(a, "--temporal-detail")) {
+        char *end = NULL;
+        float x = strtof(v, &end);
+        if (end == v || *end != '\0' || !(x >= 0.0f && x < 1.0f))
+            return cli_fail(EXIT_USAGE, "--temporal-detail: expected a share of one-pixel detail in [0, 1), got '%s'", v);
+        c->temporal_detail = x;
     } else if (!strcmp(a, "--adaptive")) {
         if (!cli_parse_on_off(v, &c->adaptive)) return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);
     } else if (!strcmp(a, "--light")) {
@@ -551,6 +557,9 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "                        method's noise with the frame index (default off)\n"
           "  --temporal-at before|after  accumulate before (default) or after the spatial filter\n"
           "  --temporal-frames N   history length, 1..256 (default 16)\n"
+          "  --temporal-detail A   keep at least this share (0..1) of one-pixel detail while the\n"
+          "                        camera moves: sharper against the reference, more flicker\n"
+          "                        (docs/temporal.md, \"Thin detail under motion\"; default 0 = off)\n"
           "  --upsample auto|plain|block  the upsampler's program at --ao-scale 0.5 or 0.25 (the same\n"
           "                        bits): block reads the AO grid once per k x k pixels, plain once\n"
           "                        per pixel (the baseline); auto (default): block on a software\n"
@@ -675,6 +684,7 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
     s->temporal_at = c->temporal_at;
     s->upsample = c->upsample;
     s->temporal_frames = c->temporal_frames;
+    s->temporal_detail = c->temporal_detail;
     /* Every method adapts today; a new one that does not is named here rather than silently
      * ignoring the option. none takes no samples at all: nothing to say (bench's baseline frames
      * are none). */

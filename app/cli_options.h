@@ -111,10 +111,12 @@ typedef struct cli_common {
     int guard_px;
     float guard_percent;
     bool guard_is_percent;
-    /* --temporal on|off, --temporal-at before|after, --temporal-frames N (ob_settings.temporal*) */
+    /* --temporal on|off, --temporal-at before|after, --temporal-frames N, --temporal-detail A
+     * (ob_settings.temporal*) */
     bool temporal;
     int temporal_at;
     int temporal_frames;
+    float temporal_detail;
     /* --upsample auto|plain|block (ob_settings.upsample) */
     int upsample;
     /* --path NAME (a sidecar path) or --orbit DEG (about the camera's target), over --path-frames

@@ -185,6 +185,9 @@ static void panel_method(viewer *v)
         gui_combo("temporal at", &v->s.temporal_at, places, 2);
         int frames = v->s.temporal_frames > 0 ? v->s.temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
         if (gui_slider_int("history frames", &frames, 1, OB_TEMPORAL_FRAMES_MAX, true)) v->s.temporal_frames = frames;
+        gui_slider_float("keep detail", &v->s.temporal_detail, 0.0f, 0.95f, "%.2f", false);
+        gui_tooltip("the least share of one-pixel detail the history keeps while the camera moves:\n"
+                    "sharper, with more flicker (--temporal-detail; 0 = off)");
     }
     panel_guard(v);
 }

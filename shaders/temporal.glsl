@@ -15,7 +15,9 @@
  *      still hold of a surface that moved away or of a changed light);
  *   5. blend: age' = min(age t + 1, N), out = mix(history, current, max(1 / age', 1 / N)), so a new
  *      history is the plain mean of its first N frames, then an exponential of length N; t = 1
- *      unless the point's pixel footprint changed since the last frame (see 5 below).
+ *      unless the point's pixel footprint changed since the last frame (see 5 below); with
+ *      tp.detail > 0 alpha is also bounded below so that the history keeps that share of one-pixel
+ *      detail under sub-pixel motion (5 below).
  * The history carries its age: for visibility an R32F value and an R16F age beside it (one RG32F
  * texture was one store fewer, but llvmpipe's gather of an RG32F texel ran three times the
  * instructions of an R32F one, and the pass makes five: docs/temporal.md, "Cost"); for RGB (M;
@@ -321,6 +323,20 @@ void main()
     float trust = exp2(-tp.footprint_falloff * abs(log2(s)));
     float age = min((kept ? h_age * trust : 0.0) + 1.0, tp.history_frames);
     float alpha = max(1.0 / age, 1.0 / tp.history_frames);
+    /* The detail bound (tp.detail = A > 0; Yang, Nehab, Sander, Sitthi-amorn, Lawrence & Hoppe 2009,
+     * "Amortized Supersampling", §4's blur bound, at the one-pixel frequency): resampling at this
+     * frame's fraction w leaves the history's one-pixel detail times g, Catmull-Rom's response at
+     * half a cycle per pixel (1 at w = 0, 0 at w = 1/2: |w0 - w1 + w2 - w3| per axis), so a blend
+     * v = (1 - alpha) g h + alpha c keeps the share alpha / (1 - (1 - alpha) g) of a steady detail
+     * of c; alpha >= A (1 - g) / (1 - A g) keeps at least A. Under a moving camera every frame
+     * resamples, and a one-pixel crease line or window frame fades to the resampled average
+     * (docs/temporal.md, "Thin detail under motion"); a still camera (g = 1) keeps the whole
+     * history. */
+    vec4 cx = catmull_rom(w.x), cy = catmull_rom(w.y);
+    float g = abs(cx.x - cx.y + cx.z - cx.w) * abs(cy.x - cy.y + cy.z - cy.w);
+    /* Only where a history was kept: there the taps lie on the grid and w is finite (a point on the
+     * previous camera's plane, clip w = 0, would give a NaN that max() might pass on). */
+    alpha = kept ? max(alpha, tp.detail * (1.0 - g) / (1.0 - tp.detail * g)) : alpha;
     vec3 v = mix(past, cur, alpha); /* alpha = 1 when no tap counts */
 #ifndef OB_TEMPORAL_NO_RESULT
     imageStore(result, pix, vec4(v, 1.0));

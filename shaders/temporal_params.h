@@ -23,7 +23,8 @@ OB_CONSTANTS_BEGIN(ob_temporal_constants, OB_BINDING_PASS)
     OB_FLOAT normal_cos;        /* ... and its normal is within acos(normal_cos) of this point's */
     OB_FLOAT footprint_falloff; /* the history's age is multiplied by 2^(-falloff |log2 s|), s = the point's
                                    pixel footprint in the previous frame / in this one */
-    OB_FLOAT pad0;
+    OB_FLOAT detail;            /* A in [0, 1): the least share of one-pixel detail the history keeps under
+                                   sub-pixel motion (the blend's bound, temporal.glsl 5); 0 = no bound */
     OB_FLOAT pad1;
     OB_FLOAT pad2;
 OB_CONSTANTS_END(ob_temporal_constants, tp)

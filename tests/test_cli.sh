@@ -62,6 +62,8 @@ expect 2 "unknown camera path 'walk'.*no \"paths\"" -- "${R[@]}" --path walk
 expect 2 "temporal-at: expected before or after" -- "${R[@]}" --temporal-at middle
 expect 2 "temporal-frames: expected a history length" -- "${R[@]}" --temporal-frames 0
 expect 2 "temporal-frames: expected a history length" -- "${R[@]}" --temporal-frames 300
+expect 2 "temporal-detail: expected a share of one-pixel detail" -- "${R[@]}" --temporal-detail 1
+expect 2 "temporal-detail: expected a share of one-pixel detail" -- "${R[@]}" --temporal-detail nan
 expect 2 "temporal_frames = 0 is out of range" -- "${R[@]}" --set temporal_frames=0
 expect 2 "upsample: expected auto, plain or block, got 'fast'" -- "${R[@]}" --upsample fast
 expect 2 "upsample expects auto, plain or block, got 'fast'" -- "${R[@]}" --set upsample=fast

@@ -449,11 +449,18 @@ typedef struct ob_settings {
      * temporal_frames frames. It also turns every stochastic method's noise with the frame index:
      * gtao/vbao/vbgi's "temporal" parameter (R2 jitters) unless set explicitly, and a per-frame
      * rotation of the random-kernel methods' noise. A new method, AO scale or size starts the
-     * history again. "temporal=on|off", "temporal_at=before|after", "temporal_frames=N" in
-     * ob_settings_set. Not for ob_compute_ao. */
+     * history again. "temporal=on|off", "temporal_at=before|after", "temporal_frames=N",
+     * "temporal_detail=A" in ob_settings_set. Not for ob_compute_ao. */
     bool temporal;
     int temporal_at;              /* ob_temporal_at: before (default) or after the spatial filter */
     int temporal_frames;          /* history length N, 1..OB_TEMPORAL_FRAMES_MAX (0 = OB_TEMPORAL_FRAMES_DEFAULT) */
+    /* The least share A in [0, 1) of one-pixel detail (a crease line, a window frame) that the
+     * history keeps while the camera moves: every moving frame resamples the history between
+     * pixels, which fades such detail toward its neighbours' average; A > 0 weighs the current
+     * frame more where this frame's resampling fades most (docs/temporal.md, "Thin detail under
+     * motion"). A sharper image against the reference for more flicker; 0 (default) = no bound, a
+     * still camera is the same either way. "temporal_detail=A" in ob_settings_set. */
+    float temporal_detail;
     /* How the upsampler reads the AO grid at ao_divisor 2 or 4 (ob_upsample_program; the same
      * bits either way): "upsample=auto|plain|block" in ob_settings_set. */
     int upsample;
@@ -493,13 +500,13 @@ ob_error ob_settings_init(ob_settings *settings, const char *method);
 /* Set "method.param=value", "filter.param=value" (the current filter) or "param=value" (the
  * current method) from text, validated against the table; "method.radius_scale=value" for every
  * method (ob_settings.radius_scale); "guard=PX" the guard band (ob_settings.guard, 0..OB_GUARD_MAX
- * pixels per side); "temporal=on|off", "temporal_at=before|after" and "temporal_frames=N" the temporal
- * accumulation (ob_settings.temporal*). Errors: OB_ERR_UNKNOWN_METHOD (an
+ * pixels per side); "temporal=on|off", "temporal_at=before|after", "temporal_frames=N" and "temporal_detail=A"
+ * the temporal accumulation (ob_settings.temporal*). Errors: OB_ERR_UNKNOWN_METHOD (an
  * unknown prefix), OB_ERR_UNKNOWN_PARAM, OB_ERR_OUT_OF_RANGE, OB_ERR_INVALID_ARGUMENT
  * (malformed, NaN, not an integer, a parameter of a method or filter not in use). */
 ob_error ob_settings_set(ob_settings *settings, const char *assignment);
 /* The value of a parameter of the current method by name ("radius_scale", "guard", "temporal" (0/1),
- * "temporal_at" (ob_temporal_at) and "temporal_frames" too), or NaN if unknown. */
+ * "temporal_at" (ob_temporal_at), "temporal_frames" and "temporal_detail" too), or NaN if unknown. */
 float ob_settings_get(const ob_settings *settings, const char *param);
 /* Pick the filter (its parameters reset to their defaults). Errors: OB_ERR_UNKNOWN_METHOD. */
 ob_error ob_settings_set_filter(ob_settings *settings, const char *filter);

@@ -162,6 +162,8 @@ static ob_error check_settings(const ob_settings *s)
     if (s->temporal_frames < 0 || s->temporal_frames > OB_TEMPORAL_FRAMES_MAX)
         return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_frames %d is outside 1..%d", s->temporal_frames,
                             OB_TEMPORAL_FRAMES_MAX);
+    if (!(s->temporal_detail >= 0.0f && s->temporal_detail < 1.0f))
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_detail %g is outside [0, 1)", (double)s->temporal_detail);
     return OB_OK;
 }
 
@@ -307,7 +309,8 @@ static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const method_
     const bool valid = r->history_valid && !memcmp(&key, &r->history_key, sizeof key);
     const int frames = s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
     ob_temporal_constants c;
-    ob_temporal_fill(&c, r->prev_view, r->frame_constants.inv_view, r->prev_ao_proj, valid, frames);
+    ob_temporal_fill(&c, r->prev_view, r->frame_constants.inv_view, r->prev_ao_proj, valid, frames,
+                     s->temporal_detail);
     const int h = t->history_index;
     ob_temporal_chain chain = {.current = main_in, .result = main_out, .rgb = plan->rgb,
                                .history = plan->rgb ? t->history_rgb[h] : t->history[h],

@@ -153,7 +153,7 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
     }
     if (key_len > 8 && !strncmp(key, "temporal", 8) && !memchr(key, '.', key_len)) {
         /* The frame's temporal accumulation, no prefix: temporal=on|off, temporal_at=before|after,
-         * temporal_frames=N. */
+         * temporal_frames=N, temporal_detail=A. */
         const char *v = eq + 1;
         while (isspace((unsigned char)*v)) ++v;
         if (key_len == strlen("temporal_at") && !strncmp(key, "temporal_at", key_len)) {
@@ -173,6 +173,18 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
                 return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_frames = %s is out of range [1, %d] (frames)", eq + 1,
                                     OB_TEMPORAL_FRAMES_MAX);
             s->temporal_frames = (int)n;
+            return OB_OK;
+        }
+        if (key_len == strlen("temporal_detail") && !strncmp(key, "temporal_detail", key_len)) {
+            char *end = NULL;
+            errno = 0;
+            float a = strtof(v, &end);
+            if (end == v || *end != '\0' || errno == ERANGE)
+                return ob_set_error(OB_ERR_INVALID_ARGUMENT, "temporal_detail expects a number in [0, 1), got '%s'",
+                                    eq + 1);
+            if (!(a >= 0.0f && a < 1.0f))
+                return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_detail = %s is out of range [0, 1)", eq + 1);
+            s->temporal_detail = a;
             return OB_OK;
         }
     }
@@ -250,6 +262,7 @@ float ob_settings_get(const ob_settings *s, const char *param)
     if (!strcmp(param, "upsample")) return (float)s->upsample;
     if (!strcmp(param, "temporal_frames"))
         return (float)(s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT);
+    if (!strcmp(param, "temporal_detail")) return s->temporal_detail;
     int pi = find_param(m, param, strlen(param));
     return pi < 0 ? NAN : s->params[pi];
 }

@@ -121,9 +121,10 @@ typedef struct ob_temporal_pass {
 } ob_temporal_pass;
 /* The camera of the previous frame and the history rules (pure; no GL): prev_view (world -> the
  * previous view), inv_view (this frame's view -> world) and prev_ao_proj column-major,
- * history_frames N >= 1. */
+ * history_frames N >= 1, detail the share of one-pixel detail kept under motion in [0, 1)
+ * (ob_settings.temporal_detail; 0 = no bound). */
 void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const float inv_view[16],
-                      const float prev_ao_proj[16], bool history_valid, int history_frames);
+                      const float prev_ao_proj[16], bool history_valid, int history_frames, float detail);
 ob_error ob_temporal_init(ob_temporal_pass *p);
 /* The main chain: `current` (R32F or RGBA16F) and `history` (R32F, its age R16F in `age`; or
  * RGBA16F with the age in .a) in, `result`, `next_history` and `next_age` out (the same formats);

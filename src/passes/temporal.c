@@ -25,7 +25,7 @@
 #define FOOTPRINT_FALLOFF 4.50f
 
 void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const float inv_view[16],
-                      const float prev_ao_proj[16], bool history_valid, int history_frames)
+                      const float prev_ao_proj[16], bool history_valid, int history_frames, float detail)
 {
     memset(c, 0, sizeof *c);
     /* One matrix from this view to the previous one instead of two through world space: on
@@ -48,6 +48,7 @@ void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const
     c->plane_tolerance = PLANE_TOLERANCE;
     c->normal_cos = NORMAL_COS;
     c->footprint_falloff = FOOTPRINT_FALLOFF;
+    c->detail = detail;
 }
 
 ob_error ob_temporal_init(ob_temporal_pass *p)

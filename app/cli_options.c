@@ -374,7 +374,8 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         char *end = NULL;
         float x = strtof(v, &end);
         if (end == v || *end != '\0' || !(x >= 0.0f && x < 1.0f))
-            return cli_fail(EXIT_USAGE, "--temporal-detail: expected a share of one-pixel detail in [0, 1), got '%s'", v);
+            return cli_fail(EXIT_USAGE, "--temporal-detail: expected a share of one-pixel detail in [0, 1), got '%s'",
+                            v);
         c->temporal_detail = x;
     } else if (!strcmp(a, "--adaptive")) {
         if (!cli_parse_on_off(v, &c->adaptive)) return cli_fail(EXIT_USAGE, "--adaptive: expected on or off, got '%s'", v);

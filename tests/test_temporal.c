@@ -430,7 +430,8 @@ static void test_detail(ob_context *ctx, ob_scene *cornell)
     const float end = step * (float)(frames - 1); /* where the pan ends, and the still camera stands */
     if (!pan(ctx, cornell, end, 0.0f, 2 * N, 0.0f, still, depth) ||
         !pan(ctx, cornell, end, 0.0f, 2 * N, 0.8f, still_bound, NULL) ||
-        !pan(ctx, cornell, 0.0f, step, frames, 0.0f, plain, NULL) || !pan(ctx, cornell, 0.0f, step, frames, 0.8f, bound, NULL))
+        !pan(ctx, cornell, 0.0f, step, frames, 0.0f, plain, NULL) ||
+        !pan(ctx, cornell, 0.0f, step, frames, 0.8f, bound, NULL))
         return;
     const double e_plain = rms_diff(plain, still, depth, W * H), e_bound = rms_diff(bound, still, depth, W * H);
     const double e_still = rms_diff(still_bound, still, depth, W * H);

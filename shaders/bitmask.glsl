@@ -12,8 +12,9 @@
 const int OB_SECTORS = 32;
 const float OB_BITMASK_PI = 3.14159265358979;
 
-/* The rise of in-slice offset w above a side's tangent t, in [0, π] (see ob_rise_key in
- * slice_march.glsl for the coordinates); 0 on or below the tangent. A sample on P's own plane
+/* The rise above a side's tangent t of the in-slice offset w at slice coordinates xy =
+ * (dot(w, t), dot(w, n_slice)) (see ob_rise_key in slice_march.glsl), in [0, π]; 0 on or below
+ * the tangent. A sample on P's own plane
  * rises by rounding alone, and the `touch` rule would turn that into a whole sector: rises under
  * OB_RISE_EPSILON count as none. 1e-3 rad (0.06°, a hundredth of a sector) is the angle of the
  * G-buffer's RGBA16F normals (half an fp16 ulp at 1 is 4.9e-4 per component): with 1e-4 an
@@ -21,10 +22,9 @@ const float OB_BITMASK_PI = 3.14159265358979;
  * (|y| ~ 1e-7 |w|) stayed under it (bench/results/2026-11-23-h100-egl.md). */
 const float OB_RISE_EPSILON = 1e-3;
 
-float ob_rise_angle_of(vec3 w, vec3 t, vec3 n_slice)
+float ob_rise_angle_of(vec2 xy)
 {
-    float x = dot(w, t), y = dot(w, n_slice);
-    float rise = y > 0.0 ? ob_fast_atan2(y, x) : 0.0;
+    float rise = xy.y > 0.0 ? ob_fast_atan2(xy.y, xy.x) : 0.0;
     return rise > OB_RISE_EPSILON ? rise : 0.0;
 }
 

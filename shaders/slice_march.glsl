@@ -271,13 +271,21 @@ float ob_rise_key(vec3 w, vec3 t, vec3 n_slice)
  * leaves the sphere, so X never reads more than the truth there; where that surface is hidden from
  * the eye (a fin's far face beside P, the riser behind a step's nose seen from above) X stands in
  * for the occluder the depth buffer does not show. An infinite `depth` (gtao's height field taken
- * literally) brings back the halo behind every silhouette, which the cut at R exists to remove. */
+ * literally) brings back the halo behind every silhouette, which the cut at R exists to remove.
+ * ob_column_reach is the same test from b = dot(w, u) and w2 = |w|^2, giving t: a caller that works
+ * in the slice's 2D coordinates (visibility_bitmask.glsl) moves the front by t along the ray there. */
+bool ob_column_reach(float b, float w2, float reach, float depth, out float t)
+{
+    float c = w2 - reach * reach;
+    float disc = b * b - c;
+    t = -(b + sqrt(max(disc, 0.0)));
+    return c > 0.0 && b < 0.0 && disc >= 0.0 && t <= depth;
+}
+
 bool ob_column_entry(vec3 w, vec3 u, float reach, float depth, out vec3 entry)
 {
-    float b = dot(w, u), c = dot(w, w) - reach * reach;
-    float disc = b * b - c;
-    float t = -(b + sqrt(max(disc, 0.0)));
-    bool meets = c > 0.0 && b < 0.0 && disc >= 0.0 && t <= depth;
+    float t;
+    bool meets = ob_column_reach(dot(w, u), dot(w, w), reach, depth, t);
     entry = meets ? w + t * u : w;
     return meets;
 }

@@ -1114,6 +1114,7 @@ static int bench_run(int argc, char **argv)
         cJSON_AddNumberToObject(root, "frames", o.frames);
         /* Issue 17: the accumulation and the camera's motion change every pass's work. */
         cJSON_AddBoolToObject(root, "temporal", c->temporal);
+        if (c->temporal) cli_common_temporal_json(c, root);
         if (c->path) cJSON_AddStringToObject(root, "path", c->path);
         if (c->has_orbit) cJSON_AddNumberToObject(root, "orbit_degrees", c->orbit_deg);
         if (cli_common_moves(c)) cJSON_AddNumberToObject(root, "path_frames", c->path_frames);

@@ -1,4 +1,5 @@
 /* The common options of the rendering commands (cli_options.h): parsing, usage, settings. */
+#include <cjson/cJSON.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -886,6 +887,14 @@ int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *pr
 }
 
 bool cli_common_moves(const cli_common *c) { return c->path || c->has_orbit; }
+
+void cli_common_temporal_json(const cli_common *c, cJSON *root)
+{
+    cJSON *t = cJSON_AddObjectToObject(root, "temporal_settings");
+    cJSON_AddStringToObject(t, "at", c->temporal_at == OB_TEMPORAL_AFTER_FILTER ? "after" : "before");
+    cJSON_AddNumberToObject(t, "frames", c->temporal_frames > 0 ? c->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT);
+    cJSON_AddNumberToObject(t, "detail", c->temporal_detail);
+}
 
 int cli_common_path_camera(const cli_common *c, const ob_scene *scene, const ob_camera *base, int f, ob_camera *out)
 {

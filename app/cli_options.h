@@ -190,6 +190,10 @@ ob_scene *cli_common_load_scene(const cli_common *c, const char *name);
 int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *preset, ob_camera *cam);
 /* --path or --orbit given. */
 bool cli_common_moves(const cli_common *c);
+struct cJSON;
+/* The accumulation's settings (--temporal-at, --temporal-frames, --temporal-detail) as
+ * root.temporal_settings: what a results.json's "temporal on" numbers were made with. */
+void cli_common_temporal_json(const cli_common *c, struct cJSON *root);
 /* The camera of frame f (0..path_frames-1) along --path (at f / (frames - 1) of its time span) or
  * --orbit (base turned by DEG x f / (frames - 1) about its target). 0 or an exit code (an unknown
  * path: one line naming the scene's paths). */

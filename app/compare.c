@@ -638,6 +638,7 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
     /* --guard as given, in pixels per side (the renderer rounds it up to 4 x the AO divisor). */
     cJSON_AddNumberToObject(root, "guard", o->common.guard_px);
     cJSON_AddBoolToObject(root, "temporal", o->common.temporal);
+    cli_common_temporal_json(&o->common, root); /* the flicker rows' "on" too */
     time_t now = time(NULL);
     char date[32];
     strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));

@@ -274,14 +274,16 @@ then ok; else bad "compare --budget-ms: $(tail -2 "$dir/shoot.err")"; fi
 [ $? -eq 2 ] && grep -q "budget-ms" "$dir/shoot.err" && [ ! -e "$dir/shoot_bad" ] && ok || bad "--budget-ms -3: $(cat "$dir/shoot.err")"
 
 # compare --orbit: the flicker table (issue 17) in results.json and the HTML, with temporal
-# accumulation cutting the still camera's noise, and each row's worst frame written; an unknown
-# path is one line and no report.
+# accumulation cutting the still camera's noise, each row's worst frame written, and the
+# accumulation's settings recorded; an unknown path is one line and no report.
 if "$OBSCURA" compare --scene corner:diagonal --size 48x36 --spp 16 --methods gtao --orbit 10 --path-frames 3 \
-    --shadow none --report "$dir/flicker" >"$dir/flicker.out" 2>"$dir/flicker.err" &&
+    --temporal-detail 0.25 --shadow none --report "$dir/flicker" >"$dir/flicker.out" 2>"$dir/flicker.err" &&
     python3 - "$dir/flicker" <<'PY'
 import json, os, sys
 report = sys.argv[1]
-v = json.load(open(os.path.join(report, "results.json")))["views"][0]
+results = json.load(open(os.path.join(report, "results.json")))
+assert results["temporal_settings"] == {"at": "before", "frames": 16, "detail": 0.25}, results["temporal_settings"]
+v = results["views"][0]
 fl = v["flicker"]
 assert fl["path"] == "orbit" and fl["orbit_degrees"] == 10 and fl["path_frames"] == 3 and fl["still_frames"] == 64, fl
 assert fl["reference_warped_error"] >= 0, fl

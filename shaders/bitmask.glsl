@@ -14,12 +14,12 @@ const float OB_BITMASK_PI = 3.14159265358979;
 
 /* The rise above a side's tangent t of the in-slice offset w at slice coordinates xy =
  * (dot(w, t), dot(w, n_slice)) (see ob_rise_key in slice_march.glsl), in [0, π]; 0 on or below
- * the tangent. A sample on P's own plane
- * rises by rounding alone, and the `touch` rule would turn that into a whole sector: rises under
- * OB_RISE_EPSILON count as none. 1e-3 rad (0.06°, a hundredth of a sector) is the angle of the
- * G-buffer's RGBA16F normals (half an fp16 ulp at 1 is 4.9e-4 per component): with 1e-4 an
- * NVIDIA H100 read the corner's open floor 0.9992 under `touch`, where llvmpipe's rounding
- * (|y| ~ 1e-7 |w|) stayed under it (bench/results/2026-11-23-h100-egl.md). */
+ * the tangent. A sample on P's own plane rises by rounding alone, and the `touch` rule would
+ * turn that into a whole sector: rises under OB_RISE_EPSILON count as none. 1e-3 rad (0.06°, a
+ * hundredth of a sector) is the angle of the G-buffer's RGBA16F normals (half an fp16 ulp at 1
+ * is 4.9e-4 per component): with 1e-4 an NVIDIA H100 read the corner's open floor 0.9992 under
+ * `touch`, where llvmpipe's rounding (|y| ~ 1e-7 |w|) stayed under it
+ * (bench/results/2026-11-23-h100-egl.md). */
 const float OB_RISE_EPSILON = 1e-3;
 
 float ob_rise_angle_of(vec2 xy)

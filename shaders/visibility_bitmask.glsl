@@ -87,8 +87,9 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
 #endif
     /* The front and its view ray in the slice's 2D coordinates (ob_rise_angle_of): the back and
      * the column's entry are the front moved along the ray there, and no 3D point past this line
-     * stays live (vbgi's w aside). The same bytes as the 3D points' dots: fewer values held
-     * through the march, which llvmpipe spilled (vbao -4 % at 16 taps, -7 % at 64). */
+     * stays live (vbgi's w aside). On llvmpipe the same bytes as the 3D points' dots, with fewer
+     * values held through the march, which it spilled: vbao 5-6 % and vbgi 3-10 % faster
+     * (bench/results/2026-11-23-llvmpipe-vbao-slice-2d.md). */
     vec2 front = vec2(dot(w, t), dot(w, s.n_slice)), ray = vec2(dot(u, t), dot(u, s.n_slice));
     /* A front beyond R whose solid still enters the sphere within its thickness: the interval
      * runs from where it enters (ob_column_entry) to its back, as for a front inside R. Per

@@ -5,7 +5,7 @@
 # libobscura, the FZK-Haus model and the commit). Everything it writes lands in $OUT (or
 # bench/results/gpu) and is packed as results.tgz after every step, so a step that runs out of
 # time loses only itself.
-#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|tests|fzk|temporal|deinterleave|miptaps|upsample|all]...
+#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|tests|fzk|temporal|deinterleave|miptaps|slicemips|upsample|all]...
 #   (default all; the smoke render always)
 # Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-egl.md).
 # shellcheck disable=SC2054 # the commas separate an option's values (--quality low,high), not array elements
@@ -136,6 +136,15 @@ want deinterleave && run deinterleave_on 150 "${split[@]}" $(di on)
 dm() { each depth_mips "$1"; }
 # shellcheck disable=SC2046
 want miptaps && run miptaps_on 150 "${split[@]}" $(dm on)
+# Issue 18's gtao-high target (whole effect <= 0.25 ms at 1080p, the AO pass at the floor there):
+# the slice methods' depth MIP chain (`depth_mips`, passes/depth_mips.c), which the first run
+# found slower for gtao and vbao (0.253 -> 0.322 ms at 36 taps) with the source pixel found by a
+# loop of selects per tap; it is now a closed form (shaders/depth_mips_read.glsl). Off and on in
+# one run, every preset, the floor beside each, no filter.
+sm=(--scene cornell --size 1920x1080 --cameras front --radius 4 --quality low,medium,high,ultra --frames 200 --warmup 20
+    --floor --filters none --shadow none --methods gtao,vbao,vbgi)
+want slicemips && run slicemips_off 120 "${sm[@]}"
+want slicemips && run slicemips_on 120 "${sm[@]}" --set gtao.depth_mips=on --set vbao.depth_mips=on --set vbgi.depth_mips=on
 # Issue 18's upsampler programs (docs/filters.md, "Subsampling"): auto takes the plain one on a
 # GPU; the block one (one invocation per k x k pixels) was 1.3-2.7x faster on llvmpipe. Both at
 # AO scale 1/2 and 1/4 after vbao, vbgi and ssdo (a second value in the same dispatch).

@@ -969,14 +969,17 @@ static void write_flicker_table(FILE *f, const compare_opts *o, const view_resul
         fprintf(f, "an orbit of %g&deg;", (double)c->orbit_deg);
     }
     fprintf(f, " (%d frames)</h3>\n<p class=\"note\">off: the spatial filter alone with the same noise moving every "
-               "frame; on: temporal accumulation. Static noise: camera still for %d frames, mean per-pixel std-dev; "
+               "frame; on: temporal accumulation (%s the filter, history %d frames, detail %g). Static noise: camera "
+               "still for %d frames, mean per-pixel std-dev; "
                "warped error: mean |AO<sub>t</sub> &minus; reprojected AO<sub>t&minus;1</sub>| over pixels seen in both "
                "(the ratio is of these), and the same minus the reference's own (%.4f: AO<sub>R</sub> belongs to the "
                "surface point, so on a static scene the reference's change is its Monte Carlo noise and "
                "resampling); RMSE against the reference on the last and the worst frame, and its mean over the "
                "path's frames (a screen-space estimate depends on the view, and the accumulation averages the "
                "last views: the last frame alone can land where the single frame's error dips).</p>\n",
-            vr->flicker_ref.frames, FLICKER_STILL_FRAMES, vr->flicker_ref.warped);
+            vr->flicker_ref.frames, c->temporal_at == OB_TEMPORAL_AFTER_FILTER ? "after" : "before",
+            c->temporal_frames > 0 ? c->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT, (double)c->temporal_detail,
+            FLICKER_STILL_FRAMES, vr->flicker_ref.warped);
     fputs("<table class=\"sortable\"><thead><tr><th>method</th><th>static noise off</th><th>on</th><th>ratio</th>"
           "<th>warped error off</th><th>on</th><th>ratio</th><th>minus reference off</th><th>on</th><th>RMSE last off</th><th>on</th>"
           "<th>RMSE worst off (frame)</th><th>on (frame)</th><th>RMSE mean off</th><th>on</th><th>temporal ms</th>"

@@ -299,6 +299,7 @@ for x in (off, on):
 assert on["temporal_ms"] > 0 and off["temporal_ms"] == 0, row
 html = open(os.path.join(report, "index.html")).read()
 assert "Flicker along an orbit of 10" in html and "_temporal_worst.png" in html and "RMSE mean off" in html
+assert "before the filter, history 16 frames, detail 0.25" in html
 assert any(n.endswith("_temporal_worst.png") for n in os.listdir(os.path.join(report, v["dir"]))), v["dir"]
 PY
 then ok; else bad "compare --orbit: $(tail -2 "$dir/flicker.err")"; fi

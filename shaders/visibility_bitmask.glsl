@@ -103,19 +103,14 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     float rise_back = ob_rise_angle_of(front + thick * ray);
     uint bits = inside || column ? ob_sample_bits(rise_front, rise_back, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
 #ifdef OB_VBGI
-    /* The sender's direct radiance through the directions it is the first to occlude. Their
-     * cosine measure is the interval's exact one (two cosines, ob_run_measure) times the share of its
-     * sectors still unset: exact when none or all of them were set before, and no loop over the
-     * runs of the new bits per sample (llvmpipe runs such a loop as long as its slowest lane). */
+    /* The sender's direct radiance through the directions it is the first to occlude, only where
+     * it occludes a sector first: most samples set none (open surfaces, or sectors already set),
+     * and a SIMD group none of whose lanes has a fresh bit skips the block, the sender's two
+     * fetches and the measure's two cosines (on an H100 the bounce's fetches were two of its three
+     * per sample; llvmpipe runs a block its lanes disagree on for all of them). Computed before
+     * the test, the measure cost llvmpipe 3-4 % of the pass (the compiler did not sink it:
+     * bench/results/2026-11-24-llvmpipe-vbgi-measure-sink.md). */
     uint fresh = bits & ~mask;
-    int count = bitCount(bits);
-    int first = count > 0 ? findLSB(bits) : 0;
-    float measure = ob_run_measure(first, count, s.ang_n, s.cos_n, s.sin_n);
-    float share = count > 0 ? float(bitCount(fresh)) / float(count) : 0.0;
-    /* The sender's normal and radiance only where it occludes a sector first: most samples set
-     * none (open surfaces, or sectors already set), and a SIMD group none of whose lanes has a
-     * fresh bit skips the two fetches (on an H100 the bounce's fetches were two of its three per
-     * sample; llvmpipe runs a block its lanes disagree on for all of them, as before). */
     if (fresh != 0u) {
 #ifdef OB_MARCH_PACKED
         /* The sample's texel as ob_march_fetch read it. */
@@ -126,6 +121,15 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
         ivec2 full = clamp(texel * frame.ao_k + frame.ao_o, ivec2(0), textureSize(radiance, 0) - 1);
         vec3 l_s = texelFetch(radiance, full, 0).rgb;
 #endif
+        /* The newly set sectors' cosine measure: the interval's exact one (two cosines,
+         * ob_run_measure) times the share of its sectors still unset, exact when none or all of
+         * them were set before, and no loop over the runs of the new bits per sample (llvmpipe
+         * runs such a loop as long as its slowest lane). fresh != 0 means bits != 0. After the
+         * fetches: before them, llvmpipe kept the two values across its texel-fetch calls and the
+         * pass ran 3 % slower. */
+        int count = bitCount(bits);
+        float measure = ob_run_measure(findLSB(bits), count, s.ang_n, s.cos_n, s.sin_n);
+        float share = float(bitCount(fresh)) / float(count);
         float facing = -dot(n_s, w) / max(sqrt(w2), 1e-20);
         float emit = vb.emitter_cosine != 0 ? max(facing, 0.0) : (facing > 0.0 ? 1.0 : 0.0);
         bounce += l_s * (emit * share * measure);

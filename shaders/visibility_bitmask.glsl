@@ -107,9 +107,7 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
      * it occludes a sector first: most samples set none (open surfaces, or sectors already set),
      * and a SIMD group none of whose lanes has a fresh bit skips the block, the sender's two
      * fetches and the measure's two cosines (on an H100 the bounce's fetches were two of its three
-     * per sample; llvmpipe runs a block its lanes disagree on for all of them). Computed before
-     * the test, the measure cost llvmpipe 3-4 % of the pass (the compiler did not sink it:
-     * bench/results/2026-11-24-llvmpipe-vbgi-measure-sink.md). */
+     * per sample; llvmpipe runs a block its lanes disagree on for all of them). */
     uint fresh = bits & ~mask;
     if (fresh != 0u) {
 #ifdef OB_MARCH_PACKED
@@ -124,9 +122,10 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
         /* The newly set sectors' cosine measure: the interval's exact one (two cosines,
          * ob_run_measure) times the share of its sectors still unset, exact when none or all of
          * them were set before, and no loop over the runs of the new bits per sample (llvmpipe
-         * runs such a loop as long as its slowest lane). fresh != 0 means bits != 0. After the
-         * fetches: before them, llvmpipe kept the two values across its texel-fetch calls and the
-         * pass ran 3 % slower. */
+         * runs such a loop as long as its slowest lane). fresh != 0 means bits != 0. Here, after
+         * the sender's values, and not before the test: llvmpipe ran the same instructions 3-5 %
+         * faster so (the order changes what LLVM keeps in registers; first in the block, ~1 %:
+         * bench/results/2026-11-24-llvmpipe-vbgi-measure-sink.md). */
         int count = bitCount(bits);
         float measure = ob_run_measure(findLSB(bits), count, s.ang_n, s.cos_n, s.sin_n);
         float share = float(bitCount(fresh)) / float(count);

@@ -888,11 +888,21 @@ int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *pr
 
 bool cli_common_moves(const cli_common *c) { return c->path || c->has_orbit; }
 
+const char *cli_common_temporal_at(const cli_common *c)
+{
+    return c->temporal_at == OB_TEMPORAL_AFTER_FILTER ? "after" : "before";
+}
+
+int cli_common_temporal_frames(const cli_common *c)
+{
+    return c->temporal_frames > 0 ? c->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
+}
+
 void cli_common_temporal_json(const cli_common *c, cJSON *root)
 {
     cJSON *t = cJSON_AddObjectToObject(root, "temporal_settings");
-    cJSON_AddStringToObject(t, "at", c->temporal_at == OB_TEMPORAL_AFTER_FILTER ? "after" : "before");
-    cJSON_AddNumberToObject(t, "frames", c->temporal_frames > 0 ? c->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT);
+    cJSON_AddStringToObject(t, "at", cli_common_temporal_at(c));
+    cJSON_AddNumberToObject(t, "frames", cli_common_temporal_frames(c));
     cJSON_AddNumberToObject(t, "detail", c->temporal_detail);
 }
 

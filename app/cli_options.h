@@ -190,6 +190,9 @@ ob_scene *cli_common_load_scene(const cli_common *c, const char *name);
 int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *preset, ob_camera *cam);
 /* --path or --orbit given. */
 bool cli_common_moves(const cli_common *c);
+/* --temporal-at's name ("before" or "after") and --temporal-frames with the default filled in. */
+const char *cli_common_temporal_at(const cli_common *c);
+int cli_common_temporal_frames(const cli_common *c);
 struct cJSON;
 /* The accumulation's settings (--temporal-at, --temporal-frames, --temporal-detail) as
  * root.temporal_settings: what a results.json's "temporal on" numbers were made with. */

@@ -977,8 +977,7 @@ static void write_flicker_table(FILE *f, const compare_opts *o, const view_resul
                "resampling); RMSE against the reference on the last and the worst frame, and its mean over the "
                "path's frames (a screen-space estimate depends on the view, and the accumulation averages the "
                "last views: the last frame alone can land where the single frame's error dips).</p>\n",
-            vr->flicker_ref.frames, c->temporal_at == OB_TEMPORAL_AFTER_FILTER ? "after" : "before",
-            c->temporal_frames > 0 ? c->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT, (double)c->temporal_detail,
+            vr->flicker_ref.frames, cli_common_temporal_at(c), cli_common_temporal_frames(c), (double)c->temporal_detail,
             FLICKER_STILL_FRAMES, vr->flicker_ref.warped);
     fputs("<table class=\"sortable\"><thead><tr><th>method</th><th>static noise off</th><th>on</th><th>ratio</th>"
           "<th>warped error off</th><th>on</th><th>ratio</th><th>minus reference off</th><th>on</th><th>RMSE last off</th><th>on</th>"

@@ -307,9 +307,9 @@ static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const method_
                                 .width = r->inner_width, .height = r->inner_height, .rgb = plan->rgb,
                                 .bounce = plan->bounce};
     const bool valid = r->history_valid && !memcmp(&key, &r->history_key, sizeof key);
-    const int frames = s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
     ob_temporal_constants c;
-    ob_temporal_fill(&c, r->prev_view, r->frame_constants.inv_view, r->prev_ao_proj, valid, frames,
+    /* The history length: run_passes resolved it (0 = the default) for this frame. */
+    ob_temporal_fill(&c, r->prev_view, r->frame_constants.inv_view, r->prev_ao_proj, valid, r->last_temporal_frames,
                      s->temporal_detail);
     const int h = t->history_index;
     ob_temporal_chain chain = {.current = main_in, .result = main_out, .rgb = plan->rgb,

@@ -6,7 +6,7 @@ JOBS       ?= $(shell nproc)
 CMAKE_FLAGS ?=
 PREFIX     ?= /usr/local
 
-.PHONY: all build deps demo test test-gpu test-asan fuzz install clean
+.PHONY: all build deps demo test test-gpu test-asan test-fuzz fuzz fuzz-build install clean
 
 all: build
 
@@ -25,11 +25,11 @@ demo: deps build
 install: build
 	@cmake --install $(BUILD) --prefix $(PREFIX)
 
-# Every test: the GPU/CLI suite on llvmpipe (or a GPU) in the normal build, and the CPU tests
-# again under AddressSanitizer + UndefinedBehaviorSanitizer. The sanitizer tree is also the
-# build without the viewer (OB_VIEWER=OFF: no GLFW, no Dear ImGui), so CI configures and builds
-# that too.
-test: deps build test-asan
+# Every test: the GPU/CLI suite on llvmpipe (or a GPU) in the normal build, the CPU tests again
+# under AddressSanitizer + UndefinedBehaviorSanitizer, and a short libFuzzer run of every parser
+# (test-fuzz). The sanitizer tree is also the build without the viewer (OB_VIEWER=OFF: no GLFW, no
+# Dear ImGui), so CI configures and builds that too.
+test: deps build test-asan test-fuzz
 	@ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 test-asan:
@@ -37,21 +37,25 @@ test-asan:
 	@cmake --build $(ASAN_BUILD) -j $(JOBS)
 	@ctest --test-dir $(ASAN_BUILD) --output-on-failure -L cpu -j $(JOBS)
 
-# libFuzzer on the model loader and the sidecar parser (clang, ASan + UBSan), FUZZ_SECONDS each;
-# crashes land in build-fuzz/crash-*. Not part of `make test`. The model target starts from
-# assimp-testmodels and the hostile corpus (tests/fuzz/seed_model_corpus.py).
-FUZZ_BUILD   ?= build-fuzz
-FUZZ_SECONDS ?= 300
-fuzz:
+# libFuzzer (clang, ASan + UBSan) on every parser an input reaches: models (fuzz_model), sidecars
+# (fuzz_sidecar), their camera paths (fuzz_path), --settings files (fuzz_settings) and the common
+# options (fuzz_cli). `make fuzz`: FUZZ_SECONDS each, on corpora kept in build-fuzz/corpus-*;
+# crashes land in build-fuzz/crash-*. `make test-fuzz` (in `make test`): each target from its
+# committed seeds with a fixed seed and number of runs, at most FUZZ_SMOKE_SECONDS each (about 60 s
+# in all), so that a parser that starts crashing fails the tests. tests/fuzz/run.sh says more.
+FUZZ_BUILD         ?= build-fuzz
+FUZZ_SECONDS       ?= 300
+FUZZ_SMOKE_SECONDS ?= 30
+FUZZ_TARGETS       := fuzz_model fuzz_sidecar fuzz_path fuzz_settings fuzz_cli
+fuzz-build:
 	@cmake -S . -B $(FUZZ_BUILD) -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=Debug -DOB_FUZZ=ON -DOB_GPU_TESTS=OFF -DOB_VIEWER=OFF $(CMAKE_FLAGS) >/dev/null
-	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_model fuzz_sidecar
-	@mkdir -p $(FUZZ_BUILD)/corpus-model $(FUZZ_BUILD)/corpus-sidecar
-	@cd $(FUZZ_BUILD) && ./fuzz_sidecar -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=2048 corpus-sidecar ../scenes
-	@# -detect_leaks=0: Assimp 5.2.5 leaks on some malformed ASCII STL files (its error path, not
-	@# ours), which would stop the run at the first one, and LeakSanitizer's report at exit (Assimp's
-	@# objects only) would fail the rule; our C code's leaks show in make test-asan.
-	@python3 tests/fuzz/seed_model_corpus.py $(FUZZ_BUILD)/seeds-model >/dev/null
-	@cd $(FUZZ_BUILD) && ASAN_OPTIONS=detect_leaks=0 ./fuzz_model -max_total_time=$(FUZZ_SECONDS) -detect_leaks=0 -rss_limit_mb=2048 -max_len=65536 corpus-model seeds-model
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(FUZZ_TARGETS)
+
+fuzz: fuzz-build
+	@tests/fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
+test-fuzz: fuzz-build
+	@tests/fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SMOKE_SECONDS) smoke
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

@@ -13,6 +13,7 @@
 #include "cli_options.h"
 #include "outputs.h"
 #include "progress.h"
+#include "run_program.h"
 
 /* --json and --csv (outputs.h): added while parsing, committed by cmd_bench. */
 static cli_outputs bench_outs;
@@ -520,17 +521,17 @@ static void git_commit(char *out, size_t n)
 {
     snprintf(out, n, "unknown");
     const char *dir = ob_data_dir();
-    /* The path goes into a shell command in single quotes: refuse one that contains a quote. */
-    if (!dir || strchr(dir, '\'')) return;
-    char cmd[1200];
-    snprintf(cmd, sizeof cmd, "git -C '%s' rev-parse --short HEAD 2>/dev/null", dir);
-    FILE *p = popen(cmd, "r");
-    if (!p) return;
-    char line[128] = {0};
-    bool got = fgets(line, sizeof line, p) != NULL;
-    int rc = pclose(p);
-    line[strcspn(line, "\n")] = '\0';
-    if (got && rc == 0 && line[0]) snprintf(out, n, "%s", line);
+    if (!dir) return;
+    /* git gets the directory as one argument, with no shell (run_program.h): any name works, quotes
+     * included, and none runs a command. No git, no repository: "unknown". */
+    const char *argv[] = {"git", "-C", dir, "rev-parse", "--short", "HEAD", NULL};
+    cli_spawn_output line = {.limit = 127};
+    int status = -1;
+    if (cli_spawn(argv, -1, &line, NULL, &status) == 0 && status == 0 && line.data && !line.truncated) {
+        line.data[strcspn(line.data, "\r\n")] = '\0';
+        if (line.data[0]) snprintf(out, n, "%s", line.data);
+    }
+    cli_spawn_output_free(&line);
 }
 
 /* ---- output ---------------------------------------------------------------------------------- */

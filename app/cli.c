@@ -2,28 +2,44 @@
  * exit codes of README.md, the small value parsers every command shares, the GL context and the
  * output checks. The common scene/method/lighting options are in cli_options.c. */
 #include <errno.h>
+#include <fcntl.h>
 #include <libgen.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include "cli.h"
 
 int cli_fail(int code, const char *fmt, ...)
 {
+    char *buf = NULL;
     va_list ap;
     va_start(ap, fmt);
-    fputs("obscura: ", stderr);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    int len = vasprintf(&buf, fmt, ap);
     va_end(ap);
+    /* Messages name files, and a file name may hold a newline or a terminal's escape sequence:
+     * control bytes are written as \n, \t or \xNN, so that the message stays one line and
+     * shows the name as it is. */
+    fputs("obscura: ", stderr);
+    for (const unsigned char *p = (const unsigned char *)(len >= 0 ? buf : "out of memory"); *p; ++p) {
+        if (*p == '\n') fputs("\\n", stderr);
+        else if (*p == '\t') fputs("\\t", stderr);
+        else if (*p < 0x20 || *p == 0x7f) fprintf(stderr, "\\x%02x", *p);
+        else fputc(*p, stderr);
+    }
+    fputc('\n', stderr);
+    if (len >= 0) free(buf);
     return code;
 }
 
-int cli_fail_from_library(void)
+int cli_fail_from_library(void) { return cli_fail_from_library_in(NULL); }
+
+int cli_fail_from_library_in(const char *where)
 {
     const char *msg = NULL;
     ob_error err = ob_get_error(&msg);
@@ -42,7 +58,8 @@ int cli_fail_from_library(void)
     case OB_ERR_NO_CONTEXT: code = EXIT_NO_GPU; break;
     default: code = EXIT_RUNTIME; break;
     }
-    return cli_fail(code, "%s", msg && *msg ? msg : ob_error_name(err));
+    const char *text = msg && *msg ? msg : ob_error_name(err);
+    return where ? cli_fail(code, "%s: %s", where, text) : cli_fail(code, "%s", text);
 }
 
 int cli_fail_library_as(int code)
@@ -78,8 +95,61 @@ bool cli_parse_float(const char *text, float *out)
     return true;
 }
 
+/* Mesa keeps its shader cache in a file it maps into memory (mesa_shader_cache/index, 1.3 MB made
+ * with ftruncate, so it takes no blocks until written): on a file system with no room left, the
+ * first store through the map is SIGBUS, and the command dies with no message. So, before the
+ * first context, the directory Mesa would use (found as Mesa 22.3's disk_cache_generate_cache_dir
+ * does) must be writable with room to spare; else Mesa's cache is off for this process. The
+ * margin is a guess at what a few hundred shaders and that index take, not a Mesa number. */
+enum { SHADER_CACHE_MARGIN = 64 << 20 };
+
+void cli_guard_shader_cache(void)
+{
+    const char *off = getenv("MESA_SHADER_CACHE_DISABLE");
+    if (off && (!strcmp(off, "true") || !strcmp(off, "1") || !strcmp(off, "yes"))) return;
+    const char *env = getenv("MESA_SHADER_CACHE_DIR");
+    if (!env || !*env) env = getenv("MESA_GLSL_CACHE_DIR"); /* the older name, which Mesa still reads */
+    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    char dir[4096] = "";
+    if (env && *env) snprintf(dir, sizeof dir, "%s/mesa_shader_cache", env);
+    else if (xdg && *xdg) snprintf(dir, sizeof dir, "%s/mesa_shader_cache", xdg);
+    else if (home && *home) snprintf(dir, sizeof dir, "%s/.cache/mesa_shader_cache", home);
+    else return; /* Mesa then asks getpwuid: a setup too unusual to second-guess */
+    /* Mesa makes the directory when it is missing: its nearest existing ancestor holds the files. */
+    char at[4096] = "";
+    snprintf(at, sizeof at, "%s", dir);
+    struct stat st = {0};
+    while (stat(at, &st) != 0) {
+        char *slash = strrchr(at, '/');
+        if (!slash || slash == at) {
+            snprintf(at, sizeof at, "%s", slash ? "/" : ".");
+            if (stat(at, &st) != 0) return;
+            break;
+        }
+        *slash = '\0';
+    }
+    struct statvfs vfs = {0};
+    if (S_ISDIR(st.st_mode) && statvfs(at, &vfs) != 0) return;
+    char why[200] = "";
+    const unsigned long long free_bytes = (unsigned long long)vfs.f_bavail * vfs.f_frsize;
+    if (!S_ISDIR(st.st_mode)) snprintf(why, sizeof why, "is not a directory");
+    else if (vfs.f_flag & ST_RDONLY) snprintf(why, sizeof why, "is on a read-only file system");
+    else if (access(at, W_OK | X_OK) != 0) snprintf(why, sizeof why, "cannot be written (%s)", strerror(errno));
+    else if (vfs.f_files && !vfs.f_favail) snprintf(why, sizeof why, "is on a file system with no free inodes");
+    else if (free_bytes < SHADER_CACHE_MARGIN)
+        snprintf(why, sizeof why, "is on a file system with %llu KiB free, under the %d MiB it may need", free_bytes / 1024,
+                 SHADER_CACHE_MARGIN >> 20);
+    if (!why[0]) return;
+    /* Both names: older Mesa reads only MESA_GLSL_CACHE_DISABLE. */
+    setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
+    setenv("MESA_GLSL_CACHE_DISABLE", "true", 1);
+    fprintf(stderr, "obscura: warning: Mesa's shader cache %s: %s %s; running with MESA_SHADER_CACHE_DISABLE=true\n",
+            dir, strcmp(at, dir) ? at : "it", why);
+}
+
 ob_context *cli_make_context(ob_gpu_kind gpu, bool verbose)
 {
+    cli_guard_shader_cache();
     ob_context *ctx = ob_make_context(&(ob_context_desc){.gpu = gpu});
     if (ctx && verbose)
         fprintf(stderr, "obscura: GL_RENDERER %s | GL_VERSION %s | EGL %s\n", ob_query_renderer(ctx),
@@ -217,6 +287,105 @@ bool cli_parse_vec3(const char *text, float out[3])
         }
     }
     return true;
+}
+
+bool cli_hdr_dimensions(const char *path, long long *width, long long *height)
+{
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC); /* a FIFO: no wait (reported later) */
+    struct stat st = {0};
+    if (fd < 0) return false;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        close(fd);
+        return false;
+    }
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        close(fd);
+        return false;
+    }
+    /* Radiance: "#?" first, header lines up to an empty one, then "-Y H +X W" (the orientation
+     * the loader takes; another one fails there). */
+    char line[512] = "";
+    bool ok = false;
+    long long w = 0, h = 0;
+    if (fgets(line, sizeof line, f) && !strncmp(line, "#?", 2))
+        for (int k = 0; k < 257 && fgets(line, sizeof line, f); ++k)
+            if (line[0] == '\n') {
+                char ya[3] = "", xa[3] = "";
+                ok = fgets(line, sizeof line, f) && sscanf(line, "%2s %lld %2s %lld", ya, &h, xa, &w) == 4;
+                break;
+            }
+    fclose(f);
+    if (!ok || w <= 0 || h <= 0) return false;
+    *width = w;
+    *height = h;
+    return true;
+}
+
+const char *cli_file_kind(unsigned mode)
+{
+    mode_t m = (mode_t)mode;
+    if (S_ISREG(m)) return "a regular file";
+    if (S_ISDIR(m)) return "a directory";
+    if (S_ISFIFO(m)) return "a FIFO";
+    if (S_ISCHR(m)) return "a character device";
+    if (S_ISBLK(m)) return "a block device";
+    if (S_ISSOCK(m)) return "a socket";
+    if (S_ISLNK(m)) return "a symbolic link"; /* from lstat */
+    return "not a regular file";
+}
+
+char *cli_read_regular(const char *path, size_t limit, size_t *size, char *why, size_t n)
+{
+    if (size) *size = 0;
+    if (n) why[0] = '\0';
+    /* O_NONBLOCK: open() on a FIFO with no writer would wait forever; fstat then says what it is. */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        snprintf(why, n, "%s", errno == ENOENT ? "no such file" : strerror(errno));
+        return NULL;
+    }
+    struct stat st = {0};
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        snprintf(why, n, "it is %s, not a regular file", cli_file_kind(st.st_mode));
+        close(fd);
+        return NULL;
+    }
+    if ((unsigned long long)st.st_size > (unsigned long long)limit) {
+        snprintf(why, n, "it holds %lld bytes, more than the %zu a file of this kind can mean", (long long)st.st_size, limit);
+        close(fd);
+        return NULL;
+    }
+    int flags = fcntl(fd, F_GETFL);
+    if (flags >= 0) (void)fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+    char *buf = malloc(limit + 1);
+    size_t got = 0;
+    while (buf && got <= limit) {
+        ssize_t r = read(fd, buf + got, limit + 1 - got);
+        if (r < 0 && errno == EINTR) continue;
+        if (r < 0) {
+            snprintf(why, n, "%s", strerror(errno));
+            free(buf);
+            buf = NULL;
+            break;
+        }
+        if (r == 0) break;
+        got += (size_t)r;
+    }
+    close(fd);
+    if (!buf) {
+        if (got == 0 && !why[0]) snprintf(why, n, "out of memory");
+        return NULL;
+    }
+    /* It grew since the fstat: the limit holds for what is read, not only for what was said. */
+    if (got > limit) {
+        snprintf(why, n, "it holds more than the %zu bytes a file of this kind can mean", limit);
+        free(buf);
+        return NULL;
+    }
+    buf[got] = '\0';
+    if (size) *size = got;
+    return buf;
 }
 
 bool cli_output_writable(const char *path)

@@ -21,6 +21,9 @@ enum {
  * ob_get_error clears the code it returns, so call this only while the failing call's error is
  * still pending (nothing has read it since). */
 int cli_fail_from_library(void);
+/* The same, the line prefixed with where the value came from ("--set ssao.radius=abc"), for a
+ * library message that cannot know which option or file it was given by. */
+int cli_fail_from_library_in(const char *where);
 /* The library's last message with an explicit exit code (e.g. EXIT_OUTPUT for a failed write). */
 int cli_fail_library_as(int code);
 /* Print "obscura: MESSAGE" and return code. */
@@ -32,6 +35,11 @@ bool cli_parse_float(const char *text, float *out);
 /* The GL context for a command; with verbose, one stderr line naming GL_RENDERER, GL_VERSION and
  * the EGL device. NULL (the library's error set) when none can be made. */
 ob_context *cli_make_context(ob_gpu_kind gpu, bool verbose);
+/* Before any context (cli_make_context calls it; the viewer before its window): when the
+ * directory Mesa's shader cache would use is read-only, not writable or under 64 MiB from full,
+ * set MESA_SHADER_CACHE_DISABLE (Mesa maps that cache and dies of SIGBUS on a full disk), with
+ * one warning line naming the directory. */
+void cli_guard_shader_cache(void);
 /* auto, hw or sw. */
 bool cli_parse_gpu(const char *text, ob_gpu_kind *out);
 /* The option values several commands share; false (and *out untouched) for anything else. */
@@ -66,6 +74,18 @@ typedef struct cli_exposure {
 int cli_exposure_begin(cli_exposure *e, ob_renderer *r, const ob_camera *cam, const ob_settings *like, size_t px);
 int cli_exposure_apply(cli_exposure *e, ob_renderer *r, const ob_camera *cam, const ob_settings *s);
 void cli_exposure_free(cli_exposure *e);
+/* The whole of a file the user named (a settings file, a camera list...), at most limit bytes,
+ * malloc'd and NUL-terminated, or NULL with why (n bytes) saying what was found: "no such file",
+ * "a FIFO, not a regular file", "larger than N bytes", errno's text. The file is opened without
+ * blocking and checked to be a regular file before a byte is read, so a FIFO or a device in its
+ * place never hangs the command. *size (when not NULL) gets the bytes read. */
+char *cli_read_regular(const char *path, size_t limit, size_t *size, char *why, size_t n);
+/* The pixel size a Radiance .hdr image (an environment map) declares in its header, read without
+ * decoding it; false when the file is not one, is not a regular file or cannot be read. For an
+ * estimate of the memory its decode will take. */
+bool cli_hdr_dimensions(const char *path, long long *width, long long *height);
+/* What a stat mode is, for messages: "a directory", "a FIFO", "a character device"... */
+const char *cli_file_kind(unsigned mode);
 /* Fail early when an output's directory cannot take a new file. */
 bool cli_output_writable(const char *path);
 /* Whether the frame r holds (w x h) covers any pixel: EXIT_OK, else "nothing visible from this

@@ -1,6 +1,7 @@
 /* The common options of the rendering commands (cli_options.h): parsing, usage, settings. */
 #include <cjson/cJSON.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -88,7 +89,7 @@ static int parse_methods(cli_common *c, bool list, const char *opt, const char *
         if (m < 0) {
             ob_settings probe = {0};
             ob_settings_init(&probe, items[k]); /* the library's "unknown method (known: ...)" */
-            return list ? fail_option(opt) : cli_fail_from_library();
+            return list ? fail_option(opt) : cli_fail_from_library_in(opt);
         }
         for (int j = 0; j < k; ++j)
             if (c->methods[j] == m) return cli_fail(EXIT_USAGE, "%s: '%s' is listed twice", opt, items[k]);
@@ -306,6 +307,7 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         if (end == v || !end || *end || !(bytes >= 1024.0 * 1024.0) || bytes > 1e18)
             return cli_fail(EXIT_USAGE, "--max-memory: expected a size of at least 1M such as 512M or 4G, got '%s'", v);
         c->max_memory = (uint64_t)bytes;
+        c->max_memory_text = v;
     }
     else if (!strcmp(a, "--up")) {
         if (!cli_parse_up(v, &c->up)) return cli_fail(EXIT_USAGE, "--up: expected y or z, got '%s'", v);
@@ -425,6 +427,9 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
     return CLI_TAKEN;
 }
 
+/* The memory the options make the run take, against --max-memory (below, with the settings). */
+static int check_run_memory(cli_common *c);
+
 int cli_common_finish(cli_common *c)
 {
     if (c->has_eye != c->has_target) return cli_fail(EXIT_USAGE, "--eye and --target go together");
@@ -476,7 +481,7 @@ int cli_common_finish(cli_common *c)
     const cli_samples *from = c->by_number_count > 0 ? c->by_number : c->by_quality;
     c->sample_count = c->by_number_count > 0 ? c->by_number_count : c->by_quality_count;
     memcpy(c->samples, from, (size_t)c->sample_count * sizeof *from);
-    return EXIT_OK;
+    return check_run_memory(c);
 }
 
 /* ---- usage ------------------------------------------------------------------------------------ */
@@ -497,8 +502,10 @@ void cli_common_usage(FILE *f, const cli_common *c)
           "  --up y|z              the model's up axis (overrides the sidecar)\n"
           "  --allow-external-files  let the model read files outside its directory (absolute paths,\n"
           "                        '..'; off: untrusted models are confined, README 'Untrusted models')\n"
-          "  --max-memory SIZE     the most memory a model import may take, e.g. 512M, 8G (default:\n"
-          "                        4G or half the physical memory, whichever is less)\n",
+          "  --max-memory SIZE     the most memory the run may take, e.g. 512M, 8G: the model, its\n"
+          "                        textures, the render targets for --size/--guard, path frames kept;\n"
+          "                        estimated before allocating (default: 4G or half the physical\n"
+          "                        memory, whichever is less)\n",
           f);
     if (takes(c, CLI_TAKES_CAMERA))
         fputs("  --camera NAME|INDEX   a camera preset of the scene (default: 'default', which frames the\n"
@@ -746,12 +753,175 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
     }
     for (int k = 0; k < c->set_count; ++k) {
         set_target t = set_target_of(c->sets[k]);
-        if (set_applies(&t, cfg) && ob_settings_set(s, c->sets[k]) != OB_OK) return cli_fail_from_library();
+        if (set_applies(&t, cfg) && ob_settings_set(s, c->sets[k]) != OB_OK) {
+            char where[ITEM_MAX + 16];
+            snprintf(where, sizeof where, "--set %.*s", ITEM_MAX - 1, c->sets[k]);
+            return cli_fail_from_library_in(where);
+        }
     }
     /* After the samples: a method that took none is labelled without them. */
     cli_config_label(c, cfg, " \xc2\xb7 ", cfg->label, sizeof cfg->label); /* U+00B7 middle dot */
     make_stem(c, cfg, cfg->stem, sizeof cfg->stem);
     return EXIT_OK;
+}
+
+/* ---- memory (--max-memory) --------------------------------------------------------------------- */
+
+/* What each command holds on the CPU besides the renderer, per visible pixel: its read-backs and
+ * output buffers (render.c write_outputs, cli.c's exposure and visibility checks, outputs.c's
+ * encoders; compare.c's per-view images, masks and references, flicker.c's running sums; sheet.c's
+ * frame buffers), per row of a sheet (its part of the sheet image), and per path frame that
+ * compare keeps for the flicker measure (flicker.c: each frame's depth, normals and reference, 20
+ * bytes a pixel). Rounded up: an estimate, not a ledger. */
+static const struct {
+    const char *command;
+    unsigned per_pixel, per_row, per_path_frame;
+    bool path_temporal; /* its path frames run with temporal accumulation whatever --temporal says */
+} HOLDS[] = {
+    {"render", 48, 0, 0, false}, {"sheet", 24, 8, 0, false}, {"compare", 192, 0, 20, true},
+    {"bench", 32, 0, 0, false},  {"tune", 64, 0, 0, false},  {"view", 32, 0, 0, false},
+};
+
+/* "1.50 GiB", "20.0 MiB", "12 KiB". */
+static const char *human(uint64_t bytes, char *buf, size_t n)
+{
+    if (bytes >= (1ull << 30)) snprintf(buf, n, "%.2f GiB", (double)bytes / (double)(1ull << 30));
+    else if (bytes >= (1ull << 20)) snprintf(buf, n, "%.1f MiB", (double)bytes / (double)(1ull << 20));
+    else snprintf(buf, n, "%llu KiB", (unsigned long long)((bytes + 1023u) / 1024u));
+    return buf;
+}
+
+typedef struct memory_item {
+    uint64_t bytes;
+    char text[192];
+} memory_item;
+
+/* printf at the end of out (n bytes in all), cut to fit. */
+static void appendf(char *out, size_t n, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void appendf(char *out, size_t n, const char *fmt, ...)
+{
+    size_t len = strlen(out);
+    if (len + 1 >= n) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(out + len, n - len, fmt, ap);
+    va_end(ap);
+}
+
+/* The settings each combination's renderer is made for, as far as memory goes: every method with
+ * every AO scale, the guard band, temporal accumulation, the shadows and --light's lights, and the
+ * --set assignments that reach the method (a "guard=" among them). *count 0 when none can be
+ * made (an unknown name: reported later by cli_common_configs). */
+static ob_settings *memory_probes(const cli_common *c, bool temporal, int *count)
+{
+    *count = 0;
+    ob_settings *probes = calloc((size_t)(c->method_count * c->ao_count) + 1, sizeof *probes);
+    if (!probes) return NULL;
+    for (int m = 0; m < c->method_count; ++m)
+        for (int a = 0; a < c->ao_count; ++a) {
+            ob_settings *s = &probes[*count];
+            if (ob_settings_init(s, ob_method_at(c->methods[m])->name) != OB_OK ||
+                ob_settings_set_ao_divisor(s, c->ao_divisors[a]) != OB_OK) {
+                ob_clear_error();
+                continue;
+            }
+            s->guard = c->guard_px;
+            s->temporal = temporal;
+            if (c->given & CLI_GIVEN_SHADOW) s->shadow.method = c->shadow;
+            if (c->given & CLI_GIVEN_SHADOW_SIZE) s->shadow.size = c->shadow_size;
+            if (c->given & CLI_GIVEN_VSM_BITS) s->shadow.vsm_bits = c->vsm_bits;
+            for (int i = 0; i < c->light_count; ++i)
+                if (ob_parse_light(c->lights[i], &s->lights[s->light_count]) == OB_OK) ++s->light_count;
+            const cli_config cfg = {.method = c->methods[m], .filter = c->filters[0]};
+            for (int k = 0; k < c->set_count; ++k) {
+                set_target t = set_target_of(c->sets[k]);
+                if (set_applies(&t, &cfg) && ob_settings_set(s, c->sets[k]) != OB_OK) ob_clear_error(); /* reported later */
+            }
+            ++*count;
+        }
+    return probes;
+}
+
+/* What the run takes besides the scene, by item (largest first), into c->run_memory and
+ * c->run_memory_what; over the limit, one line naming the largest items and EXIT_USAGE. */
+static int check_run_memory(cli_common *c)
+{
+    unsigned per_pixel = 64, per_row = 0, per_path_frame = 0;
+    bool path_temporal = false;
+    for (size_t k = 0; k < sizeof HOLDS / sizeof HOLDS[0]; ++k)
+        if (!strcmp(c->command, HOLDS[k].command)) {
+            per_pixel = HOLDS[k].per_pixel;
+            per_row = HOLDS[k].per_row;
+            per_path_frame = HOLDS[k].per_path_frame;
+            path_temporal = HOLDS[k].path_temporal && cli_common_moves(c);
+        }
+    int count = 0;
+    ob_settings *probes = memory_probes(c, c->temporal || path_temporal, &count);
+    if (!probes) return cli_fail(EXIT_RUNTIME, "out of memory");
+    uint64_t with_shadows = 0, targets = 0;
+    int guard = 0; /* --guard, or a --set guard= that reaches a method */
+    for (int k = 0; k < count; ++k)
+        if (probes[k].guard > guard) guard = probes[k].guard;
+    if (count > 0) {
+        with_shadows = ob_estimate_renderer_memory(c->width, c->height, probes, count);
+        for (int k = 0; k < count; ++k) probes[k].shadow.method = OB_SHADOW_NONE;
+        targets = ob_estimate_renderer_memory(c->width, c->height, probes, count);
+    }
+    free(probes);
+    const uint64_t px = (uint64_t)c->width * (uint64_t)c->height;
+    const int rows = c->method_count * c->filter_count * c->ao_count * (c->sample_count > 0 ? c->sample_count : 1);
+    const int frames = cli_common_moves(c) ? c->path_frames : 0;
+    char a[32] = "";
+    enum { ITEMS = 5 };
+    memory_item items[ITEMS] = {{0, ""}, {0, ""}, {0, ""}, {0, ""}, {0, ""}};
+    items[0].bytes = targets;
+    char *t = items[0].text;
+    const size_t tn = sizeof items[0].text;
+    appendf(t, tn, "render targets %s (--size %dx%d", human(targets, a, sizeof a), c->width, c->height);
+    if (guard > 0) appendf(t, tn, ", %s %d", guard == c->guard_px ? "--guard" : "guard band", guard);
+    if (c->temporal || path_temporal) appendf(t, tn, ", temporal history");
+    if (c->method_count > 1) appendf(t, tn, ", %d methods", c->method_count);
+    if (c->ao_count > 1) appendf(t, tn, ", %d AO scales", c->ao_count);
+    appendf(t, tn, ")");
+    items[1].bytes = with_shadows - targets;
+    snprintf(items[1].text, sizeof items[1].text, "shadow maps %s (--shadow-size %d)", human(items[1].bytes, a, sizeof a),
+             (c->given & CLI_GIVEN_SHADOW_SIZE) ? c->shadow_size : 2048);
+    items[2].bytes = px * ((uint64_t)per_pixel + (uint64_t)per_row * (uint64_t)rows);
+    snprintf(items[2].text, sizeof items[2].text, "image buffers %s", human(items[2].bytes, a, sizeof a));
+    items[3].bytes = px * (uint64_t)per_path_frame * (uint64_t)frames;
+    snprintf(items[3].text, sizeof items[3].text, "path frames %s (--path-frames %d x %dx%d)",
+             human(items[3].bytes, a, sizeof a), frames, c->width, c->height);
+    /* --env: decoded as RGB floats (12 bytes a pixel) while its RGBA16F texture and MIP chain
+     * (8 x 4/3) are made, and stb's scanline buffers: 24 bytes a pixel at the peak, rounded up.
+     * Sized from the file's header, never decoded here; an unreadable map is reported when it
+     * loads. */
+    long long ew = 0, eh = 0;
+    if (c->env && cli_hdr_dimensions(c->env, &ew, &eh)) {
+        items[4].bytes = (uint64_t)ew * (uint64_t)eh * 24u;
+        snprintf(items[4].text, sizeof items[4].text, "environment map %s (%.80s %lldx%lld)",
+                 human(items[4].bytes, a, sizeof a), c->env, ew, eh);
+    }
+    c->run_memory = 0;
+    c->run_memory_what[0] = '\0';
+    for (int i = 0; i < ITEMS; ++i) {
+        int best = i;
+        for (int j = i + 1; j < ITEMS; ++j)
+            if (items[j].bytes > items[best].bytes) best = j;
+        memory_item keep = items[i];
+        items[i] = items[best];
+        items[best] = keep;
+        c->run_memory += items[i].bytes;
+        if (items[i].bytes == 0) continue;
+        appendf(c->run_memory_what, sizeof c->run_memory_what, "%s%s", c->run_memory_what[0] ? ", " : "", items[i].text);
+    }
+    const uint64_t limit = c->max_memory ? c->max_memory : ob_default_max_memory();
+    if (c->run_memory <= limit) return EXIT_OK;
+    char b[32] = "";
+    if (c->max_memory_text)
+        return cli_fail(EXIT_USAGE, "--max-memory %s: this run needs about %s before any model: %s", c->max_memory_text,
+                        human(c->run_memory, a, sizeof a), c->run_memory_what);
+    return cli_fail(EXIT_USAGE, "--max-memory (default %s): this run needs about %s before any model: %s",
+                    human(limit, b, sizeof b), human(c->run_memory, a, sizeof a), c->run_memory_what);
 }
 
 /* Whether the method takes a sample count: ob_settings_set_samples refuses with
@@ -785,8 +955,11 @@ static int check_sets(const cli_common *c, cli_config *configs, int count)
         /* One method and one filter: the library says which it is ("... but the filter is geometry"). */
         ob_settings s = {0};
         if (ob_settings_init(&s, ob_method_at(configs[0].method)->name) != OB_OK ||
-            ob_settings_set_filter(&s, ob_filter_at(configs[0].filter)->name) != OB_OK || ob_settings_set(&s, a) != OB_OK)
-            return cli_fail_from_library();
+            ob_settings_set_filter(&s, ob_filter_at(configs[0].filter)->name) != OB_OK || ob_settings_set(&s, a) != OB_OK) {
+            char where[ITEM_MAX + 16];
+            snprintf(where, sizeof where, "--set %.*s", ITEM_MAX - 1, a);
+            return cli_fail_from_library_in(where);
+        }
     }
     return EXIT_OK;
 }
@@ -855,7 +1028,8 @@ ob_scene *cli_common_load_scene(const cli_common *c, const char *name)
 {
     return ob_load_scene(&(ob_scene_desc){.name = name ? name : c->scene, .sidecar = c->sidecar, .up = c->up,
                                           .allow_external_files = c->allow_external_files,
-                                          .max_memory = c->max_memory});
+                                          .max_memory = c->max_memory, .reserved_memory = c->run_memory,
+                                          .reserved_what = c->run_memory_what});
 }
 
 int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *preset, ob_camera *cam)

@@ -82,6 +82,12 @@ typedef struct cli_common {
     ob_up_axis up;
     bool allow_external_files; /* --allow-external-files */
     uint64_t max_memory;       /* --max-memory, bytes; 0 = the library's default */
+    const char *max_memory_text; /* --max-memory as given, for messages (NULL: the default) */
+    /* cli_common_finish: what the run takes besides the scene (render targets, shadow maps, the
+     * command's image buffers, path frames kept), checked against --max-memory there and handed
+     * to the import (ob_scene_desc.reserved_memory, reserved_what) with its largest items. */
+    uint64_t run_memory;
+    char run_memory_what[400];
     const char *camera;
     bool has_eye, has_target, has_fov;
     float eye[3], target[3], fov;
@@ -163,7 +169,9 @@ void cli_common_init(cli_common *c, const char *command, unsigned takes);
 int cli_common_option(cli_common *c, int argc, char **argv, int *i);
 /* After the last option: the lists' defaults, and the checks that need every option
  * (--eye with --target, --camera against --eye, --ambient env with --env, --quality against
- * --samples for lists). 0, or the exit code of the one line printed. */
+ * --samples for lists), last the memory the options make the run take (--size, --guard,
+ * --ao-scale, --temporal, the methods' targets, --shadow-size, --path-frames) against
+ * --max-memory, before anything is allocated. 0, or the exit code of the one line printed. */
 int cli_common_finish(cli_common *c);
 /* The usage lines of the common options this command takes, with its defaults from c (as set up
  * for parsing). */
@@ -182,8 +190,8 @@ const cli_tuned *cli_common_tuned(const cli_common *c, int method);
 /* cfg's label with another separator (the sheet's font has only ASCII: ", "). */
 void cli_config_label(const cli_common *c, const cli_config *cfg, const char *sep, char *out, size_t n);
 
-/* The scene named `name` (c->scene when NULL) with --sidecar and --up; NULL with the library's
- * error pending. */
+/* The scene named `name` (c->scene when NULL) with --sidecar, --up and --max-memory (less what
+ * the rest of the run takes: c->run_memory); NULL with the library's error pending. */
 ob_scene *cli_common_load_scene(const cli_common *c, const char *name);
 /* The camera: --eye/--target/--fov, else the preset `preset` (c->camera when NULL, else
  * "default") with --fov. 0 or an exit code. */

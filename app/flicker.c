@@ -18,6 +18,7 @@ typedef struct path_frame {
     cli_view_frame f;
     mat4 view;
     float *ref;
+    bool empty; /* covers no pixel (only with --allow-empty): left out of every mean */
 } path_frame;
 
 /* Pixel centre (x, y) of frame a with linear depth d, as a world point. */
@@ -34,7 +35,9 @@ static void world_point(const path_frame *a, int x, int y, float d, vec3 out)
 
 /* Mean |cur - prev reprojected| over the pixels of frame a (now) whose point frame b (before) saw:
  * the four depths of b around the reprojected point all within 2 % of the point's depth in b (an
- * edge or an occluder there leaves the pixel out). prev is bilinear between those four. */
+ * edge or an occluder there leaves the pixel out). prev is bilinear between those four. NaN when
+ * no pixel was seen in both: such a pair has no change to measure, and a 0 would pull the path's
+ * mean toward "no flicker". */
 static double warped_change(const path_frame *a, const path_frame *b, const float *cur, const float *prev)
 {
     const int w = a->f.width, h = a->f.height;
@@ -69,8 +72,23 @@ static double warped_change(const path_frame *a, const path_frame *b, const floa
             sum += fabs((double)cur[i] - value);
             ++count;
         }
-    return count ? sum / (double)count : 0.0;
+    return count ? sum / (double)count : NAN;
 }
+
+/* The path's mean of warped_change over the pairs that share pixels; NaN for none. */
+typedef struct warped_mean {
+    double sum;
+    int pairs;
+} warped_mean;
+
+static void warped_add(warped_mean *m, double change)
+{
+    if (!isfinite(change)) return;
+    m->sum += change;
+    ++m->pairs;
+}
+
+static double warped_result(const warped_mean *m) { return m->pairs ? m->sum / (double)m->pairs : NAN; }
 
 static double rmse(const float *ao, const float *ref, const float *depth, size_t px)
 {
@@ -82,7 +100,7 @@ static double rmse(const float *ao, const float *ref, const float *depth, size_t
             sum += e * e;
             ++count;
         }
-    return count ? sqrt(sum / (double)count) : 0.0;
+    return count ? sqrt(sum / (double)count) : NAN;
 }
 
 static double pass_ms(ob_renderer *r, const char *name)
@@ -107,33 +125,49 @@ static int run_variant(const cli_flicker_desc *d, const path_frame *frames, int 
     out->rmse_frames = malloc((size_t)count * sizeof(double));
     if (!out->worst_ao || !out->rmse_frames) return cli_fail(EXIT_RUNTIME, "out of memory");
     ob_renderer_reset_history(r);
-    double warped = 0.0;
+    warped_mean warped = {0};
+    int seen = 0, still_frame = -1;
     for (int t = 0; t < count; ++t) {
         ob_camera cam;
         int code = cli_common_path_camera(c, d->scene, &d->base, t, &cam);
         if (code != EXIT_OK) return code;
+        /* Every frame is rendered, empty or not: the history runs along the whole path. */
         if (ob_render_frame(r, &cam, s) != OB_OK) return cli_fail_from_library();
         ob_read_image(r, OB_IMAGE_AO_F32, cur, px * sizeof(float));
         ms[t] = pass_ms(r, "temporal");
-        double e = rmse(cur, frames[t].ref, frames[t].f.depth, px);
+        /* A frame that sees nothing has no error (NaN: null in results.json), and is in no mean,
+         * worst or last: a 0 there would count as a perfect frame. */
+        double e = frames[t].empty ? NAN : rmse(cur, frames[t].ref, frames[t].f.depth, px);
         out->rmse_frames[t] = e;
-        out->rmse_mean += e / (double)count;
-        if (t == 0 || e > out->rmse_worst) {
-            out->rmse_worst = e;
-            out->worst_frame = t;
-            memcpy(out->worst_ao, cur, px * sizeof(float));
+        if (!frames[t].empty) {
+            out->rmse_mean += e;
+            if (seen == 0 || e > out->rmse_worst) {
+                out->rmse_worst = e;
+                out->worst_frame = t;
+                memcpy(out->worst_ao, cur, px * sizeof(float));
+            }
+            out->rmse_last = e; /* the last frame that sees something */
+            if (still_frame < 0) still_frame = t;
+            ++seen;
         }
-        if (t == count - 1) out->rmse_last = e;
-        if (t > 0) warped += warped_change(&frames[t], &frames[t - 1], cur, prev);
+        if (t > 0) warped_add(&warped, warped_change(&frames[t], &frames[t - 1], cur, prev));
         memcpy(prev, cur, px * sizeof(float));
     }
-    out->warped = warped / (double)(count - 1);
+    out->frames_seen = seen;
+    out->rmse_mean = seen ? out->rmse_mean / (double)seen : NAN;
+    if (!seen) out->rmse_last = out->rmse_worst = NAN;
+    out->warped = warped_result(&warped);
     out->temporal_ms = cli_median(ms, count);
+    if (still_frame < 0) {
+        out->static_noise = NAN;
+        return EXIT_OK;
+    }
     /* Still: warm-up of a history length (the on variant's history fills), then the measured frames
-     * (Welford's running mean and sum of squares per pixel). */
+     * (Welford's running mean and sum of squares per pixel), at the first frame that sees
+     * something (the path's first unless --allow-empty let an empty one through). */
     ob_renderer_reset_history(r);
     ob_camera still;
-    int code = cli_common_path_camera(c, d->scene, &d->base, 0, &still);
+    int code = cli_common_path_camera(c, d->scene, &d->base, still_frame, &still);
     if (code != EXIT_OK) return code;
     const int warmup = s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
     memset(mean, 0, px * sizeof(double));
@@ -152,11 +186,11 @@ static int run_variant(const cli_flicker_desc *d, const path_frame *frames, int 
     double sum = 0.0;
     size_t geometry = 0;
     for (size_t i = 0; i < px; ++i)
-        if (frames[0].f.depth[i] > 0.0f) {
+        if (frames[still_frame].f.depth[i] > 0.0f) {
             sum += sqrt(m2[i] / (double)FLICKER_STILL_FRAMES);
             ++geometry;
         }
-    out->static_noise = geometry ? sum / (double)geometry : 0.0;
+    out->static_noise = geometry ? sum / (double)geometry : NAN;
     return EXIT_OK;
 }
 
@@ -172,6 +206,7 @@ int cli_flicker_run(const cli_flicker_desc *d, const cli_config *configs, int co
     float *cur = malloc(px * sizeof(float)), *prev = malloc(px * sizeof(float));
     double *mean = malloc(px * sizeof(double)), *m2 = malloc(px * sizeof(double)), *ms = malloc((size_t)n * sizeof(double));
     int code = EXIT_OK;
+    warped_mean ref_warped = {0};
     if (!frames || !cur || !prev || !mean || !m2 || !ms) code = cli_fail(EXIT_RUNTIME, "out of memory");
     /* The path's G-buffers and references, once for every combination. */
     for (int t = 0; t < n && code == EXIT_OK; ++t) {
@@ -182,6 +217,20 @@ int cli_flicker_run(const cli_flicker_desc *d, const cli_config *configs, int co
         if (c->path) snprintf(cam.name, sizeof cam.name, "%d/%d path %.32s", t, n, c->path);
         else snprintf(cam.name, sizeof cam.name, "%d/%d orbit %.6g %.16s", t, n, (double)c->orbit_deg, d->base.name);
         if ((code = cli_view_frame_make(d->renderer, &cam, w, h, &frames[t].f)) != EXIT_OK) break;
+        size_t covered = 0;
+        for (size_t i = 0; i < px; ++i) covered += frames[t].f.depth[i] > 0.0f;
+        frames[t].empty = covered == 0;
+        if (frames[t].empty && !c->allow_empty) {
+            /* A path comes from the scene's sidecar (input); an orbit from the options. */
+            code = c->path ? cli_fail(EXIT_INPUT, "--path %s: frame %d of %d sees nothing (it covers no pixel); check "
+                                      "the path's keys (or --allow-empty to leave such frames out of the means)",
+                                      c->path, t, n)
+                           : cli_fail(EXIT_USAGE, "--orbit %g: frame %d of %d sees nothing (it covers no pixel); check "
+                                      "the camera (or --allow-empty to leave such frames out of the means)",
+                                      (double)c->orbit_deg, t, n);
+            break;
+        }
+        if (frames[t].empty) ++ref->frames_empty;
         glm_lookat(frames[t].f.cam.eye, frames[t].f.cam.target, frames[t].f.cam.up, frames[t].view);
         frames[t].ref = malloc(px * sizeof(float));
         if (!frames[t].ref) {
@@ -193,11 +242,14 @@ int cli_flicker_run(const cli_flicker_desc *d, const cli_config *configs, int co
         cli_reference_info info;
         code = cli_reference_ao(d->scene, &frames[t].f, key, d->radius, d->spp, d->no_cache, c->verbose, frames[t].ref,
                                 &info);
-        if (code == EXIT_OK && t > 0) ref->warped += warped_change(&frames[t], &frames[t - 1], frames[t].ref, frames[t - 1].ref);
+        if (code == EXIT_OK && t > 0) warped_add(&ref_warped, warped_change(&frames[t], &frames[t - 1], frames[t].ref, frames[t - 1].ref));
     }
+    if (code == EXIT_OK && ref->frames_empty == n)
+        code = cli_fail(c->path ? EXIT_INPUT : EXIT_USAGE, "%s: no frame of %d sees anything: nothing to grade",
+                        c->path ? "--path" : "--orbit", n);
     if (code == EXIT_OK) {
         ref->frames = n;
-        ref->warped /= (double)(n - 1);
+        ref->warped = warped_result(&ref_warped);
     }
     for (int k = 0; k < count && code == EXIT_OK; ++k) {
         rows[k].config = &configs[k];
@@ -209,6 +261,7 @@ int cli_flicker_run(const cli_flicker_desc *d, const cli_config *configs, int co
         s.temporal_frames = 1;
         if (code == EXIT_OK) code = run_variant(d, frames, n, &s, &rows[k].off, cur, prev, mean, m2, ms);
         rows[k].off.temporal_ms = 0.0;
+        /* No pair of frames that share pixels: NaN (null in results.json) carries through. */
         rows[k].on.warped_excess = rows[k].on.warped - ref->warped;
         rows[k].off.warped_excess = rows[k].off.warped - ref->warped;
         if (code == EXIT_OK) {

@@ -24,9 +24,12 @@ typedef struct cli_flicker_variant {
     double static_noise;    /* mean per-pixel std-dev over the still frames */
     double warped;          /* mean |AO_t - reproject(AO_t-1)|, the method's own, averaged over the path */
     double warped_excess;   /* warped minus the reference's */
-    double rmse_last, rmse_worst, rmse_mean;
+    double rmse_last, rmse_worst, rmse_mean; /* over the frames that see something; last = the
+                                              * last of those; NaN when none does */
     int worst_frame;
-    double *rmse_frames;    /* every path frame's RMSE (path_frames of them), malloc'd: free it */
+    double *rmse_frames;    /* every path frame's RMSE (path_frames of them; NaN for a frame that sees
+                             * nothing), malloc'd: free it */
+    int frames_seen;        /* frames that see something: the ones in the means, worst and last */
     double temporal_ms;     /* median GPU ms of the accumulation pass along the path (0 off) */
     float *worst_ao;        /* the worst frame's AO (W x H, bottom row first), malloc'd: free it */
 } cli_flicker_variant;
@@ -48,8 +51,10 @@ typedef struct cli_flicker_desc {
 } cli_flicker_desc;
 
 typedef struct cli_flicker_reference {
-    double warped;              /* the reference's own mean |AO_t - reproject(AO_t-1)| along the path */
+    double warped;              /* the reference's own mean |AO_t - reproject(AO_t-1)| along the path
+                                 * (over the pairs of frames that share pixels; NaN: none do) */
     int frames;
+    int frames_empty;           /* frames that see nothing (only with --allow-empty) */
 } cli_flicker_reference;
 
 /* Every row of configs (count of them) off and on into rows (count). 0 or an exit code. */

@@ -48,7 +48,10 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "sheet")) return cmd_sheet(argc - 1, argv + 1);
     if (!strcmp(cmd, "compare")) return cmd_compare(argc - 1, argv + 1);
     if (!strcmp(cmd, "bench")) return cmd_bench(argc - 1, argv + 1);
-    if (!strcmp(cmd, "view")) return cmd_view(argc - 1, argv + 1);
+    if (!strcmp(cmd, "view")) {
+        cli_guard_shader_cache(); /* the viewer makes its own (GLFW) context */
+        return cmd_view(argc - 1, argv + 1);
+    }
     if (!strcmp(cmd, "tune")) return cmd_tune(argc - 1, argv + 1);
     fprintf(stderr, "obscura: unknown command '%s' (commands: render, list, sheet, compare, bench, view, tune; see obscura --help)\n", cmd);
     return EXIT_USAGE;

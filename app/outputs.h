@@ -1,20 +1,24 @@
-/* A command's output files, written all or nothing (issue 19).
+/* A command's output files, written all or nothing (issue 19, issue 44).
  *
  *   cli_outputs set = {0};
  *   int out = -1;
  *   code = cli_outputs_add(&set, "--out", path, CLI_FMT_IMAGE, &out);  while parsing: before any work
  *   ...render...
- *   code = cli_outputs_write_rgb8(&set, out, w, h, 4, rgba);          into PATH.tmp-XXXXXX beside PATH
+ *   code = cli_outputs_write_rgb8(&set, out, w, h, 4, rgba);          into PATH.tmp-XXXXXX/ beside PATH
  *   code = code == EXIT_OK ? cli_outputs_commit(&set) : (cli_outputs_abort(&set), code);
  *
  * Every output is checked when it is added (a name, an extension the format follows, not an
  * existing directory, FIFO or device, a directory that really takes a new file), so a bad one
- * fails before anything is rendered. Each is written into a temporary file in its own directory
- * (a rename never crosses a file system) and only cli_outputs_commit renames them, after every
- * one of them was written: a failure leaves every existing output as it was and no temporary
- * file behind. A directory output (compare's report) is built in PATH.tmp-XXXXXX and replaces
- * PATH as a whole at the commit. SIGINT, SIGTERM and SIGHUP (unless ignored) remove the temporary
- * files and directories of the sets in use before the process dies of the signal. */
+ * fails before anything is rendered. Each is written into a directory of its own beside its
+ * target, PATH.tmp-XXXXXX (a rename never crosses a file system), which holds everything
+ * temporary of that output. cli_outputs_commit is one transaction over the whole set: the
+ * existing files are hard-linked into those directories, the new ones renamed over them, and if
+ * any step fails every step is undone, so that either every output is replaced or none is. A
+ * directory output (compare's report) is built in PATH.tmp-XXXXXX and exchanged with PATH as a
+ * whole; it replaces an existing directory only when that one is empty or holds nothing but what
+ * its manifest (.obscura-report, written at the commit) lists. SIGINT, SIGTERM and SIGHUP (unless
+ * ignored) remove the temporary directories of the sets in use before the process dies of the
+ * signal; one that comes during a commit waits until the commit has undone its steps. */
 #ifndef OB_CLI_OUTPUTS_H
 #define OB_CLI_OUTPUTS_H
 
@@ -35,8 +39,9 @@ enum {
 typedef struct cli_output {
     char *option;   /* "--out": names the output in every message */
     char *path;     /* where it goes (a directory without its trailing '/') */
-    char *tmp;      /* the temporary file or directory, once written; NULL before */
+    char *tmp;      /* its temporary directory (PATH.tmp-XXXXXX), once made; NULL before */
     unsigned format; /* one CLI_FMT_* */
+    bool ready;     /* written whole (a directory output: made), so the commit puts it in place */
 } cli_output;
 
 typedef struct cli_outputs {
@@ -47,7 +52,8 @@ typedef struct cli_outputs {
 /* Checks path as option's output and adds it (*index, for the writers). 0, or the exit code of
  * the one line printed: EXIT_USAGE for an empty name, an extension of none of the formats (the
  * message lists them) or a path already added; EXIT_OUTPUT for a path that exists and is not a
- * regular file (a directory for CLI_FMT_DIR), or whose directory cannot take a new file. */
+ * regular file (a directory for CLI_FMT_DIR: one that is empty or holds only what its manifest
+ * lists), or whose directory cannot take a new file. */
 int cli_outputs_add(cli_outputs *s, const char *option, const char *path, unsigned formats, int *index);
 /* The format the extension gives (one CLI_FMT_*), or 0. */
 unsigned cli_format_of(const char *path);
@@ -64,9 +70,10 @@ int cli_outputs_write_text(cli_outputs *s, int index, const char *text);
  * the one line printed. */
 const char *cli_outputs_dir(cli_outputs *s, int index);
 
-/* Every written output renamed to its place; the set is emptied. 0 or EXIT_OUTPUT. */
+/* Every written output put in its place, or (a failure, or SIGINT/SIGTERM/SIGHUP meanwhile, which
+ * then ends the process) none; the set is emptied. 0 or EXIT_OUTPUT. */
 int cli_outputs_commit(cli_outputs *s);
-/* Every temporary file and directory removed, nothing renamed; the set is emptied. */
+/* Every temporary directory removed, nothing renamed; the set is emptied. */
 void cli_outputs_abort(cli_outputs *s);
 /* Commit when code is EXIT_OK, else abort; the resulting exit code. */
 int cli_outputs_finish(cli_outputs *s, int code);

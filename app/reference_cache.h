@@ -1,7 +1,10 @@
 /* The ray-traced reference AO_R of a view, shared by compare and tune: the G-buffer it is traced
  * from (a `none` frame), the camera matrices the renderer uses, and the cache. The reference is
  * cached by (view key, camera, radius, spp, size) under $XDG_CACHE_HOME/obscura (or
- * ~/.cache/obscura): reports and tuning runs are re-run far more often than the geometry changes. */
+ * ~/.cache/obscura): reports and tuning runs are re-run far more often than the geometry changes.
+ * An entry records what it was traced from and a checksum of its values, and is checked before it
+ * is used (reference_cache.c has the format): a corrupt, truncated, foreign or non-regular entry is
+ * one warning line, removed and traced again. */
 #ifndef OB_REFERENCE_CACHE_H
 #define OB_REFERENCE_CACHE_H
 
@@ -25,15 +28,19 @@ typedef struct cli_view_frame {
 int cli_view_frame_make(ob_renderer *r, const ob_camera *cam, int width, int height, cli_view_frame *f);
 void cli_view_frame_free(cli_view_frame *f);
 
-/* The cache key's text for a view: the scene as the command line named it, the camera, and
- * --sidecar/--up when given (they change the geometry the reference sees). */
+/* The cache key's text for a view: the scene as the command line named it, the camera,
+ * --sidecar/--up when given (they change the geometry the reference sees), and the size and
+ * content hash of the files the scene is read from (none for a built-in scene). */
 void cli_reference_key(const cli_common *c, const char *scene_name, const char *camera_name, char *key, size_t n);
 
 /* The cache alone, for a host that traces the reference itself (the viewer, on a worker thread):
  * load fills ref (width x height) and the mean standard error over the geometry pixels and returns
- * true when the cache has this (view key, camera, radius, spp, size, scene geometry); store writes ref and its
- * standard error se (a failure to cache is a note with verbose, not an error). Both are safe on any
- * thread: no GL, no global state but the library's thread-local error. */
+ * true when the cache has a valid entry for this (view key, camera, radius, spp, size, scene
+ * geometry); an entry that fails the check is a warning on stderr ("obscura: warning: reference
+ * cache entry PATH: WHY; recomputing") and is removed. store writes ref and its standard error se
+ * through a uniquely named temporary file renamed over the entry; a cache that cannot be written
+ * (read-only, full) is one warning per process (one per failure with verbose), not an error. Both
+ * are safe on any thread: no GL. */
 bool cli_reference_cache_load(const ob_scene *scene, const cli_view_frame *f, const char *key, float radius, int spp,
                               float *ref, double *stderr_mean);
 void cli_reference_cache_store(const ob_scene *scene, const cli_view_frame *f, const char *key, float radius,
@@ -47,7 +54,7 @@ typedef struct cli_reference_info {
 
 /* AO_R at every pixel of f into ref (width x height): from the cache unless no_cache, else ray
  * traced with spp rays at radius R (a progress bar on stderr) and cached (a failure to cache is
- * a note with verbose, not an error). 0 or an exit code. */
+ * a warning, not an error). 0 or an exit code. */
 int cli_reference_ao(const ob_scene *scene, const cli_view_frame *f, const char *key, float radius, int spp,
                      bool no_cache, bool verbose, float *ref, cli_reference_info *info);
 

@@ -12,42 +12,36 @@
 
 #include "cli.h"
 
-/* The whole file, or NULL: *why names the reason (errno's text, or "larger than 1 MiB"). */
-static char *read_text(const char *path, size_t limit, const char **why)
-{
-    *why = "larger than 1 MiB";
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        *why = strerror(errno);
-        return NULL;
-    }
-    char *buf = malloc(limit + 1);
-    size_t n = buf ? fread(buf, 1, limit + 1, f) : 0;
-    fclose(f);
-    if (!buf || n > limit) {
-        free(buf);
-        return NULL;
-    }
-    buf[n] = '\0';
-    return buf;
-}
-
 /* One file into *t: the method, and each parameter as an assignment checked on fresh settings. */
 static int load_file(const char *path, cli_tuned *t)
 {
     memset(t, 0, sizeof *t);
+    if (strlen(path) >= sizeof t->path)
+        return cli_fail(EXIT_USAGE, "--settings %s: a path of %zu bytes; expected at most %zu", path, strlen(path),
+                        sizeof t->path - 1);
     snprintf(t->path, sizeof t->path, "%s", path);
-    /* A settings file is a few hundred bytes; 1 MiB is far beyond any real one. */
-    const char *why = NULL;
-    char *text = read_text(path, 1u << 20, &why);
-    if (!text) return cli_fail(EXIT_USAGE, "--settings %s: cannot read it (%s)", path, why);
-    cJSON *root = cJSON_Parse(text);
+    /* A settings file is a few hundred bytes; 1 MiB is far beyond any real one. A FIFO or a
+     * device in its place is refused before a byte is read (it would block or never end). */
+    char why[200] = "";
+    char *text = cli_read_regular(path, 1u << 20, NULL, why, sizeof why);
+    if (!text) return cli_fail(EXIT_USAGE, "--settings %s: cannot read it: %s", path, why);
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
+    int line = 1, col = 1; /* where the parse stopped, for the message */
+    for (const char *ch = text; !root && end && ch < end && *ch; ++ch) {
+        col = *ch == '\n' ? 1 : col + 1;
+        line += *ch == '\n';
+    }
     free(text);
     int code = EXIT_OK;
     const cJSON *method = root ? cJSON_GetObjectItemCaseSensitive(root, "method") : NULL;
     const cJSON *params = root ? cJSON_GetObjectItemCaseSensitive(root, "params") : NULL;
-    if (!root || !cJSON_IsObject(root)) {
-        code = cli_fail(EXIT_USAGE, "--settings %s: not a JSON object", path);
+    if (!root) {
+        code = cli_fail(EXIT_USAGE, "--settings %s: not valid JSON (error near line %d, column %d); expected an object "
+                        "{\"method\": ..., \"params\": {...}}", path, line, col);
+    } else if (!cJSON_IsObject(root)) {
+        code = cli_fail(EXIT_USAGE, "--settings %s: expected a JSON object {\"method\": ..., \"params\": {...}}, got %s", path,
+                        cJSON_IsArray(root) ? "an array" : cJSON_IsString(root) ? "a string" : cJSON_IsNumber(root) ? "a number" : "a literal");
     } else if (!cJSON_IsString(method) || (t->method = ob_find_method(method->valuestring)) < 0) {
         code = cli_fail(EXIT_USAGE, "--settings %s: \"method\" must name a method (see obscura list), got %s", path,
                         cJSON_IsString(method) ? method->valuestring : "no string");
@@ -64,16 +58,30 @@ static int load_file(const char *path, cli_tuned *t)
             break;
         }
         char value[64];
-        if (cJSON_IsNumber(p)) snprintf(value, sizeof value, "%.9g", p->valuedouble);
-        else if (cJSON_IsString(p)) snprintf(value, sizeof value, "%s", p->valuestring);
-        else if (cJSON_IsBool(p)) snprintf(value, sizeof value, "%s", cJSON_IsTrue(p) ? "on" : "off");
+        int vlen = 0;
+        if (cJSON_IsNumber(p)) vlen = snprintf(value, sizeof value, "%.9g", p->valuedouble);
+        else if (cJSON_IsString(p)) vlen = snprintf(value, sizeof value, "%s", p->valuestring);
+        else if (cJSON_IsBool(p)) vlen = snprintf(value, sizeof value, "%s", cJSON_IsTrue(p) ? "on" : "off");
         else {
             code = cli_fail(EXIT_USAGE, "--settings %s: %s.%s must be a number, an option name or on/off", path,
                             method->valuestring, p->string);
             break;
         }
+        /* Cut to fit, a value or a name could turn into another one: refused whole instead. */
+        if (vlen < 0 || (size_t)vlen >= sizeof value) {
+            code = cli_fail(EXIT_USAGE, "--settings %s: %s.%s: a value of %d characters; expected a number, an option "
+                            "name or on/off (at most %zu characters)", path, method->valuestring, p->string, vlen,
+                            sizeof value - 1);
+            break;
+        }
         char *a = t->assignments[t->count];
-        snprintf(a, sizeof t->assignments[0], "%s.%s=%s", method->valuestring, p->string, value);
+        int alen = snprintf(a, sizeof t->assignments[0], "%s.%s=%s", method->valuestring, p->string, value);
+        if (alen < 0 || (size_t)alen >= sizeof t->assignments[0]) {
+            code = cli_fail(EXIT_USAGE, "--settings %s: parameter name '%.40s...' of %zu characters: %s has no "
+                            "parameter that long (see obscura list)", path, p->string, strlen(p->string),
+                            method->valuestring);
+            break;
+        }
         if (ob_settings_set(&check, a) != OB_OK) {
             const char *msg = NULL;
             ob_get_error(&msg);
@@ -92,7 +100,8 @@ int cli_tuned_load(const char *path, cli_tuned *out, int max, int *count)
 {
     *count = 0;
     struct stat st;
-    if (stat(path, &st) != 0) return cli_fail(EXIT_USAGE, "--settings %s: %s", path, strerror(errno));
+    if (stat(path, &st) != 0)
+        return cli_fail(EXIT_USAGE, "--settings %s: cannot read it: %s", path, errno == ENOENT ? "no such file" : strerror(errno));
     if (!S_ISDIR(st.st_mode)) {
         int code = load_file(path, &out[0]);
         if (code == EXIT_OK) *count = 1;
@@ -116,7 +125,10 @@ int cli_tuned_load(const char *path, cli_tuned *out, int max, int *count)
     if (code == EXIT_OK && n == 0) code = cli_fail(EXIT_USAGE, "--settings %s: no *.json settings in the directory", path);
     for (int i = 0; i < n && code == EXIT_OK; ++i) {
         char file[1024];
-        snprintf(file, sizeof file, "%s/%s", path, names[i]);
+        if (snprintf(file, sizeof file, "%s/%s", path, names[i]) >= (int)sizeof file) {
+            code = cli_fail(EXIT_USAGE, "--settings %s: %s: a path longer than %zu bytes", path, names[i], sizeof file - 1);
+            break;
+        }
         code = load_file(file, &out[i]);
         for (int j = 0; j < i && code == EXIT_OK; ++j)
             if (out[j].method == out[i].method)

@@ -159,6 +159,10 @@ static int parse_param(const char *method, const char *text, tune_param *p)
     if (!dot || (eq && eq < dot) || strlen(method) != mlen || strncmp(text, method, mlen) != 0)
         return cli_fail(EXIT_USAGE, "--params %s: expected %s.PARAM or %s.PARAM=LO:HI", text, method, method);
     size_t nlen = eq ? (size_t)(eq - dot - 1) : strlen(dot + 1);
+    /* Cut to fit, a long name could become a real one: refused whole instead. */
+    if (nlen >= sizeof p->name)
+        return cli_fail(EXIT_USAGE, "--params %.80s...: a parameter name of %zu characters; %s has none longer than %zu "
+                        "(see obscura list)", text, nlen, method, sizeof p->name - 1);
     snprintf(p->name, sizeof p->name, "%.*s", (int)nlen, dot + 1);
     const ob_method_info *m = ob_method_at(ob_find_method(method));
     float min = 0.0f, max = 0.0f;
@@ -187,6 +191,9 @@ static int parse_param(const char *method, const char *text, tune_param *p)
             return cli_fail(EXIT_USAGE, "--params %s: %s.%s is an enum: every option is tried, no range", text, method,
                             p->name);
         char range[64];
+        if (strlen(eq + 1) >= sizeof range)
+            return cli_fail(EXIT_USAGE, "--params %.80s...: a range of %zu characters; expected LO:HI (at most %zu "
+                            "characters)", text, strlen(eq + 1), sizeof range - 1);
         snprintf(range, sizeof range, "%s", eq + 1);
         char *colon = strchr(range, ':');
         if (!colon) return cli_fail(EXIT_USAGE, "--params %s: expected LO:HI after '='", text);
@@ -291,6 +298,9 @@ static int mean_mse(tune_run *t, tune_view *views, int count, const tune_param *
 static int load_view(const tune_opts *o, ob_context *ctx, const char *spec, tune_view *v, size_t *max_px)
 {
     const cli_common *c = &o->common;
+    if (strlen(spec) >= sizeof v->name)
+        return cli_fail(EXIT_USAGE, "%.80s...: a view of %zu bytes; expected SCENE:CAMERA of at most %zu", spec,
+                        strlen(spec), sizeof v->name - 1);
     snprintf(v->spec, sizeof v->spec, "%s", spec);
     snprintf(v->name, sizeof v->name, "%s", spec);
     const char *camera = NULL;

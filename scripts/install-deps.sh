@@ -6,6 +6,10 @@ set -euo pipefail
 packages=(
     # build
     build-essential cmake pkg-config
+    # make test-fuzz and make fuzz: clang with libFuzzer (tests/fuzz). The fuzzer's runtime,
+    # libclang_rt.fuzzer, is in libclang-rt-14-dev, which clang only recommends (and this script
+    # installs without recommends)
+    clang libclang-rt-14-dev
     # GL/EGL: libepoxy loads both; Mesa's EGL gives the device platform and llvmpipe
     libepoxy-dev libegl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libgl-dev
     # libraries

@@ -47,9 +47,9 @@ expect 4 "^obscura: --out nodir/o.png: cannot write a new file in its directory"
 expect 2 "^obscura: --out x.gif: unsupported extension" "x.gif" -- sheet --scene corner --size 32x24 --methods ssao --out x.gif
 expect 2 "^obscura: --json: expected a file name, got ''$" "b.csv" -- bench --scene corner --size 32x24 --json '' --csv b.csv
 expect 2 "^obscura: --report: expected a directory" "" -- compare --scene corner --size 32x24 --report ''
-# A name that fits the directory once but not with the writer's own temporary suffix: refused
+# A name that fits the directory but not with the suffix of its temporary directory: refused
 # before the render, not after it.
-long=$(printf 'n%.0s' $(seq 240)).png
+long=$(printf 'n%.0s' $(seq 250)).png
 expect 4 "^obscura: --out n+\.png: cannot write a new file in its directory: File name too long" "$long" -- "${R[@]}" --out "$long"
 
 # Outputs that exist and are not regular files are refused and left as they were.
@@ -68,7 +68,8 @@ expect 4 "^obscura: --csv fifo.png: exists and is a FIFO" "b.json" -- bench --sc
 expect 4 "^obscura: --out dir.png: exists and is a directory" "" -- tune --method hbao --params hbao.noise --train corner:diagonal --out dir.png
 expect 4 "^obscura: --report fifo.png: exists and is a FIFO, not a directory" "" -- compare --scene corner --size 32x24 --report fifo.png
 mkdir notes && echo mine >notes/notes.txt
-expect 4 "^obscura: --report notes: exists and is not an earlier report" "" -- compare --scene corner --size 32x24 --report notes
+expect 4 "^obscura: --report notes: holds notes.txt, which obscura did not write: refusing to replace it; give a new directory$" \
+    "" -- compare --scene corner --size 32x24 --report notes
 [ "$(cat notes/notes.txt)" = mine ] && ok || bad "compare touched a directory that is not a report"
 rm -rf fifo.png dir.png null.png notes
 
@@ -169,6 +170,49 @@ expect 3 "^obscura: nothing visible from this camera \(m:away\)" "" -- "${C[@]}"
 "$OBSCURA" "${C[@]}" --scene sphere-on-plane --report rep/ >stdout 2>stderr && grep -q "^report: rep/index.html" stdout &&
     grep -q sphere rep/results.json && ! grep -q '"corner"' rep/results.json && ok || bad "a good compare did not replace the report: $(cat stderr)"
 no_tmp && ok || bad "compare left $(find . -name '*.tmp-*')"
+
+# ---- --report replaces only what obscura wrote (issue 44, class 5) ------------------------------------------
+# A report lists what it holds in .obscura-report; a directory is replaced only when it is empty
+# or holds nothing that list does not name. Whatever is refused is left exactly as it was.
+python3 - rep <<'PY' && ok || bad "rep/.obscura-report does not list exactly what the report holds"
+import json, os, sys
+root = sys.argv[1]
+listed = set(json.load(open(os.path.join(root, ".obscura-report")))["written"])
+found = set()
+for d, dirs, files in os.walk(root):
+    rel = os.path.relpath(d, root)
+    found |= {os.path.join(rel, x).removeprefix("./") + "/" for x in dirs}
+    found |= {os.path.join(rel, x).removeprefix("./") for x in files}
+found.discard(".obscura-report")
+assert listed == found, (sorted(listed ^ found))
+PY
+tree() { (cd "$1" && find . | LC_ALL=C sort && find . -type f -exec md5sum {} + | LC_ALL=C sort -k2); }
+# A folder with an index.html of its own, notes and images: the report of an earlier obscura, or
+# not a report at all; either way not obscura's to delete.
+mkdir -p mine/img && echo '<html>mine</html>' >mine/index.html && echo notes >mine/notes.txt && echo px >mine/img/a.png
+before=$(tree mine)
+expect 4 "^obscura: --report mine: a report of an earlier obscura, which did not list the files it wrote \(no \.obscura-report\)" \
+    "" -- "${C[@]}" --scene corner --report mine
+[ "$(tree mine)" = "$before" ] && ok || bad "compare changed a directory with an index.html of its own"
+# A report obscura wrote, then a file and a directory of the user's added: refused, kept.
+cp -a rep rep2 && echo mine >rep2/notes.txt
+before=$(tree rep2)
+expect 4 "^obscura: --report rep2: holds notes.txt, which obscura did not write: refusing to replace it; give a new directory$" \
+    "" -- "${C[@]}" --scene corner --report rep2
+[ "$(tree rep2)" = "$before" ] && ok || bad "compare changed a report that holds a file of the user's"
+rm -f rep2/notes.txt && mkdir -p rep2/sphere-on-plane_default/mine
+expect 4 "^obscura: --report rep2: holds sphere-on-plane_default/mine/, which obscura did not write" "" -- \
+    "${C[@]}" --scene corner --report rep2
+[ -d rep2/sphere-on-plane_default/mine ] && ok || bad "compare removed a directory of the user's in a report"
+# A manifest that is not one obscura writes is no licence either.
+rm -rf rep2/sphere-on-plane_default/mine && echo '{"written": ["index.html"]}' >rep2/.obscura-report
+expect 4 "^obscura: --report rep2: its \.obscura-report is not a list obscura wrote" "" -- "${C[@]}" --scene corner --report rep2
+# A report obscura wrote, with nothing added (a file of it removed is fine): replaced.
+rm -rf rep2 && cp -a rep rep2 && rm rep2/results.json
+"$OBSCURA" "${C[@]}" --scene corner --report rep2 >/dev/null 2>stderr && grep -q '"corner"' rep2/results.json &&
+    [ ! -e rep2/sphere-on-plane_default ] && ok || bad "compare did not replace a report it wrote: $(cat stderr)"
+rm -rf mine rep2
+no_tmp && ok || bad "the --report cases left $(find . -name '*.tmp-*')"
 
 # An interrupted compare (SIGTERM while it traces the reference, 600 M rays: far longer than the
 # poll) removes its temporary report and dies of the signal.

@@ -125,11 +125,23 @@ typedef struct ob_scene_desc {
      * not be an absolute path, else OB_ERR_MODEL naming the reference; true lifts that. Device
      * files, FIFOs and directories are refused either way. */
     bool allow_external_files;
-    /* The most memory, in bytes, an import may take, estimated from the counts the file declares
-     * before Assimp allocates and again from the raw scene before post-processing; a model over
-     * it is OB_ERR_MODEL. 0 = 4 GiB or half the physical memory, whichever is less. */
+    /* The most memory, in bytes, the run may take (ob_default_max_memory() when 0). The import is
+     * estimated from the counts the file declares before Assimp allocates and again from the raw
+     * scene before post-processing; then, before any texture is decoded, the geometry, every
+     * texture the materials name (sized from its image header: decoded RGBA8 and its mipmapped
+     * copy on the GPU, each file or embedded image once however many materials name it, and the
+     * largest one's decoding) and reserved_memory together. A model over it is OB_ERR_MODEL, the
+     * message naming the largest items. */
     uint64_t max_memory;
+    /* What the caller's run takes besides the scene (render targets: ob_estimate_renderer_memory,
+     * its own image buffers) and a few words on it for that message, e.g. "render targets 21 MiB
+     * (--size 640x480)" (NULL: "the rest of the run"). 0 = nothing besides the scene. */
+    uint64_t reserved_memory;
+    const char *reserved_what;
 } ob_scene_desc;
+
+/* ob_scene_desc.max_memory's default: 4 GiB or half the physical memory, whichever is less. */
+uint64_t ob_default_max_memory(void);
 
 typedef struct ob_camera {
     float eye[3];
@@ -544,6 +556,16 @@ typedef struct ob_renderer ob_renderer;
 
 /* Errors: OB_ERR_BAD_SIZE (zero, negative or above GL_MAX_TEXTURE_SIZE), OB_ERR_SHADER. */
 ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc);
+/* About the bytes the targets of a renderer of width x height take once it has rendered with each
+ * of settings[0..count-1] (targets are made on first use and kept): the G-buffer and full-size
+ * targets enlarged by the guard band, each AO scale's chain with the directional, bent-normal and
+ * temporal targets its methods use, the second depth layer, the extra view, the depth MIP chain,
+ * the bloom chain and the shadow maps of the settings' lights (with none of their own: the key
+ * light, one map). A software rasteriser keeps all of it in host memory. Needs no context: for a
+ * check before anything is allocated. The scene's meshes and textures are not included (the
+ * import counts them: ob_scene_desc). 0 with OB_ERR_INVALID_ARGUMENT for a size below 1x1, NULL
+ * settings, count < 1 or an unknown method. */
+uint64_t ob_estimate_renderer_memory(int width, int height, const ob_settings *settings, int count);
 void ob_destroy_renderer(ob_renderer *r);
 /* A new size for every size-dependent target (a window was resized); the uploaded scene, the
  * environment map, the shadow maps and the compiled programs are kept. The same size is a no-op.

@@ -12,6 +12,7 @@
 #include <stb/stb_image.h>
 
 #include "core/error.h"
+#include "io/file.h"
 #include "passes/passes.h"
 
 #define OB_PI 3.14159265358979323846
@@ -80,7 +81,11 @@ static int env_eof(void *user)
 static ob_error env_check_header(FILE *f, const char *path, long long size, int max_texture)
 {
     char line[512] = "";
-    if (!fgets(line, sizeof line, f) || strncmp(line, "#?", 2) != 0) return OB_OK; /* not .hdr: stb says */
+    /* Radiance alone, as documented (--env FILE.hdr): stb would also take a PNG, a JPEG or a PPM
+     * as 8-bit sRGB and call it radiance. */
+    if (!fgets(line, sizeof line, f) || strncmp(line, "#?", 2) != 0)
+        return ob_set_error(OB_ERR_IO, "cannot read environment map %s: not a Radiance .hdr image (its first line is "
+                            "not '#?RADIANCE' or '#?RGBE')", path);
     for (int k = 0; k < 256; ++k) {
         if (!fgets(line, sizeof line, f)) return ob_set_error(OB_ERR_IO, "environment map %s: Radiance header never ends (truncated)", path);
         if (line[0] == '\n') break;
@@ -109,11 +114,14 @@ static ob_error env_check_header(FILE *f, const char *path, long long size, int 
 ob_error ob_environment_load(ob_environment *e, const char *path)
 {
     if (!e || !path) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_environment_load: NULL argument");
+    /* Checked on the open descriptor: a FIFO in the map's place fails at once (file.h). */
+    FILE *f = ob_fopen_regular(path, "environment map");
+    if (!f) return OB_ERR_IO;
     struct stat st = {0};
-    if (stat(path, &st) != 0) return ob_set_error(OB_ERR_IO, "cannot read environment map %s: %s", path, strerror(errno));
-    if (!S_ISREG(st.st_mode)) return ob_set_error(OB_ERR_IO, "cannot read environment map %s: not a regular file", path);
-    FILE *f = fopen(path, "rb");
-    if (!f) return ob_set_error(OB_ERR_IO, "cannot read environment map %s: %s", path, strerror(errno));
+    if (fstat(fileno(f), &st) != 0) {
+        fclose(f);
+        return ob_set_error(OB_ERR_IO, "cannot read environment map %s: %s", path, strerror(errno));
+    }
     GLint max_texture = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
     if (max_texture <= 0) max_texture = 16384; /* no answer: GL 4.5's minimum is 16384 */
@@ -127,7 +135,9 @@ ob_error ob_environment_load(ob_environment *e, const char *path)
     const stbi_io_callbacks io = {.read = env_read, .skip = env_skip, .eof = env_eof};
     float *rgb = stbi_loadf_from_callbacks(&io, &reader, &w, &h, &n, 3);
     fclose(f);
-    if (!rgb) return ob_set_error(OB_ERR_IO, "cannot read environment map %s: %s", path, stbi_failure_reason());
+    if (!rgb)
+        return ob_set_error(OB_ERR_IO, "cannot read environment map %s: %s; expected a Radiance .hdr image",
+                            path, stbi_failure_reason());
     if (reader.past_end) {
         stbi_image_free(rgb);
         return ob_set_error(OB_ERR_IO, "environment map %s is truncated: its %dx%d pixels end before the file does", path, w, h);

@@ -82,7 +82,13 @@ static void release_scene(ob_gbuffer *g)
         glDeleteVertexArrays(1, &g->meshes[i].vao);
         glDeleteBuffers(4, g->meshes[i].buffers);
     }
-    if (g->textures) glDeleteTextures(g->material_count, g->textures);
+    if (g->textures) {
+        /* Materials that share an image share its texture: delete each name once. */
+        for (int i = 0; i < g->material_count; ++i)
+            for (int j = 0; j < i && g->textures[i]; ++j)
+                if (g->textures[j] == g->textures[i]) g->textures[i] = 0;
+        glDeleteTextures(g->material_count, g->textures);
+    }
     free(g->meshes);
     free(g->textures);
     free(g->diffuse);
@@ -94,6 +100,19 @@ static void release_scene(ob_gbuffer *g)
 
 ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene)
 {
+    /* Before anything is given up: a texture the GL cannot hold would be incomplete, and sampling
+     * an incomplete texture gives black, which would draw the model black without a word. */
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    for (int i = 0; i < scene->material_count; ++i) {
+        const ob_material *m = &scene->materials[i];
+        if (m->texture && (m->tex_width > max_size || m->tex_height > max_size))
+            return ob_set_error(OB_ERR_MODEL,
+                                "texture '%s' (material '%s' of scene '%s') is %dx%d, larger than GL_MAX_TEXTURE_SIZE "
+                                "%d of %s: scale the image down to fit",
+                                m->texture_name, m->name, scene->name, m->tex_width, m->tex_height, (int)max_size,
+                                (const char *)glGetString(GL_RENDERER));
+    }
     release_scene(g);
     g->meshes = calloc((size_t)scene->mesh_count + 1, sizeof *g->meshes);
     g->textures = calloc((size_t)scene->material_count + 1, sizeof *g->textures);
@@ -108,6 +127,11 @@ ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene)
         const ob_material *m = &scene->materials[i];
         memcpy(g->diffuse[i], m->diffuse, sizeof g->diffuse[i]);
         if (!m->texture) continue;
+        if (m->texture_shared) {
+            for (int j = 0; j < i && !g->textures[i]; ++j)
+                if (scene->materials[j].texture == m->texture) g->textures[i] = g->textures[j];
+            if (g->textures[i]) continue;
+        }
         GLuint tex = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &tex);
         int levels = 1;

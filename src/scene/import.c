@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include <assimp/cfileio.h>
 #include <assimp/cimport.h>
@@ -49,10 +50,16 @@ typedef struct importer {
     const char *path;
     ob_model_fs *fs;    /* every external file goes through it (model_io.c) */
     uint64_t max_memory;
+    bool max_memory_default; /* the caller gave none: the message says so */
     char dir[OB_PATH_MAX];
     const struct aiScene *ai;
     ob_scene *s;
+    uint64_t reserved;  /* what the caller's run takes besides the scene (ob_scene_desc) */
+    const char *reserved_what;
     int *mat_map;       /* assimp material index -> ob material index, -1 = not yet made */
+    int *mat_source;    /* assimp material index -> im->sources index, -1 = none, -2 = not planned */
+    struct tex_source *sources; /* at most one per assimp material */
+    int source_count;
     mat_slot *slots;    /* by ob material index (at most ai->mNumMaterials of them) */
     int pass;           /* 1 = count, 2 = fill */
 } importer;
@@ -130,6 +137,34 @@ static void copy_name(char *dst, size_t n, const char *src)
 
 /* ---- materials and textures ------------------------------------------------------------------ */
 
+/* One image the materials name. Every one is found and sized from its header before any is
+ * decoded, so that the whole of them can be held against --max-memory (plan_textures), and each is
+ * decoded once however many materials name it (a PNG of a few hundred kB can decode to 1 GiB:
+ * four materials naming it were four decodes). */
+typedef struct tex_source {
+    int embedded;          /* index into ai->mTextures, or -1: a file */
+    char *path;            /* the file as opened through the confinement (malloc'd) */
+    char reference[96];    /* as the model names it: for messages and ob_material.texture_name */
+    dev_t dev;             /* the file's identity: two spellings of one file are one source */
+    ino_t ino;
+    int width, height;     /* from the header */
+    bool wide;             /* 16 bits per channel: the decoder holds more beside its result */
+    int materials;         /* how many materials name it */
+    bool tried;            /* decoded (or failed to) already */
+    unsigned char *pixels; /* RGBA8, owned by the material `owner` once one takes it */
+    int owner;             /* the ob material that owns pixels, -1 before */
+} tex_source;
+
+/* Bytes a source takes for the run: the decoded RGBA8 (kept by the scene), its GL_SRGB8_ALPHA8
+ * copy with the mip chain (gbuffer.c; a software rasteriser keeps it in host memory too), and the
+ * decoder's working memory beside its result while it runs (stb_image: the inflated rows and,
+ * for 16-bit images, the 16-bit image before it is narrowed). */
+static uint64_t source_bytes(const tex_source *t) { return (uint64_t)t->width * (uint64_t)t->height * 4u * 7u / 3u; }
+static uint64_t source_work(const tex_source *t)
+{
+    return (uint64_t)t->width * (uint64_t)t->height * (t->wide ? 12u : 4u);
+}
+
 /* RGBA8 top-row-first from an Assimp embedded texture (compressed or raw BGRA texels). */
 static unsigned char *load_embedded(const struct aiTexture *t, int *w, int *h)
 {
@@ -154,9 +189,28 @@ static unsigned char *load_embedded(const struct aiTexture *t, int *w, int *h)
     return px;
 }
 
-/* The diffuse texture of an Assimp material. A texture that cannot be found or decoded is not
- * fatal: the material keeps its colour. */
-static void load_texture(importer *im, const struct aiMaterial *mat, ob_material *out)
+/* An embedded texture's size without decoding it: the header of a compressed one, the counts of
+ * a raw one. False when stb_image cannot read it (it would not decode either). */
+static bool embedded_size(const struct aiTexture *t, int *w, int *h, bool *wide)
+{
+    int comp = 0;
+    *wide = false;
+    if (!t || !t->pcData) return false;
+    if (t->mHeight == 0) {
+        if (t->mWidth > (unsigned)INT32_MAX) return false;
+        const stbi_uc *data = (const stbi_uc *)t->pcData;
+        if (!stbi_info_from_memory(data, (int)t->mWidth, w, h, &comp)) return false;
+        *wide = stbi_is_16_bit_from_memory(data, (int)t->mWidth) != 0;
+        return true;
+    }
+    if (t->mWidth > 65536u || t->mHeight > 65536u) return false;
+    *w = (int)t->mWidth;
+    *h = (int)t->mHeight;
+    return true;
+}
+
+/* The diffuse texture an Assimp material names, as text; false when it names none. */
+static bool texture_reference(const struct aiMaterial *mat, char *name, size_t n)
 {
     struct aiString tex = {0};
     enum aiReturn got = aiGetMaterialTexture(mat, aiTextureType_DIFFUSE, 0, &tex, NULL, NULL,
@@ -167,33 +221,52 @@ static void load_texture(importer *im, const struct aiMaterial *mat, ob_material
         got = aiGetMaterialTexture(mat, aiTextureType_BASE_COLOR, 0, &tex, NULL, NULL, NULL, NULL,
                                    NULL, NULL);
     }
-    if (got != aiReturn_SUCCESS || tex.length == 0) return;
+    if (got != aiReturn_SUCCESS || tex.length == 0) return false;
+    snprintf(name, n, "%s", tex.data);
+    return true;
+}
 
+/* The source a material's reference resolves to, added to im->sources when new: an embedded
+ * texture ("*N", or (FBX, glb) one carrying the same file name), else a file through the
+ * confinement, the first candidate stb_image can read (as the decoder tried them before). -1 when
+ * it resolves to nothing stb_image can read (the material keeps its colour, as before), or when
+ * the confinement refused a file (fs->refused says why: the import fails). */
+static int find_source(importer *im, const char *reference)
+{
     char name[OB_PATH_MAX] = "";
-    snprintf(name, sizeof name, "%s", tex.data);
-    int w = 0, h = 0;
-    unsigned char *px = NULL;
-
-    /* Embedded: "*N", or (FBX, glb) an embedded texture carrying the same file name. */
+    snprintf(name, sizeof name, "%s", reference);
+    tex_source t = {.embedded = -1, .owner = -1};
+    int embedded = -1;
     if (name[0] == '*') {
         char *end = NULL;
         long idx = strtol(name + 1, &end, 10);
-        if (end && *end == '\0' && idx >= 0 && (unsigned long)idx < im->ai->mNumTextures) {
-            px = load_embedded(im->ai->mTextures[idx], &w, &h);
-        }
+        if (!end || *end != '\0' || idx < 0 || (unsigned long)idx >= im->ai->mNumTextures) return -1;
+        embedded = (int)idx;
     } else {
-        for (unsigned k = 0; k < im->ai->mNumTextures && !px; ++k) {
-            const struct aiTexture *t = im->ai->mTextures[k];
-            if (t && t->mFilename.length && strcmp(t->mFilename.data, name) == 0) {
-                px = load_embedded(t, &w, &h);
-            }
+        for (unsigned k = 0; k < im->ai->mNumTextures && embedded < 0; ++k) {
+            const struct aiTexture *e = im->ai->mTextures[k];
+            if (e && e->mFilename.length && strcmp(e->mFilename.data, name) == 0) embedded = (int)k;
         }
     }
-    if (!px && name[0] != '*') {
-        /* External file, through the confinement (model_io.c), with Windows separators made
-         * portable. Exporters often store an absolute path from the author's machine: the file
-         * name beside the model is tried first for those, and the absolute path (refused unless
-         * --allow-external-files, when it exists) only after. */
+    if (embedded >= 0) {
+        for (int k = 0; k < im->source_count; ++k)
+            if (im->sources[k].embedded == embedded) return k;
+        const struct aiTexture *e = im->ai->mTextures[embedded];
+        if (embedded_size(e, &t.width, &t.height, &t.wide)) {
+            t.embedded = embedded;
+            /* glb images carry no file name: say which image it is. */
+            if (name[0] != '*') copy_name(t.reference, sizeof t.reference, name);
+            else if (e && e->mFilename.length) copy_name(t.reference, sizeof t.reference, e->mFilename.data);
+            else snprintf(t.reference, sizeof t.reference, "embedded image %d", embedded);
+        } else if (name[0] == '*') {
+            return -1;
+        }
+    }
+    if (t.embedded < 0) {
+        /* External file, with Windows separators made portable. Exporters often store an absolute
+         * path from the author's machine: the file name beside the model is tried first for those,
+         * and the absolute path (refused unless --allow-external-files, when it exists) only
+         * after. */
         for (char *c = name; *c; ++c) {
             if (*c == '\\') *c = '/';
         }
@@ -206,27 +279,167 @@ static void load_texture(importer *im, const struct aiMaterial *mat, ob_material
         } else if (base) {
             tries[1] = base + 1;
         }
-        for (int t = 0; t < 2 && tries[t] && !px && !im->fs->refused[0]; ++t) {
-            if (tries[t][0] == '/') snprintf(full, sizeof full, "%s", tries[t]);
-            else snprintf(full, sizeof full, "%s/%s", im->dir, tries[t]);
-            FILE *f = ob_model_fs_open(im->fs, full, tries[t]);
+        bool found = false;
+        struct stat st = {0};
+        for (int k = 0; k < 2 && tries[k] && !found && !im->fs->refused[0]; ++k) {
+            if (tries[k][0] == '/') snprintf(full, sizeof full, "%s", tries[k]);
+            else snprintf(full, sizeof full, "%s/%s", im->dir, tries[k]);
+            FILE *f = ob_model_fs_open(im->fs, full, tries[k]);
             if (!f) continue;
             int comp = 0;
-            /* The header's size first: a 100-byte PNG may claim 60000 x 60000 texels. */
-            if (stbi_info_from_file(f, &w, &h, &comp) && (uint64_t)w * (uint64_t)h * 4u > im->max_memory) {
-                snprintf(im->fs->refused, sizeof im->fs->refused, "'%s', a %dx%d texture over the memory limit (--max-memory)",
-                         tries[t], w, h);
-            } else {
-                px = stbi_load_from_file(f, &w, &h, &comp, 4);
-            }
+            found = fstat(fileno(f), &st) == 0 && stbi_info_from_file(f, &t.width, &t.height, &comp);
+            t.wide = found && stbi_is_16_bit_from_file(f) != 0;
             fclose(f);
+            if (found) copy_name(t.reference, sizeof t.reference, tries[k]);
+        }
+        if (!found) return -1;
+        t.dev = st.st_dev;
+        t.ino = st.st_ino;
+        for (int k = 0; k < im->source_count; ++k)
+            if (im->sources[k].embedded < 0 && im->sources[k].dev == t.dev && im->sources[k].ino == t.ino) return k;
+        size_t len = strlen(full) + 1;
+        t.path = malloc(len);
+        if (!t.path) return -1;
+        memcpy(t.path, full, len);
+    }
+    if (t.width <= 0 || t.height <= 0) {
+        free(t.path);
+        return -1;
+    }
+    im->sources[im->source_count] = t;
+    return im->source_count++;
+}
+
+/* "1.50 GiB", "20.0 MiB", "12 KiB": for the messages. */
+static const char *human(uint64_t bytes, char *buf, size_t n)
+{
+    if (bytes >= (1ull << 30)) snprintf(buf, n, "%.2f GiB", (double)bytes / (double)(1ull << 30));
+    else if (bytes >= (1ull << 20)) snprintf(buf, n, "%.1f MiB", (double)bytes / (double)(1ull << 20));
+    else snprintf(buf, n, "%llu KiB", (unsigned long long)((bytes + 1023u) / 1024u));
+    return buf;
+}
+
+static uint32_t triangle_count(const struct aiMesh *mesh);
+
+/* Every texture the used materials name, found and sized before any is decoded; then the
+ * textures, the geometry (what check_raw_scene estimated) and what the caller reserved against
+ * max_memory. False with OB_ERR_MODEL naming the largest items when over, or when the
+ * confinement refused a texture (the caller reports fs->refused). */
+static bool plan_textures(importer *im, uint64_t geometry)
+{
+    const struct aiScene *ai = im->ai;
+    for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
+        const struct aiMesh *mesh = ai->mMeshes[m];
+        if (!mesh || triangle_count(mesh) == 0) continue;
+        unsigned k = mesh->mMaterialIndex < ai->mNumMaterials ? mesh->mMaterialIndex : 0u;
+        if (im->mat_source[k] != -2) continue; /* planned */
+        char reference[OB_PATH_MAX] = "";
+        int source = -1;
+        if (texture_reference(ai->mMaterials[k], reference, sizeof reference)) source = find_source(im, reference);
+        if (im->fs->refused[0]) return false;
+        im->mat_source[k] = source;
+        if (source >= 0) ++im->sources[source].materials;
+    }
+    uint64_t textures = 0, work = 0;
+    for (int k = 0; k < im->source_count; ++k) {
+        textures += source_bytes(&im->sources[k]);
+        if (source_work(&im->sources[k]) > work) work = source_work(&im->sources[k]);
+    }
+    textures += work;
+    uint64_t need = geometry + textures + im->reserved;
+    if (need <= im->max_memory) return true;
+
+    /* The items, largest first; the textures by the three largest images. */
+    char list[2048] = "", a[32] = "", b[32] = "";
+    int order[3] = {-1, -1, -1};
+    for (int k = 0; k < im->source_count; ++k) {
+        for (int slot = 0; slot < 3; ++slot) {
+            if (order[slot] < 0 || source_bytes(&im->sources[k]) > source_bytes(&im->sources[order[slot]])) {
+                for (int j = 2; j > slot; --j) order[j] = order[j - 1];
+                order[slot] = k;
+                break;
+            }
         }
     }
-    if (px && w > 0 && h > 0) {
+    char tex[512] = "";
+    for (int slot = 0; slot < 3 && order[slot] >= 0; ++slot) {
+        const tex_source *t = &im->sources[order[slot]];
+        size_t len = strlen(tex);
+        snprintf(tex + len, sizeof tex - len, "%s%s %dx%d", slot ? ", " : "", t->reference, t->width, t->height);
+        len = strlen(tex);
+        if (t->materials > 1) snprintf(tex + len, sizeof tex - len, " x%d materials", t->materials);
+    }
+    if (im->source_count > 3) {
+        size_t len = strlen(tex);
+        snprintf(tex + len, sizeof tex - len, ", %d more", im->source_count - 3);
+    }
+    typedef struct item {
+        uint64_t bytes;
+        char text[600];
+    } item;
+    item items[3] = {{0, ""}, {0, ""}, {0, ""}};
+    snprintf(items[0].text, sizeof items[0].text, "textures %s (each decoded once: %s)", human(textures, a, sizeof a), tex);
+    items[0].bytes = textures;
+    snprintf(items[1].text, sizeof items[1].text, "geometry %s", human(geometry, a, sizeof a));
+    items[1].bytes = geometry;
+    if (im->reserved_what && im->reserved_what[0]) snprintf(items[2].text, sizeof items[2].text, "%s", im->reserved_what);
+    else snprintf(items[2].text, sizeof items[2].text, "the rest of the run %s", human(im->reserved, a, sizeof a));
+    items[2].bytes = im->reserved;
+    for (int i = 0; i < 3; ++i) {
+        int best = i;
+        for (int j = i + 1; j < 3; ++j)
+            if (items[j].bytes > items[best].bytes) best = j;
+        if (best != i) {
+            item keep = items[i];
+            items[i] = items[best];
+            items[best] = keep;
+        }
+        if (items[i].bytes == 0 && i > 0) break;
+        size_t len = strlen(list);
+        snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", items[i].text);
+    }
+    ob_set_error(OB_ERR_MODEL, "%s: this run needs about %s, more than --max-memory %s%s: %s", im->path,
+                 human(need, a, sizeof a), human(im->max_memory, b, sizeof b),
+                 im->max_memory_default ? " (the default)" : "", list);
+    return false;
+}
+
+/* The diffuse texture of an Assimp material, decoded once per source: a later material naming
+ * the same image shares the pixels (out->texture_shared). A texture that cannot be found or
+ * decoded is not fatal: the material keeps its colour. */
+static void load_texture(importer *im, unsigned ai_index, ob_material *out)
+{
+    int source = im->mat_source[ai_index];
+    if (source < 0) return;
+    tex_source *t = &im->sources[source];
+    copy_name(out->texture_name, sizeof out->texture_name, t->reference);
+    if (t->tried) {
+        if (t->pixels && t->owner >= 0) {
+            out->texture = t->pixels;
+            out->tex_width = t->width;
+            out->tex_height = t->height;
+            out->texture_shared = true;
+        }
+        return;
+    }
+    t->tried = true;
+    int w = 0, h = 0, comp = 0;
+    unsigned char *px = NULL;
+    if (t->embedded >= 0) {
+        px = load_embedded(im->ai->mTextures[t->embedded], &w, &h);
+    } else {
+        FILE *f = ob_model_fs_open(im->fs, t->path, t->reference);
+        /* The size planned is the size decoded: a file changed since is not decoded. */
+        if (f && stbi_info_from_file(f, &w, &h, &comp) && w == t->width && h == t->height)
+            px = stbi_load_from_file(f, &w, &h, &comp, 4);
+        if (f) fclose(f);
+    }
+    if (px && w == t->width && h == t->height) {
+        t->pixels = px;
         out->texture = px;
         out->tex_width = w;
         out->tex_height = h;
-    } else if (px) {
+    } else {
         free(px);
     }
 }
@@ -251,7 +464,7 @@ static int map_material(importer *im, unsigned ai_index)
         c.r = c.g = c.b = 0.8f;
     }
     ob_material probe = {0};
-    load_texture(im, mat, &probe);
+    load_texture(im, ai_index, &probe);
     /* IFC gives every building element its own copy of a material ("Kiefer" 40 times on
      * FZK-Haus): copies with the same name and colour and no texture share one mesh, which
      * turns hundreds of draws into a dozen. */
@@ -267,12 +480,20 @@ static int map_material(importer *im, unsigned ai_index)
     }
     int idx = ob_scene_add_material(im->s, label, c.r, c.g, c.b);
     if (idx < 0) {
-        free(probe.texture);
+        if (probe.texture && !probe.texture_shared) {
+            /* Nobody took the pixels: a later material must not share freed ones. */
+            im->sources[im->mat_source[ai_index]].pixels = NULL;
+            free(probe.texture);
+        }
         return -1;
     }
-    im->s->materials[idx].texture = probe.texture;
-    im->s->materials[idx].tex_width = probe.tex_width;
-    im->s->materials[idx].tex_height = probe.tex_height;
+    ob_material *m = &im->s->materials[idx];
+    m->texture = probe.texture;
+    m->tex_width = probe.tex_width;
+    m->tex_height = probe.tex_height;
+    m->texture_shared = probe.texture_shared;
+    memcpy(m->texture_name, probe.texture_name, sizeof m->texture_name);
+    if (probe.texture && !probe.texture_shared) im->sources[im->mat_source[ai_index]].owner = idx;
     im->mat_map[ai_index] = idx;
     return idx;
 }
@@ -647,7 +868,8 @@ static void fail_assimp(const char *path, const ob_model_fs *fs, const char *raw
 /* A raw scene (no post-processing): finite positions (Assimp's FindInvalidData drops a mesh with
  * a NaN and then reports "No meshes remaining"), and the memory post-processing and our copy
  * take, from the counts Assimp actually read (model_io.c cannot see into pk3 archives). */
-static bool check_raw_scene(const struct aiScene *ai, const char *path, uint64_t max_memory, bool check_faces)
+static bool check_raw_scene(const struct aiScene *ai, const char *path, uint64_t max_memory, bool check_faces,
+                            uint64_t *geometry)
 {
     uint64_t vertices = 0, indices = 0;
     for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
@@ -686,6 +908,7 @@ static bool check_raw_scene(const struct aiScene *ai, const char *path, uint64_t
         }
     }
     uint64_t need = ob_model_estimate_peak(vertices, indices);
+    *geometry = need;
     if (need > max_memory) {
         ob_set_error(OB_ERR_MODEL, "%s: its %llu vertices would take about %.2f GiB to import, more than the limit of %.2f GiB (--max-memory)",
                      path, (unsigned long long)vertices, (double)need / (double)(1ull << 30),
@@ -697,6 +920,12 @@ static bool check_raw_scene(const struct aiScene *ai, const char *path, uint64_t
 
 ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_files, uint64_t max_memory)
 {
+    return ob_scene_import_within(path, up, allow_external_files, max_memory, 0, NULL);
+}
+
+ob_scene *ob_scene_import_within(const char *path, ob_up_axis up, bool allow_external_files, uint64_t max_memory,
+                                 uint64_t reserved, const char *reserved_what)
+{
     if (!path) {
         ob_set_error(OB_ERR_INVALID_ARGUMENT, "model path is NULL");
         return NULL;
@@ -707,6 +936,7 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_f
         ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
         return NULL;
     }
+    const bool max_memory_default = max_memory == 0;
     if (max_memory == 0) max_memory = ob_model_default_max_memory();
     if (!ob_model_fs_init(fs, path, allow_external_files) || !ob_model_precheck(fs, max_memory)) {
         free(fs);
@@ -726,6 +956,7 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_f
      * The raw scene is checked through a raw import of its own, not by aiApplyPostProcessing on
      * it: Assimp 5.2.5 frees the scene twice when a step fails there. */
     const struct aiScene *ai = NULL;
+    uint64_t geometry = 0; /* check_raw_scene's estimate, for the texture plan */
     if (is_q3bsp(path)) {
         /* Read raw, repair the indices and winding, then post-process the repaired scene (the
          * importer keeps the properties above for aiApplyPostProcessing). Validation stays off:
@@ -734,7 +965,8 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_f
          * them across wall corners, which leaves a third of the flat faces with bent normals;
          * regenerated with the crease angle flat walls come out flat. */
         ai = aiImportFileExWithProperties(path, 0, &fs->io, props);
-        if (ai && (fs->refused[0] || !check_raw_scene(ai, path, max_memory, false) || !repair_q3bsp((struct aiScene *)ai, path))) {
+        if (ai && (fs->refused[0] || !check_raw_scene(ai, path, max_memory, false, &geometry) ||
+                   !repair_q3bsp((struct aiScene *)ai, path))) {
             if (fs->refused[0]) ob_set_error(OB_ERR_MODEL, "%s: refers to %s", path, fs->refused);
             aiReleaseImport(ai);
             aiReleasePropertyStore(props);
@@ -755,7 +987,7 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_f
         /* Validation on: without it Assimp's own scene preprocessing dereferences a face that
          * has no index array (an OFF face naming vertex 5 of 3, found by fuzz_model). */
         const struct aiScene *raw = aiImportFileExWithProperties(path, aiProcess_ValidateDataStructure, &fs->io, props);
-        if (!raw || fs->refused[0] || !check_raw_scene(raw, path, max_memory, true)) {
+        if (!raw || fs->refused[0] || !check_raw_scene(raw, path, max_memory, true, &geometry)) {
             if (!raw || fs->refused[0]) fail_assimp(path, fs, aiGetErrorString());
             if (raw) aiReleaseImport(raw);
             aiReleasePropertyStore(props);
@@ -798,6 +1030,9 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_f
     im.path = path;
     im.fs = fs;
     im.max_memory = max_memory;
+    im.max_memory_default = max_memory_default;
+    im.reserved = reserved;
+    im.reserved_what = reserved_what;
     im.ai = ai;
     if (slash) {
         size_t len = (size_t)(slash - path);
@@ -810,25 +1045,37 @@ ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_f
     }
     unsigned nmat = ai->mNumMaterials ? ai->mNumMaterials : 1u;
     im.mat_map = malloc(nmat * sizeof *im.mat_map);
+    im.mat_source = malloc(nmat * sizeof *im.mat_source);
+    im.sources = calloc(nmat, sizeof *im.sources);
     im.slots = calloc(nmat, sizeof *im.slots);
     im.s = ob_scene_alloc(name);
     ob_scene *result = NULL;
-    if (!im.mat_map || !im.slots || !im.s) {
+    if (!im.mat_map || !im.mat_source || !im.sources || !im.slots || !im.s) {
         ob_set_error(OB_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
     } else if (ai->mNumMaterials == 0) {
         /* Assimp always makes a default material; without one there is nothing to map to. */
         ob_set_error(OB_ERR_MODEL, "%s: the file has no materials", path);
     } else {
-        for (unsigned k = 0; k < nmat; ++k) im.mat_map[k] = -1;
-        result = import_scene(&im, up);
+        for (unsigned k = 0; k < nmat; ++k) {
+            im.mat_map[k] = -1;
+            im.mat_source[k] = -2;
+        }
+        /* Every texture sized and the whole run held against the limit before one is decoded. */
+        if (plan_textures(&im, geometry)) result = import_scene(&im, up);
     }
-    if (result && fs->refused[0]) {
+    if (fs->refused[0]) { /* a texture's reference, refused while the textures were planned */
         ob_set_error(OB_ERR_MODEL, "%s: refers to %s", path, fs->refused);
         result = NULL;
     }
     if (result && !ob_scene_check_bounds(result, path)) result = NULL;
     if (!result) ob_destroy_scene(im.s);
     free(fs);
+    for (int k = 0; im.sources && k < im.source_count; ++k) {
+        free(im.sources[k].path);
+        if (im.sources[k].owner < 0) free(im.sources[k].pixels); /* decoded, taken by no material */
+    }
+    free(im.sources);
+    free(im.mat_source);
     free(im.mat_map);
     free(im.slots);
     aiReleaseImport(ai);

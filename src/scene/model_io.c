@@ -261,15 +261,116 @@ static bool read_line(FILE *f, char *buf, size_t n)
     return true;
 }
 
+/* A PLY property as the body walk needs it: a scalar of value_size bytes, or a list whose count
+ * takes count_size bytes and each value value_size. */
+enum { PLY_MAX_PROPERTIES = 256 };
+typedef struct ply_element {
+    char name[64];
+    uint64_t count, min_bytes;
+} ply_element;
+typedef struct ply_property {
+    int element;
+    bool list;
+    unsigned count_size, value_size;
+} ply_property;
+
+/* The next whitespace-separated ASCII token as an unsigned count; false at the end of the file or
+ * for anything that is not a number (a float count is read as its integer part, as Assimp does). */
+static bool ply_ascii_token(FILE *f, uint64_t *value, bool want)
+{
+    int c = 0;
+    while ((c = getc(f)) != EOF && (c == ' ' || c == '\t' || c == '\n' || c == '\r')) {}
+    if (c == EOF) return false;
+    uint64_t v = 0;
+    bool past = false, negative = c == '-'; /* past: after the integer part ('.', 'e': ignored) */
+    if (c == '-' || c == '+') c = getc(f);
+    for (; c != EOF && c != ' ' && c != '\t' && c != '\n' && c != '\r'; c = getc(f)) {
+        if (!want || past) continue;
+        if (c >= '0' && c <= '9') v = v > UINT64_MAX / 10u - 9u ? UINT64_MAX / 10u : v * 10u + (uint64_t)(c - '0');
+        else past = true;
+    }
+    if (want) *value = negative ? 0u : v; /* a negative count makes an empty list, nothing reserved */
+    return true;
+}
+
+static uint64_t ply_binary_count(const unsigned char *b, unsigned size, bool big_endian)
+{
+    /* Read as unsigned: a negative count of a signed type comes out huge and is refused like one
+     * (Assimp reads it into an unsigned size as well). */
+    uint64_t v = 0;
+    for (unsigned k = 0; k < size; ++k) v |= (uint64_t)b[big_endian ? size - 1u - k : k] << (8u * k);
+    return v;
+}
+
+/* Walk the body: each list's count must fit in the bytes that follow it (2 bytes a value in
+ * ASCII, a digit and a separator; value_size in binary). *values gets the lists' values in all.
+ * A body shorter than its header says is left to Assimp's own message. */
+static bool ply_check_lists(ob_model_fs *fs, FILE *f, uint64_t size, bool ascii, bool big_endian, const ply_element *el,
+                            int elements, const ply_property *props, int np, uint64_t *values)
+{
+    *values = 0;
+    bool any_list = false;
+    for (int k = 0; k < np; ++k) any_list = any_list || props[k].list;
+    if (!any_list) return true; /* nothing Assimp reserves from the body */
+    for (int e = 0; e < elements; ++e) {
+        const uint64_t count = el[e].count;
+        bool has_list = false;
+        uint64_t row = 0; /* binary: the bytes of a row without lists */
+        for (int k = 0; k < np; ++k)
+            if (props[k].element == e) {
+                has_list = has_list || props[k].list;
+                row += props[k].value_size;
+            }
+        if (!has_list && !ascii) {
+            /* Binary rows of scalars: skipped whole (the header check showed they fit). */
+            if (fseeko(f, (off_t)(count * row), SEEK_CUR) != 0) return true;
+            continue;
+        }
+        for (uint64_t i = 0; i < count; ++i)
+            for (int k = 0; k < np; ++k) {
+                if (props[k].element != e) continue;
+                uint64_t c = 0;
+                if (ascii) {
+                    if (!ply_ascii_token(f, &c, props[k].list)) return true; /* short: Assimp says so */
+                } else if (props[k].list) {
+                    unsigned char b[8] = {0};
+                    if (fread(b, 1, props[k].count_size, f) != props[k].count_size) return true;
+                    c = ply_binary_count(b, props[k].count_size, big_endian);
+                } else {
+                    if (fseeko(f, (off_t)props[k].value_size, SEEK_CUR) != 0) return true;
+                    continue;
+                }
+                if (!props[k].list) continue;
+                off_t at = ftello(f);
+                uint64_t left = at >= 0 && (uint64_t)at <= size ? size - (uint64_t)at : 0;
+                uint64_t per = ascii ? 2u : props[k].value_size;
+                if (c > left / per) {
+                    ob_set_error(OB_ERR_MODEL, "%s: PLY '%s' %llu declares a list of %llu values, which need at least "
+                                 "%llu bytes; only %llu bytes follow (corrupt)", fs->model, el[e].name, (unsigned long long)i,
+                                 (unsigned long long)c, (unsigned long long)(c > UINT64_MAX / per ? UINT64_MAX : c * per),
+                                 (unsigned long long)left);
+                    return false;
+                }
+                *values += c;
+                if (ascii) {
+                    for (uint64_t v = 0; v < c; ++v)
+                        if (!ply_ascii_token(f, NULL, false)) return true;
+                } else if (fseeko(f, (off_t)(c * per), SEEK_CUR) != 0) {
+                    return true;
+                }
+            }
+    }
+    return true;
+}
+
 static bool check_ply(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimate)
 {
     enum { MAX_ELEMENTS = 64, HEADER_MAX = 1 << 16 };
-    struct {
-        char name[64];
-        uint64_t count, min_bytes;
-    } el[MAX_ELEMENTS];
+    ply_element el[MAX_ELEMENTS];
     int n = 0;
-    bool ascii = true;
+    bool ascii = true, big_endian = false;
+    ply_property props[PLY_MAX_PROPERTIES];
+    int np = 0;
     char line[1024] = "";
     /* Assimp's PLY reader loops forever on some malformed headers (a first line "ply\xff...",
      * found by tests/fuzz/fuzz_model.c): anything it would read as PLY must pass this stricter
@@ -297,6 +398,7 @@ static bool check_ply(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimat
         if (!strcmp(kw, "comment") || !strcmp(kw, "obj_info")) continue;
         if (!strcmp(kw, "format") && got >= 3) {
             ascii = !strcmp(a, "ascii");
+            big_endian = !strcmp(a, "binary_big_endian");
             if (!ascii && strcmp(a, "binary_little_endian") != 0 && strcmp(a, "binary_big_endian") != 0) {
                 ob_set_error(OB_ERR_MODEL, "%s: PLY format '%s' is none of ascii, binary_little_endian, binary_big_endian", fs->model, a);
                 return false;
@@ -329,6 +431,17 @@ static bool check_ply(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimat
                 return false;
             }
             if (el[n - 1].min_bytes < 4096u) el[n - 1].min_bytes += ascii ? 2u : sz;
+            if (np == PLY_MAX_PROPERTIES) {
+                ob_set_error(OB_ERR_MODEL, "%s: PLY header declares more than %d properties", fs->model, PLY_MAX_PROPERTIES);
+                return false;
+            }
+            /* "property list COUNT_TYPE VALUE_TYPE name": sz is the count's size for a list. */
+            props[np++] = (ply_property){.element = n - 1, .list = list, .count_size = list ? sz : 0u,
+                                         .value_size = list ? ply_type_size(c) : sz};
+            if (list && props[np - 1].value_size == 0) {
+                ob_set_error(OB_ERR_MODEL, "%s: PLY property '%s' has an unknown type", fs->model, line);
+                return false;
+            }
         } else if (!strcmp(kw, "element") || !strcmp(kw, "property") || !strcmp(kw, "format")) {
             ob_set_error(OB_ERR_MODEL, "%s: PLY header line '%.60s' is incomplete", fs->model, line);
             return false;
@@ -355,7 +468,14 @@ static bool check_ply(ob_model_fs *fs, FILE *f, uint64_t size, uint64_t *estimat
         }
         est += el[k].count * OB_BYTES_PER_PLY_ELEMENT;
     }
-    *estimate = est;
+    /* The header's counts fit; the lists' own counts are in the body, and Assimp reserves a list
+     * before it reads it (a 681-byte ASCII PLY with a count of 10^9 took 7.8 GB before failing):
+     * every list count is checked against the bytes left, in one pass over the body. */
+    uint64_t list_values = 0;
+    if (!ply_check_lists(fs, f, size, ascii, big_endian, el, n, props, np, &list_values)) return false;
+    /* Each list value becomes an index (4 bytes) and, in Assimp's intermediate, a vertex reference
+     * of its own: 16 bytes a value is the measured order of it. */
+    *estimate = est + list_values * 16u;
     return true;
 }
 
@@ -869,6 +989,91 @@ static bool check_gltf(ob_model_fs *fs, FILE *f, uint64_t size, bool glb, uint64
     return ok;
 }
 
+/* ---- ASCII FBX ------------------------------------------------------------------------------- */
+
+/* Assimp 5.2.5 decodes an ASCII FBX's embedded texture (a Video's "Content", base64 strings) into
+ * a buffer sized from the strings' lengths; when the decoded length differs (a byte outside the
+ * alphabet, '=' inside a string) it deletes the buffer without clearing its pointer and the
+ * Video's destructor deletes it again: a 177-byte file aborts the process (double free), and a
+ * padded string whose length is not a multiple of 4 writes a byte past it. Every token of a
+ * "Content" element must therefore be a quoted string of the base64 alphabet, padded (one or two
+ * '=' at its end) only at a length that is a multiple of 4: for those both lengths agree
+ * (unpadded strings of any length too, as the SDK may split the text). The scan follows Assimp's ASCII tokenizer (FBXTokenizer.cpp): ';' comments to the end of
+ * the line, strings in double quotes (across lines), a token right before ':' is a key, '{' and '}' end an element, and the text ends at its first NUL. Binary FBX
+ * ("Kaydara FBX Binary") bounds its arrays in its own tokenizer. */
+static bool fbx_base64_char(int c)
+{
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '+' || c == '/';
+}
+
+static bool fbx_is_blank(int c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+
+static bool check_fbx_ascii(ob_model_fs *fs, FILE *f)
+{
+    char token[16] = ""; /* the unquoted token being read, cut: only "Content" matters */
+    size_t token_len = 0;
+    bool in_token = false, in_content = false, comment = false;
+    unsigned line = 1, bad_line = 0;
+    int c = 0;
+    while (!bad_line && (c = getc(f)) != EOF && c != '\0') {
+        if (c == '\n') {
+            ++line;
+            comment = false;
+        }
+        if (comment) continue;
+        if (c == '"') {
+            /* A string token: in a Content element it is checked as base64. */
+            if (in_token) break; /* Assimp refuses the file: "unexpected double-quote" */
+            unsigned start = line;
+            size_t len = 0, pad = 0;
+            bool ok = true;
+            while ((c = getc(f)) != EOF && c != '\0' && c != '"') {
+                if (c == '\n') ++line;
+                if (c == '=') ++pad;
+                else if (pad > 0 || !fbx_base64_char(c)) ok = false;
+                ++len;
+            }
+            if (c != '"') break; /* unterminated: Assimp reads no token from it */
+            if (in_content && (!ok || (pad > 0 && (pad > 2 || len % 4 != 0)))) bad_line = start;
+            continue;
+        }
+        if (c == ';' || c == '{' || c == '}' || c == ',' || c == ':' || fbx_is_blank(c)) {
+            /* A key is a token right before ':' (Assimp refuses "Content :" as an unexpected colon). */
+            if (in_token && c == ':') in_content = token_len == 7 && !memcmp(token, "Content", 7);
+            else if (in_token && in_content) bad_line = line; /* an unquoted token of Content */
+            in_token = false;
+            token_len = 0;
+            if (c == '{' || c == '}') in_content = false;
+            if (c == ';') comment = true;
+            continue;
+        }
+        if (!in_token) in_token = true;
+        if (token_len < sizeof token) token[token_len] = (char)c;
+        ++token_len;
+    }
+    if (bad_line) {
+        ob_set_error(OB_ERR_MODEL, "%s: line %u: FBX embedded content (\"Content\") is not base64 text; refused: "
+                     "Assimp would free the texture twice", fs->model, bad_line);
+        return false;
+    }
+    return true;
+}
+
+/* Whether Assimp may read the file as an ASCII FBX: its extension, or "fbx" in any case among the
+ * first 200 bytes (NULs dropped), which is how Assimp's FBX importer claims a file of any name. */
+static bool maybe_ascii_fbx(FILE *f, bool by_ext)
+{
+    char head[201] = "";
+    size_t got = fread(head, 1, 200, f), n = 0;
+    rewind(f);
+    if (got >= 18 && !memcmp(head, "Kaydara FBX Binary", 18)) return false;
+    if (by_ext) return true;
+    for (size_t i = 0; i < got; ++i)
+        if (head[i] != '\0') head[n++] = (char)tolower((unsigned char)head[i]);
+    head[n] = '\0';
+    return strstr(head, "fbx") != NULL;
+}
+
 /* ---- entry ----------------------------------------------------------------------------------- */
 
 static bool has_ext(const char *path, const char *ext)
@@ -901,6 +1106,11 @@ bool ob_model_precheck(ob_model_fs *fs, uint64_t max_memory)
     else if (has_ext(fs->model, ".obj")) ok = check_obj(f, size, &estimate);
     else if (has_ext(fs->model, ".off")) ok = check_off(fs, f, size, &estimate);
     else if (has_ext(fs->model, ".dae")) ok = check_dae(fs, f, size);
+    /* Any file Assimp may read as ASCII FBX, whatever its other checks were. */
+    if (ok) {
+        rewind(f);
+        if (maybe_ascii_fbx(f, has_ext(fs->model, ".fbx"))) ok = check_fbx_ascii(fs, f);
+    }
     fclose(f);
     if (ok && estimate > max_memory) {
         char a[32] = "", b[32] = "";

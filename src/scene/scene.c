@@ -307,7 +307,8 @@ static ob_scene *path_too_long(const char *what)
 static ob_scene *import_with_sidecars(const ob_scene_desc *desc, const char *model, ob_up_axis up,
                                       const char *sidecar_a, const char *sidecar_b, const char *scene_name)
 {
-    ob_scene *s = ob_scene_import(model, up, desc->allow_external_files, desc->max_memory);
+    ob_scene *s = ob_scene_import_within(model, up, desc->allow_external_files, desc->max_memory,
+                                         desc->reserved_memory, desc->reserved_what);
     if (!s) return NULL;
     const char *sidecars[2] = {sidecar_a, sidecar_b};
     for (int i = 0; i < 2; ++i) {
@@ -407,7 +408,11 @@ ob_scene *ob_load_scene(const ob_scene_desc *desc)
         if (!dir_of(dir, sizeof dir, name)) return path_too_long(name);
         int len = snprintf(found, sizeof found, "%s/%s.obscura.json", dir, stem);
         if (len < 0 || (size_t)len >= sizeof found) return path_too_long(name);
-        if (is_regular_file(found)) {
+        /* Anything of that name is taken as the sidecar, so that a FIFO or a directory there
+         * fails with a line saying what it is (the reader opens regular files only) instead of
+         * being skipped without a word. */
+        struct stat beside = {0};
+        if (stat(found, &beside) == 0) {
             sidecar = found;
         } else {
             len = snprintf(found, sizeof found, "%s/scenes/%s.obscura.json", ob_data_dir(), stem);
@@ -435,7 +440,8 @@ void ob_destroy_scene(ob_scene *scene)
         free(scene->meshes[m].uvs);
         free(scene->meshes[m].indices);
     }
-    for (int m = 0; m < scene->material_count; ++m) free(scene->materials[m].texture);
+    for (int m = 0; m < scene->material_count; ++m)
+        if (!scene->materials[m].texture_shared) free(scene->materials[m].texture);
     free(scene->meshes);
     free(scene->materials);
     free(scene);

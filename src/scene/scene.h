@@ -20,6 +20,10 @@ typedef struct ob_material {
     float diffuse[3];        /* linear RGB */
     unsigned char *texture;  /* RGBA8, top row first, or NULL */
     int tex_width, tex_height;
+    /* The pixels belong to an earlier material with the same pointer: materials naming one image
+     * share one decode (import.c) and one GL texture (gbuffer.c); only the owner frees them. */
+    bool texture_shared;
+    char texture_name[96];   /* the image as the model names it ("wall.png", "*0"), for messages */
 } ob_material;
 
 #define OB_MAX_CAMERAS 32
@@ -66,6 +70,10 @@ void ob_scene_finish(ob_scene *s);
 ob_scene *ob_scene_builtin(const char *name); /* NULL + OB_ERR_UNKNOWN_SCENE if not built in */
 /* assimp; with desc's allow_external_files and max_memory (0 = the default). */
 ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_files, uint64_t max_memory);
+/* The same with the caller's share of max_memory (ob_scene_desc.reserved_memory, reserved_what):
+ * the geometry, the textures and it must fit together. */
+ob_scene *ob_scene_import_within(const char *path, ob_up_axis up, bool allow_external_files, uint64_t max_memory,
+                                 uint64_t reserved, const char *reserved_what);
 /* After ob_scene_finish: false (OB_ERR_MODEL naming source) when the bounds are not finite or
  * outside the range float depth and lighting handle (scene.c says why). */
 bool ob_scene_check_bounds(const ob_scene *s, const char *source);

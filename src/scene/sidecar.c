@@ -11,7 +11,8 @@
  *                                                       (scenes/NAME.obscura.json), else ignored.
  *     "up": "y" | "z",           the model's up axis; "z" is rotated to Y-up on import. Read by
  *                                the loader before importing (ob_sidecar_peek).
- *     "ao_radius": 0.05,         suggested AO radius, > 0
+ *     "ao_radius": 0.05,         suggested AO radius, > 0 and at most the diagonal of the
+ *                                scene's bounds (the ground included)
  *     "cameras": [               presets, added after "default" in this order; a preset with the
  *       {                        name of an existing one (e.g. from glTF) replaces it, and one
  *                                named "default" replaces the framing camera (for a model whose
@@ -70,6 +71,7 @@
 #include <cjson/cJSON.h>
 
 #include "core/error.h"
+#include "io/file.h"
 #include "scene/scene.h"
 
 /* Sidecars are hand-written and tiny; anything bigger is the wrong file. */
@@ -483,8 +485,9 @@ static ob_error add_ground(ob_scene *s, const sidecar *sc, const char *path)
 static ob_error read_text(const char *path, char **out)
 {
     *out = NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f) return ob_set_error(OB_ERR_IO, "%s: cannot open sidecar", path);
+    /* A FIFO or a device named as a sidecar fails at once instead of blocking (file.h). */
+    FILE *f = ob_fopen_regular(path, "sidecar");
+    if (!f) return OB_ERR_IO;
     size_t cap = 4096, len = 0;
     char *buf = malloc(cap);
     while (buf) {
@@ -678,7 +681,25 @@ ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path)
         memcpy(s->paths, sc->paths, sizeof sc->paths);
         s->path_count = sc->path_count;
     }
-    if (sc->ao_radius > 0.0f) s->ao_radius = sc->ao_radius;
+    if (sc->ao_radius > 0.0f) {
+        /* AO_R counts occluders within R: past the scene's own diagonal no point has one farther
+         * away, so a larger R means nothing, and a huge one (3e38) left every method's radius
+         * silently clamped to its table's maximum while the reference traced the sidecar's
+         * (no occlusion in the AO, exit 0). Checked after the ground, which is scene too. */
+        double d2 = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            double e = (double)s->bounds_max[i] - (double)s->bounds_min[i];
+            d2 += e * e;
+        }
+        double diagonal = sqrt(d2);
+        if (!((double)sc->ao_radius <= diagonal)) {
+            err = fail(json_path, "ao_radius: %g is longer than the whole scene (the diagonal of its bounds, ground "
+                       "included, is %.6g): expected at most %.6g", (double)sc->ao_radius, diagonal, diagonal);
+            free(sc);
+            return err;
+        }
+        s->ao_radius = sc->ao_radius;
+    }
     if (sc->light_count > 0) {
         memcpy(s->lights, sc->lights, sizeof sc->lights);
         s->light_count = sc->light_count;

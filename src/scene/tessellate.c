@@ -121,8 +121,16 @@ ob_scene *ob_tessellate_scene(const ob_scene *s, int levels)
         for (int i = 0; ok && i < s->material_count; ++i) {
             t->materials[i] = s->materials[i];
             t->materials[i].texture = NULL;
+            t->materials[i].texture_shared = false;
             t->material_count = i + 1;
-            if (s->materials[i].texture) {
+            /* Pixels shared with an earlier material stay shared with that material's copy. */
+            for (int j = 0; s->materials[i].texture_shared && j < i && !t->materials[i].texture; ++j) {
+                if (!s->materials[j].texture_shared && s->materials[j].texture == s->materials[i].texture) {
+                    t->materials[i].texture = t->materials[j].texture;
+                    t->materials[i].texture_shared = true;
+                }
+            }
+            if (s->materials[i].texture && !t->materials[i].texture) {
                 size_t bytes = (size_t)s->materials[i].tex_width * (size_t)s->materials[i].tex_height * 4u;
                 t->materials[i].texture = malloc(bytes);
                 ok = t->materials[i].texture != NULL;

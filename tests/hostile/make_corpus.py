@@ -168,6 +168,20 @@ m = write("models/ply_count_overflow.ply", PLY_HEAD % ("ascii", 3, 2**40) + "0 0
 add_case("ply_count_over_2e32", 3, "cpu", "--scene", m)
 m = write("models/ply_truncated.ply", (PLY_HEAD % ("binary_little_endian", 1000, 1)).encode() + TRI_POS)
 add_case("ply_truncated_binary", 3, "cpu", "--scene", m)
+# A list count in the body that the bytes after it cannot hold: Assimp reserves the list before
+# reading it (found by tests/fuzz/fuzz_model.c: 7.8 GB for a 681-byte file). ASCII, binary, and a
+# negative count of a signed type (read as huge), each refused before Assimp opens the file.
+m = write("models/ply_list_1e9_ascii.ply", PLY_HEAD % ("ascii", 3, 1) + "0 0 0\n1 0 0\n0 1 0\n1000000000 0 1 2\n")
+add_case("ply_list_count_1e9_ascii", 3, "cpu", "--scene", m,
+         expect="PLY 'face' 0 declares a list of 1000000000 values")
+PLY_HEAD_INT = PLY_HEAD.replace("list uchar int", "list int int")
+m = write("models/ply_list_1e9_binary.ply", (PLY_HEAD_INT % ("binary_little_endian", 3, 1)).encode() + TRI_POS +
+          struct.pack("<i3i", 10**9, 0, 1, 2))
+add_case("ply_list_count_1e9_binary", 3, "cpu", "--scene", m,
+         expect="PLY 'face' 0 declares a list of 1000000000 values")
+m = write("models/ply_list_negative_be.ply", (PLY_HEAD_INT % ("binary_big_endian", 3, 1)).encode() +
+          struct.pack(">9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack(">i3i", -3, 0, 1, 2))
+add_case("ply_list_count_negative_binary", 3, "cpu", "--scene", m, expect="declares a list of 4294967293 values")
 # Found by tests/fuzz/fuzz_model.c: two faces declared, the face line cut into the last vertex's;
 # Assimp makes faces with no corner and its Triangulate step aborts the process (ai_assert).
 m = write("models/ply_faces_cut_short.ply", (PLY_HEAD % ("ascii", 3, 2)).encode() +
@@ -220,7 +234,8 @@ add_case("stl_truncated", 3, "cpu", "--scene", m)
 m = write("models/garbage.fbx", b"Kaydara FBX Binary  \0\x1a\0" + b"\xff" * 64)
 add_case("fbx_garbage", 3, "cpu", "--scene", m)
 
-# Memory ceiling: a legitimate 100x100 grid (60 000 face corners) over a 16 MiB limit.
+# Memory ceiling: a legitimate 100x100 grid (60 000 face corners) over a 16 MiB limit. Without
+# shadows: --max-memory holds the whole run, and the key light's default 2048^2 map alone is 16 MiB.
 n = 100
 grid = ["v %d %d 0" % (i, j) for j in range(n + 1) for i in range(n + 1)]
 for j in range(n):
@@ -228,7 +243,7 @@ for j in range(n):
         a = j * (n + 1) + i + 1
         grid.append("f %d %d %d\nf %d %d %d" % (a, a + 1, a + n + 2, a, a + n + 2, a + n + 1))
 m = write("models/grid.obj", "\n".join(grid) + "\n")
-add_case("obj_over_max_memory", 3, "cpu", "--scene", m, "--max-memory", "16M")
+add_case("obj_over_max_memory", 3, "cpu", "--scene", m, "--max-memory", "16M", "--shadow", "none")
 add_case("obj_under_max_memory_control", 0, "gpu", "--scene", m, "--max-memory", "1G")
 
 def dae_tri(array_count_attr, p="0 1 2", triangles=1):

@@ -217,12 +217,19 @@ static int parse(int argc, char **argv, bench_opts *o)
     }
     if (o->stereo && o->scaling) return cli_fail(EXIT_USAGE, "--stereo and --scaling exclude each other");
     if (o->stereo && (c->path || c->has_orbit)) return cli_fail(EXIT_USAGE, "--stereo and --path/--orbit exclude each other");
-    int code = cli_common_finish(c);
-    if (code != EXIT_OK) return code;
+    /* The stereo size before cli_common_finish: its memory estimate is for the renderers made. */
     if (o->stereo && !c->has_size) {
         c->width = 1080;
         c->height = 1200;
     }
+    c->renderers = o->stereo ? 2 : 1;
+    for (int z = 0; o->scaling && z < o->size_count; ++z)
+        if ((long long)o->sizes[z][0] * o->sizes[z][1] > (long long)c->memory_width * c->memory_height) {
+            c->memory_width = o->sizes[z][0];
+            c->memory_height = o->sizes[z][1];
+        }
+    int code = cli_common_finish(c);
+    if (code != EXIT_OK) return code;
     /* The sample counts are the sweep's rows (set per configuration by configure), not a list of
      * the combinations: they leave the common lists. */
     if (c->sample_count > 0) {

@@ -862,10 +862,13 @@ static int check_run_memory(cli_common *c)
     int guard = 0; /* --guard, or a --set guard= that reaches a method */
     for (int k = 0; k < count; ++k)
         if (probes[k].guard > guard) guard = probes[k].guard;
+    const int rw = c->memory_width > 0 ? c->memory_width : c->width;
+    const int rh = c->memory_height > 0 ? c->memory_height : c->height;
+    const uint64_t renderers = c->renderers > 1 ? (uint64_t)c->renderers : 1u;
     if (count > 0) {
-        with_shadows = ob_estimate_renderer_memory(c->width, c->height, probes, count);
+        with_shadows = renderers * ob_estimate_renderer_memory(rw, rh, probes, count);
         for (int k = 0; k < count; ++k) probes[k].shadow.method = OB_SHADOW_NONE;
-        targets = ob_estimate_renderer_memory(c->width, c->height, probes, count);
+        targets = renderers * ob_estimate_renderer_memory(rw, rh, probes, count);
     }
     free(probes);
     const uint64_t px = (uint64_t)c->width * (uint64_t)c->height;
@@ -877,7 +880,9 @@ static int check_run_memory(cli_common *c)
     items[0].bytes = targets;
     char *t = items[0].text;
     const size_t tn = sizeof items[0].text;
-    appendf(t, tn, "render targets %s (--size %dx%d", human(targets, a, sizeof a), c->width, c->height);
+    appendf(t, tn, "render targets %s (", human(targets, a, sizeof a));
+    if (renderers > 1) appendf(t, tn, "%d renderers of ", c->renderers);
+    appendf(t, tn, "%s %dx%d", rw == c->width && rh == c->height ? "--size" : "--sizes up to", rw, rh);
     if (guard > 0) appendf(t, tn, ", %s %d", guard == c->guard_px ? "--guard" : "guard band", guard);
     if (c->temporal || path_temporal) appendf(t, tn, ", temporal history");
     if (c->method_count > 1) appendf(t, tn, ", %d methods", c->method_count);

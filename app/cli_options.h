@@ -88,6 +88,11 @@ typedef struct cli_common {
      * to the import (ob_scene_desc.reserved_memory, reserved_what) with its largest items. */
     uint64_t run_memory;
     char run_memory_what[400];
+    /* Set by the command before cli_common_finish, for that estimate: the renderers it holds at
+     * once (stereo: 2, tune: one per view; 0 = 1), and the largest renderer's size when it is not
+     * --size's (bench --scaling's largest --sizes; 0 = --size). */
+    int renderers;
+    int memory_width, memory_height;
     const char *camera;
     bool has_eye, has_target, has_fov;
     float eye[3], target[3], fov;

@@ -218,6 +218,7 @@ static int parse(int argc, char **argv, render_opts *o, cli_outputs *outs)
         o->common.width = h.width;
         o->common.height = h.height;
     }
+    o->common.renderers = o->stereo ? 2 : 1; /* one per eye, both held (--max-memory) */
     int code = cli_common_finish(&o->common);
     if (code != EXIT_OK) return code;
     if (o->warmup < 0) o->warmup = o->timings || o->frames > 1 ? 3 : 0;

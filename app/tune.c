@@ -36,6 +36,7 @@ typedef struct tune_param {
 typedef struct tune_view {
     char spec[256], name[200];
     ob_scene *scene;
+    bool owns_scene; /* views of one scene share it: loaded once, destroyed by its first view */
     ob_camera cam;
     ob_renderer *r;
     cli_view_frame frame;
@@ -144,6 +145,7 @@ static int parse(int argc, char **argv, tune_opts *o, cli_outputs *outs)
     for (int i = 0; i < o->train_count; ++i)
         for (int j = 0; j < i; ++j)
             if (!strcmp(o->train[i], o->train[j])) return cli_fail(EXIT_USAGE, "--train %s is given twice", o->train[i]);
+    o->common.renderers = o->train_count + o->validate_count; /* every view keeps its renderer */
     int code = cli_common_finish(&o->common);
     if (code != EXIT_OK) return code;
     return cli_outputs_add(o->outs, "--out", o->out, CLI_FMT_TEXT, &o->out_index);
@@ -295,7 +297,19 @@ static int mean_mse(tune_run *t, tune_view *views, int count, const tune_param *
     return EXIT_OK;
 }
 
-static int load_view(const tune_opts *o, ob_context *ctx, const char *spec, tune_view *v, size_t *max_px)
+/* The scene a view loaded earlier under the same name, or NULL. */
+static ob_scene *loaded_scene(const tune_view *views, int n, const char *name)
+{
+    for (int i = 0; i < n; ++i)
+        if (views[i].scene && !strcmp(views[i].name, name)) return views[i].scene;
+    return NULL;
+}
+
+/* earlier, earlier_n and also, also_n: the views loaded before this one (training, validation),
+ * whose scenes it shares when it names the same one: each copy of a scene is memory that
+ * --max-memory counted once. */
+static int load_view(const tune_opts *o, ob_context *ctx, const char *spec, tune_view *v, size_t *max_px,
+                     const tune_view *earlier, int earlier_n, const tune_view *also, int also_n)
 {
     const cli_common *c = &o->common;
     if (strlen(spec) >= sizeof v->name)
@@ -309,7 +323,10 @@ static int load_view(const tune_opts *o, ob_context *ctx, const char *spec, tune
         *colon = '\0';
         camera = colon + 1;
     }
-    v->scene = cli_common_load_scene(c, v->name);
+    v->scene = loaded_scene(earlier, earlier_n, v->name);
+    if (!v->scene) v->scene = loaded_scene(also, also_n, v->name);
+    v->owns_scene = !v->scene;
+    if (!v->scene) v->scene = cli_common_load_scene(c, v->name);
     if (!v->scene) return cli_fail_from_library();
     int code = cli_common_camera(c, v->scene, camera, &v->cam);
     if (code != EXIT_OK) return code;
@@ -342,8 +359,14 @@ static void free_views(tune_view *v, int n)
         cli_view_frame_free(&v[i].frame);
         free(v[i].ref);
         if (v[i].r) ob_destroy_renderer(v[i].r);
-        if (v[i].scene) ob_destroy_scene(v[i].scene);
     }
+}
+
+/* After every view's renderer is gone: the scenes, each by the view that loaded it. */
+static void free_scenes(tune_view *v, int n)
+{
+    for (int i = 0; i < n; ++i)
+        if (v[i].scene && v[i].owns_scene) ob_destroy_scene(v[i].scene);
 }
 
 /* One coordinate's candidates over [lo, hi] (every option of an enum), the current value among
@@ -443,9 +466,10 @@ static int tune_checked(const tune_opts *op)
         goto done;
     }
     for (; loaded_train < o.train_count && code == EXIT_OK; ++loaded_train)
-        code = load_view(&o, ctx, o.train[loaded_train], &train[loaded_train], &max_px);
+        code = load_view(&o, ctx, o.train[loaded_train], &train[loaded_train], &max_px, train, loaded_train, NULL, 0);
     for (; loaded_validate < o.validate_count && code == EXIT_OK; ++loaded_validate)
-        code = load_view(&o, ctx, o.validate[loaded_validate], &validate[loaded_validate], &max_px);
+        code = load_view(&o, ctx, o.validate[loaded_validate], &validate[loaded_validate], &max_px, validate,
+                         loaded_validate, train, loaded_train);
     if (code != EXIT_OK) goto done;
     t.ao = malloc(max_px * sizeof(float));
     if (!t.ao) {
@@ -581,6 +605,8 @@ done:
     free(rmse);
     free_views(train, loaded_train);
     free_views(validate, loaded_validate);
+    free_scenes(train, loaded_train);
+    free_scenes(validate, loaded_validate);
     ob_destroy_context(ctx);
     return code;
 }

@@ -228,6 +228,16 @@ run opt_path_frames_default cpu 2 "$C" "--max-memory (default|path frames|--path
 run opt_shadow_size_default cpu 2 "$C" "--max-memory (default|shadow maps|--shadow-size 16384" -- \
     render --scene cornell --shadow-size 16384 --light "point pos=0,1,0 intensity=1" --out OUT.png
 
+# Every renderer a command holds at once counts: both eyes of --stereo (one eye's 1.8 GiB fits 2G,
+# two do not), each view of tune (four at 2048x2048), bench --scaling's largest --sizes.
+run opt_stereo_two_renderers cpu 2 "$C" "--max-memory 2G|2 renderers of --size 4096x4096" -- \
+    render --scene cornell --size 4096x4096 --stereo mirror --max-memory 2G --out OUT.png
+run opt_tune_renderer_per_view cpu 2 "$C" "--max-memory 1G|4 renderers of --size 2048x2048" -- \
+    tune --method ssao --params ssao.intensity --train cornell,corner --validate sphere-on-plane,slab \
+    --size 2048x2048 --max-memory 1G --out OUT.json
+run opt_bench_scaling_largest cpu 2 "$C" "--max-memory 512M|--sizes up to 3840x2160" -- \
+    bench --scene cornell --scaling --max-memory 512M --json OUT.json
+
 # An environment map counts with the rest of the run, sized from its header (it was decoded
 # without a word: 1.5 GiB here).
 run env_map_512m cpu 2 "$C" "--max-memory 512M|environment map 1.50 GiB|big.hdr 8192x8192" -- \

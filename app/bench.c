@@ -905,11 +905,7 @@ static int bench_run(int argc, char **argv)
     for (int b = 0; b < base_count; ++b) bases[b].settings.shadow.reuse = o.keep_shadows;
     for (int k = 0; k < count; ++k) configs[k].settings.shadow.reuse = o.keep_shadows;
 
-    scene = cli_common_load_scene(c, NULL);
-    if (!scene) {
-        code = cli_fail_from_library();
-        goto cleanup;
-    }
+    if ((code = cli_common_load_scene(c, NULL, &scene)) != EXIT_OK) goto cleanup;
     if (cli_common_moves(c)) {
         /* An unknown path fails here, before any GPU work. */
         ob_camera probe = ob_query_camera(scene, 0);

@@ -1029,12 +1029,51 @@ int cli_common_configs(const cli_common *c, cli_config **configs, int *count)
 
 /* ---- scene, camera, renderer ------------------------------------------------------------------ */
 
-ob_scene *cli_common_load_scene(const cli_common *c, const char *name)
+/* The shadow maps the scene's own lights add to the key light's, which check_run_memory counted
+ * (with no --light a frame takes the scene's lights: a sidecar may give eight point lights, six
+ * layers each). The same settings as the estimate's, with and without the lights. */
+static uint64_t scene_light_memory(const cli_common *c, const ob_scene *scene, int *lights)
 {
-    return ob_load_scene(&(ob_scene_desc){.name = name ? name : c->scene, .sidecar = c->sidecar, .up = c->up,
+    *lights = ob_query_scene_light_count(scene);
+    if (c->light_count > 0 || *lights <= 1 || c->method_count < 1) return 0;
+    ob_settings s = {0};
+    if (ob_settings_init(&s, ob_method_at(c->methods[0])->name) != OB_OK) {
+        ob_clear_error();
+        return 0;
+    }
+    if (c->given & CLI_GIVEN_SHADOW) s.shadow.method = c->shadow;
+    if (c->given & CLI_GIVEN_SHADOW_SIZE) s.shadow.size = c->shadow_size;
+    if (c->given & CLI_GIVEN_VSM_BITS) s.shadow.vsm_bits = c->vsm_bits;
+    const int rw = c->memory_width > 0 ? c->memory_width : c->width;
+    const int rh = c->memory_height > 0 ? c->memory_height : c->height;
+    const uint64_t key_only = ob_estimate_renderer_memory(rw, rh, &s, 1);
+    for (int i = 0; i < *lights && i < OB_MAX_LIGHTS; ++i) s.lights[s.light_count++] = ob_query_scene_light(scene, i);
+    const uint64_t all = ob_estimate_renderer_memory(rw, rh, &s, 1);
+    const uint64_t renderers = c->renderers > 1 ? (uint64_t)c->renderers : 1u;
+    return all > key_only ? renderers * (all - key_only) : 0;
+}
+
+int cli_common_load_scene(const cli_common *c, const char *name, ob_scene **out)
+{
+    *out = ob_load_scene(&(ob_scene_desc){.name = name ? name : c->scene, .sidecar = c->sidecar, .up = c->up,
                                           .allow_external_files = c->allow_external_files,
                                           .max_memory = c->max_memory, .reserved_memory = c->run_memory,
                                           .reserved_what = c->run_memory_what});
+    if (!*out) return cli_fail_from_library();
+    int lights = 0;
+    const uint64_t extra = scene_light_memory(c, *out, &lights);
+    const uint64_t limit = c->max_memory ? c->max_memory : ob_default_max_memory();
+    if (extra == 0 || c->run_memory + extra <= limit) return EXIT_OK;
+    char a[32] = "", b[32] = "", l[32] = "";
+    const char *scene = ob_query_scene_name(*out);
+    int code = cli_fail(EXIT_INPUT, "--max-memory %s%s: scene '%s' has %d lights, whose shadow maps take %s more than its "
+                        "key light's: this run needs about %s (%s); --shadow-size, --shadow none or --light lower it",
+                        c->max_memory_text ? c->max_memory_text : human(limit, l, sizeof l),
+                        c->max_memory_text ? "" : " (the default)", scene, lights, human(extra, a, sizeof a),
+                        human(c->run_memory + extra, b, sizeof b), c->run_memory_what);
+    ob_destroy_scene(*out);
+    *out = NULL;
+    return code;
 }
 
 int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *preset, ob_camera *cam)
@@ -1090,8 +1129,13 @@ int cli_common_path_camera(const cli_common *c, const ob_scene *scene, const ob_
     const int n = c->path_frames > 1 ? c->path_frames : CLI_PATH_FRAMES;
     const float u = (float)f / (float)(n - 1);
     if (c->path) {
-        if (ob_camera_on_path(scene, c->path, u, out) != OB_OK) return cli_fail_from_library();
+        char where[160];
+        snprintf(where, sizeof where, "--path %.63s: frame %d of %d", c->path, f, n);
+        if (ob_camera_on_path(scene, c->path, u, out) != OB_OK) return cli_fail_from_library_in(where);
         if (c->has_fov) out->fov_y_deg = c->fov;
+        /* Every key passed the camera check; a camera between them can still fail it (the spline
+         * overshooting onto its target): said with the path and frame, not as a bare camera. */
+        if (ob_check_camera(out) != OB_OK) return cli_fail_from_library_in(where);
         return EXIT_OK;
     }
     *out = c->has_orbit ? ob_camera_orbit(base, c->orbit_deg * u) : *base;

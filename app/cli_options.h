@@ -196,8 +196,10 @@ const cli_tuned *cli_common_tuned(const cli_common *c, int method);
 void cli_config_label(const cli_common *c, const cli_config *cfg, const char *sep, char *out, size_t n);
 
 /* The scene named `name` (c->scene when NULL) with --sidecar, --up and --max-memory (less what
- * the rest of the run takes: c->run_memory); NULL with the library's error pending. */
-ob_scene *cli_common_load_scene(const cli_common *c, const char *name);
+ * the rest of the run takes: c->run_memory) into *out; then, without --light, the shadow maps of
+ * the scene's own lights beyond the key light (which the run's estimate counted) against
+ * --max-memory too. 0, or the exit code of the one line printed (*out NULL). */
+int cli_common_load_scene(const cli_common *c, const char *name, ob_scene **out);
 /* The camera: --eye/--target/--fov, else the preset `preset` (c->camera when NULL, else
  * "default") with --fov. 0 or an exit code. */
 int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *preset, ob_camera *cam);

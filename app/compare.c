@@ -329,8 +329,8 @@ static int load_view(const compare_opts *o, const char *spec, view_input *in)
     }
     if (camera && c->has_eye)
         return cli_fail(EXIT_USAGE, "--scene %s: a camera preset and --eye/--target exclude each other", spec);
-    in->scene = cli_common_load_scene(c, in->name);
-    if (!in->scene) return cli_fail_from_library();
+    int code = cli_common_load_scene(c, in->name, &in->scene);
+    if (code != EXIT_OK) return code;
     return cli_common_camera(c, in->scene, camera, &in->cam);
 }
 

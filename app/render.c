@@ -464,8 +464,8 @@ static int render_checked(render_opts *op)
     const ob_settings settings = configs[0].settings; /* no lists: one configuration */
     free(configs);
 
-    ob_scene *scene = cli_common_load_scene(c, NULL);
-    if (!scene) return cli_fail_from_library();
+    ob_scene *scene = NULL;
+    if ((code = cli_common_load_scene(c, NULL, &scene)) != EXIT_OK) return code;
     ob_camera cam = {0};
     if ((code = cli_common_camera(c, scene, NULL, &cam)) != EXIT_OK) {
         ob_destroy_scene(scene);

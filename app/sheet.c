@@ -208,10 +208,11 @@ static int sheet_checked(const sheet_opts *op)
     cli_config *configs = NULL;
     int count = 0;
     if ((code = cli_common_configs(c, &configs, &count)) != EXIT_OK) return code;
-    ob_scene *scene = cli_common_load_scene(c, NULL);
-    if (!scene) {
+    ob_scene *scene = NULL;
+    int loaded = cli_common_load_scene(c, NULL, &scene);
+    if (loaded != EXIT_OK) {
         free(configs);
-        return cli_fail_from_library();
+        return loaded;
     }
     ob_camera cam = {0};
     if ((code = cli_common_camera(c, scene, NULL, &cam)) != EXIT_OK) {

@@ -326,9 +326,9 @@ static int load_view(const tune_opts *o, ob_context *ctx, const char *spec, tune
     v->scene = loaded_scene(earlier, earlier_n, v->name);
     if (!v->scene) v->scene = loaded_scene(also, also_n, v->name);
     v->owns_scene = !v->scene;
-    if (!v->scene) v->scene = cli_common_load_scene(c, v->name);
-    if (!v->scene) return cli_fail_from_library();
-    int code = cli_common_camera(c, v->scene, camera, &v->cam);
+    int code = v->scene ? EXIT_OK : cli_common_load_scene(c, v->name, &v->scene);
+    if (code != EXIT_OK) return code;
+    code = cli_common_camera(c, v->scene, camera, &v->cam);
     if (code != EXIT_OK) return code;
     v->r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = c->width, .height = c->height});
     if (!v->r || ob_renderer_set_scene(v->r, v->scene) != OB_OK) return cli_fail_from_library();

@@ -340,11 +340,7 @@ int cmd_view(int argc, char **argv)
         free(v);
         return code;
     }
-    v->scene = cli_common_load_scene(&v->o.common, NULL);
-    if (!v->scene) {
-        code = cli_fail_from_library();
-        goto done;
-    }
+    if ((code = cli_common_load_scene(&v->o.common, NULL, &v->scene)) != EXIT_OK) goto done;
     if ((code = setup_settings(v)) != 0) goto done;
     if ((code = camera_setup(v)) != 0) goto done;
     v->path_playing = cli_common_moves(&v->o.common); /* --path / --orbit starts playing */

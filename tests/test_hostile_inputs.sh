@@ -86,6 +86,15 @@ expect 2 "^obscura: --set ssao.bias=abc: ssao.bias expects a number, got 'abc'" 
 expect 2 "^obscura: --method: unknown method 'nosuch' \(known: none, ssao" -- "${R[@]}" --method nosuch
 expect 3 "^obscura: cannot read environment map m.obj: not a Radiance .hdr image" -- "${R[@]}" --ambient env --env m.obj
 
+# Path key times whose differences overflow a float made every camera between them NaN, reported
+# without naming the path.
+cat >m.obscura.json <<'JSON'
+{"paths": [{"name": "far", "keys": [
+  {"time": -3e38, "eye": [0.5, 0.5, 2], "target": [0.5, 0.4, 0]},
+  {"time": 3e38, "eye": [0.6, 0.5, 2], "target": [0.5, 0.4, 0]}]}]}
+JSON
+expect 3 "m.obscura.json: paths\[0\]\.keys\[0\]\.time: -3e\+38 is beyond \+-1e9$" -- "${R[@]}" --scene m.obj --path far --path-frames 3
+
 # A path frame that sees nothing: its RMSE used to count as 0 in the path's mean. The path looks at
 # the wall, then at the empty sky behind the camera, then back.
 cat >m.obscura.json <<'JSON'

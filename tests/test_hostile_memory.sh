@@ -141,6 +141,9 @@ obj("wide/edge.obj", ["edge.png"])
 # An environment map declaring 8192 x 8192 (1.5 GiB at its peak), as long as the smallest run-length
 # encoding of that many pixels (4 + 8 x 65 bytes a line): only its header is read.
 write("env/big.hdr", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 8192\n" + bytes(524 * 8192))
+write("lights/lights.obj", "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 3 2\nf 1 4 3\n")
+write("lights/lights.obscura.json", json.dumps({"lights": [
+    {"type": "point", "position": [0.5, 0.8, 0.5 + 0.01 * i]} for i in range(8)]}))
 PY
 
 fail=0 ran=0 worst_kb=0 worst_case=""
@@ -237,6 +240,11 @@ run opt_tune_renderer_per_view cpu 2 "$C" "--max-memory 1G|4 renderers of --size
     --size 2048x2048 --max-memory 1G --out OUT.json
 run opt_bench_scaling_largest cpu 2 "$C" "--max-memory 512M|--sizes up to 3840x2160" -- \
     bench --scene cornell --scaling --max-memory 512M --json OUT.json
+
+# A sidecar's own lights cast shadows too: eight point lights at 4096 (1.73 GB and exit 0 under
+# --max-memory 1G before); the estimate before the scene counted the key light's map alone.
+run scene_lights_shadow_maps gpu 3 262144 "--max-memory 1G|scene 'lights' has 8 lights|shadow maps take" -- \
+    render --scene "$IN/lights/lights.obj" --shadow-size 4096 --size 32x24 --max-memory 1G --out OUT.png
 
 # An environment map counts with the rest of the run, sized from its header (it was decoded
 # without a word: 1.5 GiB here).

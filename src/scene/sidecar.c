@@ -29,7 +29,7 @@
  *         "name": "walk",        required, 1-63 characters, unique
  *         "keys": [              required; eye and target follow Catmull-Rom splines in time
  *           {"time": 0, "eye": [x, y, z], "target": [x, y, z], "fov": 60},
- *           ...                  time: required, strictly increasing; eye, target: required,
+ *           ...                  time: required, strictly increasing, within +-1e9; eye, target: required,
  *         ]                      != each other; fov: (1, 179), default 60 (linear between keys)
  *       }
  *     ],
@@ -264,6 +264,10 @@ static ob_error parse_key(const char *path, const char *where, const cJSON *obj,
         ob_error err = OB_OK;
         if (strcmp(key, "time") == 0) {
             err = read_number(path, field, it, &p->time[k]);
+            /* Times are interpolated as differences: beyond 1e9 two keys' difference can overflow
+             * a float (3e38 made every camera between them NaN). */
+            if (err == OB_OK && !(fabsf(p->time[k]) <= 1e9f))
+                return fail(path, "%s: %g is beyond +-1e9", field, (double)p->time[k]);
             has_time = true;
         } else if (strcmp(key, "eye") == 0) {
             err = read_vec3(path, field, it, p->eye[k]);

@@ -3,6 +3,7 @@
 
 #include <cglm/cglm.h>
 #include <cjson/cJSON.h>
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -609,6 +610,24 @@ static bool write_all(int fd, const void *data, size_t n)
     return true;
 }
 
+/* A process killed while it wrote an entry (SIGKILL, a crash, a signal taken on another thread)
+ * leaves its reference-*.tmp-XXXXXX behind: each store removes those an hour old, far longer
+ * than any write takes, so another process's entry in flight is never touched. */
+static void remove_stale_temporaries(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) return;
+    const time_t now = time(NULL);
+    for (struct dirent *e; (e = readdir(d)) != NULL;) {
+        if (strncmp(e->d_name, "reference-", 10) != 0 || !strstr(e->d_name, ".tmp-")) continue;
+        struct stat st = {0};
+        if (fstatat(dirfd(d), e->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode) &&
+            now - st.st_mtime > 3600)
+            (void)unlinkat(dirfd(d), e->d_name, 0);
+    }
+    closedir(d);
+}
+
 void cli_reference_cache_store(const ob_scene *scene, const cli_view_frame *f, const char *view_key, float radius,
                                int spp, const float *ref, const float *se, bool verbose)
 {
@@ -641,6 +660,7 @@ void cli_reference_cache_store(const ob_scene *scene, const cli_view_frame *f, c
     }
     const bool made = mkdir(dir, 0777) == 0 || errno == EEXIST;
     const int made_errno = errno;
+    if (made) remove_stale_temporaries(dir);
     struct statvfs vfs = {0};
     const bool have_vfs = made && statvfs(dir, &vfs) == 0;
     const unsigned long long free_bytes = have_vfs ? (unsigned long long)vfs.f_bavail * vfs.f_frsize : 0;

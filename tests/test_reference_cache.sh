@@ -260,6 +260,19 @@ compare race3 --scene corner
 if [ "$(rc race3)" = 0 ] && [ "$(cached race3)" = True ] && [ "$(rmse race3)" = "$truth" ] && ! grep -q warning "$dir/race3.err"
 then ok; else bad "the raced entry was not used: cached $(cached race3), RMSE $(rmse race3)"; fi
 
+# A temporary entry a killed process left an hour ago goes at the next store; one a process may
+# still be writing (a minute old) stays.
+stale="$XDG_CACHE_HOME/obscura/reference-0000000000000000.pfm.tmp-AbCdEf"
+fresh="$XDG_CACHE_HOME/obscura/reference-0000000000000001.pfm.tmp-AbCdEf"
+printf 'half' >"$stale"
+printf 'half' >"$fresh"
+touch -d '2 hours ago' "$stale"
+touch -d '1 minute ago' "$fresh"
+compare stale --scene corner:diagonal
+if [ "$(rc stale)" = 0 ] && [ ! -e "$stale" ] && [ -e "$fresh" ]; then ok
+else bad "stale temporaries: exit $(rc stale), stale one $( [ -e "$stale" ] && echo kept || echo removed), fresh one $( [ -e "$fresh" ] && echo kept || echo removed)"; fi
+rm -f "$fresh"
+
 # (g) A cache location that cannot take the entry: one warning for our cache, one for Mesa's
 # (turned off: no mesa_shader_cache made), exit 0 (not 135, SIGBUS), the right RMSE.
 unwritable() {

@@ -314,12 +314,17 @@ typedef struct view_result {
 typedef struct view_input {
     char name[256]; /* as --scene named it: part of the reference cache key */
     ob_scene *scene;
+    bool owns_scene; /* views of one scene share it: loaded once (--max-memory counted it once) */
     ob_camera cam;
 } view_input;
 
-static int load_view(const compare_opts *o, const char *spec, view_input *in)
+/* earlier: the n views loaded before this one, whose scene it shares when it names the same. */
+static int load_view(const compare_opts *o, const char *spec, view_input *in, const view_input *earlier, int n)
 {
     const cli_common *c = &o->common;
+    if (strlen(spec) >= sizeof in->name)
+        return cli_fail(EXIT_USAGE, "--scene %.80s...: %zu bytes; expected SCENE[:CAMERA] of at most %zu", spec,
+                        strlen(spec), sizeof in->name - 1);
     snprintf(in->name, sizeof in->name, "%s", spec);
     const char *camera = NULL;
     char *colon = strrchr(in->name, ':');
@@ -329,7 +334,10 @@ static int load_view(const compare_opts *o, const char *spec, view_input *in)
     }
     if (camera && c->has_eye)
         return cli_fail(EXIT_USAGE, "--scene %s: a camera preset and --eye/--target exclude each other", spec);
-    int code = cli_common_load_scene(c, in->name, &in->scene);
+    for (int k = 0; k < n && !in->scene; ++k)
+        if (earlier[k].scene && !strcmp(earlier[k].name, in->name)) in->scene = earlier[k].scene;
+    in->owns_scene = !in->scene;
+    int code = in->scene ? EXIT_OK : cli_common_load_scene(c, in->name, &in->scene);
     if (code != EXIT_OK) return code;
     return cli_common_camera(c, in->scene, camera, &in->cam);
 }
@@ -1231,7 +1239,7 @@ static int compare_checked(const compare_opts *op)
         code = cli_fail(EXIT_RUNTIME, "out of memory");
         goto cleanup;
     }
-    for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) code = load_view(&o, o.views[v], &inputs[v]);
+    for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) code = load_view(&o, o.views[v], &inputs[v], inputs, v);
     for (int v = 0; v < o.view_count && code == EXIT_OK && cli_common_moves(c); ++v) {
         ob_camera probe; /* --path names a path of every scene */
         code = cli_common_path_camera(c, inputs[v].scene, &inputs[v].cam, 0, &probe);
@@ -1282,7 +1290,8 @@ cleanup:
         free(views[v].flicker);
     }
     free(views);
-    for (int v = 0; v < MAX_VIEWS; ++v) ob_destroy_scene(inputs[v].scene);
+    for (int v = 0; v < MAX_VIEWS; ++v)
+        if (inputs[v].owns_scene) ob_destroy_scene(inputs[v].scene);
     ob_destroy_renderer(r);
     ob_destroy_context(ctx);
     free(configs);

@@ -1,14 +1,19 @@
 /* An LD_PRELOAD shim for tests/test_transaction.sh: it counts the calls that put a file in place
- * (rename, renameat, renameat2, link, linkat) and makes one of them fail, or sends a signal or runs
- * a command just before it, so that the test can stop a command at every step of writing and
+ * (rename, renameat, renameat2, link, linkat) and makes one of them fail, or sends a signal or
+ * changes a file just before it, so that the test can stop a command at every step of writing and
  * committing its outputs. The production code has no hook for this: the dynamic linker puts these
  * functions in front of libc's.
  *
  *   OB_FAULT_RENAME_FAIL=N          the Nth counted call fails with EIO and does nothing
  *   OB_FAULT_RENAME_SIGNAL=N:SIG    SIG (INT, TERM, HUP or a number) is raised in the calling
  *                                   thread just before the Nth counted call, which then runs
- *   OB_FAULT_RENAME_RUN=N:COMMAND   COMMAND (sh -c, without this shim) runs just before the Nth
- *                                   counted call, which then runs
+ *   OB_FAULT_RENAME_KILL=N:SIG      SIG is sent to the process (kill, not raise: any thread that
+ *                                   does not block it may take it) just before the Nth counted call
+ *   OB_FAULT_RENAME_DIR=N:PATH      PATH is removed and made a directory just before the Nth
+ *                                   counted call (an output turned into a directory mid-run)
+ *   OB_FAULT_RENAME_FILE=N:PATH     PATH is written ("mine\n") just before the Nth counted call (a
+ *                                   file of the user's that comes into a report mid-run)
+ * Each action is a system call of its own: no shell ever runs, whatever the test passes.
  *   OB_FAULT_SKIP=PAT[:PAT...]      a call whose new name matches one of the patterns (fnmatch, '*'
  *                                   matches '/') is passed on without being counted
  *   OB_FAULT_LOG=FILE               one line per counted call, "N CALL OLD NEW", appended
@@ -23,6 +28,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static int calls = 0;
@@ -84,10 +90,20 @@ static bool before(const char *call, const char *from, const char *to)
     int n = __atomic_add_fetch(&calls, 1, __ATOMIC_SEQ_CST);
     log_call(n, call, from, to);
     const char *rest = NULL;
-    if (env_number("OB_FAULT_RENAME_RUN", &rest) == n && rest) {
-        /* The command's own renames (mv) are not the program's. */
-        unsetenv("LD_PRELOAD");
-        (void)!system(rest);
+    if (env_number("OB_FAULT_RENAME_KILL", &rest) == n) {
+        int sig = signal_of(rest);
+        if (sig > 0) kill(getpid(), sig);
+    }
+    if (env_number("OB_FAULT_RENAME_DIR", &rest) == n && rest) {
+        (void)unlink(rest);
+        (void)mkdir(rest, 0777);
+    }
+    if (env_number("OB_FAULT_RENAME_FILE", &rest) == n && rest) {
+        int fd = open(rest, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+        if (fd >= 0) {
+            (void)!write(fd, "mine\n", 5);
+            close(fd);
+        }
     }
     if (env_number("OB_FAULT_RENAME_SIGNAL", &rest) == n) {
         int sig = signal_of(rest);

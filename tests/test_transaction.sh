@@ -71,10 +71,10 @@ transaction() {
             "$(diff <(echo "$before") <(state) | grep '^[<>]' | tr '\n' ' ')"
         else ok; fi
         # The same sent to the process (kill), not to the thread: any thread that does not block
-        # it may take it (llvmpipe's workers). Not SIGINT: system() ignores it while the command runs.
+        # it may take it (llvmpipe's workers).
         sig=${signals[$((n % 2 + 1))]}
         $setup
-        shimmed OB_FAULT_RENAME_RUN="$n:kill -$sig \$PPID" -- "$@"
+        shimmed OB_FAULT_RENAME_KILL="$n:$sig" -- "$@"
         got=$?
         if [ "$got" -ne $((128 + ${signum[$sig]})) ]; then bad "$name, kill -$sig before step $n of $steps: exit $got, want $((128 + ${signum[$sig]})): $(errors)"
         elif [ "$(state)" != "$before" ]; then bad "$name, kill -$sig before step $n of $steps ($(sed -n "${n}p" steps.log)) changed w:" \
@@ -128,7 +128,7 @@ shimmed OB_FAULT_LOG="$dir/steps.log" -- "${R[@]}" --out X.png --ao-out X_ao.pfm
 last=$(wc -l <steps.log)
 for n in 1 "$last"; do
     old_pair
-    shimmed OB_FAULT_RENAME_RUN="$n:rm X_ao.pfm && mkdir X_ao.pfm" -- "${R[@]}" --out X.png --ao-out X_ao.pfm
+    shimmed OB_FAULT_RENAME_DIR="$n:X_ao.pfm" -- "${R[@]}" --out X.png --ao-out X_ao.pfm
     got=$?
     if [ "$got" -eq 4 ] && echo old-png | cmp -s - w/X.png && [ -d w/X_ao.pfm ] && [ -z "$(find w -name '*.tmp-*')" ] &&
         errors | grep -q '^obscura: --ao-out X_ao.pfm: .*[Dd]irectory'; then
@@ -146,7 +146,7 @@ done
 if [ -d rep.earlier ]; then
     for skip in "$XDG_CACHE_HOME/*" "$XDG_CACHE_HOME/*:rep.tmp-*/*"; do
         old_report
-        shimmed OB_FAULT_RENAME_RUN="1:echo mine >rep/notes.txt" -- "${C[@]}" --methods ssao
+        shimmed OB_FAULT_RENAME_FILE="1:rep/notes.txt" -- "${C[@]}" --methods ssao
         got=$?
         if [ "$got" -eq 4 ] && [ "$(cat w/rep/notes.txt 2>/dev/null)" = mine ] && rm w/rep/notes.txt &&
             diff -r rep.earlier w/rep >/dev/null && [ -z "$(find w -name '*.tmp-*')" ] &&

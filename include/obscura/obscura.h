@@ -1,7 +1,7 @@
 /*
  * obscura.h — public API of libobscura: screen-space ambient occlusion and indirect light.
  *
- * The frame flows one way (see ../shared/DESIGN.md): scene -> G-buffer -> AO method -> filter ->
+ * The frame flows one way (README.md, docs/methods.md): scene -> G-buffer -> AO method -> filter ->
  * [upsample] -> compose -> sRGB. Every screen-space pass is a GLSL compute shader with its own GPU timer.
  *
  * Conventions

@@ -291,13 +291,10 @@ bool cli_parse_vec3(const char *text, float out[3])
 
 bool cli_hdr_dimensions(const char *path, long long *width, long long *height)
 {
-    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC); /* a FIFO: no wait (reported later) */
-    struct stat st = {0};
+    struct stat st;
+    char why[160];
+    int fd = cli_open_regular(path, &st, why, sizeof why); /* anything else is reported when it loads */
     if (fd < 0) return false;
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        close(fd);
-        return false;
-    }
     FILE *f = fdopen(fd, "rb");
     if (!f) {
         close(fd);
@@ -335,51 +332,55 @@ const char *cli_file_kind(unsigned mode)
     return "not a regular file";
 }
 
-char *cli_read_regular(const char *path, size_t limit, size_t *size, char *why, size_t n)
+int cli_open_regular(const char *path, struct stat *st, char *why, size_t n)
 {
-    if (size) *size = 0;
     if (n) why[0] = '\0';
     /* O_NONBLOCK: open() on a FIFO with no writer would wait forever; fstat then says what it is. */
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
         snprintf(why, n, "%s", errno == ENOENT ? "no such file" : strerror(errno));
-        return NULL;
+        return -1;
     }
-    struct stat st = {0};
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        snprintf(why, n, "it is %s, not a regular file", cli_file_kind(st.st_mode));
+    *st = (struct stat){0};
+    if (fstat(fd, st) != 0 || !S_ISREG(st->st_mode)) {
+        snprintf(why, n, "it is %s, not a regular file", cli_file_kind(st->st_mode));
         close(fd);
-        return NULL;
+        return -1;
     }
+    int flags = fcntl(fd, F_GETFL);
+    if (flags >= 0) (void)fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+    return fd;
+}
+
+char *cli_read_regular(const char *path, size_t limit, size_t *size, char *why, size_t n)
+{
+    if (size) *size = 0;
+    struct stat st;
+    int fd = cli_open_regular(path, &st, why, n);
+    if (fd < 0) return NULL;
     if ((unsigned long long)st.st_size > (unsigned long long)limit) {
         snprintf(why, n, "it holds %lld bytes, more than the %zu a file of this kind can mean", (long long)st.st_size, limit);
         close(fd);
         return NULL;
     }
-    int flags = fcntl(fd, F_GETFL);
-    if (flags >= 0) (void)fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
-    char *buf = malloc(limit + 1);
+    /* What fstat said, and no more: a file growing while it is read is read as it was. */
+    const size_t want = (size_t)st.st_size;
+    char *buf = malloc(want + 1);
     size_t got = 0;
-    while (buf && got <= limit) {
-        ssize_t r = read(fd, buf + got, limit + 1 - got);
+    while (buf && got < want) {
+        ssize_t r = read(fd, buf + got, want - got);
         if (r < 0 && errno == EINTR) continue;
-        if (r < 0) {
-            snprintf(why, n, "%s", strerror(errno));
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        if (r == 0) break;
+        if (r <= 0) break;
         got += (size_t)r;
     }
+    const int err = errno;
     close(fd);
     if (!buf) {
-        if (got == 0 && !why[0]) snprintf(why, n, "out of memory");
+        snprintf(why, n, "out of memory");
         return NULL;
     }
-    /* It grew since the fstat: the limit holds for what is read, not only for what was said. */
-    if (got > limit) {
-        snprintf(why, n, "it holds more than the %zu bytes a file of this kind can mean", limit);
+    if (got < want) {
+        snprintf(why, n, "%s", got == 0 && err ? strerror(err) : "it shrank while it was read");
         free(buf);
         return NULL;
     }

@@ -80,6 +80,10 @@ void cli_exposure_free(cli_exposure *e);
  * blocking and checked to be a regular file before a byte is read, so a FIFO or a device in its
  * place never hangs the command. *size (when not NULL) gets the bytes read. */
 char *cli_read_regular(const char *path, size_t limit, size_t *size, char *why, size_t n);
+/* path opened for reading the same way (never blocking, a regular file only: *st its fstat), the
+ * descriptor then blocking for ordinary reads; -1 with why as above. */
+struct stat;
+int cli_open_regular(const char *path, struct stat *st, char *why, size_t n);
 /* The pixel size a Radiance .hdr image (an environment map) declares in its header, read without
  * decoding it; false when the file is not one, is not a regular file or cannot be read. For an
  * estimate of the memory its decode will take. */

@@ -127,14 +127,11 @@ static bool same_print(const file_print *a, const struct stat *st)
 static void print_file(const char *path, char *out, size_t n)
 {
     snprintf(out, n, "?");
-    /* O_NONBLOCK: a FIFO put in the model's place since the load must not hang the key. */
-    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    /* A FIFO put in the model's place since the load must not hang the key (cli_open_regular). */
+    struct stat st;
+    char why[160];
+    int fd = cli_open_regular(path, &st, why, sizeof why);
     if (fd < 0) return;
-    struct stat st = {0};
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        close(fd);
-        return;
-    }
     uint64_t h = FNV_OFFSET;
     bool found = false;
     pthread_mutex_lock(&memo_lock);

@@ -146,17 +146,3 @@ int cli_tuned_apply(const cli_tuned *t, ob_settings *s)
         if (ob_settings_set(s, t->assignments[i]) != OB_OK) return cli_fail_from_library();
     return EXIT_OK;
 }
-
-bool cli_write_file_atomic(const char *path, const char *text)
-{
-    char tmp[1100];
-    snprintf(tmp, sizeof tmp, "%s.tmp-%ld", path, (long)getpid());
-    FILE *f = fopen(tmp, "wb");
-    if (!f) return false;
-    size_t n = strlen(text);
-    bool ok = fwrite(text, 1, n, f) == n;
-    ok = fclose(f) == 0 && ok;
-    if (ok && rename(tmp, path) == 0) return true;
-    remove(tmp);
-    return false;
-}

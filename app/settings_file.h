@@ -28,8 +28,5 @@ typedef struct cli_tuned {
 int cli_tuned_load(const char *path, cli_tuned *out, int max, int *count);
 /* Apply t's assignments to settings of t's method. 0 or an exit code. */
 int cli_tuned_apply(const cli_tuned *t, ob_settings *s);
-/* Write text to path whole or not at all: a temporary file beside it, then rename. False (path
- * untouched) on any failure. */
-bool cli_write_file_atomic(const char *path, const char *text);
 
 #endif

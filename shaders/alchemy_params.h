@@ -17,7 +17,7 @@ OB_CONSTANTS_BEGIN(ob_alchemy_constants, OB_BINDING_PASS)
     OB_FLOAT px_per_unit;   /* pixels per world unit at depth 1: (height / 2) x P11 of the AO grid */
     OB_INT samples;         /* spiral samples s */
     OB_INT noise;           /* OB_NOISE_* rotation */
-    OB_INT adaptive;        /* 1: per-pixel samples, adaptive_base x the edge pass's multiplier (unit 3) */
+    OB_INT adaptive;        /* 1: per-pixel samples, adaptive_base x the multiplier (OB_UNIT_SAMPLE_MULTIPLIER) */
     OB_INT adaptive_base;   /*   the samples at multiplier 1 (seed 003 §4.1) */
     OB_FLOAT pad0;
 OB_CONSTANTS_END(ob_alchemy_constants, alchemy)

@@ -11,8 +11,8 @@
 
 layout(local_size_x = OB_BLOOM_GROUP_X, local_size_y = OB_BLOOM_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D src;
-layout(binding = 0, rgba16f) uniform writeonly image2D dst;
+layout(binding = OB_UNIT_SOURCE) uniform sampler2D src;
+layout(binding = OB_IMAGE_UNIT_OUT, rgba16f) uniform writeonly image2D dst;
 
 void main()
 {

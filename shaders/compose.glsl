@@ -20,7 +20,7 @@
  *   OB_COMPOSE_AMBIENT      OB_AMBIENT_MODE_* (default constant)
  *   OB_COMPOSE_DIRECTIONAL  ao_map holds a directional method's RGB modulation factor M
  *   OB_COMPOSE_BOUNCE       add the one-bounce light x albedo (a method that writes a bounce)
- *   OB_COMPOSE_BENT         look the ambient up along the method's bent normal (unit 7)
+ *   OB_COMPOSE_BENT         look the ambient up along the bent normal (OB_UNIT_COMPOSE_BENT_NORMAL)
  *   OB_COMPOSE_MULTIBOUNCE  visibility through Jimenez et al. 2016's multi-bounce fit
  *   OB_COMPOSE_ALL_LIGHT    AO darkens all light, not only the ambient term */
 #ifndef OB_COMPOSE_AMBIENT
@@ -29,15 +29,15 @@
 
 layout(local_size_x = OB_COMPOSE_GROUP_X, local_size_y = OB_COMPOSE_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D linear_depth;
-layout(binding = 1) uniform sampler2D view_normal;
-layout(binding = 2) uniform sampler2D albedo_map;
-layout(binding = 3) uniform sampler2D ao_map;         /* R32F visibility, or RGBA16F M (SSDO) */
-layout(binding = 4) uniform sampler2D direct_map;     /* RGBA16F direct radiance */
-layout(binding = 5) uniform sampler2D environment;    /* equirectangular radiance, for the background */
-layout(binding = 6) uniform sampler2D bounce_map;     /* RGBA16F one-bounce indirect light (SSDO) */
-layout(binding = 7) uniform sampler2D bent_map;       /* RGBA16F view-space bent normal (cmp.bent_normal) */
-layout(binding = 0, rgba16f) uniform writeonly image2D hdr_out;
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D linear_depth;
+layout(binding = OB_UNIT_NORMAL) uniform sampler2D view_normal;
+layout(binding = OB_UNIT_ALBEDO) uniform sampler2D albedo_map;
+layout(binding = OB_UNIT_COMPOSE_AO) uniform sampler2D ao_map;               /* R32F visibility, or RGBA16F M (SSDO) */
+layout(binding = OB_UNIT_COMPOSE_DIRECT) uniform sampler2D direct_map;       /* RGBA16F direct radiance */
+layout(binding = OB_UNIT_COMPOSE_ENVIRONMENT) uniform sampler2D environment; /* equirectangular, for the background */
+layout(binding = OB_UNIT_COMPOSE_BOUNCE) uniform sampler2D bounce_map;       /* RGBA16F one-bounce light (SSDO) */
+layout(binding = OB_UNIT_COMPOSE_BENT_NORMAL) uniform sampler2D bent_map;    /* RGBA16F view-space bent normal */
+layout(binding = OB_IMAGE_UNIT_OUT, rgba16f) uniform writeonly image2D hdr_out;
 
 /* Jimenez, Wu, Pesce & Jarabo 2016, §5 "Approximated multiple bounces": a cubic fit, per colour
  * channel, of the visibility after infinitely many diffuse bounces between surfaces of the

@@ -7,8 +7,8 @@
 
 layout(local_size_x = OB_FILTER_GROUP_X, local_size_y = OB_FILTER_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D ao_in;
-layout(binding = 0, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
+layout(binding = OB_UNIT_FILTER_IN) uniform sampler2D ao_in;
+layout(binding = OB_IMAGE_UNIT_OUT, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
 
 void main()
 {

@@ -33,10 +33,10 @@
 
 layout(local_size_x = OB_FILTER_GROUP_X, local_size_y = OB_FILTER_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D ao_in;
-layout(binding = 1) uniform sampler2D linear_depth;
-layout(binding = 2) uniform sampler2D view_normal;
-layout(binding = 0, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
+layout(binding = OB_UNIT_FILTER_IN) uniform sampler2D ao_in;
+layout(binding = OB_UNIT_FILTER_DEPTH) uniform sampler2D linear_depth;
+layout(binding = OB_UNIT_FILTER_NORMAL) uniform sampler2D view_normal;
+layout(binding = OB_IMAGE_UNIT_OUT, OB_FILTER_FORMAT) uniform writeonly image2D ao_out;
 
 /* g h of eq. (2)-(3) for tap q, 0 off the image or on the sky. */
 float range_weight(ivec2 q, ivec2 size, vec3 pp, vec3 np, float inv_dp)

@@ -14,8 +14,8 @@
 #define OB_DEINTERLEAVE_GROUP 8 /* deinterleave.c dispatches 8x8 groups */
 layout(local_size_x = OB_DEINTERLEAVE_GROUP, local_size_y = OB_DEINTERLEAVE_GROUP) in;
 
-layout(binding = 0) uniform sampler2D linear_depth; /* AO grid, R32F */
-layout(binding = 0, r32f) uniform writeonly image2DArray layers;
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D linear_depth; /* AO grid, R32F */
+layout(binding = OB_IMAGE_UNIT_OUT, r32f) uniform writeonly image2DArray layers;
 
 void main()
 {

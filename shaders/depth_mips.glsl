@@ -34,10 +34,10 @@
 
 layout(local_size_x = OB_DEPTH_MIPS_GROUP, local_size_y = OB_DEPTH_MIPS_GROUP) in;
 
-layout(binding = 0) uniform sampler2D linear_depth;
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D linear_depth;
 /* Units 0..LEVELS-1 hold levels 0..LEVELS-1 (units beyond dm.levels hold the last level and are
  * never written: a texture too small for 5 levels cannot have them). */
-layout(binding = 0, r32f) uniform writeonly image2D mips[OB_DEPTH_MIPS_LEVELS];
+layout(binding = OB_IMAGE_UNIT_DEPTH_MIPS, r32f) uniform writeonly image2D mips[OB_DEPTH_MIPS_LEVELS];
 
 /* Level L of this group's tile lives in scratch[L & 1] (row stride GROUP), so a level reads one
  * array and writes the other; level L+1 overwrites level L-1 only after the barrier that follows

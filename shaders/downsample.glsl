@@ -9,10 +9,10 @@
 
 layout(local_size_x = OB_RESAMPLE_GROUP_X, local_size_y = OB_RESAMPLE_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D full_depth;
-layout(binding = 1) uniform sampler2D full_normal;
-layout(binding = 0, r32f) uniform writeonly image2D low_depth;
-layout(binding = 1, rgba16f) uniform writeonly image2D low_normal;
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D full_depth;
+layout(binding = OB_UNIT_NORMAL) uniform sampler2D full_normal;
+layout(binding = OB_IMAGE_UNIT_OUT, r32f) uniform writeonly image2D low_depth;
+layout(binding = OB_IMAGE_UNIT_DOWNSAMPLE_NORMAL, rgba16f) uniform writeonly image2D low_normal;
 
 void main()
 {

@@ -8,9 +8,9 @@
 
 layout(local_size_x = OB_RESAMPLE_GROUP_X, local_size_y = OB_RESAMPLE_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D ao_depth;   /* at the AO resolution */
-layout(binding = 1) uniform sampler2D ao_normal;
-layout(binding = 0, r32f) uniform writeonly image2D multiplier;
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D ao_depth; /* at the AO resolution */
+layout(binding = OB_UNIT_NORMAL) uniform sampler2D ao_normal;
+layout(binding = OB_IMAGE_UNIT_OUT, r32f) uniform writeonly image2D multiplier;
 
 void main()
 {

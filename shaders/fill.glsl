@@ -10,9 +10,9 @@
 layout(local_size_x = OB_FILL_GROUP, local_size_y = OB_FILL_GROUP) in;
 
 #ifdef OB_FILL_RGB
-layout(binding = 0, rgba16f) uniform writeonly image2D target;
+layout(binding = OB_IMAGE_UNIT_OUT, rgba16f) uniform writeonly image2D target;
 #else
-layout(binding = 0, r32f) uniform writeonly image2D target;
+layout(binding = OB_IMAGE_UNIT_OUT, r32f) uniform writeonly image2D target;
 #endif
 /* The value, 16 bytes at the pass binding (ob_fill_run). */
 layout(std140, binding = OB_BINDING_PASS) uniform fill_block { vec4 value; } fill;

@@ -22,9 +22,9 @@
 
 layout(local_size_x = OB_FLOOR_GROUP_X, local_size_y = OB_FLOOR_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
-layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
-layout(binding = 0, r32f) uniform writeonly image2D floor_out;
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
+layout(binding = OB_UNIT_NORMAL) uniform sampler2D view_normal; /* RGBA16F */
+layout(binding = OB_IMAGE_UNIT_OUT, r32f) uniform writeonly image2D floor_out;
 
 /* Tap i: xy a unit direction, distance from the centre a + b R_px (z = a, w = b). */
 layout(std430, binding = OB_FLOOR_TAPS_BINDING) readonly buffer floor_taps { vec4 tap[]; };

@@ -5,7 +5,7 @@ in vec3 v_view_pos;
 in vec3 v_view_normal;
 in vec2 v_uv;
 
-layout(binding = 0) uniform sampler2D diffuse_map; /* sRGB texture: sampled as linear */
+layout(binding = OB_UNIT_DIFFUSE_MAP) uniform sampler2D diffuse_map; /* sRGB texture: sampled as linear */
 
 layout(location = 0) out float out_linear_depth;   /* R32F, positive distance along -Z */
 layout(location = 1) out vec4 out_normal;          /* RGBA16F, view space, unit length */

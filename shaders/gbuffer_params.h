@@ -8,7 +8,7 @@ OB_CONSTANTS_BEGIN(ob_gbuffer_constants, OB_BINDING_PASS)
     OB_MAT4 proj;           /* view -> clip */
     OB_MAT4 normal_matrix;  /* inverse-transpose of view's upper 3x3, in a mat4 */
     OB_VEC3 diffuse;        /* the material's diffuse colour, linear RGB (0.8 grey without a material) */
-    OB_INT textured;        /* 1: a diffuse texture is bound at unit 0 and multiplies diffuse */
+    OB_INT textured;        /* 1: a diffuse texture is bound at OB_UNIT_DIFFUSE_MAP and multiplies diffuse */
 OB_CONSTANTS_END(ob_gbuffer_constants, gb)
 OB_CONSTANTS_SIZE(ob_gbuffer_constants, 3 * 64 + 16);
 

@@ -33,15 +33,16 @@
 
 layout(local_size_x = OB_GTAO_GROUP_X, local_size_y = OB_GTAO_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
-layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
-layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
-layout(binding = 3) uniform sampler2D depth_mips;   /* R32F MIP chain of linear depth (level 0 = linear_depth)
-                                                       in the OB_MARCH_DEPTH_MIPS program; otherwise
-                                                       linear_depth itself */
-layout(binding = 5) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
-layout(binding = 0, r32f) uniform writeonly image2D ao_out;
-layout(binding = 1, rgba16f) uniform writeonly image2D bent_out; /* view-space bent normal (OB_GTAO_BENT) */
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
+layout(binding = OB_UNIT_NORMAL) uniform sampler2D view_normal; /* RGBA16F */
+layout(binding = OB_UNIT_NOISE) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
+/* R32F MIP chain of linear depth (level 0 = linear_depth) in the OB_MARCH_DEPTH_MIPS program;
+ * otherwise linear_depth itself. */
+layout(binding = OB_UNIT_SLICE_DEPTH_MIPS) uniform sampler2D depth_mips;
+layout(binding = OB_UNIT_SLICE_MULTIPLIER) uniform sampler2D multiplier; /* adaptive: 1..3 per OB_EDGE_BLOCK^2 pixels */
+layout(binding = OB_IMAGE_UNIT_OUT, r32f) uniform writeonly image2D ao_out;
+/* view-space bent normal (OB_GTAO_BENT) */
+layout(binding = OB_IMAGE_UNIT_BENT_NORMAL, rgba16f) uniform writeonly image2D bent_out;
 
 /* The cosine-weighted mean direction of the visible arc [h0, h1] of a slice (the first moment of
  * eq. 3's integrand: ∫ (sin θ, cos θ) cos(θ - n) |sin θ| dθ in closed form, Jimenez et al. 2016

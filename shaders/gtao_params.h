@@ -18,16 +18,16 @@ OB_CONSTANTS_BEGIN(ob_gtao_constants, OB_BINDING_PASS)
     OB_INT slices;            /* N_slices: screen directions over [0, π) */
     OB_INT steps;             /* horizon-search steps on each side of each slice */
     OB_INT noise;             /* OB_NOISE_* per-pixel slice and step jitter */
-    OB_INT depth_mips;        /* 1: far steps read the prefiltered depth MIP chain (binding 3) */
+    OB_INT depth_mips;        /* 1: far steps read the depth MIP chain (OB_UNIT_SLICE_DEPTH_MIPS) */
     OB_FLOAT slice_offset;    /* added to the per-pixel jitters, from the frame index (R2 sequence) */
     OB_FLOAT step_offset;     /*   when temporal noise is on; 0 otherwise */
     OB_FLOAT mip_scale;       /* 2^-offset: a step at distance x px reads level floor(log2(x mip_scale)), so
                                  steps nearer than 2^offset px read the full-resolution depth */
     OB_INT max_mip;           /* the coarsest MIP level a step may read */
     OB_INT bent_normals;      /* 1: also write the bent normal (image 1) */
-    OB_INT adaptive;          /* 1: per-pixel slices, adaptive_base x the edge pass's multiplier (unit 5) */
+    OB_INT adaptive;          /* 1: per-pixel slices, adaptive_base x the multiplier (OB_UNIT_SLICE_MULTIPLIER) */
     OB_INT adaptive_base;     /*   the slices at multiplier 1 (seed 003 §4.1) */
-    OB_INT layers;            /* 1: the second depth layer bounds each sample's object (unit 6) */
+    OB_INT layers;            /* 1: the second layer (OB_UNIT_SECOND_DEPTH) bounds each sample's object */
     OB_FLOAT column;          /* world units: how far behind its front a sample beyond R is solid (its part
                                  inside R occludes: slice_march.glsl ob_column_entry); 0 = none */
     OB_FLOAT full_reach;      /* the distance up to which an occluder's weight is 1: (1 - falloff) R */

@@ -24,11 +24,11 @@
 
 layout(local_size_x = OB_HBAO_GROUP_X, local_size_y = OB_HBAO_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
-layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
-layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
-layout(binding = 3) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
-layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D linear_depth;           /* R32F, 0 = no geometry */
+layout(binding = OB_UNIT_NORMAL) uniform sampler2D view_normal;           /* RGBA16F */
+layout(binding = OB_UNIT_NOISE) uniform sampler2D noise_tile;             /* RG32F 4x4 rotation vectors */
+layout(binding = OB_UNIT_SAMPLE_MULTIPLIER) uniform sampler2D multiplier; /* adaptive: 1..3 per OB_EDGE_BLOCK^2 pixels */
+layout(binding = OB_IMAGE_UNIT_OUT, r32f) uniform writeonly image2D ao_out;
 
 /* 4x4 ordered-dither (Bayer) ranks: every value 0..15 once per tile. */
 const float ob_bayer4[16] = float[16](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0,

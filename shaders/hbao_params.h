@@ -22,7 +22,7 @@ OB_CONSTANTS_BEGIN(ob_hbao_constants, OB_BINDING_PASS)
     OB_INT directions;      /* N_d */
     OB_INT steps;           /* N_s per direction */
     OB_INT noise;           /* OB_NOISE_* rotation and step jitter */
-    OB_INT adaptive;        /* 1: per-pixel directions, adaptive_base x the edge pass's multiplier (unit 3) */
+    OB_INT adaptive;        /* 1: per-pixel directions, adaptive_base x the multiplier (OB_UNIT_SAMPLE_MULTIPLIER) */
     OB_INT adaptive_base;   /*   the directions at multiplier 1 (seed 003 §4.1) */
 OB_CONSTANTS_END(ob_hbao_constants, hbao)
 OB_CONSTANTS_SIZE(ob_hbao_constants, 3 * 16);

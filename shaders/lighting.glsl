@@ -12,10 +12,10 @@
 
 layout(local_size_x = OB_LIGHTING_GROUP_X, local_size_y = OB_LIGHTING_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D linear_depth;
-layout(binding = 1) uniform sampler2D view_normal;
-layout(binding = 2) uniform sampler2D albedo_map;
-layout(binding = 0, rgba16f) uniform writeonly image2D radiance_out;
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D linear_depth;
+layout(binding = OB_UNIT_NORMAL) uniform sampler2D view_normal;
+layout(binding = OB_UNIT_ALBEDO) uniform sampler2D albedo_map;
+layout(binding = OB_IMAGE_UNIT_OUT, rgba16f) uniform writeonly image2D radiance_out;
 
 void main()
 {

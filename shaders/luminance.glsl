@@ -24,7 +24,7 @@ void reduce(uint i)
 }
 
 #ifndef OB_LUMINANCE_FINAL
-layout(binding = 0) uniform sampler2D radiance;
+layout(binding = OB_UNIT_SOURCE) uniform sampler2D radiance;
 
 void main()
 {

@@ -13,6 +13,7 @@
 #define OB_SHARED_H
 
 #include "ob_enums.h"
+#include "ob_units.h"
 
 #ifdef OB_GLSL
 #define OB_FLOAT float

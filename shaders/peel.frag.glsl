@@ -11,7 +11,7 @@ in vec3 v_view_pos;
 in vec3 v_view_normal;
 in vec2 v_uv;
 
-layout(binding = 1) uniform sampler2D first_layer; /* the G-buffer's R32F linear depth, 0 = sky */
+layout(binding = OB_UNIT_FIRST_LAYER) uniform sampler2D first_layer; /* the G-buffer's R32F linear depth, 0 = sky */
 
 layout(location = 0) out float out_linear_depth;   /* R32F: the second layer's linear depth, 0 = none */
 

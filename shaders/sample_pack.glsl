@@ -13,10 +13,10 @@
 #define OB_PACK_GROUP 8 /* packed.c dispatches 8x8 groups */
 layout(local_size_x = OB_PACK_GROUP, local_size_y = OB_PACK_GROUP) in;
 
-layout(binding = 0) uniform sampler2D linear_depth; /* AO grid, R32F */
-layout(binding = 1) uniform sampler2D view_normal;  /* AO grid, RGBA16F */
-layout(binding = 3) uniform sampler2D direct_map;   /* full resolution RGBA16F direct radiance */
-layout(binding = 2, rgba32ui) uniform writeonly uimage2D packed_out;
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D linear_depth;  /* AO grid, R32F */
+layout(binding = OB_UNIT_NORMAL) uniform sampler2D view_normal;  /* AO grid, RGBA16F */
+layout(binding = OB_UNIT_RADIANCE) uniform sampler2D direct_map; /* full resolution RGBA16F direct radiance */
+layout(binding = OB_IMAGE_UNIT_PACKED, rgba32ui) uniform writeonly uimage2D packed_out;
 
 void main()
 {

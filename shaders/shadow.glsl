@@ -3,10 +3,10 @@
  *     float ob_shadow(int light, vec3 world_pos, vec3 world_normal)
  * is the visibility in [0,1] of light `light` from a world point (1 = lit). The maps come from
  * src/passes/shadow.c (ob_shadows_render), the constants and texture bindings from
- * ob_shadows_fill. Samplers (units from shadow_params.h; 11..15 are free):
- *     unit 8  ob_shadow_maps_2d      sampler2DArrayShadow   directional + spot depth, layer per map
- *     unit 9  ob_shadow_maps_cube    samplerCubeArrayShadow point-light distance, cube per map
- *     unit 10 ob_shadow_moments      sampler2DArray         directional + spot VSM moments
+ * ob_shadows_fill. Samplers (units OB_UNIT_SHADOW_* of ob_units.h):
+ *     8  ob_shadow_maps_2d      sampler2DArrayShadow   directional + spot depth, layer per map
+ *     9  ob_shadow_maps_cube    samplerCubeArrayShadow point-light distance, cube per map
+ *     10 ob_shadow_moments      sampler2DArray         directional + spot VSM moments
  * Per map m: lit.shadow_matrix[m] (world -> light clip space, 2D maps) and lit.shadow_params[m] =
  * (constant bias, slope bias, layer in its array, far). The biases are in the map's normalised
  * depth units (per unit of stored depth for spot/point maps, whose texels grow with distance);
@@ -33,9 +33,9 @@
 #define OB_SHADOW_GLSL
 #include "shadow_params.h"
 
-layout(binding = OB_SHADOW_UNIT_2D) uniform sampler2DArrayShadow ob_shadow_maps_2d;
-layout(binding = OB_SHADOW_UNIT_CUBE) uniform samplerCubeArrayShadow ob_shadow_maps_cube;
-layout(binding = OB_SHADOW_UNIT_MOMENTS) uniform sampler2DArray ob_shadow_moments;
+layout(binding = OB_UNIT_SHADOW_MAPS_2D) uniform sampler2DArrayShadow ob_shadow_maps_2d;
+layout(binding = OB_UNIT_SHADOW_MAPS_CUBE) uniform samplerCubeArrayShadow ob_shadow_maps_cube;
+layout(binding = OB_UNIT_SHADOW_MOMENTS) uniform sampler2DArray ob_shadow_moments;
 
 /* The reference's offset toward the light, in normalised depth. `scale` is 1 for orthographic
  * maps and the stored depth (distance / far) for spot and point maps, whose texels' world size

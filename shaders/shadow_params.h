@@ -1,20 +1,11 @@
-/* Shadow maps (seed 003 §2.1, §5.1, §6.1): the texture units shadow.glsl samples, the limits the
- * C side clamps to, and the constant blocks of the two passes that make the maps (the depth
- * raster pass and the VSM moments + blur compute pass). Shared by src/passes/shadow.c and
- * shaders/shadow*.glsl. The lighting constants' shadow_* members live in lighting_params.h. */
+/* Shadow maps (seed 003 §2.1, §5.1, §6.1): the limits the C side clamps to, and the constant
+ * blocks of the two passes that make the maps (the depth raster pass and the VSM moments + blur
+ * compute pass). Shared by src/passes/shadow.c and shaders/shadow*.glsl. The texture units the
+ * maps are sampled at are OB_UNIT_SHADOW_* in ob_units.h; the lighting constants' shadow_*
+ * members live in lighting_params.h. */
 #ifndef OB_SHADOW_PARAMS_H
 #define OB_SHADOW_PARAMS_H
 #include "ob_shared.h"
-
-/* Texture units of shadow.glsl (the lighting pass keeps 0..7; shadows own 8..15, 11..15 unused).
- * Texture arrays, so that one unit serves every map of a kind and the map is picked by a layer
- * coordinate (no dynamically-uniform sampler indexing, and VSM fits beside PCF in 3 units):
- *   8  sampler2DArrayShadow   directional + spot depth maps, one layer each (hard, PCF)
- *   9  samplerCubeArrayShadow point-light distance cube maps, one cube each (every method)
- *   10 sampler2DArray         directional + spot VSM moments (z, z^2), one layer each (VSM) */
-#define OB_SHADOW_UNIT_2D 8
-#define OB_SHADOW_UNIT_CUBE 9
-#define OB_SHADOW_UNIT_MOMENTS 10
 
 /* PCF taps each side: 8 gives a 17x17 kernel of bilinear comparisons, already 289 lookups. */
 #define OB_SHADOW_MAX_PCF_RADIUS 8

@@ -16,14 +16,14 @@
 layout(local_size_x = OB_SHADOW_GROUP_X, local_size_y = OB_SHADOW_GROUP_Y) in;
 
 #ifdef OB_SHADOW_VSM_MOMENTS
-layout(binding = 0) uniform sampler2DArray depth_in; /* the depth maps, comparison mode off */
+layout(binding = OB_UNIT_SOURCE) uniform sampler2DArray depth_in; /* the depth maps, comparison mode off */
 #else
-layout(binding = 0) uniform sampler2D moments_in;    /* the x pass's output */
+layout(binding = OB_UNIT_SOURCE) uniform sampler2D moments_in;    /* the x pass's output */
 #endif
 #ifndef OB_SHADOW_VSM_FORMAT
 #define OB_SHADOW_VSM_FORMAT rg32f
 #endif
-layout(binding = 0, OB_SHADOW_VSM_FORMAT) uniform writeonly image2D moments_out;
+layout(binding = OB_IMAGE_UNIT_OUT, OB_SHADOW_VSM_FORMAT) uniform writeonly image2D moments_out;
 
 /* Each invocation filters a run of OB_SHADOW_VSM_RUN texels along the axis from one window of
  * RUN + 2 radius fetches: (RUN + 2r) / RUN fetches per texel instead of 2r + 1. On llvmpipe the

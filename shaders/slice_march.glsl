@@ -169,7 +169,7 @@ float ob_march_depth(sampler2D depth, ivec2 q, int level, ivec2 size, out vec2 c
  * vbgi's `packed`, never with the MIP chain): the march reads its depth from there and keeps the
  * texel in ob_march_packed for the sample's bounce, one fetch where there were three. */
 #include "packed_samples.glsl"
-layout(binding = 10) uniform usampler2D ob_packed_samples;
+layout(binding = OB_UNIT_PACKED_SAMPLES) uniform usampler2D ob_packed_samples;
 uvec4 ob_march_packed = uvec4(0u);
 #endif
 
@@ -214,7 +214,7 @@ bool ob_march_fetch(sampler2D depth, vec2 at, float dist_px, vec3 p, float mip_s
 
 /* The second depth layer (depth peeling, passes/peel.c) behind the surface of AO-grid texel q: the
  * linear depth of the full-resolution pixel that texel's depth came from (0 = nothing behind). */
-layout(binding = 6) uniform sampler2D second_layer;
+layout(binding = OB_UNIT_SECOND_DEPTH) uniform sampler2D second_layer;
 
 float ob_second_depth(ivec2 q)
 {

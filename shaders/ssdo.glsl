@@ -35,23 +35,23 @@
 
 layout(local_size_x = OB_SSDO_GROUP_X, local_size_y = OB_SSDO_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D linear_depth; /* AO grid, R32F, 0 = no geometry */
-layout(binding = 1) uniform sampler2D view_normal;  /* AO grid, RGBA16F */
-layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
-layout(binding = 3) uniform sampler2D direct_map;   /* full resolution RGBA16F direct radiance */
-layout(binding = 5) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
-layout(binding = 6) uniform sampler2D second_layer; /* full resolution R32F second depth layer (ssdo.layers) */
-layout(binding = 7) uniform sampler2D extra_depth;  /* the extra view (ssdo.extra_view): R32F linear depth, */
-layout(binding = 8) uniform sampler2D extra_normal; /*   RGBA16F normals in its own view space, */
-layout(binding = 9) uniform sampler2D extra_direct; /*   RGBA16F direct radiance */
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D linear_depth;          /* AO grid, R32F, 0 = no geometry */
+layout(binding = OB_UNIT_NORMAL) uniform sampler2D view_normal;          /* AO grid, RGBA16F */
+layout(binding = OB_UNIT_NOISE) uniform sampler2D noise_tile;            /* RG32F 4x4 rotation vectors */
+layout(binding = OB_UNIT_RADIANCE) uniform sampler2D direct_map;         /* full resolution RGBA16F direct radiance */
+layout(binding = OB_UNIT_SSDO_MULTIPLIER) uniform sampler2D multiplier;  /* adaptive: 1..3 per OB_EDGE_BLOCK^2 pixels */
+layout(binding = OB_UNIT_SECOND_DEPTH) uniform sampler2D second_layer;   /* full-res R32F second depth layer (ssdo.layers) */
+layout(binding = OB_UNIT_EXTRA_DEPTH) uniform sampler2D extra_depth;     /* the extra view (ssdo.extra_view): R32F depth, */
+layout(binding = OB_UNIT_EXTRA_NORMAL) uniform sampler2D extra_normal;   /*   RGBA16F normals in its own view space, */
+layout(binding = OB_UNIT_EXTRA_RADIANCE) uniform sampler2D extra_direct; /*   RGBA16F direct radiance */
 #ifdef OB_SSDO_PACKED
 /* Each AO texel's depth, normal and direct radiance in one texel (shaders/sample_pack.glsl). */
 #include "packed_samples.glsl"
-layout(binding = 10) uniform usampler2D packed_samples;
+layout(binding = OB_UNIT_PACKED_SAMPLES) uniform usampler2D packed_samples;
 #endif
 #include "taps.glsl" /* `deinterleave on`: OB_DEINTERLEAVED; `depth_mips on`: OB_TAPS_DEPTH_MIPS */
-layout(binding = 0, rgba16f) uniform writeonly image2D m_out;
-layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
+layout(binding = OB_IMAGE_UNIT_OUT, rgba16f) uniform writeonly image2D m_out;
+layout(binding = OB_IMAGE_UNIT_BOUNCE, rgba16f) uniform writeonly image2D bounce_out;
 
 const float PI = 3.14159265;
 

@@ -24,11 +24,11 @@ OB_CONSTANTS_BEGIN(ob_ssdo_constants, OB_BINDING_PASS)
     OB_INT noise;           /* OB_NOISE_* rotation */
     OB_INT bounce;          /* 1: gather the bounce (eq. 3.4); 0: write a black one */
     OB_INT stage;           /* OB_SSDO_STAGE_*: which output this dispatch writes */
-    OB_INT adaptive;        /* 1: per-pixel samples, adaptive_base x the edge pass's multiplier (unit 5), the
+    OB_INT adaptive;        /* 1: per-pixel samples, adaptive_base x the multiplier (OB_UNIT_SSDO_MULTIPLIER), the
                                first of the kernel's 3 x adaptive_base Halton entries */
     OB_INT adaptive_base;
-    OB_INT layers;          /* 1: a sample behind the second depth layer (unit 6) is free */
-    OB_INT extra_view;      /* 1: the extra view (units 7-9) tests occluders and sends bounces too */
+    OB_INT layers;          /* 1: a sample behind the second depth layer (OB_UNIT_SECOND_DEPTH) is free */
+    OB_INT extra_view;      /* 1: the extra view (OB_UNIT_EXTRA_*) tests occluders and sends bounces too */
     OB_MAT4 extra_from_view; /* this frame's view space -> the extra camera's */
     OB_MAT4 extra_to_view;   /* and back */
     OB_MAT4 extra_proj;      /* the extra camera's projection */

@@ -31,7 +31,7 @@
 #define OB_TAPS_GLSL
 
 #ifdef OB_DEINTERLEAVED
-layout(binding = 4) uniform sampler2DArray depth_layers; /* deinterleave.glsl's, R32F */
+layout(binding = OB_UNIT_DEPTH_LAYERS) uniform sampler2DArray depth_layers; /* deinterleave.glsl's, R32F */
 
 /* This invocation's class: its pixel offset in the 4x4 tile. */
 ivec2 ob_invocation_class() { return ivec2(int(gl_GlobalInvocationID.z) & 3, int(gl_GlobalInvocationID.z) >> 2); }
@@ -61,7 +61,8 @@ float ob_tap_depth(sampler2D depth, ivec2 q)
 }
 #elif defined(OB_TAPS_DEPTH_MIPS)
 #include "depth_mips_read.glsl"
-layout(binding = 4) uniform sampler2D depth_mip_chain; /* passes/depth_mips.c: R32F, level 0 = the AO grid's depth */
+/* passes/depth_mips.c: R32F, level 0 = the AO grid's depth */
+layout(binding = OB_UNIT_TAPS_DEPTH_MIPS) uniform sampler2D depth_mip_chain;
 
 ivec2 ob_invocation_pixel() { return ivec2(gl_GlobalInvocationID.xy); }
 

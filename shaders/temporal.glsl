@@ -35,22 +35,38 @@
 
 layout(local_size_x = OB_TEMPORAL_GROUP_X, local_size_y = OB_TEMPORAL_GROUP_Y) in;
 
-layout(binding = 2) uniform sampler2D depth;       /* this frame's linear depth, AO grid */
+layout(binding = OB_UNIT_TEMPORAL_DEPTH) uniform sampler2D depth;       /* this frame's linear depth, AO grid */
 
 /* 1: this frame's view-space point at pixel pix (linear depth d > 0) in the previous frame's view
  * (pp) and AO grid (the returned position, pixel centres at + 0.5); clip_w <= 0 when it lies behind
  * the previous camera. */
+#ifdef OB_TEMPORAL_HOST_MOTION
+layout(binding = OB_UNIT_TEMPORAL_HOST_MOTION) uniform sampler2D host_motion; /* a host's motion vectors, full resolution */
+#endif
+
 vec2 reproject(ivec2 pix, float d, out vec3 pp, out float clip_w)
 {
     vec3 p = ob_view_position(vec2(pix) + 0.5, d, frame.ao_inv_size, frame.ao_proj_info);
     pp = (tp.to_prev_view * vec4(p, 1.0)).xyz;
+#ifdef OB_TEMPORAL_HOST_MOTION /* a program of its own: llvmpipe runs an untaken branch masked */
+    {
+        /* The host's vector at the full pixel this AO pixel stands for moves the point itself (a
+         * moving object); its previous depth is the camera's reprojection's, the one thing 2D
+         * vectors do not say (exact for motion across the view, close for motion along it). */
+        ivec2 full = min(pix * frame.ao_k + frame.ao_o, ivec2(frame.size) - 1);
+        vec2 at = vec2(pix) + 0.5 + texelFetch(host_motion, full, 0).xy * tp.motion_scale / float(frame.ao_k);
+        pp = ob_view_position(at, -pp.z, frame.ao_inv_size, tp.prev_ao_proj_info);
+        clip_w = -pp.z;
+        return at;
+    }
+#endif
     vec4 clip = tp.prev_ao_proj * vec4(pp, 1.0);
     clip_w = clip.w;
     return (clip.xy / clip.w * 0.5 + 0.5) * frame.ao_size;
 }
 
 #ifdef OB_TEMPORAL_MOTION
-layout(binding = 2, rg16f) uniform writeonly image2D motion;
+layout(binding = OB_IMAGE_UNIT_TEMPORAL_MOTION, rg16f) uniform writeonly image2D motion;
 
 void main()
 {
@@ -63,31 +79,31 @@ void main()
     imageStore(motion, pix, vec4(at - (vec2(pix) + 0.5), 0.0, 0.0));
 }
 #else
-layout(binding = 0) uniform sampler2D current;     /* this frame's value (r or rgb) */
-layout(binding = 1) uniform sampler2D history;     /* the previous frame's accumulation (+ age: RGB) */
-layout(binding = 3) uniform sampler2D normal;      /* this frame's view normal, AO grid */
+layout(binding = OB_UNIT_TEMPORAL_CURRENT) uniform sampler2D current;     /* this frame's value (r or rgb) */
+layout(binding = OB_UNIT_TEMPORAL_HISTORY) uniform sampler2D history;     /* the previous frame's accumulation (+ age: RGB) */
+layout(binding = OB_UNIT_TEMPORAL_NORMAL) uniform sampler2D normal;      /* this frame's view normal, AO grid */
 /* The previous frame's linear depth (R32F) and view normal (R32UI, pack_normal), AO grid, written
  * by the previous frame's dispatch (no copy pass): one gather of each gives the four taps' (2).
  * One RGBA16F texture (normal, depth) took llvmpipe four fetches at three gathers' cost each and
  * its costliest store (docs/temporal.md, "Cost"). */
-layout(binding = 4) uniform sampler2D prev_depth;
-layout(binding = 8) uniform usampler2D prev_normal;
+layout(binding = OB_UNIT_TEMPORAL_PREV_DEPTH) uniform sampler2D prev_depth;
+layout(binding = OB_UNIT_TEMPORAL_PREV_NORMAL) uniform usampler2D prev_normal;
 #ifdef OB_TEMPORAL_RGB
-layout(binding = 0, rgba16f) uniform writeonly image2D result;
-layout(binding = 1, rgba16f) uniform writeonly image2D next_history;
+layout(binding = OB_IMAGE_UNIT_TEMPORAL_RESULT, rgba16f) uniform writeonly image2D result;
+layout(binding = OB_IMAGE_UNIT_TEMPORAL_NEXT_HISTORY, rgba16f) uniform writeonly image2D next_history;
 #else
-layout(binding = 0, r32f) uniform writeonly image2D result;
-layout(binding = 1, r32f) uniform writeonly image2D next_history;
-layout(binding = 7) uniform sampler2D history_age;            /* R16F, the previous frame's */
-layout(binding = 2, r16f) uniform writeonly image2D next_age; /* this frame's */
+layout(binding = OB_IMAGE_UNIT_TEMPORAL_RESULT, r32f) uniform writeonly image2D result;
+layout(binding = OB_IMAGE_UNIT_TEMPORAL_NEXT_HISTORY, r32f) uniform writeonly image2D next_history;
+layout(binding = OB_UNIT_TEMPORAL_HISTORY_AGE) uniform sampler2D history_age;            /* R16F, the previous frame's */
+layout(binding = OB_IMAGE_UNIT_TEMPORAL_NEXT_AGE, r16f) uniform writeonly image2D next_age; /* this frame's */
 #endif
-layout(binding = 3, r32f) uniform writeonly image2D next_depth; /* this frame's, for the next */
-layout(binding = 6, r32ui) uniform writeonly uimage2D next_normal;
+layout(binding = OB_IMAGE_UNIT_TEMPORAL_NEXT_DEPTH, r32f) uniform writeonly image2D next_depth; /* this frame's, for the next */
+layout(binding = OB_IMAGE_UNIT_TEMPORAL_NEXT_NORMAL, r32ui) uniform writeonly uimage2D next_normal;
 #ifdef OB_TEMPORAL_BOUNCE
-layout(binding = 5) uniform sampler2D bounce_current; /* RGBA16F, 0 on the sky */
-layout(binding = 6) uniform sampler2D bounce_history; /* RGBA16F (rgb, age) */
-layout(binding = 4, rgba16f) uniform writeonly image2D bounce_result;
-layout(binding = 5, rgba16f) uniform writeonly image2D bounce_next_history;
+layout(binding = OB_UNIT_TEMPORAL_BOUNCE_CURRENT) uniform sampler2D bounce_current; /* RGBA16F, 0 on the sky */
+layout(binding = OB_UNIT_TEMPORAL_BOUNCE_HISTORY) uniform sampler2D bounce_history; /* RGBA16F (rgb, age) */
+layout(binding = OB_IMAGE_UNIT_TEMPORAL_BOUNCE_RESULT, rgba16f) uniform writeonly image2D bounce_result;
+layout(binding = OB_IMAGE_UNIT_TEMPORAL_BOUNCE_NEXT_HISTORY, rgba16f) uniform writeonly image2D bounce_next_history;
 #endif
 
 /* A view normal in octahedral coordinates (Meyer et al. 2010, "On Floating-Point Normal Vectors";

@@ -25,9 +25,12 @@ OB_CONSTANTS_BEGIN(ob_temporal_constants, OB_BINDING_PASS)
                                    pixel footprint in the previous frame / in this one */
     OB_FLOAT detail;            /* A in [0, 1): the least share of one-pixel detail the history keeps under
                                    sub-pixel motion (the blend's bound, temporal.glsl 5); 0 = no bound */
+    OB_INT has_motion;          /* 1: a host's motion vectors move each point (ob_host_frame.motion) */
     OB_FLOAT pad1;
+    OB_VEC2 motion_scale;       /* the host's units -> full-resolution pixels, previous - current, +y up */
     OB_FLOAT pad2;
+    OB_FLOAT pad3;
 OB_CONSTANTS_END(ob_temporal_constants, tp)
-OB_CONSTANTS_SIZE(ob_temporal_constants, 2 * 64 + 3 * 16);
+OB_CONSTANTS_SIZE(ob_temporal_constants, 2 * 64 + 4 * 16);
 
 #endif

@@ -8,9 +8,9 @@
 
 layout(local_size_x = OB_TONEMAP_GROUP_X, local_size_y = OB_TONEMAP_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D radiance;
-layout(binding = 1) uniform sampler2D bloom; /* bilinear, 1/OB_BLOOM_FACTOR resolution */
-layout(binding = 0, rgba8) uniform writeonly image2D final_out;
+layout(binding = OB_UNIT_TONEMAP_RADIANCE) uniform sampler2D radiance;
+layout(binding = OB_UNIT_TONEMAP_BLOOM) uniform sampler2D bloom; /* bilinear, 1/OB_BLOOM_FACTOR resolution */
+layout(binding = OB_IMAGE_UNIT_OUT, rgba8) uniform writeonly image2D final_out;
 
 /* Eq. 2.4: L_d = L (1 + L / L_white^2) / (1 + L), 1 at L = L_white; eq. 2.3 when l_white <= 0.
  * Same as ob_hdr_reinhard(). */

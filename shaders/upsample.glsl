@@ -39,15 +39,15 @@
 
 layout(local_size_x = OB_RESAMPLE_GROUP_X, local_size_y = OB_RESAMPLE_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D full_depth;
-layout(binding = 1) uniform sampler2D full_normal;
-layout(binding = 2) uniform sampler2D low_depth;
-layout(binding = 3) uniform sampler2D low_normal;
-layout(binding = 4) uniform sampler2D low_ao;
-layout(binding = 0, OB_UP_FORMAT) uniform writeonly image2D ao_out;
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D full_depth;
+layout(binding = OB_UNIT_NORMAL) uniform sampler2D full_normal;
+layout(binding = OB_UNIT_UPSAMPLE_LOW_DEPTH) uniform sampler2D low_depth;
+layout(binding = OB_UNIT_UPSAMPLE_LOW_NORMAL) uniform sampler2D low_normal;
+layout(binding = OB_UNIT_UPSAMPLE_LOW_AO) uniform sampler2D low_ao;
+layout(binding = OB_IMAGE_UNIT_OUT, OB_UP_FORMAT) uniform writeonly image2D ao_out;
 #ifdef OB_UPSAMPLE_PAIR
-layout(binding = 5) uniform sampler2D low_second; /* RGBA16F */
-layout(binding = 1, rgba16f) uniform writeonly image2D second_out;
+layout(binding = OB_UNIT_UPSAMPLE_LOW_SECOND) uniform sampler2D low_second; /* RGBA16F */
+layout(binding = OB_IMAGE_UNIT_UPSAMPLE_SECOND, rgba16f) uniform writeonly image2D second_out;
 #define SECOND_FETCH(q) texelFetch(low_second, q, 0)
 #else
 #define SECOND_FETCH(q) vec4(0.0) /* nothing reads it: the compiler drops its arithmetic */

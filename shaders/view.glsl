@@ -8,9 +8,9 @@
 
 layout(local_size_x = OB_VIEW_GROUP_X, local_size_y = OB_VIEW_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D source;     /* the view's texture; samples: linear depth */
-layout(binding = 1) uniform sampler2D multiplier; /* samples under adaptive sampling: per block */
-layout(binding = 0, rgba8) uniform writeonly image2D display;
+layout(binding = OB_UNIT_VIEW_SOURCE) uniform sampler2D source;     /* the view's texture; samples: linear depth */
+layout(binding = OB_UNIT_VIEW_MULTIPLIER) uniform sampler2D multiplier; /* samples under adaptive sampling: per block */
+layout(binding = OB_IMAGE_UNIT_OUT, rgba8) uniform writeonly image2D display;
 
 /* The luminance view's ramp (seed 003 Fig. 6.16c): t in [0, 1] through dark blue, blue, cyan,
  * green, yellow and red, evenly; tests/test_present.c has the same ramp in C. */

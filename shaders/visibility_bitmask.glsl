@@ -35,15 +35,15 @@
 
 layout(local_size_x = OB_VB_GROUP_X, local_size_y = OB_VB_GROUP_Y) in;
 
-layout(binding = 0) uniform sampler2D linear_depth; /* R32F, 0 = no geometry */
-layout(binding = 1) uniform sampler2D view_normal;  /* RGBA16F */
-layout(binding = 2) uniform sampler2D noise_tile;   /* RG32F 4x4 rotation vectors */
-layout(binding = 3) uniform sampler2D depth_mips;   /* the MIP chain (OB_MARCH_DEPTH_MIPS), else linear_depth */
-layout(binding = 5) uniform sampler2D multiplier;   /* adaptive: 1, 2 or 3 per OB_EDGE_BLOCK^2 pixels */
-layout(binding = 0, r32f) uniform writeonly image2D ao_out;
+layout(binding = OB_UNIT_DEPTH) uniform sampler2D linear_depth;          /* R32F, 0 = no geometry */
+layout(binding = OB_UNIT_NORMAL) uniform sampler2D view_normal;          /* RGBA16F */
+layout(binding = OB_UNIT_NOISE) uniform sampler2D noise_tile;            /* RG32F 4x4 rotation vectors */
+layout(binding = OB_UNIT_SLICE_DEPTH_MIPS) uniform sampler2D depth_mips; /* MIP chain (OB_MARCH_DEPTH_MIPS) or the depth */
+layout(binding = OB_UNIT_SLICE_MULTIPLIER) uniform sampler2D multiplier; /* adaptive: 1..3 per OB_EDGE_BLOCK^2 pixels */
+layout(binding = OB_IMAGE_UNIT_OUT, r32f) uniform writeonly image2D ao_out;
 #ifdef OB_VBGI
-layout(binding = 4) uniform sampler2D radiance;     /* full-resolution RGBA16F direct radiance */
-layout(binding = 1, rgba16f) uniform writeonly image2D bounce_out;
+layout(binding = OB_UNIT_SLICE_RADIANCE) uniform sampler2D radiance; /* full-resolution RGBA16F direct radiance */
+layout(binding = OB_IMAGE_UNIT_BOUNCE, rgba16f) uniform writeonly image2D bounce_out;
 #endif
 
 /* The coverage rule (OB_SECTOR_COVERAGE_*, vbao's `coverage`) is the program's, a constant, so

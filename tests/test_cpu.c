@@ -12,6 +12,7 @@
 #include "core/renderer.h"
 #include "gpu/gpu.h"
 #include "gpu/shaders_embedded.h"
+#include "methods/method.h"
 #include "passes/passes.h"
 #include "obscura/obscura.h"
 #include "sampling/sampling.h"
@@ -452,11 +453,83 @@ static void test_method_kernel(void)
     CHECK(ob_method_kernel(NULL, k, 64) == -1 && ob_get_error(NULL) == OB_ERR_INVALID_ARGUMENT, "NULL settings");
 }
 
+/* Roles (methods/method.h ob_param_role): the renderer, the settings and the memory estimate find
+ * a method's radius, sample count, temporal switch... through the role its entry declares, never
+ * by name. So a parameter that has a role's usual name but no role would be silently ignored (a
+ * `temporal` switch that temporal accumulation never turns on), and one with the wrong type would
+ * be misread: every declared role has a type it may have, and every parameter named as a role's
+ * usual name is that role's. */
+static void test_method_roles(void)
+{
+    enum { F = 1 << OB_PARAM_FLOAT, I = 1 << OB_PARAM_INT, B = 1 << OB_PARAM_BOOL, E = 1 << OB_PARAM_ENUM };
+    static const struct { const char *name; int types; } roles[OB_ROLE_COUNT] = {
+        [OB_ROLE_RADIUS] = {"radius", F},
+        [OB_ROLE_MAX_RADIUS_PX] = {"max_radius_px", F},
+        [OB_ROLE_SAMPLES] = {"samples", I},
+        [OB_ROLE_TEMPORAL] = {"temporal", B},
+        [OB_ROLE_INTENSITY] = {"intensity", F},
+        [OB_ROLE_THICKNESS] = {"thickness", F},
+        [OB_ROLE_FALLOFF] = {"falloff", F},
+        [OB_ROLE_BENT_NORMALS] = {"bent_normals", B},
+        [OB_ROLE_LAYERS] = {"layers", I | E},
+        [OB_ROLE_PACKED] = {"packed", E},
+        [OB_ROLE_DEINTERLEAVE] = {"deinterleave", E},
+    };
+    for (int r = 0; r < OB_ROLE_COUNT; ++r) CHECK(roles[r].name != NULL, "role %d has a usual name in this test", r);
+    int declared = 0;
+    for (int i = 0; i < ob_method_count(); ++i) {
+        const ob_method_impl *m = ob_method_impl_at(i);
+        const char *name = m->info.name;
+        CHECK(ob_method_role(m, OB_ROLE_COUNT) == -1 && ob_method_role(m, (ob_param_role)-1) == -1,
+              "%s: a role out of range has no parameter", name);
+        for (int r = 0; r < OB_ROLE_COUNT; ++r) {
+            CHECK(m->roles[r] >= 0 && m->roles[r] <= m->info.param_count, "%s: role %s names parameter %d of %d", name,
+                  roles[r].name, m->roles[r] - 1, m->info.param_count);
+            const int p = ob_method_role(m, (ob_param_role)r);
+            if (p < 0) continue;
+            ++declared;
+            const ob_param_info *pi = &m->info.params[p];
+            CHECK((roles[r].types >> pi->type) & 1, "%s: role %s is %s, of type %d", name, roles[r].name, pi->name,
+                  (int)pi->type);
+            if (r == OB_ROLE_RADIUS)
+                CHECK(pi->follows_scene_radius, "%s: the radius %s follows the scene's radius", name, pi->name);
+            if (r == OB_ROLE_BENT_NORMALS)
+                CHECK(m->writes & OB_WRITES_BENT_NORMAL, "%s: a bent-normal switch, and it writes bent normals", name);
+            if (r == OB_ROLE_LAYERS)
+                CHECK(m->reads & OB_READS_SECOND_LAYER, "%s: a layers parameter, and it reads the second layer", name);
+            if (r == OB_ROLE_SAMPLES)
+                CHECK(!m->count_samples && !m->set_samples, "%s: samples is %s, or count_samples/set_samples, not both",
+                      name, pi->name);
+        }
+        for (int p = 0; p < m->info.param_count; ++p) {
+            const ob_param_info *pi = &m->info.params[p];
+            for (int r = 0; r < OB_ROLE_COUNT; ++r)
+                if (!strcmp(pi->name, roles[r].name))
+                    CHECK(ob_method_role(m, (ob_param_role)r) == p,
+                          "%s.%s: declared under its role in the method's .roles (OB_ROLE_PARAM)", name, pi->name);
+            if (pi->follows_scene_radius)
+                CHECK(ob_method_role(m, OB_ROLE_RADIUS) == p, "%s.%s follows the scene's radius: OB_ROLE_RADIUS", name,
+                      pi->name);
+        }
+        /* The sample count comes from the role: what --samples sets is what the method reports. */
+        ob_settings s;
+        if (ob_method_role(m, OB_ROLE_SAMPLES) >= 0 && ob_settings_init(&s, name) == OB_OK) {
+            const int p = ob_method_role(m, OB_ROLE_SAMPLES);
+            const int n = (int)m->info.params[p].min + 1;
+            CHECK(ob_settings_set_samples(&s, n) == OB_OK && ob_method_samples(m, s.params) == n &&
+                      (s.params_set >> p & 1u),
+                  "%s: --samples %d sets %s", name, n, m->info.params[p].name);
+        }
+    }
+    CHECK(declared > 0, "some method declares a role (%d)", declared);
+}
+
 int main(void)
 {
     test_errors();
     test_frame_constants();
     test_registry_and_settings();
+    test_method_roles();
     test_kernel();
     test_method_kernel();
     test_halton();

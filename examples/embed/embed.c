@@ -3,10 +3,11 @@
  * The host makes its own headless OpenGL 4.5 core context (EGL device platform, through epoxy),
  * ray-casts a sphere of radius 1 resting on a floor on the CPU into its own linear-depth (R32F,
  * positive view depth, 0 = sky) and view-normal (RGBA16F) textures, and hands them to
- * ob_compute_ao_filtered with the method and filter named on the command line. It reads the AO back,
+ * ob_compute_ao_filtered with the method and filter named on the command line (by default the
+ * library's: OB_DEFAULT_METHOD, vbao, and its default filter, crease). It reads the AO back,
  * writes it (PFM) and checks that the floor is darker where the sphere meets it than far away.
  *
- *   embed [--method ssao] [--filter geometry] [--size 320x240] [--radius 1] [--out ao.pfm]
+ *   embed [--method vbao] [--filter crease] [--size 320x240] [--radius 1] [--out ao.pfm]
  * exit: 0 ok, 1 failure, 2 bad argument, 3 the contact is not darker than the open floor */
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
@@ -99,7 +100,7 @@ static void ray_cast(int w, int h, float *depth, float *normal, float *floor_dis
 
 int main(int argc, char **argv)
 {
-    const char *method = "ssao", *filter = "geometry", *out = NULL, *radius = "1";
+    const char *method = NULL, *filter = NULL, *out = NULL, *radius = "1"; /* NULL: the library's default */
     int w = 320, h = 240;
     for (int i = 1; i < argc; ++i) {
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -109,7 +110,8 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--out") && v) out = argv[++i];
         else if (!(!strcmp(argv[i], "--size") && v && sscanf(argv[++i], "%dx%d", &w, &h) == 2 && w > 0 && h > 0 &&
                    w <= 4096 && h <= 4096)) {
-            fprintf(stderr, "usage: embed [--method M] [--filter F] [--size WxH] [--radius R] [--out FILE]\n");
+            fprintf(stderr, "usage: embed [--method M (default %s)] [--filter F (default: the library's)] "
+                            "[--size WxH] [--radius R] [--out FILE.pfm]\n", OB_DEFAULT_METHOD);
             return 2;
         }
     }
@@ -118,7 +120,7 @@ int main(int argc, char **argv)
     ob_settings settings;
     char set[64];
     snprintf(set, sizeof set, "radius=%s", radius);
-    if (ob_settings_init(&settings, method) != OB_OK || ob_settings_set_filter(&settings, filter) != OB_OK ||
+    if (ob_settings_init(&settings, method) != OB_OK || (filter && ob_settings_set_filter(&settings, filter) != OB_OK) ||
         (!isnan(ob_settings_get(&settings, "radius")) && ob_settings_set(&settings, set) != OB_OK))
         return fail(2, "bad settings");
 

@@ -747,25 +747,187 @@ ob_error ob_read_view(ob_renderer *r, ob_view view, uint8_t *dst, size_t dst_siz
  * unchanged). Process-wide and not thread-safe: call it between frames on the GL thread. */
 ob_error ob_set_shader_directory(const char *dir);
 
-/* Run the settings' method on an engine's own textures: the raw AO, as OB_IMAGE_AO_RAW_F32 of a
- * frame (ob_renderer owns the scratch targets; the AO runs at the renderer's size: ao_divisor and
- * adaptive sampling are for ob_render_frame). Only methods that read depth and normals alone and
- * write plain visibility (not ssdo*, which need the frame's direct light:
- * OB_ERR_INVALID_ARGUMENT). linear_depth is R32F positive view depth, normal is RGBA16F/RGBA32F
- * view-space normal, both of the renderer's size; ao_out is an R32F texture of that size (written
- * with image stores, which need the format to match). proj is the column-major projection matrix
- * used to rasterise them; view space is taken as world space (no lights are involved). A method
- * with `depth_mips` on gets the MIP chain of linear_depth, made here (one more dispatch). No guard
- * band here (ob_settings.guard is ignored; the renderer's own targets drop theirs): a host that wants
- * one makes the renderer at the enlarged size (W + 2g) x (H + 2g), rasterises its textures at that
- * size with P00, P20 scaled by W / (W + 2g) and P11, P21 by H / (H + 2g), passes that projection,
- * and crops the result at (g, g) itself. Errors: OB_ERR_INVALID_ARGUMENT, OB_ERR_SHADER, OB_ERR_GL. */
+/* The host path of the first releases (ob_host_ao is the whole of it): the settings' method, at
+ * the renderer's size, on an engine's linear depth (R32F or R16F positive view depth, or a depth
+ * buffer) and view-space normals (any format ob_host_frame takes), written to ao_out (any format
+ * ob_host_outputs.ao takes) as the raw AO, OB_IMAGE_AO_RAW_F32 of a frame; proj is the
+ * column-major projection used to rasterise them, view space is taken as world space. AO scale,
+ * adaptive sampling, temporal accumulation and the guard band are ignored here, and a radius that
+ * was not set stays its default (0.5 world units). Only methods that read depth and normals
+ * alone and write plain visibility (not ssdo*, vbgi: OB_ERR_INVALID_ARGUMENT). It runs through
+ * ob_host_ao: its textures are checked and the GL state is kept as described there. Errors:
+ * OB_ERR_INVALID_ARGUMENT, OB_ERR_SHADER. */
 ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex,
                        const float proj[16], const ob_settings *settings, uint32_t ao_out_tex);
 /* The same, followed by the settings' filter (ob_settings_set_filter) on the same depth and
  * normals: the denoised AO an engine composes with, as OB_IMAGE_AO_F32 of a full-size frame. */
 ob_error ob_compute_ao_filtered(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex,
                                 const float proj[16], const ob_settings *settings, uint32_t ao_out_tex);
+
+/* ---- the host path: libobscura inside an engine (docs/embedding.md) --------------------------
+ * An engine hands the library its own depth (a hardware depth buffer or linear depth), its own
+ * normals (or none) and, for the indirect-light methods, its direct light and albedo, and gets
+ * back AO (and bent normals, indirect light) in textures of its own format. The call runs the
+ * same AO chain as ob_render_frame: [input pass] -> [downsample] -> [edges] -> [depth MIPs] ->
+ * method -> [temporal accumulation] -> filter -> [joint bilateral upsample] -> [output pass], so
+ * every method, filter, AO scale, temporal accumulation, the guard band and a second depth layer
+ * work here as they do in the CLI. Zero (or NULL) in every field means its default.
+ *
+ * GL state: the call binds its programs, the GL_TEXTURE_2D and GL_TEXTURE_2D_ARRAY targets and
+ * the sampler object of texture units 0..OB_HOST_TEXTURE_UNITS-1 (never texture 0, which would
+ * unbind the other targets), image units 0..OB_HOST_IMAGE_UNITS-1, uniform buffer binding points
+ * 0 and 1 and the generic GL_UNIFORM_BUFFER binding, and the active texture unit; it sets the
+ * GL_PIXEL_UNPACK_BUFFER and GL_QUERY_BUFFER bindings and the unpack pixel store to GL's defaults
+ * for its uploads and timer reads; and a depth-stencil input read as stencil
+ * (GL_DEPTH_STENCIL_TEXTURE_MODE) is read as depth. It puts every one of these back before
+ * returning, on success and on failure. It binds no framebuffer, VAO, program pipeline or buffer
+ * of any other target and changes no enable, viewport, clip control or pack state. It issues glMemoryBarrier(GL_ALL_BARRIER_BITS) before returning, so the host may read
+ * the outputs by any means. It calls
+ * no glGetError: a GL error the host left pending stays for the host to read, and every argument
+ * is checked before anything is dispatched (OB_ERR_INVALID_ARGUMENT naming the argument, what it
+ * is and what is accepted). In a debug context (GL_CONTEXT_FLAG_DEBUG_BIT) the call's commands
+ * sit inside a KHR_debug group "obscura" so that the host's debug callback can tell them apart.
+ * Threads: the renderer's context must be current on the calling thread. */
+
+/* The texture units and image units the host path (and every pass) may bind. */
+#define OB_HOST_TEXTURE_UNITS 16
+#define OB_HOST_IMAGE_UNITS 8
+
+/* The space the host's normals are in. */
+typedef enum ob_normal_space {
+    OB_NORMALS_VIEW = 0, /* view space: +Z towards the camera, as OpenGL's eye space */
+    OB_NORMALS_WORLD,    /* world space: turned into view space by ob_host_frame.view */
+} ob_normal_space;
+
+typedef struct ob_host_frame {
+    /* The depth, GL_TEXTURE_2D of the input size (ob_host_input_size), read at level 0:
+     *   hardware depth: GL_DEPTH_COMPONENT16, _24, _32F, GL_DEPTH24_STENCIL8, GL_DEPTH32F_STENCIL8,
+     *     linearised by the input pass through `projection` and `depth_zero_to_one`; standard or
+     *     reversed Z and a finite or infinite far plane are read from the matrix itself; a pixel
+     *     whose depth is the far plane's (1, or 0 reversed) is sky;
+     *   linear depth: GL_R16F or GL_R32F, positive view-space depth in world units, 0 = sky.
+     * Required. */
+    uint32_t depth;
+    /* An optional second depth layer in the same format (the nearest surface behind the first, as
+     * depth peeling gives it; sky = none behind): read by methods with layers = 2. 0 = none. */
+    uint32_t second_depth;
+    /* Normals, GL_TEXTURE_2D of the input size, unit length, in normal_space:
+     *   GL_RGBA16F, GL_RGBA32F: xyz as is;
+     *   GL_RGB10_A2, GL_RGBA8: xyz encoded as n * 0.5 + 0.5;
+     *   GL_RG16F, GL_RG16_SNORM: octahedral (Cigolle et al. 2014) in [-1, 1];
+     *   GL_RG8: octahedral encoded as e * 0.5 + 0.5.
+     * 0 = none: reconstructed from depth by the input pass (flat-shaded: no smoothing groups;
+     * docs/embedding.md gives its cost in accuracy). */
+    uint32_t normal;
+    ob_normal_space normal_space;
+    /* The projection the host rasterised with, before any TAA jitter: column-major, OpenGL clip
+     * space, perspective (orthographic is not taken: the methods march in perspective). */
+    float projection[16];
+    /* World -> view, column-major; all zeros = identity. Needed for world-space normals and for
+     * temporal accumulation (the history follows the camera through it). */
+    float view[16];
+    /* The TAA jitter of this frame, in pixels of the input size: the host rasterised with
+     * `projection` plus 2 jitter[0] / width in P20 (element 8) and 2 jitter[1] / height in P21
+     * (element 9), which moves the image by -jitter pixels. The library does the same, so the AO
+     * lines up with the jittered depth and the temporal accumulation reprojects through the
+     * jittered cameras. */
+    float jitter[2];
+    /* The depth buffer was written under glClipControl(..., GL_ZERO_TO_ONE): window depth = NDC z.
+     * false: GL's default, window depth = NDC z * 0.5 + 0.5. */
+    bool depth_zero_to_one;
+    /* Optional motion vectors for temporal accumulation of moving objects: GL_RG16F or GL_RG32F of
+     * the input size, where each pixel's surface was in the previous frame minus where it is now,
+     * in pixels (+y up), multiplied by motion_scale (zeros = 1; e.g. {width, height} for UV
+     * units, negative for current minus previous). 0 = the camera's motion alone (static scenes). */
+    uint32_t motion;
+    float motion_scale[2];
+    /* The indirect-light methods (vbgi, ssdo, ssdo_merged) read the host's direct light:
+     * GL_RGBA16F, GL_RGBA32F or GL_R11F_G11F_B10F linear radiance (no AO, no ambient), of the
+     * input size. 0 for AO methods. albedo (GL_RGBA8, GL_SRGB8_ALPHA8, GL_RGBA16F) is for methods
+     * that declare it; none does today (their bounce leaves a white receiver: multiply `indirect`
+     * by your albedo), but one given is checked all the same. */
+    uint32_t radiance;
+    uint32_t albedo;
+} ob_host_frame;
+
+typedef struct ob_host_outputs {
+    /* GL_TEXTURE_2D of the renderer's size (the guard band cropped), level 0 written:
+     * GL_R8, GL_R16F, GL_R32F visibility in [0, 1] (a directional method's: the mean of its M), or
+     * GL_RGBA8, GL_RGBA16F, GL_RGBA32F: an RGB modulation M of directional methods (ssdo*), grey
+     * for AO methods. Required. */
+    uint32_t ao;
+    /* Bent normals of methods that write them (gtao with bent_normals = on): GL_RGBA16F or
+     * GL_RGBA32F, unit length, in the space of the input normals (view space when normal was 0);
+     * zeros where none. 0 = not wanted. */
+    uint32_t bent_normal;
+    /* The one-bounce indirect light of vbgi, ssdo and ssdo_merged, off a white receiver (multiply
+     * by your albedo): GL_RGBA16F, GL_RGBA32F or GL_R11F_G11F_B10F. 0 = not wanted. */
+    uint32_t indirect;
+} ob_host_outputs;
+
+/* Quality presets (ob_quality_samples): 12, 24, 36, 64 samples per pixel. */
+typedef enum ob_quality {
+    OB_QUALITY_DEFAULT = 0, /* the method's own default */
+    OB_QUALITY_LOW,
+    OB_QUALITY_MEDIUM,
+    OB_QUALITY_HIGH,
+    OB_QUALITY_ULTRA,
+} ob_quality;
+
+/* Typed settings for a host, turned into ob_settings by ob_settings_from_host; what is not here
+ * goes through ob_settings_set afterwards. Zero means the default, except radius. */
+typedef struct ob_host_settings {
+    const char *method;   /* NULL = OB_DEFAULT_METHOD */
+    ob_quality quality;
+    /* R, the distance within which geometry occludes, in the host's world units (the units of its
+     * view matrix and linear depth): required, > 0. docs/embedding.md, "Choosing R". */
+    float radius;
+    float intensity;      /* the method's intensity or contrast parameter; 0 = its default */
+    float thickness;      /* assumed thickness of what the depth buffer shows, x R; 0 = default */
+    float falloff;        /* the share of R over which occlusion fades out; 0 = default */
+    int ao_divisor;       /* 1, 2 or 4: AO at 1/divisor of the size, joint-bilateral upsampled */
+    const char *filter;   /* NULL = the default ("crease"); "none" for the raw AO */
+    bool temporal;        /* temporal accumulation (call every frame; ob_renderer_reset_history on cuts) */
+    int temporal_frames;  /* 0 = OB_TEMPORAL_FRAMES_DEFAULT */
+    int guard;            /* guard band, px per side of the visible frame (ob_host_input_size) */
+} ob_host_settings;
+
+/* Fill `settings` from `host`. A field the method has no parameter for (intensity for vbao, say)
+ * is an error, not ignored. Errors: OB_ERR_INVALID_ARGUMENT (NULL, radius not > 0, a field the
+ * method lacks), OB_ERR_UNKNOWN_METHOD (method or filter), OB_ERR_OUT_OF_RANGE. On error
+ * `settings` is unchanged. */
+ob_error ob_settings_from_host(ob_settings *settings, const ob_host_settings *host);
+
+/* The size the host's input textures must have for these settings: the renderer's size plus the
+ * guard band, ob_settings.guard rounded up to a multiple of 4 x ao_divisor, on each side. Either
+ * pointer may be NULL; *guard (may be NULL) gets the band's pixels per side. The host renders that
+ * size with its projection widened as ob_guard_projection does (identity without a band). */
+void ob_host_input_size(const ob_renderer *r, const ob_settings *settings, int *width, int *height, int *guard);
+/* Widen a projection for a guard band of `guard` px per side around width x height (in place,
+ * column-major): P00, P20 scaled by width / (width + 2 guard), P11, P21 by height / (height +
+ * 2 guard), so that the enlarged image's centre is the visible frame, pixel for pixel. */
+void ob_guard_projection(float proj[16], int width, int height, int guard);
+
+/* Compile and allocate everything these settings will use (method, filter, input and output
+ * passes, upsampler, temporal targets) ahead of the first frame, so that the first ob_host_ao
+ * does not stall on shader compiles (seconds on a software rasteriser without a warm shader
+ * cache): it runs the settings' chain on scratch textures of the formats hosts use most (linear
+ * R32F depth with RGBA16F normals, and a D32F depth buffer with RG16F octahedral normals; AO
+ * output in R8, R16F, R32F, RGBA8, RGBA16F), then forgets the temporal history and the frame
+ * count. A driver that specialises programs per texture format may still compile at the first
+ * call with other formats. GL state as ob_host_ao. Errors: OB_ERR_INVALID_ARGUMENT,
+ * OB_ERR_SHADER, OB_ERR_BAD_SIZE. */
+ob_error ob_host_prepare(ob_renderer *r, const ob_settings *settings);
+
+/* Run the settings' AO chain on the host's textures into its outputs (above). The method's
+ * radius must have been set (ob_settings_from_host, or "radius=R"): with no scene there is no
+ * default R. ssdo and ssdo_merged spread ob_settings.lights (light_count of them; none by
+ * default) into their lobes, and take the ambient light from ob_settings as ob_render_frame does.
+ * A method with extra_view = on needs the scene: refused. Errors: OB_ERR_INVALID_ARGUMENT (every texture
+ * argument checked first: "normal texture 7 is 160x120 GL_RGBA8; expected 320x240 and one of
+ * ..."), OB_ERR_SHADER, OB_ERR_OUT_OF_MEMORY. Not OB_ERR_GL: see "GL state" above. */
+ob_error ob_host_ao(ob_renderer *r, const ob_host_frame *frame, const ob_settings *settings,
+                    const ob_host_outputs *outputs);
 
 /* ---- image files (written atomically: temporary file, then rename) -------------------------- */
 /* Top-row-first RGBA8 or grey (channels 1, 3 or 4). */

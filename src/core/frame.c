@@ -24,7 +24,7 @@ void ob_proj_info(const float *proj, float out[4])
     out[3] = proj[9];
 }
 
-void ob_guard_projection(float *proj, int width, int height, int guard)
+void ob_guard_projection(float proj[16], int width, int height, int guard)
 {
     /* Seed 000 §3.2.2: the enlarged image must hold the visible one at its centre, pixel for pixel.
      * ndc' = 2 (x + g + 1/2) / (W + 2g) - 1 = (2 (x + 1/2) / W - 1) W / (W + 2g), so ndc scales
@@ -143,112 +143,11 @@ void ob_extra_view_camera(const ob_camera *c, ob_camera *out)
     out->shift[0] = out->shift[1] = 0.0f;
 }
 
-static void upload_frame(ob_renderer *r)
-{
-    glNamedBufferSubData(r->frame_ubo, 0, sizeof r->frame_constants, &r->frame_constants);
-    glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_FRAME, r->frame_ubo);
-}
-
-static ob_error check_settings(const ob_settings *s)
-{
-    if (!s || !ob_method_at(s->method) || !ob_filter_at(s->filter))
-        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "settings are not initialised");
-    if (s->ao_divisor != 0 && s->ao_divisor != 1 && s->ao_divisor != 2 && s->ao_divisor != 4)
-        return ob_set_error(OB_ERR_OUT_OF_RANGE, "ao divisor %d is not 1, 2 or 4", s->ao_divisor);
-    if (s->guard < 0 || s->guard > OB_GUARD_MAX)
-        return ob_set_error(OB_ERR_OUT_OF_RANGE, "guard band %d px is outside 0..%d", s->guard, OB_GUARD_MAX);
-    if (s->temporal_at != OB_TEMPORAL_BEFORE_FILTER && s->temporal_at != OB_TEMPORAL_AFTER_FILTER)
-        return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_at %d is not before (0) or after (1) the filter", s->temporal_at);
-    if (s->temporal_frames < 0 || s->temporal_frames > OB_TEMPORAL_FRAMES_MAX)
-        return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_frames %d is outside 1..%d", s->temporal_frames,
-                            OB_TEMPORAL_FRAMES_MAX);
-    if (!(s->temporal_detail >= 0.0f && s->temporal_detail < 1.0f))
-        return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_detail %g is outside [0, 1)", (double)s->temporal_detail);
-    return OB_OK;
-}
-
-/* The method of a frame, resolved once: its entry, state, parameters as it sees them (explicit
- * values, else defaults, with radii that were not set following the scene) and what it writes. */
-typedef struct method_plan {
-    int index;
-    const ob_method_impl *impl;
-    void *state;
-    float params[OB_MAX_PARAMS];
-    uint32_t reads;   /* ob_method_active_reads */
-    uint32_t writes;  /* ob_method_active_writes */
-    bool rgb;         /* OB_WRITES_VISIBILITY_RGB: M instead of visibility */
-    bool bounce;      /* OB_WRITES_BOUNCE among the active outputs */
-    bool bent;        /* OB_WRITES_BENT_NORMAL among the active outputs */
-} method_plan;
-
-static ob_error plan_method(ob_renderer *r, const ob_settings *s, method_plan *p)
-{
-    memset(p, 0, sizeof *p);
-    p->index = s->method;
-    p->impl = ob_method_impl_at(s->method);
-    const ob_method_info *m = &p->impl->info;
-    /* radius_scale (0 in a zero-filled ob_settings = 1) widens or narrows the search, not R. */
-    float scale = s->radius_scale > 0.0f ? s->radius_scale : 1.0f;
-    for (int i = 0; i < m->param_count; ++i) {
-        p->params[i] = s->params[i];
-        if (m->params[i].follows_scene_radius && !(s->params_set & (1u << i)) && r->scene_radius > 0.0f)
-            p->params[i] = r->scene_radius;
-        if (m->params[i].follows_scene_radius)
-            p->params[i] = fminf(fmaxf(p->params[i] * scale, m->params[i].min), m->params[i].max);
-    }
-    /* Temporal accumulation wants noise that moves with the frame index: a method's own "temporal"
-     * switch (gtao, vbao, vbgi: R2 jitters) goes on unless it was set explicitly. */
-    for (int i = 0; i < m->param_count && s->temporal; ++i)
-        if (m->params[i].type == OB_PARAM_BOOL && !strcmp(m->params[i].name, "temporal") && !(s->params_set & (1u << i)))
-            p->params[i] = 1.0f;
-    p->reads = ob_method_active_reads(p->impl, p->params);
-    p->writes = ob_method_active_writes(p->impl, p->params);
-    p->rgb = (p->impl->writes & OB_WRITES_VISIBILITY_RGB) != 0;
-    p->bounce = (p->writes & OB_WRITES_BOUNCE) != 0;
-    p->bent = (p->writes & OB_WRITES_BENT_NORMAL) != 0;
-    ob_error err = OB_OK;
-    p->state = ob_renderer_method_state(r, s->method, &err);
-    return err;
-}
-
-/* The prefiltered MIP chain of an AO grid's depth (SAO's trick; passes/depth_mips.c), one dispatch,
- * for a method that reads it (OB_READS_DEPTH_MIPS): the frame's own depth or an engine's. */
-static ob_error make_depth_mips(ob_renderer *r, GLuint depth, int width, int height, GLuint *mips, int *levels)
-{
-    if (!r->depth_mips_ready) {
-        if (ob_depth_mips_init(&r->depth_mips) != OB_OK) return ob_peek_error(NULL);
-        r->depth_mips_ready = true;
-    }
-    ob_error err = ob_depth_mips_run(&r->depth_mips, depth, width, height);
-    if (err != OB_OK) return err;
-    *mips = r->depth_mips.texture;
-    *levels = r->depth_mips.levels;
-    return OB_OK;
-}
-
-static ob_error run_method(ob_renderer *r, const method_plan *p, const ob_ao_inputs *in, const ob_ao_outputs *out)
-{
-    r->last_method = p->index;
-    memcpy(r->last_params, p->params, sizeof r->last_params);
-    r->last_adaptive = in->sample_multiplier != 0;
-    return p->impl->run(p->state, in, p->params, out);
-}
-
-/* Filter one chain (src -> dst through the scratch target) at the AO resolution. */
-static ob_error run_filter(const ob_filter_impl *filter, void *fstate, const ao_targets *t, GLuint src, GLuint dst,
-                           GLuint scratch, bool rgb, float sky, const ob_settings *s)
-{
-    const ob_filter_inputs fin = {.src = src, .dst = dst, .scratch = scratch, .linear_depth = t->depth,
-                                  .view_normal = t->normal, .width = t->grid.width, .height = t->grid.height,
-                                  .rgb = rgb, .sky = sky};
-    return filter->run(fstate, &fin, s->filter_params);
-}
-
 /* The extra view's targets at the G-buffer's size, made on first use and remade with it. */
 static ob_error extra_targets(ob_renderer *r)
 {
     int w = r->gbuffer.width, h = r->gbuffer.height;
-    if (!r->extra_ready) {
+    if (!r->extra_ubo) {
         if (ob_gbuffer_init(&r->extra_gbuffer, w, h) != OB_OK) {
             ob_error err = ob_peek_error(NULL);
             ob_gbuffer_destroy(&r->extra_gbuffer);
@@ -257,7 +156,6 @@ static ob_error extra_targets(ob_renderer *r)
         glCreateBuffers(1, &r->extra_ubo);
         glNamedBufferStorage(r->extra_ubo, sizeof(ob_frame_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
         r->extra_direct = ob_make_texture_2d(GL_RGBA16F, w, h);
-        r->extra_ready = true;
     } else if (r->extra_gbuffer.width != w || r->extra_gbuffer.height != h) {
         ob_error err = ob_gbuffer_resize(&r->extra_gbuffer, w, h);
         if (err != OB_OK) return err;
@@ -296,72 +194,11 @@ static ob_error run_extra_view(ob_renderer *r, const ob_settings *s, const ob_li
     return err;
 }
 
-/* Temporal accumulation of the main chain (visibility or M) and the bounce: `*_in` this frame's
- * values, `*_out` where the accumulation goes (passes/temporal.c). The history is reused only when
- * the last frame accumulated under the same key; the pass also writes this frame's depth and
- * normals for the next (geometry[1 - h]). */
-static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const method_plan *plan, ao_targets *t,
-                             GLuint main_in, GLuint main_out, GLuint bounce_in, GLuint bounce_out)
+/* The scene's passes before the AO chain: shadow maps, G-buffer, direct light, and what the
+ * method reads beyond them (the extra view, the second depth layer). */
+static ob_error run_scene_passes(ob_renderer *r, const ob_settings *s, const ob_method_plan *plan,
+                                 const ob_light *lights, int light_count)
 {
-    const ob_history_key key = {.method = plan->index, .scale = r->last_scale, .at = s->temporal_at,
-                                .width = r->inner_width, .height = r->inner_height, .rgb = plan->rgb,
-                                .bounce = plan->bounce};
-    const bool valid = r->history_valid && !memcmp(&key, &r->history_key, sizeof key);
-    ob_temporal_constants c;
-    /* The history length: run_passes resolved it (0 = the default) for this frame. */
-    ob_temporal_fill(&c, r->prev_view, r->frame_constants.inv_view, r->prev_ao_proj, valid, r->last_temporal_frames,
-                     s->temporal_detail);
-    const int h = t->history_index;
-    ob_temporal_chain chain = {.current = main_in, .result = main_out, .rgb = plan->rgb,
-                               .history = plan->rgb ? t->history_rgb[h] : t->history[h],
-                               .next_history = plan->rgb ? t->history_rgb[1 - h] : t->history[1 - h],
-                               .age = plan->rgb ? 0 : t->history_age[h],
-                               .next_age = plan->rgb ? 0 : t->history_age[1 - h]};
-    if (plan->bounce) {
-        chain.bounce_current = bounce_in;
-        chain.bounce_result = bounce_out;
-        chain.bounce_history = t->bounce_history[h];
-        chain.bounce_next_history = t->bounce_history[1 - h];
-    }
-    ob_error err = ob_temporal_run(&r->temporal, &c, &t->grid, t->depth, t->normal, &t->geometry[h], &t->geometry[1 - h],
-                                   &chain);
-    if (err != OB_OK) return err;
-    t->history_index = 1 - h;
-    r->history_key = key;
-    r->history_valid = true;
-    memcpy(r->prev_view, r->frame_constants.view, sizeof r->prev_view);
-    memcpy(r->prev_ao_proj, r->frame_constants.ao_proj, sizeof r->prev_ao_proj);
-    return OB_OK;
-}
-
-/* none: 1 into the raw target (what the raw-AO read-back shows) and into the full-size one that
- * compose reads, by the fill pass (glClearTexImage took 0.15 ms per 1920x1080 target on an H100,
- * more than ssao's AO pass: shaders/fill.glsl). The full-size target is left alone while it
- * still holds the last none frame's 1 (ao_is_one); the raw one, of whichever AO scale, is filled
- * every time. No timer of their own: the baseline has no AO pass (test_baseline). */
-static ob_error run_without_ao(ob_renderer *r, const method_plan *plan, ao_targets *t)
-{
-    const ob_ao_inputs in = {.frame = &r->frame_constants, .width = t->grid.width, .height = t->grid.height};
-    const ob_ao_outputs out = {.visibility = t->raw};
-    r->last_rgb = r->last_bounce = r->last_bent = false;
-    r->last_second_layer = r->last_extra_view = false;
-    r->last_temporal = false;
-    r->history_valid = false;
-    ob_error err = run_method(r, plan, &in, &out); /* none's run itself writes nothing */
-    if (err != OB_OK) return err;
-    const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-    ob_fill_run(&r->fill, false, t->raw, one);
-    if (!r->ao_is_one) ob_fill_run(&r->fill, false, r->ao, one);
-    r->ao_is_one = true;
-    return OB_OK;
-}
-
-/* Every pass of the frame, stopping at the first failure; the caller closes the timers. */
-static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_plan *plan, ao_targets *t,
-                           const ob_light *lights, int light_count)
-{
-    const ob_ao_grid *g = &t->grid;
-    /* Each compute pass reads what the previous one wrote with image stores or as attachments. */
     const GLbitfield barrier = GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
     const ob_frame_constants *f = &r->frame_constants;
     ob_error err = ob_shadows_render(&r->shadows, &r->gbuffer, lights, light_count, r->bounds_min, r->bounds_max,
@@ -373,34 +210,12 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     ob_timer_begin(&r->timers, "lighting");
     ob_lighting_setup(&r->lighting);
     ob_shadows_fill(&r->shadows, &r->lighting.constants, &r->frame_constants);
-    upload_frame(r); /* after ob_shadows_fill: each light's shadow map index */
+    ob_upload_frame(r); /* after ob_shadows_fill: each light's shadow map index */
     err = ob_lighting_run(&r->lighting, &r->frame_constants, r->inner_width, r->inner_height, r->gbuffer.linear_depth,
                           r->gbuffer.normal, r->gbuffer.albedo, r->direct);
     if (err != OB_OK) return err;
     glMemoryBarrier(barrier);
-    /* A method that dispatches nothing (none) is the cost baseline: AO 1 straight into the
-     * full-size target that compose reads, with no AO-grid pass, filter, accumulation or upsample
-     * (a filter over a constant changes nothing and would only count as overhead of no AO). The
-     * jump skips only the AO chain's locals; compose reads none of them. */
-    if (!plan->impl->shader) {
-        err = run_without_ao(r, plan, t);
-        if (err != OB_OK) return err;
-        goto compose;
-    }
-    r->ao_is_one = false; /* the chain below writes r->ao (or what compose reads instead) */
-    if (g->k > 1) {
-        ob_timer_begin(&r->timers, "downsample");
-        ob_downsample_run(&r->downsample, g, r->gbuffer.linear_depth, r->gbuffer.normal, t->depth, t->normal);
-        glMemoryBarrier(barrier);
-    }
-    /* Per-pixel sample counts only for a method that takes them: for the others the edge pass
-     * would cost time and change nothing. */
-    const bool adaptive = s->adaptive && plan->impl->adapts;
-    if (adaptive) {
-        ob_timer_begin(&r->timers, "edges");
-        ob_edges_run(&r->edges, g, t->depth, t->normal, t->multiplier);
-        glMemoryBarrier(barrier);
-    }
+    if (!plan->impl->shader) return OB_OK;
     if (plan->reads & OB_READS_EXTRA_VIEW) {
         /* Seed 000 §4.4: the extra camera's G-buffer and direct light, with its own per-frame
          * block (the same lights and shadow maps), then the main block bound again. */
@@ -411,164 +226,39 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const method_pl
     if (plan->reads & OB_READS_SECOND_LAYER) {
         /* Depth peeling after the G-buffer, whose linear depth it peels behind. */
         ob_timer_begin(&r->timers, "second_layer");
-        if (!r->peel_ready) {
-            if (ob_peel_init(&r->peel) != OB_OK) return ob_peek_error(NULL);
-            r->peel_ready = true;
-        }
+        if (!r->peel.program && ob_peel_init(&r->peel) != OB_OK) return ob_peek_error(NULL);
         err = ob_peel_run(&r->peel, &r->gbuffer, f->view, f->proj);
         if (err != OB_OK) return err;
         glMemoryBarrier(barrier);
     }
-    GLuint mips = 0;
-    int mip_levels = 0;
-    if (plan->reads & OB_READS_DEPTH_MIPS) {
-        ob_timer_begin(&r->timers, "depth_mips");
-        err = make_depth_mips(r, t->depth, g->width, g->height, &mips, &mip_levels);
-        if (err != OB_OK) return err;
-    }
-    if (plan->rgb || (plan->impl->writes & OB_WRITES_BOUNCE) || plan->bent) {
-        err = ob_renderer_rgb_targets(r, t, plan->rgb || (plan->impl->writes & OB_WRITES_BOUNCE), plan->bent);
-        if (err != OB_OK) return err;
-    }
-    const uint32_t reads = plan->reads;
-    const ob_ao_inputs in = {.frame = f,
-                             .linear_depth = t->depth,
-                             .view_normal = t->normal,
-                             .width = g->width,
-                             .height = g->height,
-                             .sample_multiplier = adaptive ? t->multiplier : 0,
-                             .radiance = reads & OB_READS_RADIANCE ? r->direct : 0,
-                             .albedo = reads & OB_READS_ALBEDO ? r->gbuffer.albedo : 0,
-                             .depth_mips = mips,
-                             .depth_mip_levels = mip_levels,
-                             .second_depth = reads & OB_READS_SECOND_LAYER ? r->peel.linear_depth : 0,
-                             .extra_depth = reads & OB_READS_EXTRA_VIEW ? r->extra_gbuffer.linear_depth : 0,
-                             .extra_normal = reads & OB_READS_EXTRA_VIEW ? r->extra_gbuffer.normal : 0,
-                             .extra_radiance = reads & OB_READS_EXTRA_VIEW ? r->extra_direct : 0,
-                             .extra_from_view = r->extra_from_view,
-                             .extra_to_view = r->extra_to_view,
-                             .extra_proj = r->extra_proj};
-    /* Every declared output gets a target, also one that these params leave unwritten. */
-    const ob_ao_outputs out = {.visibility = plan->rgb ? t->raw_rgb : t->raw,
-                               .bounce = plan->impl->writes & OB_WRITES_BOUNCE ? t->bounce_raw : 0,
-                               .bent_normal = plan->bent ? t->bent_raw : 0};
-    r->last_rgb = plan->rgb;
-    r->last_bounce = plan->bounce;
-    r->last_bent = plan->bent;
-    r->last_second_layer = (reads & OB_READS_SECOND_LAYER) != 0;
-    r->last_extra_view = (reads & OB_READS_EXTRA_VIEW) != 0;
-    ob_timer_begin(&r->timers, "ao");
-    err = run_method(r, plan, &in, &out);
-    if (err != OB_OK) return err;
-    glMemoryBarrier(barrier);
+    return OB_OK;
+}
 
-    /* The chains into and out of the filter; temporal accumulation (issue 17) sits before it, the
-     * filter then reading the accumulation, or after it, the filter writing into its input. */
-    GLuint main_in = plan->rgb ? t->raw_rgb : t->raw, bounce_in = t->bounce_raw;
-    GLuint main_out = plan->rgb ? (g->k > 1 ? t->filtered_rgb : r->ao_rgb) : (g->k > 1 ? t->filtered : r->ao);
-    GLuint bounce_out = g->k > 1 ? t->bounce_filtered : r->bounce;
-    /* A method that dispatches nothing (none) writes a constant: nothing to accumulate. */
-    const bool temporal = s->temporal && plan->impl->shader != NULL;
-    r->last_temporal = temporal;
-    if (temporal) {
-        err = ob_renderer_temporal_targets(r, t);
-        if (err != OB_OK) return err;
-        r->last_temporal_frames = s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
-        const GLuint main_accum = plan->rgb ? t->accum_rgb : t->accum;
-        if (s->temporal_at == OB_TEMPORAL_BEFORE_FILTER) {
-            ob_timer_begin(&r->timers, "temporal");
-            /* Visibility: the filter reads the new history's value itself, no copy. */
-            err = run_temporal(r, s, plan, t, main_in, plan->rgb ? main_accum : 0, bounce_in, t->bounce_accum);
-            if (err != OB_OK) return err;
-            glMemoryBarrier(barrier);
-            main_in = plan->rgb ? main_accum : t->history[t->history_index];
-            bounce_in = t->bounce_accum;
-        } else {
-            main_out = main_accum;
-            bounce_out = t->bounce_accum;
-        }
-    } else {
-        r->history_valid = false;
-    }
-
-    ob_timer_begin(&r->timers, "filter");
-    void *fstate = ob_renderer_filter_state(r, s->filter, plan->rgb, &err);
+/* Every pass of the frame, stopping at the first failure; the caller closes the timers. */
+static ob_error run_passes(ob_renderer *r, const ob_settings *s, const ob_method_plan *plan, ao_targets *t,
+                           const ob_light *lights, int light_count)
+{
+    const GLbitfield barrier = GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
+    ob_error err = run_scene_passes(r, s, plan, lights, light_count);
     if (err != OB_OK) return err;
-    const ob_filter_impl *filter = ob_filter_impl_at(s->filter);
-    if (!plan->rgb) {
-        err = run_filter(filter, fstate, t, main_in, main_out, t->scratch, false, 1.0f, s);
-    } else {
-        /* M and the bounce through the same filter (seed 003 §5.3 smooths them separately); the
-         * sky is 1 in M and 0 in the bounce. The barrier orders the shared scratch target. */
-        err = run_filter(filter, fstate, t, main_in, main_out, t->scratch_rgb, true, 1.0f, s);
-    }
-    if (err == OB_OK && plan->bounce) {
-        /* A bounce beside a scalar visibility (vbgi) takes the filter's RGB variant. */
-        void *bstate = plan->rgb ? fstate : ob_renderer_filter_state(r, s->filter, true, &err);
-        glMemoryBarrier(barrier);
-        if (err == OB_OK) err = run_filter(filter, bstate, t, bounce_in, bounce_out, t->scratch_rgb, true, 0.0f, s);
-    }
-    if (err == OB_OK && plan->bent) {
-        /* The bent normal through the same filter's RGB variant (sky 0, no direction); compose
-         * renormalises what the weights average. */
-        void *bstate = ob_renderer_filter_state(r, s->filter, true, &err);
-        glMemoryBarrier(barrier);
-        if (err == OB_OK)
-            err = run_filter(filter, bstate, t, t->bent_raw, g->k > 1 ? t->bent_filtered : r->bent, t->scratch_rgb, true,
-                             0.0f, s);
-    }
+    const ob_chain_io io = {.depth = r->gbuffer.linear_depth,
+                            .normal = r->gbuffer.normal,
+                            .radiance = r->direct,
+                            .albedo = r->gbuffer.albedo,
+                            .second_depth = plan->reads & OB_READS_SECOND_LAYER ? r->peel.linear_depth : 0,
+                            .extra_view = (plan->reads & OB_READS_EXTRA_VIEW) != 0,
+                            .ao = r->ao};
+    err = ob_run_ao_chain(r, s, plan, t, &io);
     if (err != OB_OK) return err;
-    glMemoryBarrier(barrier);
-    if (temporal && s->temporal_at == OB_TEMPORAL_AFTER_FILTER) {
-        ob_timer_begin(&r->timers, "temporal");
-        err = run_temporal(r, s, plan, t, main_out,
-                           plan->rgb ? (g->k > 1 ? t->filtered_rgb : r->ao_rgb) : (g->k > 1 ? t->filtered : r->ao),
-                           bounce_out, g->k > 1 ? t->bounce_filtered : r->bounce);
-        if (err != OB_OK) return err;
-        glMemoryBarrier(barrier);
-    }
-    if (g->k > 1) {
-        ob_timer_begin(&r->timers, "upsample");
-        const GLuint full_depth = r->gbuffer.linear_depth, full_normal = r->gbuffer.normal;
-        const int up = s->upsample;
-        /* The bounce, else the bent normals, rides in the main value's dispatch: the weights depend
-         * on the geometry alone, so one pass computes them once for both (the same bits as two,
-         * tests/test_filters.c). With both, the bent normals have a pass of their own. */
-        GLuint second_low = 0, second_out = 0;
-        if (plan->bounce) {
-            second_low = t->bounce_filtered;
-            second_out = r->bounce;
-        } else if (plan->bent) {
-            second_low = t->bent_filtered;
-            second_out = r->bent;
-        }
-        if (plan->bent && plan->bounce)
-            err = ob_upsample_run(&r->upsample_rgb, up, g, full_depth, full_normal, t->depth, t->normal,
-                                  t->bent_filtered, r->bent, 0.0f, 0, 0);
-        if (err == OB_OK)
-            err = plan->rgb ? ob_upsample_run(&r->upsample_rgb, up, g, full_depth, full_normal, t->depth, t->normal,
-                                              t->filtered_rgb, r->ao_rgb, 1.0f, second_low, second_out)
-                            : ob_upsample_run(&r->upsample, up, g, full_depth, full_normal, t->depth, t->normal,
-                                              t->filtered, r->ao, 1.0f, second_low, second_out);
-        if (err != OB_OK) return err;
-        glMemoryBarrier(barrier);
-    }
-    if (plan->rgb && !plan->bounce) {
-        /* Bounce off: nothing to filter or upsample; the bounce view reads zeros. */
-        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        ob_fill_run(&r->fill_rgb, true, r->bounce, zero);
-    }
-
-compose:;
     const ob_compose_inputs ci = {.linear_depth = r->gbuffer.linear_depth,
                                   .normal = r->gbuffer.normal,
                                   .albedo = r->gbuffer.albedo,
-                                  .ao = plan->rgb ? r->ao_rgb : r->ao,
+                                  .ao = r->last.rgb ? r->ao_rgb : r->ao,
                                   .direct = r->direct,
                                   .environment = r->environment.texture,
-                                  .directional = plan->rgb,
-                                  .bounce = plan->bounce ? r->bounce : 0,
-                                  .bent_normal = plan->bent ? r->bent : 0,
+                                  .directional = r->last.rgb,
+                                  .bounce = r->last.bounce ? r->bounce : 0,
+                                  .bent_normal = r->last.bent ? r->bent : 0,
                                   .width = r->width,
                                   .height = r->height,
                                   .guard = r->guard,
@@ -584,12 +274,10 @@ compose:;
     return OB_OK;
 }
 
-static int scale_index(int divisor) { return divisor == 2 ? 1 : divisor == 4 ? 2 : 0; }
-
 ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *s)
 {
     if (!r || !camera) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_frame: NULL argument");
-    if (check_settings(s) != OB_OK) return ob_peek_error(NULL);
+    if (ob_check_settings(s) != OB_OK) return ob_peek_error(NULL);
     if (!r->has_scene) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_frame: no scene (ob_renderer_set_scene)");
     if (s->ambient_mode == OB_AMBIENT_ENVIRONMENT && !r->environment.texture)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "environment ambient without an environment map (--env FILE.hdr)");
@@ -604,8 +292,8 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     /* A new guard band remakes the targets before anything is drawn into them. */
     ob_error err = ob_renderer_reshape(r, r->width, r->height, ob_guard_pixels(s->guard, s->ao_divisor));
     if (err != OB_OK) return err;
-    method_plan plan;
-    err = plan_method(r, s, &plan);
+    ob_method_plan plan;
+    err = ob_plan_method(r, s, r->scene_radius, &plan);
     if (err != OB_OK) return err;
 
     mat4 view, proj;
@@ -630,9 +318,9 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
         memcpy(r->extra_from_view, from, sizeof r->extra_from_view);
         memcpy(r->extra_to_view, to, sizeof r->extra_to_view);
     }
-    int si = scale_index(s->ao_divisor);
+    int si = ob_scale_index(s->ao_divisor);
     ao_targets *t = ob_renderer_targets(r, si);
-    r->last_scale = si;
+    r->last.scale = si;
     const ob_light *lights = s->light_count > 0 ? s->lights : r->scene_lights;
     int light_count = s->light_count > 0 ? s->light_count : r->scene_light_count;
     ob_frame_constants_fill(&r->frame_constants,
@@ -650,99 +338,29 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x during the frame", e);
     r->has_frame = true;
-    r->last_far = cam.far_z;
+    r->last.far = cam.far_z;
     return OB_OK;
-}
-
-/* ob_compute_ao and ob_compute_ao_filtered: the method, and the filter when asked. */
-static ob_error compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex, const float proj[16],
-                           const ob_settings *s, uint32_t ao_out_tex, bool filtered)
-{
-    if (!r || !proj || !linear_depth_tex || !normal_tex || !ao_out_tex)
-        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: NULL argument");
-    if (check_settings(s) != OB_OK) return ob_peek_error(NULL);
-    const ob_method_impl *m = ob_method_impl_at(s->method);
-    if ((m->reads & (OB_READS_RADIANCE | OB_READS_ALBEDO)) || (m->writes & (OB_WRITES_VISIBILITY_RGB | OB_WRITES_BOUNCE)))
-        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_compute_ao: %s needs the frame's direct light (ob_render_frame)",
-                            m->info.name);
-    /* The host's textures are the renderer's size, guard band included if it wants one (obscura.h):
-     * the renderer's own targets drop theirs. */
-    ob_error err = ob_renderer_reshape(r, r->width, r->height, 0);
-    if (err != OB_OK) return err;
-    method_plan plan;
-    err = plan_method(r, s, &plan);
-    if (err != OB_OK) return err;
-    /* The caller's camera: only the projection is known, so view space is world space. */
-    const ob_ao_grid grid = ob_ao_grid_make(r->width, r->height, 1);
-    mat4 identity = GLM_MAT4_IDENTITY_INIT;
-    ob_frame_constants_fill(&r->frame_constants,
-                            &(ob_frame_desc){.view = (const float *)identity, .proj = proj, .grid = &grid,
-                                             .frame_index = r->frame++});
-    upload_frame(r);
-    void *fstate = filtered ? ob_renderer_filter_state(r, s->filter, false, &err) : NULL;
-    if (err != OB_OK) return err;
-    /* Filtered: the method into the renderer's own full-size target, then the filter into the
-     * caller's. */
-    const ao_targets *t = ob_renderer_targets(r, 0);
-    /* The engine's depth gets the MIP chain too when the method reads one (depth_mips on). */
-    GLuint mips = 0;
-    int mip_levels = 0;
-    if (plan.reads & OB_READS_DEPTH_MIPS) {
-        err = make_depth_mips(r, linear_depth_tex, r->width, r->height, &mips, &mip_levels);
-        if (err != OB_OK) return err;
-    }
-    const ob_ao_inputs in = {.frame = &r->frame_constants, .linear_depth = linear_depth_tex, .view_normal = normal_tex,
-                             .width = r->width, .height = r->height, .depth_mips = mips,
-                             .depth_mip_levels = mip_levels};
-    const ob_ao_outputs out = {.visibility = filtered ? t->raw : ao_out_tex};
-    const GLbitfield barrier = GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
-    glMemoryBarrier(barrier);
-    err = run_method(r, &plan, &in, &out);
-    glMemoryBarrier(barrier);
-    if (err != OB_OK || !filtered) return err;
-    const ob_filter_inputs fin = {.src = t->raw, .dst = ao_out_tex, .scratch = t->scratch,
-                                  .linear_depth = linear_depth_tex, .view_normal = normal_tex, .width = r->width,
-                                  .height = r->height, .rgb = false, .sky = 1.0f};
-    err = ob_filter_impl_at(s->filter)->run(fstate, &fin, s->filter_params);
-    glMemoryBarrier(barrier);
-    if (err != OB_OK) return err;
-    GLenum e = glGetError();
-    if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x in ob_compute_ao_filtered", e);
-    return OB_OK;
-}
-
-ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex, const float proj[16],
-                       const ob_settings *s, uint32_t ao_out_tex)
-{
-    return compute_ao(r, linear_depth_tex, normal_tex, proj, s, ao_out_tex, false);
-}
-
-ob_error ob_compute_ao_filtered(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex, const float proj[16],
-                                const ob_settings *s, uint32_t ao_out_tex)
-{
-    return compute_ao(r, linear_depth_tex, normal_tex, proj, s, ao_out_tex, true);
 }
 
 ob_error ob_render_floor(ob_renderer *r, const ob_settings *s, ob_floor_info *info)
 {
     if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_floor: NULL renderer");
-    if (check_settings(s) != OB_OK) return ob_peek_error(NULL);
-    const int si = scale_index(s->ao_divisor);
-    if (!r->has_frame || r->last_scale != si || !r->scales[si].ready)
+    if (ob_check_settings(s) != OB_OK) return ob_peek_error(NULL);
+    const int si = ob_scale_index(s->ao_divisor);
+    if (!r->has_frame || r->last.scale != si || !r->scales[si].ready)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT,
                             "ob_render_floor: no frame at AO scale 1/%d yet (the floor reads its depth and normals)",
                             s->ao_divisor > 0 ? s->ao_divisor : 1);
-    method_plan plan;
-    ob_error err = plan_method(r, s, &plan);
+    ob_method_plan plan;
+    ob_error err = ob_plan_method(r, s, r->scene_radius, &plan);
     if (err != OB_OK) return err;
     const ob_method_info *m = &plan.impl->info;
     /* The settings as the method resolves them (a radius that follows the scene, the sample count
      * of HBAO's directions x steps), so the floor takes exactly the method's N and R. */
-    float radius = 0.0f, max_radius_px = 0.0f;
-    for (int i = 0; i < m->param_count; ++i) {
-        if (!strcmp(m->params[i].name, "radius")) radius = plan.params[i];
-        if (!strcmp(m->params[i].name, "max_radius_px")) max_radius_px = plan.params[i];
-    }
+    const int radius_at = ob_method_role(plan.impl, OB_ROLE_RADIUS);
+    const int max_px_at = ob_method_role(plan.impl, OB_ROLE_MAX_RADIUS_PX);
+    const float radius = radius_at >= 0 ? plan.params[radius_at] : 0.0f;
+    const float max_radius_px = max_px_at >= 0 ? plan.params[max_px_at] : 0.0f;
     const int taps = ob_method_samples(plan.impl, plan.params);
     if (taps <= 0 || !(radius > 0.0f))
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_floor: %s has no %s", m->name,
@@ -754,13 +372,10 @@ ob_error ob_render_floor(ob_renderer *r, const ob_settings *s, ob_floor_info *in
                              .radius = radius,
                              .px_per_unit = 0.5f * (float)t->grid.height / r->frame_constants.ao_proj_info[1],
                              .max_radius_px = max_radius_px};
-    if (!r->floor_ready) {
-        if (ob_floor_init(&r->floor) != OB_OK) {
-            err = ob_peek_error(NULL);
-            ob_floor_destroy(&r->floor);
-            return err;
-        }
-        r->floor_ready = true;
+    if (!r->floor.pass.program && ob_floor_init(&r->floor) != OB_OK) {
+        err = ob_peek_error(NULL);
+        ob_floor_destroy(&r->floor);
+        return err;
     }
     ob_timers_frame_begin(&r->timers);
     ob_timer_begin(&r->timers, "floor");

@@ -3,7 +3,6 @@
  * (llvmpipe) keeps every texture in host memory, so these bytes are the process's as much as the
  * GPU's. Each figure stands for an allocation elsewhere, named beside it: a new target there
  * belongs here too, or a run that fits the estimate can still take more than --max-memory. */
-#include <string.h>
 
 #include "core/error.h"
 #include "core/renderer.h"
@@ -57,11 +56,10 @@ static uint64_t shadow_bytes(const ob_settings *s)
     return bytes;
 }
 
-static bool param_on(const ob_method_info *m, const float *params, const char *name, float off)
+static bool role_on(const ob_method_impl *m, const float *params, ob_param_role role, float off)
 {
-    for (int i = 0; i < m->param_count; ++i)
-        if (!strcmp(m->params[i].name, name)) return params[i] != off;
-    return false;
+    const int p = ob_method_role(m, role);
+    return p >= 0 && params[p] != off;
 }
 
 uint64_t ob_estimate_renderer_memory(int width, int height, const ob_settings *settings, int count)
@@ -100,8 +98,8 @@ uint64_t ob_estimate_renderer_memory(int width, int height, const ob_settings *s
         u->bent = u->bent || bent;
         u->temporal = u->temporal || s->temporal;
         u->mips = u->mips || (reads & OB_READS_DEPTH_MIPS) != 0;
-        u->packed = u->packed || param_on(&impl->info, s->params, "packed", (float)OB_PACKED_OFF);
-        u->deinterleave = u->deinterleave || param_on(&impl->info, s->params, "deinterleave", 0.0f);
+        u->packed = u->packed || role_on(impl, s->params, OB_ROLE_PACKED, (float)OB_PACKED_OFF);
+        u->deinterleave = u->deinterleave || role_on(impl, s->params, OB_ROLE_DEINTERLEAVE, 0.0f);
         full_rgb = full_rgb || directional;
         full_bent = full_bent || bent;
         peel = peel || (reads & OB_READS_SECOND_LAYER) != 0;

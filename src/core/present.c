@@ -16,13 +16,13 @@ static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_vi
                             (int)OB_VIEW_COUNT);
     if (!r->has_frame)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s: no frame rendered yet (or since the last resize)", who);
-    const ao_targets *t = &r->scales[r->last_scale];
+    const ao_targets *t = &r->scales[r->last.scale];
     memset(in, 0, sizeof *in);
     in->view = view;
-    in->directional = r->last_rgb;
+    in->directional = r->last.rgb;
     in->width = r->width;
     in->height = r->height;
-    in->far_z = r->last_far;
+    in->far_z = r->last.far;
     in->offset = r->guard; /* every source but final and the composed radiance carries the band */
     in->grid_k = t->grid.k;
     switch (view) {
@@ -30,20 +30,20 @@ static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_vi
         in->source = r->final;
         in->offset = 0;
         break;
-    case OB_VIEW_AO: in->source = r->last_rgb ? r->ao_rgb : r->ao; break;
+    case OB_VIEW_AO: in->source = r->last.rgb ? r->ao_rgb : r->ao; break;
     case OB_VIEW_NORMALS: in->source = r->gbuffer.normal; break;
     case OB_VIEW_DEPTH: in->source = r->gbuffer.linear_depth; break;
     case OB_VIEW_SHADOW:
     case OB_VIEW_RADIANCE: in->source = r->direct; break;
     case OB_VIEW_BOUNCE:
         /* The view pass shows black without one (directional = 0). */
-        in->source = r->last_bounce ? r->bounce : r->gbuffer.linear_depth;
-        in->directional = r->last_bounce;
+        in->source = r->last.bounce ? r->bounce : r->gbuffer.linear_depth;
+        in->directional = r->last.bounce;
         break;
     case OB_VIEW_BENT_NORMALS:
         /* The view pass shows black without one (directional = 0, as for the bounce). */
-        in->source = r->last_bent ? r->bent : r->gbuffer.linear_depth;
-        in->directional = r->last_bent;
+        in->source = r->last.bent ? r->bent : r->gbuffer.linear_depth;
+        in->directional = r->last.bent;
         break;
     case OB_VIEW_LUMINANCE:
         in->source = r->radiance;
@@ -66,9 +66,9 @@ static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_vi
     case OB_VIEW_SAMPLES: {
         /* The counts of read_sample_counts, over the most a pixel could take (multiplier <= 3). */
         in->source = r->gbuffer.linear_depth;
-        const ob_method_impl *m = ob_method_impl_at(r->last_method);
-        int samples = ob_method_samples(m, r->last_params);
-        bool adaptive = r->last_adaptive && m->adapts;
+        const ob_method_impl *m = ob_method_impl_at(r->last.method);
+        int samples = ob_method_samples(m, r->last.params);
+        bool adaptive = r->last.adaptive && m->adapts;
         in->samples = adaptive ? ob_adaptive_base(samples) : samples;
         in->multiplier = adaptive ? t->multiplier : 0;
         in->max_samples = adaptive ? 3 * in->samples : samples;
@@ -76,9 +76,9 @@ static ob_error view_inputs(ob_renderer *r, ob_view view, const char *who, ob_vi
     }
     case OB_VIEW_HISTORY_AGE:
         /* Black (no history frames) when the last frame did not accumulate. */
-        if (r->last_temporal && t->temporal_ready) {
-            in->source = r->last_rgb ? t->history_rgb[t->history_index] : t->history_age[t->history_index];
-            in->history_frames = r->last_temporal_frames;
+        if (r->last.temporal && t->temporal_ready) {
+            in->source = r->last.rgb ? t->history_rgb[t->history_index] : t->history_age[t->history_index];
+            in->history_frames = r->last.temporal_frames;
         } else {
             in->source = r->gbuffer.linear_depth;
         }

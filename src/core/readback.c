@@ -18,17 +18,17 @@ static void read_visible(const ob_renderer *r, GLuint tex, GLenum format, GLenum
  * adaptive sampling its base x the edge pass's multiplier. */
 static ob_error read_sample_counts(ob_renderer *r, float *dst)
 {
-    const ao_targets *t = &r->scales[r->last_scale];
+    const ao_targets *t = &r->scales[r->last.scale];
     if (!t->ready) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "no frame rendered yet");
-    const ob_method_impl *m = ob_method_impl_at(r->last_method);
-    int samples = ob_method_samples(m, r->last_params);
+    const ob_method_impl *m = ob_method_impl_at(r->last.method);
+    int samples = ob_method_samples(m, r->last.params);
     int bw = (t->grid.width + OB_EDGE_BLOCK - 1) / OB_EDGE_BLOCK, bh = (t->grid.height + OB_EDGE_BLOCK - 1) / OB_EDGE_BLOCK;
     float *mult = NULL;
     float *depth = malloc((size_t)r->width * (size_t)r->height * sizeof(float));
     if (!depth) return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory reading sample counts");
     read_visible(r, r->gbuffer.linear_depth, GL_RED, GL_FLOAT, (size_t)r->width * (size_t)r->height * sizeof(float),
                  depth);
-    if (r->last_adaptive && m->adapts) {
+    if (r->last.adaptive && m->adapts) {
         mult = malloc((size_t)bw * (size_t)bh * sizeof(float));
         if (!mult) {
             free(depth);
@@ -79,7 +79,7 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
     case OB_IMAGE_FINAL_RGBA8: return px * 4;
     case OB_IMAGE_AO_RAW_F32: {
         /* The AO grid of the visible frame: the guard band is a multiple of k (ob_guard_pixels). */
-        const ob_ao_grid *g = &r->scales[r->last_scale].grid;
+        const ob_ao_grid *g = &r->scales[r->last.scale].grid;
         const ob_ao_grid v = ob_ao_grid_make(r->width, r->height, g->k > 0 ? g->k : 1);
         return (size_t)v.width * (size_t)v.height * sizeof(float);
     }
@@ -98,7 +98,7 @@ size_t ob_image_size(const ob_renderer *r, ob_image_kind kind)
     case OB_IMAGE_SECOND_DEPTH_F32: return px * sizeof(float);
     case OB_IMAGE_HISTORY_AGE_F32:
     case OB_IMAGE_MOTION_F32: {
-        const ob_ao_grid *g = &r->scales[r->last_scale].grid;
+        const ob_ao_grid *g = &r->scales[r->last.scale].grid;
         const ob_ao_grid v = ob_ao_grid_make(r->width, r->height, g->k > 0 ? g->k : 1);
         return (size_t)v.width * (size_t)v.height * sizeof(float) * (kind == OB_IMAGE_MOTION_F32 ? 2 : 1);
     }
@@ -131,21 +131,21 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
         break;
     }
     case OB_IMAGE_AO_F32:
-        if (r->last_rgb) return read_rgb(r->ao_rgb, r->guard, r->guard, r->width, r->height, dst, 1);
+        if (r->last.rgb) return read_rgb(r->ao_rgb, r->guard, r->guard, r->width, r->height, dst, 1);
         read_visible(r, r->ao, GL_RED, GL_FLOAT, need, dst);
         break;
     case OB_IMAGE_AO_RAW_F32: {
-        const ao_targets *t = &r->scales[r->last_scale];
+        const ao_targets *t = &r->scales[r->last.scale];
         if (!t->ready) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "no frame rendered yet");
         /* AO pixel i of the visible grid is pixel i + guard / k of the enlarged one. */
         const ob_ao_grid v = ob_ao_grid_make(r->width, r->height, t->grid.k);
         const int o = r->guard / t->grid.k;
-        if (r->last_rgb) return read_rgb(t->raw_rgb, o, o, v.width, v.height, dst, 1);
+        if (r->last.rgb) return read_rgb(t->raw_rgb, o, o, v.width, v.height, dst, 1);
         glGetTextureSubImage(t->raw, 0, o, o, 0, v.width, v.height, 1, GL_RED, GL_FLOAT, (GLsizei)need, dst);
         break;
     }
     case OB_IMAGE_AO_RGB_F32:
-        if (r->last_rgb) return read_rgb(r->ao_rgb, r->guard, r->guard, r->width, r->height, dst, 3);
+        if (r->last.rgb) return read_rgb(r->ao_rgb, r->guard, r->guard, r->width, r->height, dst, 3);
         /* An AO method: its visibility in all three channels. */
         read_visible(r, r->ao, GL_RED, GL_FLOAT, need / 3, dst);
         for (size_t i = need / sizeof(float) / 3; i-- > 0;) {
@@ -154,11 +154,11 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
         }
         break;
     case OB_IMAGE_BOUNCE_F32:
-        if (r->last_bounce) return read_rgb(r->bounce, r->guard, r->guard, r->width, r->height, dst, 3);
+        if (r->last.bounce) return read_rgb(r->bounce, r->guard, r->guard, r->width, r->height, dst, 3);
         memset(dst, 0, need);
         break;
     case OB_IMAGE_BENT_NORMAL_F32:
-        if (r->last_bent) return read_rgb(r->bent, r->guard, r->guard, r->width, r->height, dst, 3);
+        if (r->last.bent) return read_rgb(r->bent, r->guard, r->guard, r->width, r->height, dst, 3);
         memset(dst, 0, need);
         break;
     case OB_IMAGE_SAMPLES_F32: {
@@ -181,9 +181,9 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
     }
     case OB_IMAGE_HISTORY_AGE_F32:
     case OB_IMAGE_MOTION_F32: {
-        const ao_targets *t = &r->scales[r->last_scale];
+        const ao_targets *t = &r->scales[r->last.scale];
         if (!t->ready) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "no frame rendered yet");
-        if (!r->last_temporal || !t->temporal_ready) {
+        if (!r->last.temporal || !t->temporal_ready) {
             memset(dst, 0, need);
             break;
         }
@@ -201,7 +201,7 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
             glGetTextureSubImage(t->motion, 0, o, o, 0, v.width, v.height, 1, GL_RG, GL_FLOAT, (GLsizei)need, dst);
             break;
         }
-        if (!r->last_rgb) {
+        if (!r->last.rgb) {
             glGetTextureSubImage(t->history_age[t->history_index], 0, o, o, 0, v.width, v.height, 1, GL_RED, GL_FLOAT,
                                  (GLsizei)need, dst);
             break;

@@ -89,15 +89,17 @@ void ob_destroy_renderer(ob_renderer *r)
     free(r->filter_ready);
     release_scales(r);
     ob_view_destroy(&r->view);
-    if (r->depth_mips_ready) ob_depth_mips_destroy(&r->depth_mips);
-    if (r->floor_ready) ob_floor_destroy(&r->floor);
-    if (r->peel_ready) ob_peel_destroy(&r->peel);
-    if (r->extra_ready) {
+    /* Passes made on first use are zero until then, which their destroy functions take. */
+    ob_depth_mips_destroy(&r->depth_mips);
+    ob_floor_destroy(&r->floor);
+    ob_peel_destroy(&r->peel);
+    ob_host_passes_destroy(&r->host);
+    if (r->extra_ubo) {
         ob_gbuffer_destroy(&r->extra_gbuffer);
         glDeleteTextures(1, &r->extra_direct);
         glDeleteBuffers(1, &r->extra_ubo);
     }
-    if (r->temporal_ready) ob_temporal_destroy(&r->temporal);
+    ob_temporal_destroy(&r->temporal);
     ob_gbuffer_destroy(&r->gbuffer);
     ob_compute_pass_destroy(&r->downsample);
     ob_upsample_destroy(&r->upsample);
@@ -168,7 +170,7 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
     r->final = full[1];
     r->direct = full[2];
     r->radiance = full[3];
-    GLenum e = glGetError();
+    GLenum e = ob_gl_error();
     if (e != GL_NO_ERROR) {
         ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making %dx%d targets", e, d.width, d.height);
         ob_destroy_renderer(r);
@@ -184,13 +186,13 @@ ob_error ob_renderer_reshape(ob_renderer *r, int width, int height, int guard)
     if (width == r->width && height == r->height && guard == r->guard) return OB_OK;
     /* Errors raised before this call are not ours to report. */
     int drained = 0;
-    while (drained++ < 64 && glGetError() != GL_NO_ERROR) continue; /* bounded: a lost context repeats */
+    while (drained++ < 64 && ob_gl_error() != GL_NO_ERROR) continue; /* bounded: a lost context repeats */
     /* Everything new is made before anything old is given up, so a failure leaves the renderer
      * whole at its old size and guard band. */
     const int inner_w = width + 2 * guard, inner_h = height + 2 * guard;
     GLuint full[4] = {0, 0, 0, 0};
     make_full_targets(full, width, height, guard);
-    GLenum e = glGetError();
+    GLenum e = ob_gl_error();
     if (e != GL_NO_ERROR) {
         glDeleteTextures(4, full);
         return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making %dx%d targets (guard band %d px)", e, width, height,
@@ -228,7 +230,7 @@ ob_error ob_renderer_reshape(ob_renderer *r, int width, int height, int guard)
     r->bent = 0;
     release_scales(r);
     r->history_valid = false;
-    r->last_scale = 0;
+    r->last.scale = 0;
     r->width = width;
     r->height = height;
     r->guard = guard;
@@ -334,21 +336,15 @@ ob_error ob_renderer_rgb_targets(ob_renderer *r, ao_targets *t, bool directional
         need(&t->bent_filtered, w, h);
         need(&r->bent, r->inner_width, r->inner_height);
     }
-    if (!r->upsample_rgb_ready) {
-        if (ob_upsample_init(&r->upsample_rgb, true) != OB_OK) return ob_peek_error(NULL);
-        r->upsample_rgb_ready = true;
-    }
-    GLenum e = glGetError();
+    if (!r->upsample_rgb.programs[0][0].program && ob_upsample_init(&r->upsample_rgb, true) != OB_OK)
+        return ob_peek_error(NULL);
+    GLenum e = ob_gl_error();
     if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making the directional targets", e);
     return OB_OK;
 }
 
 ob_error ob_renderer_temporal_targets(ob_renderer *r, ao_targets *t)
 {
-    if (!r->temporal_ready) {
-        if (ob_temporal_init(&r->temporal) != OB_OK) return ob_peek_error(NULL);
-        r->temporal_ready = true;
-    }
     if (t->temporal_ready) return OB_OK;
     int w = t->grid.width, h = t->grid.height;
     /* All chains at once: a few AO-resolution textures, and a directional method switched on later
@@ -377,20 +373,20 @@ ob_error ob_renderer_temporal_targets(ob_renderer *r, ao_targets *t)
     t->history_index = 0;
     t->temporal_ready = true;
     r->history_valid = false; /* new textures hold no history */
-    GLenum e = glGetError();
+    GLenum e = ob_gl_error();
     if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making the temporal targets", e);
     return OB_OK;
 }
 
 GLuint ob_renderer_second_layer(const ob_renderer *r)
 {
-    bool made = r->last_second_layer && r->peel.width == r->gbuffer.width && r->peel.height == r->gbuffer.height;
+    bool made = r->last.second_layer && r->peel.width == r->gbuffer.width && r->peel.height == r->gbuffer.height;
     return made ? r->peel.linear_depth : 0;
 }
 
 GLuint ob_renderer_extra_direct(const ob_renderer *r)
 {
-    bool made = r->last_extra_view && r->extra_gbuffer.width == r->gbuffer.width &&
+    bool made = r->last.extra_view && r->extra_gbuffer.width == r->gbuffer.width &&
                 r->extra_gbuffer.height == r->gbuffer.height;
     return made ? r->extra_direct : 0;
 }

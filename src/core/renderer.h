@@ -44,6 +44,23 @@ typedef struct ob_history_key {
     bool rgb, bounce;
 } ob_history_key;
 
+/* What the last frame ran (ob_render_frame or ob_host_ao), for read-back, the debug views and the
+ * floor kernel: one record written where the frame is planned and run, instead of a flag each. */
+typedef struct ob_frame_record {
+    int scale;                 /* index into scales */
+    int method;
+    float params[OB_MAX_PARAMS];
+    bool adaptive;
+    bool rgb;                  /* the method wrote RGB M */
+    bool bounce;               /* it wrote a bounce (SSDO's beside M, vbgi's beside visibility) */
+    bool bent;                 /* it wrote a bent normal */
+    bool second_layer;         /* it read a second depth layer (peeled, or the host's) */
+    bool extra_view;           /* the extra view was rendered */
+    bool temporal;             /* the chain accumulated (the history_age view and read-backs) */
+    int temporal_frames;
+    float far;                 /* the far plane (the depth view's scale) */
+} ob_frame_record;
+
 enum { OB_AO_SCALES = 3 }; /* k = 1, 2, 4 */
 
 struct ob_renderer {
@@ -59,14 +76,12 @@ struct ob_renderer {
     ob_upsample upsample;
     ob_compute_pass fill, fill_rgb; /* fill.c: none's visibility 1, the bounce's 0 */
     ob_upsample upsample_rgb;      /* made with the first directional frame */
-    bool upsample_rgb_ready;
     ob_compose_pass compose;
     ob_lighting_pass lighting;
     ob_shadow_maps shadows;
     ob_hdr_pass hdr;
     ob_environment environment;
     ao_targets scales[OB_AO_SCALES];
-    int last_scale;            /* index into scales of the last frame */
     GLuint ao, final;          /* full resolution */
     GLuint direct;             /* RGBA16F direct radiance; alpha = the key light's visibility */
     GLuint radiance;           /* RGBA16F composed HDR radiance, before tone mapping */
@@ -86,42 +101,28 @@ struct ob_renderer {
     ob_light scene_lights[OB_MAX_LIGHTS];
     int scene_light_count;
     uint32_t frame;
-    int last_method;           /* what the last frame ran, for the sample-count view */
-    float last_params[OB_MAX_PARAMS];
-    bool last_adaptive;
-    bool last_rgb;             /* the last frame's method wrote RGB M */
-    bool last_bounce;          /* the last frame's method wrote a bounce (SSDO's beside M, vbgi's beside visibility) */
-    bool last_bent;            /* the last frame's method wrote a bent normal */
+    ob_frame_record last;
+    ob_host_passes host;       /* ob_host_ao's input and output passes, made on first use */
     bool has_frame;            /* the targets hold a whole frame (ob_present) */
-    float last_far;            /* the last frame's far plane (the depth view's scale) */
     ob_view_pass view;         /* ob_present */
     ob_depth_mips depth_mips;  /* for methods that read OB_READS_DEPTH_MIPS, made on first use */
-    bool depth_mips_ready;
     ob_floor floor;            /* ob_render_floor, made on first use */
-    bool floor_ready;
     ob_peel peel;              /* the second depth layer, for methods that read OB_READS_SECOND_LAYER */
-    bool peel_ready;
-    bool last_second_layer;    /* the last frame peeled a second layer */
     /* The extra view (seed 000 §4.4), for methods that read OB_READS_EXTRA_VIEW, made on first use
      * at the G-buffer's size: its own G-buffer (drawing the main one's meshes), direct light and
      * per-frame block; the matrices between the two views of the current frame. */
     ob_gbuffer extra_gbuffer;
     GLuint extra_direct, extra_ubo;
-    bool extra_ready;
-    bool last_extra_view;      /* the last frame rendered the extra view */
     ob_frame_constants extra_constants;
     float extra_view[16], extra_proj[16], extra_from_view[16], extra_to_view[16];
     /* Temporal accumulation: the pass (made on first use), the last frame's camera as the AO grid
      * saw it and what its history was accumulated under (valid: the last frame accumulated). */
     ob_temporal_pass temporal;
-    bool temporal_ready;
     bool history_valid;
     /* r->ao holds 1 everywhere, left by a `none` frame: the next `none` frame need not clear it. */
     bool ao_is_one;
     ob_history_key history_key;
     float prev_view[16], prev_ao_proj[16];
-    bool last_temporal;        /* the last frame accumulated (the history_age view and read-backs) */
-    int last_temporal_frames;
 };
 
 /* renderer.c: the targets for a visible size and a guard band (px per side, a multiple of 4), made
@@ -158,14 +159,44 @@ typedef struct ob_frame_desc {
     const float (*sh)[3];        /* 9 environment SH coefficients; NULL = zeros */
 } ob_frame_desc;
 void ob_frame_constants_fill(ob_frame_constants *f, const ob_frame_desc *d);
-/* The projection of a guard band: P00 and P20 scaled by width / (width + 2 guard), P11 and P21 by
- * height / (height + 2 guard), so that ndc scales about the centre and the enlarged image's pixel
- * (x + guard, y + guard) has the ray of the visible image's (x, y). In place, column-major. */
-void ob_guard_projection(float *proj, int width, int height, int guard);
 /* The extra view's camera (seed 000 §4.4): c's eye turned 90 degrees about its up axis (world +Y
  * when zero) around its target, the same target, up, fov and planes. */
 void ob_extra_view_camera(const ob_camera *c, ob_camera *out);
 /* 1/P00, 1/P11, P20, P21 of a column-major projection. */
 void ob_proj_info(const float *proj, float out[4]);
+
+/* chain.c: the AO chain both front doors run (ob_render_frame, ob_host_ao). */
+/* The method of a frame, resolved once: its entry, state, parameters as it sees them (explicit
+ * values, else defaults, with radii that were not set following the scene) and what it writes. */
+typedef struct ob_method_plan {
+    int index;
+    const ob_method_impl *impl;
+    void *state;
+    float params[OB_MAX_PARAMS];
+    uint32_t reads;   /* ob_method_active_reads */
+    uint32_t writes;  /* ob_method_active_writes */
+    bool rgb;         /* OB_WRITES_VISIBILITY_RGB: M instead of visibility */
+    bool bounce;      /* OB_WRITES_BOUNCE among the active outputs */
+    bool bent;        /* OB_WRITES_BENT_NORMAL among the active outputs */
+} ob_method_plan;
+/* scene_radius > 0: radii not set explicitly follow it (ob_render_frame); 0: as set (hosts). */
+ob_error ob_plan_method(ob_renderer *r, const ob_settings *s, float scene_radius, ob_method_plan *p);
+/* What the chain reads and writes, at the enlarged (inner) size. The RGB results go to the
+ * renderer's ao_rgb, bounce and bent (ob_renderer_rgb_targets). */
+typedef struct ob_chain_io {
+    GLuint depth, normal;      /* R32F-compatible positive linear depth (0 = sky), view-space normals */
+    GLuint radiance, albedo;   /* for methods that read them; 0 otherwise */
+    GLuint second_depth;       /* linear depth of the second layer, or 0 */
+    bool extra_view;           /* the extra view was rendered this frame (ob_render_frame) */
+    GLuint ao;                 /* R32F: the visibility (r->ao, or a host's R32F texture) */
+    GLuint motion;             /* a host's motion vectors for the temporal accumulation, or 0 */
+    float motion_scale[2];     /* their units -> pixels (zeros = 1) */
+} ob_chain_io;
+ob_error ob_run_ao_chain(ob_renderer *r, const ob_settings *s, const ob_method_plan *plan, ao_targets *t,
+                         const ob_chain_io *io);
+ob_error ob_check_settings(const ob_settings *s);
+int ob_scale_index(int divisor);
+/* The per-frame block into its buffer, bound at OB_BINDING_FRAME. */
+void ob_upload_frame(ob_renderer *r);
 
 #endif

@@ -281,10 +281,12 @@ ob_error ob_settings_set_samples(ob_settings *s, int samples)
     const ob_method_impl *m = s ? ob_method_impl_at(s->method) : NULL;
     if (!m) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "settings are not initialised");
     if (m->set_samples) return m->set_samples(s->params, &s->params_set, samples);
-    char assignment[64];
-    snprintf(assignment, sizeof assignment, "samples=%d", samples);
-    if (isnan(ob_settings_get(s, "samples")))
-        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "method %s takes no sample count", m->info.name);
+    const int p = ob_method_role(m, OB_ROLE_SAMPLES);
+    if (p < 0) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "method %s takes no sample count", m->info.name);
+    /* Through ob_settings_set, so the count is checked against the parameter's range as typed;
+     * qualified by the method, so that no name of the settings' own (temporal...) can take it. */
+    char assignment[160];
+    snprintf(assignment, sizeof assignment, "%s.%s=%d", m->info.name, m->info.params[p].name, samples);
     return ob_settings_set(s, assignment);
 }
 

@@ -55,11 +55,11 @@ void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in
 void ob_crease_constants_init(ob_filter_constants *c, const ob_filter_inputs *in, int radius, float sigma_plane,
                               float sigma_normal);
 /* The two dispatches of a separable filter (seed 000 eq. 4.6-4.7): along x from in->src into
- * in->scratch, a barrier, then along y into in->dst. Binds AO at texture unit 0, linear depth at
- * 1, view normals at 2 and the output image at 0. */
+ * in->scratch, a barrier, then along y into in->dst. Binds AO at OB_UNIT_FILTER_IN, linear depth
+ * at OB_UNIT_FILTER_DEPTH, view normals at OB_UNIT_FILTER_NORMAL and the output at OB_IMAGE_UNIT_OUT. */
 void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, const ob_filter_inputs *in);
-/* The one dispatch of a single-pass filter: the first `used` bytes of c uploaded, AO at texture
- * unit 0, linear depth at 1, view normals at 2, in->dst as image 0. */
+/* The one dispatch of a single-pass filter: the first `used` bytes of c uploaded, AO, linear depth and view
+ * normals at OB_UNIT_FILTER_IN, _DEPTH and _NORMAL, in->dst at OB_IMAGE_UNIT_OUT. */
 void ob_filter_run_single(ob_compute_pass *pass, const ob_filter_constants *c, size_t used, const ob_filter_inputs *in);
 /* The same for a shader whose invocations each write a block x block square of pixels: one
  * invocation per square (crease's block program). */

@@ -47,15 +47,15 @@ size_t ob_filter_constants_used(const ob_filter_constants *c)
 void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, const ob_filter_inputs *in)
 {
     size_t used = ob_filter_constants_used(c);
-    glBindTextureUnit(1, in->linear_depth);
-    glBindTextureUnit(2, in->view_normal);
+    glBindTextureUnit(OB_UNIT_FILTER_DEPTH, in->linear_depth);
+    glBindTextureUnit(OB_UNIT_FILTER_NORMAL, in->view_normal);
 
     /* eq. 4.6: along x, src -> scratch. */
     c->axis[0] = 1;
     c->axis[1] = 0;
     ob_compute_pass_use(pass, c, used);
-    glBindTextureUnit(0, in->src);
-    glBindImageTexture(0, in->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
+    glBindTextureUnit(OB_UNIT_FILTER_IN, in->src);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, in->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
     ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
 
     /* The y pass samples what the x pass stored with imageStore. */
@@ -66,8 +66,8 @@ void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, cons
     c->axis[0] = 0;
     c->axis[1] = 1;
     ob_compute_pass_use(pass, c, used);
-    glBindTextureUnit(0, in->scratch);
-    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
+    glBindTextureUnit(OB_UNIT_FILTER_IN, in->scratch);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
     ob_dispatch_2d(in->width, in->height, OB_FILTER_GROUP_X, OB_FILTER_GROUP_Y);
 }
 
@@ -80,10 +80,10 @@ void ob_filter_run_blocks(ob_compute_pass *pass, const ob_filter_constants *c, s
                           int block)
 {
     ob_compute_pass_use(pass, c, used);
-    glBindTextureUnit(0, in->src);
-    glBindTextureUnit(1, in->linear_depth);
-    glBindTextureUnit(2, in->view_normal);
-    glBindImageTexture(0, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
+    glBindTextureUnit(OB_UNIT_FILTER_IN, in->src);
+    glBindTextureUnit(OB_UNIT_FILTER_DEPTH, in->linear_depth);
+    glBindTextureUnit(OB_UNIT_FILTER_NORMAL, in->view_normal);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, in->dst, 0, GL_FALSE, 0, GL_WRITE_ONLY, ob_filter_format(in));
     ob_dispatch_2d((in->width + block - 1) / block, (in->height + block - 1) / block, OB_FILTER_GROUP_X,
                    OB_FILTER_GROUP_Y);
 }

@@ -57,6 +57,39 @@ GLuint ob_make_texture_2d(GLenum internal_format, int w, int h);
  * every method, so they all show the same noise tile and the same command gives the same bytes. */
 GLuint ob_make_rotation_noise_texture(void);
 
+/* ---- GL state (state.c) ---------------------------------------------------------------------
+ * What a pass may change, saved before a call that runs inside a host's frame and put back after
+ * it: the current program, the active unit, the GL_TEXTURE_2D and GL_TEXTURE_2D_ARRAY bindings
+ * and sampler object of texture units 0..texture_units-1, image units 0..image_units-1, the
+ * uniform buffer binding points OB_BINDING_PASS and OB_BINDING_FRAME (indexed, with their ranges,
+ * and the generic one), and the unpack buffer, unpack pixel store and query buffer, which
+ * ob_gl_state_save also sets to GL's defaults. */
+enum { OB_GL_STATE_TEXTURES = 32, OB_GL_STATE_IMAGES = 16 };
+typedef struct ob_gl_image_binding {
+    GLint name, level, layered, layer, access, format;
+} ob_gl_image_binding;
+typedef struct ob_gl_state {
+    int texture_units, image_units;
+    GLint program, active_texture;
+    GLint textures[OB_GL_STATE_TEXTURES], arrays[OB_GL_STATE_TEXTURES], samplers[OB_GL_STATE_TEXTURES];
+    ob_gl_image_binding images[OB_GL_STATE_IMAGES];
+    GLint ubo_generic, ubo[2];
+    GLint64 ubo_start[2], ubo_size[2];
+    /* Uploads (glTextureSubImage2D) read through the unpack buffer and pixel-store state, and query
+     * results (glGetQueryObject*) go into a bound query buffer: both are set to GL's defaults
+     * for the call and put back after. */
+    GLint unpack_buffer, query_buffer;
+    GLint unpack[6]; /* alignment, row length, image height, skip pixels, skip rows, skip images */
+    GLboolean unpack_swap, unpack_lsb;
+} ob_gl_state;
+void ob_gl_state_save(ob_gl_state *s, int texture_units, int image_units);
+void ob_gl_state_restore(const ob_gl_state *s);
+/* glGetError, except while the calling thread is inside a host-path call (ob_gl_set_quiet(true)):
+ * then GL_NO_ERROR, so that an error the host left pending stays for the host. The code that
+ * checks for allocation failures calls this, not glGetError. */
+GLenum ob_gl_error(void);
+void ob_gl_set_quiet(bool on);
+
 /* ---- timers (timer.c) ----------------------------------------------------------------------- */
 #define OB_MAX_TIMED_PASSES 20
 /* Frames of queries in flight: results are read 1..OB_TIMER_RING frames late (timer.c says why). */

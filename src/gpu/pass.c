@@ -6,6 +6,16 @@
 #include "ob_shared.h"
 #include "sampling/sampling.h"
 
+/* The host path saves and restores texture units 0..OB_HOST_TEXTURE_UNITS-1 and image units
+ * 0..OB_HOST_IMAGE_UNITS-1 (obscura.h): a pass that bound one beyond them would change a host's
+ * binding behind its back. ob_units.h counts the units the passes bind. */
+_Static_assert(OB_TEXTURE_UNITS_USED <= OB_HOST_TEXTURE_UNITS,
+               "a pass binds a texture unit beyond OB_HOST_TEXTURE_UNITS (shaders/ob_units.h, obscura.h)");
+_Static_assert(OB_IMAGE_UNITS_USED <= OB_HOST_IMAGE_UNITS,
+               "a pass binds an image unit beyond OB_HOST_IMAGE_UNITS (shaders/ob_units.h, obscura.h)");
+_Static_assert(OB_IMAGE_UNIT_DEPTH_MIPS + OB_DEPTH_MIPS_LEVELS <= OB_IMAGE_UNITS_USED,
+               "the depth MIP pass's images reach beyond OB_IMAGE_UNITS_USED (shaders/ob_units.h)");
+
 ob_error ob_compute_pass_init(ob_compute_pass *p, const char *shader, const char *defines, size_t constants_size)
 {
     memset(p, 0, sizeof *p);

@@ -48,7 +48,21 @@ static bool slot_available(const ob_timer_frame *f)
 }
 
 /* Read a finished slot (waiting for it when `wait`) and report it if it is the newest so far. */
+static void collect_unguarded(ob_timer_set *t, ob_timer_frame *f, bool wait);
+
+/* A query buffer bound by a host would take the results at the pointers' values as offsets: it is
+ * unbound for the reads and put back. */
 static void collect(ob_timer_set *t, ob_timer_frame *f, bool wait)
+{
+    if (!f->pending) return;
+    GLint query_buffer = 0;
+    glGetIntegerv(GL_QUERY_BUFFER_BINDING, &query_buffer);
+    if (query_buffer) glBindBuffer(GL_QUERY_BUFFER, 0);
+    collect_unguarded(t, f, wait);
+    if (query_buffer) glBindBuffer(GL_QUERY_BUFFER, (GLuint)query_buffer);
+}
+
+static void collect_unguarded(ob_timer_set *t, ob_timer_frame *f, bool wait)
 {
     if (!f->pending || (!wait && !slot_available(f))) return;
     f->pending = false;

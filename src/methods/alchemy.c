@@ -86,4 +86,7 @@ const ob_method_impl ob_method_alchemy = {
     .run = alchemy_run,
     .destroy = alchemy_destroy,
     .adapts = true,
+    /* sigma, the paper's intensity scale, is its intensity (k, the contrast exponent, shapes it). */
+    .roles = {[OB_ROLE_RADIUS] = OB_ROLE_PARAM(P_RADIUS), [OB_ROLE_SAMPLES] = OB_ROLE_PARAM(P_SAMPLES),
+              [OB_ROLE_INTENSITY] = OB_ROLE_PARAM(P_SIGMA), [OB_ROLE_DEINTERLEAVE] = OB_ROLE_PARAM(P_DEINTERLEAVE)},
 };

@@ -39,12 +39,12 @@ ob_error ob_deinterleaved_prepare(ob_deinterleaved *d, const char *shader, const
         d->height = in->height;
     }
     glUseProgram(d->split);
-    glBindTextureUnit(0, in->linear_depth);
-    /* Layered: every layer of level 0 is image 0. */
-    glBindImageTexture(0, d->layers, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindTextureUnit(OB_UNIT_DEPTH, in->linear_depth);
+    /* Layered: every layer of level 0 is the one image. */
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, d->layers, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
     ob_dispatch_2d((in->width + 3) / 4 * 4, (in->height + 3) / 4 * 4, SPLIT_GROUP, SPLIT_GROUP);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    glBindTextureUnit(4, d->layers);
+    glBindTextureUnit(OB_UNIT_DEPTH_LAYERS, d->layers);
     return OB_OK;
 }
 
@@ -75,7 +75,10 @@ ob_error ob_taps_exclusive(const char *method, bool deinterleave, bool depth_mip
     return OB_OK;
 }
 
-void ob_taps_bind_mips(const ob_ao_inputs *in) { glBindTextureUnit(4, in->depth_mips ? in->depth_mips : in->linear_depth); }
+void ob_taps_bind_mips(const ob_ao_inputs *in)
+{
+    glBindTextureUnit(OB_UNIT_TAPS_DEPTH_MIPS, in->depth_mips ? in->depth_mips : in->linear_depth);
+}
 
 ob_error ob_taps_prepare(ob_taps *t, const char *method, const char *shader, const ob_ao_inputs *in, bool deinterleave,
                          bool depth_mips)

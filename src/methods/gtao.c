@@ -94,7 +94,7 @@ static void fill_constants(ob_gtao_constants *c, const float *params, const ob_s
     c->slice_offset = params[P_TEMPORAL] != 0.0f ? sf->slice_offset : 0.0f;
     c->step_offset = params[P_TEMPORAL] != 0.0f ? sf->step_offset : 0.0f;
     c->mip_scale = sf->mip_scale;
-    c->max_mip = c->depth_mips ? sf->max_mip : 0; /* level 0 only: unit 3 holds the depth itself */
+    c->max_mip = c->depth_mips ? sf->max_mip : 0; /* level 0 only: the unit holds the depth itself */
     c->bent_normals = params[P_BENT_NORMALS] != 0.0f ? 1 : 0;
     c->layers = params[P_LAYERS] >= 2.0f ? 1 : 0;
 }
@@ -126,7 +126,8 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
                               (c.bent_normals ? OB_SLICE_BENT : 0u);
     ob_error err = ob_slice_use(&s->kit, s->variants, "gtao.glsl", features, &c, sizeof c, in, out);
     if (err != OB_OK) return err;
-    if (c.bent_normals) glBindImageTexture(1, out->bent_normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    if (c.bent_normals)
+        glBindImageTexture(OB_IMAGE_UNIT_BENT_NORMAL, out->bent_normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(in->width, in->height, OB_GTAO_GROUP_X, OB_GTAO_GROUP_Y);
     return OB_OK;
 }
@@ -166,4 +167,8 @@ const ob_method_impl ob_method_gtao = {
     .count_samples = gtao_count_samples,
     .count_rays = gtao_count_rays,
     .adapts = true,
+    /* No OB_ROLE_SAMPLES: the count is 2 x slices x steps (set_samples, count_samples). */
+    .roles = {[OB_ROLE_RADIUS] = OB_ROLE_PARAM(P_RADIUS), [OB_ROLE_FALLOFF] = OB_ROLE_PARAM(P_FALLOFF),
+              [OB_ROLE_THICKNESS] = OB_ROLE_PARAM(P_THICKNESS), [OB_ROLE_TEMPORAL] = OB_ROLE_PARAM(P_TEMPORAL),
+              [OB_ROLE_BENT_NORMALS] = OB_ROLE_PARAM(P_BENT_NORMALS), [OB_ROLE_LAYERS] = OB_ROLE_PARAM(P_LAYERS)},
 };

@@ -139,4 +139,7 @@ const ob_method_impl ob_method_hbao = {
     .count_samples = hbao_count_samples,
     .count_rays = hbao_count_rays,
     .adapts = true,
+    /* No OB_ROLE_SAMPLES: the count is directions x steps (set_samples, count_samples). */
+    .roles = {[OB_ROLE_RADIUS] = OB_ROLE_PARAM(P_RADIUS), [OB_ROLE_MAX_RADIUS_PX] = OB_ROLE_PARAM(P_MAX_RADIUS_PX),
+              [OB_ROLE_INTENSITY] = OB_ROLE_PARAM(P_INTENSITY), [OB_ROLE_DEINTERLEAVE] = OB_ROLE_PARAM(P_DEINTERLEAVE)},
 };

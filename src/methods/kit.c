@@ -53,7 +53,7 @@ ob_sample_plan ob_method_sample_plan(const ob_ao_inputs *in, int samples, int sa
 
 void ob_method_kit_bind_multiplier(const ob_method_kit *kit, const ob_ao_inputs *in)
 {
-    glBindTextureUnit(3, in->sample_multiplier ? in->sample_multiplier : kit->noise);
+    glBindTextureUnit(OB_UNIT_SAMPLE_MULTIPLIER, in->sample_multiplier ? in->sample_multiplier : kit->noise);
 }
 
 GLuint ob_method_variant(GLuint *slot, const char *shader, const char *defines)
@@ -66,8 +66,8 @@ void ob_method_kit_use(ob_method_kit *kit, const void *constants, size_t size, c
                        const ob_ao_outputs *out, GLenum format)
 {
     ob_compute_pass_use(&kit->pass, constants, size);
-    glBindTextureUnit(0, in->linear_depth);
-    glBindTextureUnit(1, in->view_normal);
-    glBindTextureUnit(2, kit->noise);
-    glBindImageTexture(0, out->visibility, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+    glBindTextureUnit(OB_UNIT_DEPTH, in->linear_depth);
+    glBindTextureUnit(OB_UNIT_NORMAL, in->view_normal);
+    glBindTextureUnit(OB_UNIT_NOISE, kit->noise);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, out->visibility, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
 }

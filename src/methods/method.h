@@ -2,7 +2,8 @@
  * makes and frees what every method shares. Adding a method is one .c (defining an
  * ob_method_impl), one shader, one params header (its constant block) and one line in
  * registry.c's OB_METHODS list; the renderer knows no method by name, only what each entry
- * declares it reads and writes. */
+ * declares it reads and writes, and which of its parameters plays each role (ob_param_role):
+ * declare in .roles every parameter that has one, or the renderer will not find it. */
 #ifndef OB_METHOD_H
 #define OB_METHOD_H
 
@@ -31,6 +32,31 @@ enum {
     OB_WRITES_BOUNCE = 1u << 2,         /* RGBA16F one-bounce indirect light off a white receiver */
     OB_WRITES_BENT_NORMAL = 1u << 3,    /* RGBA16F bent normal: the visible cone's cosine-weighted mean direction */
 };
+
+/* What a parameter means to the renderer beyond its own method: the renderer, the settings and
+ * the memory estimate find a method's radius, sample count or temporal switch through the role
+ * its entry declares (ob_method_impl.roles, ob_method_role), never by the parameter's name, so a
+ * method may name its parameters as its paper does. tests/test_cpu.c checks each role's type and
+ * that every parameter named as a role's usual name (radius, samples, temporal, ...) declares it. */
+typedef enum ob_param_role {
+    OB_ROLE_RADIUS,        /* FLOAT, follows_scene_radius: R, world units (AO_R's radius) */
+    OB_ROLE_MAX_RADIUS_PX, /* FLOAT: a cap on the projected radius, px */
+    OB_ROLE_SAMPLES,       /* INT: samples per pixel, what --samples and --quality set (a method whose
+                              count is a product of parameters has set_samples/count_samples instead) */
+    OB_ROLE_TEMPORAL,      /* BOOL: noise that moves with the frame index (temporal accumulation
+                              switches it on unless the user set it) */
+    OB_ROLE_INTENSITY,     /* FLOAT: an intensity or contrast exponent or scale on the result */
+    OB_ROLE_THICKNESS,     /* FLOAT: the thickness assumed behind a surface, x radius */
+    OB_ROLE_FALLOFF,       /* FLOAT: the share of R over which occlusion fades out */
+    OB_ROLE_BENT_NORMALS,  /* BOOL: also writes bent normals (OB_WRITES_BENT_NORMAL) */
+    OB_ROLE_LAYERS,        /* INT or ENUM: depth layers read (2 = OB_READS_SECOND_LAYER too) */
+    OB_ROLE_PACKED,        /* ENUM OB_PACKED_*: samples read the packed texels (methods/packed.c) */
+    OB_ROLE_DEINTERLEAVE,  /* ENUM off/on: deinterleaved taps (methods/deinterleave.c) */
+    OB_ROLE_COUNT
+} ob_param_role;
+
+/* An entry of ob_method_impl.roles: parameter P_X (its index in the table) plays the role. */
+#define OB_ROLE_PARAM(p) ((signed char)((p) + 1))
 
 /* What a method gets each frame. The camera, the AO grid, the lights and the ambient light are in
  * the per-frame block (frame_params.h), bound at OB_BINDING_FRAME for every dispatch; `frame` is
@@ -79,7 +105,7 @@ static inline int ob_adaptive_base(int samples) { return samples / 3 > 1 ? (samp
  * state begins with one, so a method's state struct is `{ ob_method_kit kit; ...its own... }`. */
 typedef struct ob_method_kit {
     ob_compute_pass pass;     /* the entry's shader, with a constants_size-byte block at OB_BINDING_PASS */
-    GLuint noise;             /* the 4x4 RG32F rotation tile of noise.glsl (unit 2 by convention) */
+    GLuint noise;             /* the 4x4 RG32F rotation tile of noise.glsl (OB_UNIT_NOISE) */
 } ob_method_kit;
 
 typedef struct ob_method_impl {
@@ -102,10 +128,10 @@ typedef struct ob_method_impl {
      * every output in writes. */
     uint32_t (*active_writes)(const float *params);
     /* How `samples` per pixel map onto this method's parameters, when that is more than setting
-     * a parameter named "samples" (HBAO: directions x steps). Sets the bits of what it changed in
-     * *params_set. NULL for the default. */
+     * its OB_ROLE_SAMPLES parameter (HBAO: directions x steps). Sets the bits of what it changed
+     * in *params_set. NULL for the default. */
     ob_error (*set_samples)(float *params, uint32_t *params_set, int samples);
-    /* Samples per pixel these params ask for, when not a parameter named "samples" (HBAO:
+    /* Samples per pixel these params ask for, when not its OB_ROLE_SAMPLES parameter (HBAO:
      * directions x steps). NULL for the default. */
     int (*count_samples)(const float *params);
     /* Rays these params march from the pixel, when the samples lie on rays (HBAO: directions;
@@ -114,12 +140,17 @@ typedef struct ob_method_impl {
     int (*count_rays)(const float *params);
     /* Honours ob_ao_inputs.sample_multiplier (adaptive sample counts). */
     bool adapts;
+    /* Which parameter plays each role: OB_ROLE_PARAM(P_X), indexed by ob_param_role; 0 = the
+     * method has no such parameter. Read through ob_method_role. */
+    signed char roles[OB_ROLE_COUNT];
     /* The sample kernel these params give the shader at a fixed count: xyz per entry in the
      * kernel's own frame (+Z = the normal for hemisphere kernels), w 0; at most max entries; the
      * count written. NULL for a method without a kernel (ob_method_kernel). */
     int (*kernel)(const float *params, float *xyzw, int max);
 } ob_method_impl;
 
+/* The index in m's parameter table of the parameter that plays `role`, or -1 where none does. */
+int ob_method_role(const ob_method_impl *m, ob_param_role role);
 /* Samples per pixel of a method with these (resolved) params; 0 for none. */
 int ob_method_samples(const ob_method_impl *m, const float *params);
 /* The inputs a method reads with these params (reads, less what a parameter turned off). */
@@ -135,8 +166,8 @@ void *ob_method_make_state(const ob_method_impl *m);
 /* m->destroy, then the kit's pass and noise, then the state itself. NULL is a no-op. */
 void ob_method_destroy_state(const ob_method_impl *m, void *state);
 /* Upload `size` bytes of constants (a prefix: methods with kernels send only the entries in use),
- * bind the program, the depth (unit 0), normals (unit 1) and noise tile (unit 2), and the
- * visibility output as image 0 in `format`. */
+ * bind the program, the depth (OB_UNIT_DEPTH), normals (OB_UNIT_NORMAL) and noise tile
+ * (OB_UNIT_NOISE), and the visibility output as image OB_IMAGE_UNIT_OUT in `format`. */
 void ob_method_kit_use(ob_method_kit *kit, const void *constants, size_t size, const ob_ao_inputs *in,
                        const ob_ao_outputs *out, GLenum format);
 
@@ -158,8 +189,8 @@ ob_sample_plan ob_method_sample_plan(const ob_ao_inputs *in, int samples, int sa
  * *slot the first time it is asked for. The program, or 0 with the error set. */
 GLuint ob_method_variant(GLuint *slot, const char *shader, const char *defines);
 
-/* Bind the multiplier of adaptive sampling to texture unit 3 (the noise tile when off, so the
- * sampler is always valid). */
+/* Bind the multiplier of adaptive sampling to OB_UNIT_SAMPLE_MULTIPLIER (the noise tile when off,
+ * so the sampler is always valid). */
 void ob_method_kit_bind_multiplier(const ob_method_kit *kit, const ob_ao_inputs *in);
 
 /* Option lists shared by methods' enum parameters (registry.c), in the order of the
@@ -208,7 +239,7 @@ enum {
     OB_SLICE_MIPS = 1,   /* OB_MARCH_DEPTH_MIPS: far steps read the depth MIP chain */
     OB_SLICE_LAYERS = 2, /* OB_MARCH_LAYERS: the second depth layer bounds each sample's thickness */
     OB_SLICE_BENT = 4,   /* OB_GTAO_BENT: gtao also writes the bent normal */
-    OB_SLICE_PACKED = 8, /* OB_MARCH_PACKED: samples read ob_packed_samples at unit 10 (vbgi; no MIPs) */
+    OB_SLICE_PACKED = 8, /* OB_MARCH_PACKED: samples read OB_UNIT_PACKED_SAMPLES (vbgi; no MIPs) */
     /* vbao and vbgi: OB_SECTOR_COVERAGE_* in the two bits from here (OB_VB_COVERAGE; 0, `touch`, is
      * the kit's own program). Each sample worked out all three rules and selected one: 6 % of vbao's
      * instructions at 16 taps. */
@@ -217,9 +248,10 @@ enum {
 };
 /* The run of a slice method after its constants are filled: the kit's uploads and bindings, the
  * program for `features` (OB_SLICE_*: the kit's own for none, else a variant of `shader` made on
- * first use into variants[features]), the depth chain on unit 3 (the depth itself without one),
- * the adaptive multiplier on unit 5 (the noise tile when off) and the second layer on unit 6 (the
- * depth when there is none), so every sampler is valid. Dispatch after. Fails with the error set. */
+ * first use into variants[features]), the depth chain on OB_UNIT_SLICE_DEPTH_MIPS (the depth
+ * itself without one), the adaptive multiplier on OB_UNIT_SLICE_MULTIPLIER (the noise tile when
+ * off) and the second layer on OB_UNIT_SECOND_DEPTH (the depth when there is none), so every
+ * sampler is valid. Dispatch after. Fails with the error set. */
 ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], const char *shader, unsigned features,
                       const void *constants, size_t size, const ob_ao_inputs *in, const ob_ao_outputs *out);
 /* Frees the variants ob_slice_use made. */
@@ -245,8 +277,9 @@ extern const char *const ob_packed_options[];
 /* Whether the parameter's value `mode` packs on this context (auto asks GL_RENDERER once). */
 bool ob_packed_samples_wanted(ob_packed_samples *p, float mode);
 /* Packs this frame's in->linear_depth, in->view_normal and in->radiance (AO texel q's pixel
- * q ao_k + ao_o) and binds the result to texture unit `unit` after a barrier. Uses image unit 2
- * and texture units 0, 1, 3: run it before the method binds its own. Fails with the error set. */
+ * q ao_k + ao_o) and binds the result to texture unit `unit` after a barrier. Uses OB_IMAGE_UNIT_PACKED
+ * and OB_UNIT_DEPTH, OB_UNIT_NORMAL, OB_UNIT_RADIANCE: run it before the method binds its own.
+ * Fails with the error set. */
 ob_error ob_packed_samples_run(ob_packed_samples *p, const ob_ao_inputs *in, int unit);
 void ob_packed_samples_release(ob_packed_samples *p);
 
@@ -270,10 +303,10 @@ extern const char *const ob_deinterleave_options[]; /* off, on */
      "program",                                                                                                \
      false, ob_deinterleave_options}
 #define OB_DEINTERLEAVED_DEFINE "#define OB_DEINTERLEAVED 1\n"
-/* Splits in->linear_depth into d->layers and binds them to texture unit 4 after a barrier; makes
- * `shader`'s OB_DEINTERLEAVED program into d->program on first use (NULL: the method makes its
- * own, with OB_DEINTERLEAVED_DEFINE among its variants' defines: ssdo). Uses image unit 0 and
- * texture unit 0: run it before the method's kit_use. Fails with the error set. */
+/* Splits in->linear_depth into d->layers and binds them to OB_UNIT_DEPTH_LAYERS after a barrier;
+ * makes `shader`'s OB_DEINTERLEAVED program into d->program on first use (NULL: the method makes
+ * its own, with OB_DEINTERLEAVED_DEFINE among its variants' defines: ssdo). Uses OB_IMAGE_UNIT_OUT and
+ * OB_UNIT_DEPTH: run it before the method's kit_use. Fails with the error set. */
 ob_error ob_deinterleaved_prepare(ob_deinterleaved *d, const char *shader, const ob_ao_inputs *in);
 /* A method's dispatch after its own bindings: `program` (0 = the one bound) over the AO grid in
  * groups of gx x gy pixels, or, `deinterleaved`, over the 16 classes' texels in groups of gx x gy
@@ -300,15 +333,16 @@ typedef struct ob_taps {
     bool deinterleaved;     /* this frame dispatches by class */
 } ob_taps;
 /* Chooses and prepares this frame's program for `method`'s shader: the deinterleaved split (see
- * ob_deinterleaved_prepare: run before the kit's bindings) or the MIP chain bound at texture unit 4
- * (in->depth_mips; the depth itself, one level, where the frame has no chain: every tap reads level
- * 0). Both on is OB_ERR_INVALID_ARGUMENT, naming the method: two ways to read one tap. */
+ * ob_deinterleaved_prepare: run before the kit's bindings) or the MIP chain bound at
+ * OB_UNIT_TAPS_DEPTH_MIPS (in->depth_mips; the depth itself, one level, where the frame has no
+ * chain: every tap reads level 0). Both on is OB_ERR_INVALID_ARGUMENT, naming the method: two
+ * ways to read one tap. */
 ob_error ob_taps_prepare(ob_taps *t, const char *method, const char *shader, const ob_ao_inputs *in, bool deinterleave,
                          bool depth_mips);
 /* ob_method_dispatch with the chosen program. */
 void ob_taps_dispatch(const ob_taps *t, const ob_ao_inputs *in, int gx, int gy);
 /* For a method that makes its own variants (ssdo): ob_taps_prepare's error for both programs on,
- * and its binding of the MIP chain (or the depth, one level) at unit 4. */
+ * and its binding of the MIP chain (or the depth, one level) at OB_UNIT_TAPS_DEPTH_MIPS. */
 ob_error ob_taps_exclusive(const char *method, bool deinterleave, bool depth_mips);
 void ob_taps_bind_mips(const ob_ao_inputs *in);
 /* A random-kernel method's active_reads from its `depth_mips` value: everything but the MIP chain

@@ -18,4 +18,5 @@ const ob_method_impl ob_method_none = {
              .reference = "-", .param_count = 0, .params = NULL},
     .writes = OB_WRITES_VISIBILITY,
     .run = none_run,
+    /* No parameters, so no roles (all 0). */
 };

@@ -37,10 +37,10 @@ ob_error ob_packed_samples_run(ob_packed_samples *p, const ob_ao_inputs *in, int
         p->height = in->height;
     }
     glUseProgram(p->program);
-    glBindTextureUnit(0, in->linear_depth);
-    glBindTextureUnit(1, in->view_normal);
-    glBindTextureUnit(3, in->radiance);
-    glBindImageTexture(2, p->texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
+    glBindTextureUnit(OB_UNIT_DEPTH, in->linear_depth);
+    glBindTextureUnit(OB_UNIT_NORMAL, in->view_normal);
+    glBindTextureUnit(OB_UNIT_RADIANCE, in->radiance);
+    glBindImageTexture(OB_IMAGE_UNIT_PACKED, p->texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
     ob_dispatch_2d(in->width, in->height, PACK_GROUP, PACK_GROUP);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glBindTextureUnit((GLuint)unit, p->texture);

@@ -68,12 +68,18 @@ int ob_find_method(const char *name)
     return -1;
 }
 
+int ob_method_role(const ob_method_impl *m, ob_param_role role)
+{
+    if (!m || (int)role < 0 || role >= OB_ROLE_COUNT) return -1;
+    const int index = m->roles[role] - 1;
+    return index >= 0 && index < m->info.param_count ? index : -1;
+}
+
 int ob_method_samples(const ob_method_impl *m, const float *params)
 {
     if (m->count_samples) return m->count_samples(params);
-    for (int i = 0; i < m->info.param_count; ++i)
-        if (!strcmp(m->info.params[i].name, "samples")) return (int)params[i];
-    return 0;
+    const int p = ob_method_role(m, OB_ROLE_SAMPLES);
+    return p >= 0 ? (int)params[p] : 0;
 }
 
 uint32_t ob_method_active_reads(const ob_method_impl *m, const float *params)

@@ -81,11 +81,11 @@ ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], co
     }
     ob_method_kit_use(kit, constants, size, in, out, GL_R32F);
     if (features) glUseProgram(variants[features]);
-    glBindTextureUnit(3, in->depth_mips ? in->depth_mips : in->linear_depth);
-    glBindTextureUnit(5, in->sample_multiplier ? in->sample_multiplier : kit->noise);
+    glBindTextureUnit(OB_UNIT_SLICE_DEPTH_MIPS, in->depth_mips ? in->depth_mips : in->linear_depth);
+    glBindTextureUnit(OB_UNIT_SLICE_MULTIPLIER, in->sample_multiplier ? in->sample_multiplier : kit->noise);
     /* The second depth layer (full resolution); the depth itself keeps the sampler valid when the
      * frame has none, and then no variant reads it. */
-    glBindTextureUnit(6, in->second_depth ? in->second_depth : in->linear_depth);
+    glBindTextureUnit(OB_UNIT_SECOND_DEPTH, in->second_depth ? in->second_depth : in->linear_depth);
     return OB_OK;
 }
 

@@ -109,4 +109,6 @@ const ob_method_impl ob_method_ssao = {
     .destroy = ssao_destroy,
     .adapts = true,
     .kernel = ssao_kernel,
+    .roles = {[OB_ROLE_RADIUS] = OB_ROLE_PARAM(P_RADIUS), [OB_ROLE_SAMPLES] = OB_ROLE_PARAM(P_SAMPLES),
+              [OB_ROLE_INTENSITY] = OB_ROLE_PARAM(P_INTENSITY), [OB_ROLE_DEINTERLEAVE] = OB_ROLE_PARAM(P_DEINTERLEAVE)},
 };

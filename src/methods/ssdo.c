@@ -95,8 +95,8 @@ typedef struct ssdo_state {
      * VARIANT_BITS x the number of lights, made on first use; [0] is the kit's own program (no
      * light, constant ambient, one layer, one view, the default lobe, unpacked, plain taps). */
     GLuint variants[VARIANTS];
-    ob_packed_samples packed; /* `packed`: methods/packed.c, bound at unit 10 */
-    ob_deinterleaved split;   /* `deinterleave`: methods/deinterleave.c, bound at unit 4 */
+    ob_packed_samples packed; /* `packed`: methods/packed.c, bound at OB_UNIT_PACKED_SAMPLES */
+    ob_deinterleaved split;   /* `deinterleave`: methods/deinterleave.c, bound at OB_UNIT_DEPTH_LAYERS */
     int kernel_count; /* the cached kernel was built for these */
     int kernel_pdf;
     bool merged;
@@ -230,7 +230,7 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
         if (!variant) return ob_peek_error(NULL);
     }
     if (packed) {
-        ob_error err = ob_packed_samples_run(&s->packed, in, 10); /* ssdo.glsl's packed_samples */
+        ob_error err = ob_packed_samples_run(&s->packed, in, OB_UNIT_PACKED_SAMPLES); /* ssdo.glsl's packed_samples */
         if (err != OB_OK) return err;
     }
     if (split && ob_deinterleaved_prepare(&s->split, NULL, in) != OB_OK) return ob_peek_error(NULL);
@@ -239,15 +239,16 @@ static ob_error ssdo_run(void *p, const ob_ao_inputs *in, const float *params, c
     const bool fused = params[P_FUSED] != 0.0f && bounce;
     c->stage = s->merged ? OB_SSDO_STAGE_MERGED : fused ? OB_SSDO_STAGE_BOTH : OB_SSDO_STAGE_DIRECT;
     ob_method_kit_use(&s->kit, c, used, in, out, GL_RGBA16F);
-    glBindTextureUnit(3, in->radiance);
-    glBindTextureUnit(5, in->sample_multiplier ? in->sample_multiplier : s->kit.noise);
-    glBindTextureUnit(6, in->second_depth ? in->second_depth : in->linear_depth); /* valid when unused */
-    glBindTextureUnit(7, in->extra_depth ? in->extra_depth : in->linear_depth);
-    glBindTextureUnit(8, in->extra_normal ? in->extra_normal : in->view_normal);
-    glBindTextureUnit(9, in->extra_radiance ? in->extra_radiance : in->radiance);
+    glBindTextureUnit(OB_UNIT_RADIANCE, in->radiance);
+    glBindTextureUnit(OB_UNIT_SSDO_MULTIPLIER, in->sample_multiplier ? in->sample_multiplier : s->kit.noise);
+    /* The depth keeps each sampler valid where its input is off. */
+    glBindTextureUnit(OB_UNIT_SECOND_DEPTH, in->second_depth ? in->second_depth : in->linear_depth);
+    glBindTextureUnit(OB_UNIT_EXTRA_DEPTH, in->extra_depth ? in->extra_depth : in->linear_depth);
+    glBindTextureUnit(OB_UNIT_EXTRA_NORMAL, in->extra_normal ? in->extra_normal : in->view_normal);
+    glBindTextureUnit(OB_UNIT_EXTRA_RADIANCE, in->extra_radiance ? in->extra_radiance : in->radiance);
     /* The renderer gives every declared output a target, so image 1 is valid with the bounce off
      * too (the merged stage then writes zeros there; nothing reads them). */
-    glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(OB_IMAGE_UNIT_BOUNCE, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_method_dispatch(variant, split, in, OB_SSDO_GROUP_X, OB_SSDO_GROUP_Y);
     if (s->merged || !bounce || fused) return OB_OK;
     /* Pass 2 reads nothing pass 1 wrote (the senders' radiance is the lighting pass's), so no
@@ -277,6 +278,12 @@ static int ssdo_merged_kernel(const float *params, float *xyzw, int max)
     return kernel_points(params, xyzw, max, OB_DIRECTIONS_COSINE);
 }
 
+/* Both entries share the table, so the roles too. */
+#define SSDO_ROLES                                                                                                 \
+    {[OB_ROLE_RADIUS] = OB_ROLE_PARAM(P_RADIUS), [OB_ROLE_SAMPLES] = OB_ROLE_PARAM(P_SAMPLES),                     \
+     [OB_ROLE_LAYERS] = OB_ROLE_PARAM(P_LAYERS), [OB_ROLE_PACKED] = OB_ROLE_PARAM(P_PACKED),                       \
+     [OB_ROLE_DEINTERLEAVE] = OB_ROLE_PARAM(P_DEINTERLEAVE)}
+
 const ob_method_impl ob_method_ssdo = {
     .info = {.name = "ssdo",
              .description = "screen-space directional occlusion + one bounce, the original two passes",
@@ -296,6 +303,7 @@ const ob_method_impl ob_method_ssdo = {
     .init = ssdo_init,
     .run = ssdo_run,
     .active_writes = ssdo_active_writes,
+    .roles = SSDO_ROLES,
 };
 
 const ob_method_impl ob_method_ssdo_merged = {
@@ -317,4 +325,5 @@ const ob_method_impl ob_method_ssdo_merged = {
     .init = ssdo_merged_init,
     .run = ssdo_run,
     .active_writes = ssdo_active_writes,
+    .roles = SSDO_ROLES,
 };

@@ -83,7 +83,7 @@ typedef struct vb_state {
     GLuint variants[OB_SLICE_VARIANTS]; /* depth MIPs, second layer, packed: made on first use (ob_slice_use) */
     const char *shader;
     bool gi;
-    ob_packed_samples packed; /* vbgi's `packed`: methods/packed.c, bound at unit 10 */
+    ob_packed_samples packed; /* vbgi's `packed`: methods/packed.c, bound at OB_UNIT_PACKED_SAMPLES */
 } vb_state;
 
 /* Settings -> constants, a pure function. */
@@ -161,14 +161,14 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
                               (packed ? OB_SLICE_PACKED : 0u) |
                               (unsigned)params[P_COVERAGE] << OB_SLICE_COVERAGE_SHIFT;
     if (packed) {
-        ob_error err = ob_packed_samples_run(&s->packed, in, 10); /* slice_march.glsl's ob_packed_samples */
+        ob_error err = ob_packed_samples_run(&s->packed, in, OB_UNIT_PACKED_SAMPLES);
         if (err != OB_OK) return err;
     }
     ob_error err = ob_slice_use(&s->kit, s->variants, s->shader, features, &c, sizeof c, in, out);
     if (err != OB_OK) return err;
     if (s->gi) {
-        glBindTextureUnit(4, in->radiance);
-        glBindImageTexture(1, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindTextureUnit(OB_UNIT_SLICE_RADIANCE, in->radiance);
+        glBindImageTexture(OB_IMAGE_UNIT_BOUNCE, out->bounce, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     }
     ob_dispatch_2d(in->width, in->height, OB_VB_GROUP_X, OB_VB_GROUP_Y);
     return OB_OK;
@@ -189,6 +189,12 @@ static ob_error vbgi_set_samples(float *params, uint32_t *params_set, int sample
                                 OB_VB_MAX_STEPS);
 }
 
+/* The roles of vbao's table, which is vbgi's prefix; vbgi adds `packed`. No OB_ROLE_SAMPLES: the
+ * count is 2 x slices x steps (set_samples, count_samples). */
+#define VB_ROLE_ENTRIES                                                                                            \
+    [OB_ROLE_RADIUS] = OB_ROLE_PARAM(P_RADIUS), [OB_ROLE_THICKNESS] = OB_ROLE_PARAM(P_THICKNESS),                  \
+    [OB_ROLE_TEMPORAL] = OB_ROLE_PARAM(P_TEMPORAL), [OB_ROLE_LAYERS] = OB_ROLE_PARAM(P_LAYERS)
+
 const ob_method_impl ob_method_vbao = {
     .info = {.name = "vbao",
              .description = "visibility-bitmask AO: gtao's slices with 32 sectors and a thickness per sample",
@@ -208,6 +214,7 @@ const ob_method_impl ob_method_vbao = {
     .count_samples = vb_count_samples,
     .count_rays = vb_count_rays,
     .adapts = true,
+    .roles = {VB_ROLE_ENTRIES},
 };
 
 const ob_method_impl ob_method_vbgi = {
@@ -229,4 +236,5 @@ const ob_method_impl ob_method_vbgi = {
     .count_samples = vb_count_samples,
     .count_rays = vb_count_rays,
     .adapts = true,
+    .roles = {VB_ROLE_ENTRIES, [OB_ROLE_PACKED] = OB_ROLE_PARAM(P_PACKED)},
 };

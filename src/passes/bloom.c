@@ -86,8 +86,8 @@ void ob_bloom_run(ob_bloom_pass *b, GLuint radiance, GLuint result, float thresh
 
     /* Steps 2-3: radiance -> bloom (the scale comes from the luminance pass's buffer). */
     ob_compute_pass_use(&b->bright, &k, sizeof k);
-    glBindTextureUnit(0, radiance);
-    glBindImageTexture(0, b->bloom, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindTextureUnit(OB_UNIT_SOURCE, radiance);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, b->bloom, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(b->bloom_width, b->bloom_height, OB_BLOOM_GROUP_X, OB_BLOOM_GROUP_Y);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
@@ -95,8 +95,8 @@ void ob_bloom_run(ob_bloom_pass *b, GLuint radiance, GLuint result, float thresh
     k.axis_x = 1;
     k.axis_y = 0;
     ob_compute_pass_use(&b->blur, &k, sizeof k);
-    glBindTextureUnit(0, b->bloom);
-    glBindImageTexture(0, b->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindTextureUnit(OB_UNIT_SOURCE, b->bloom);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, b->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(b->bloom_width, b->bloom_height, OB_BLOOM_GROUP_X, OB_BLOOM_GROUP_Y);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
@@ -105,8 +105,8 @@ void ob_bloom_run(ob_bloom_pass *b, GLuint radiance, GLuint result, float thresh
     k.axis_x = 0;
     k.axis_y = 1;
     ob_compute_pass_use(&b->blur, &k, sizeof k);
-    glBindTextureUnit(0, b->scratch);
-    glBindImageTexture(0, b->bloom, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindTextureUnit(OB_UNIT_SOURCE, b->scratch);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, b->bloom, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(b->bloom_width, b->bloom_height, OB_BLOOM_GROUP_X, OB_BLOOM_GROUP_Y);
 }
 

@@ -37,16 +37,16 @@ ob_error ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint 
     memset(&k, 0, sizeof k);
     k.guard = in->guard;
     ob_compute_pass_use(p, &k, sizeof k);
-    glBindTextureUnit(0, in->linear_depth);
-    glBindTextureUnit(1, in->normal);
-    glBindTextureUnit(2, in->albedo);
-    glBindTextureUnit(3, in->ao);
-    glBindTextureUnit(4, in->direct);
+    glBindTextureUnit(OB_UNIT_DEPTH, in->linear_depth);
+    glBindTextureUnit(OB_UNIT_NORMAL, in->normal);
+    glBindTextureUnit(OB_UNIT_ALBEDO, in->albedo);
+    glBindTextureUnit(OB_UNIT_COMPOSE_AO, in->ao);
+    glBindTextureUnit(OB_UNIT_COMPOSE_DIRECT, in->direct);
     /* Without an environment map the sampler is never read; bind a valid texture all the same. */
-    glBindTextureUnit(5, in->environment ? in->environment : in->direct);
-    glBindTextureUnit(6, in->bounce ? in->bounce : in->direct);
-    glBindTextureUnit(7, in->bent_normal ? in->bent_normal : in->direct);
-    glBindImageTexture(0, hdr_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindTextureUnit(OB_UNIT_COMPOSE_ENVIRONMENT, in->environment ? in->environment : in->direct);
+    glBindTextureUnit(OB_UNIT_COMPOSE_BOUNCE, in->bounce ? in->bounce : in->direct);
+    glBindTextureUnit(OB_UNIT_COMPOSE_BENT_NORMAL, in->bent_normal ? in->bent_normal : in->direct);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, hdr_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(in->width, in->height, OB_COMPOSE_GROUP_X, OB_COMPOSE_GROUP_Y);
     return OB_OK;
 }

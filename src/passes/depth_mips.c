@@ -81,7 +81,7 @@ static ob_error remake(ob_depth_mips *m, int width, int height)
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    GLenum e = glGetError();
+    GLenum e = ob_gl_error();
     if (e != GL_NO_ERROR) {
         glDeleteTextures(1, &tex);
         return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making the %dx%d depth MIP texture (%d levels)", e, width,
@@ -109,11 +109,12 @@ ob_error ob_depth_mips_run(ob_depth_mips *m, GLuint linear_depth, int width, int
     ob_depth_mips_constants c;
     ob_depth_mips_fill(&c, width, height);
     ob_compute_pass_use(&m->pass, &c, sizeof c);
-    glBindTextureUnit(0, linear_depth);
+    glBindTextureUnit(OB_UNIT_DEPTH, linear_depth);
     for (int level = 0; level < OB_DEPTH_MIPS_LEVELS; ++level) {
         /* Units past the texture's last level get that level, never written (see the shader). */
         int bound = level < m->levels ? level : m->levels - 1;
-        glBindImageTexture((GLuint)level, m->texture, bound, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        glBindImageTexture((GLuint)(OB_IMAGE_UNIT_DEPTH_MIPS + level), m->texture, bound, GL_FALSE, 0, GL_WRITE_ONLY,
+                           GL_R32F);
     }
     ob_dispatch_2d(width, height, OB_DEPTH_MIPS_TILE, OB_DEPTH_MIPS_TILE);
     /* The methods sample the levels next (texture fetches or image loads). */

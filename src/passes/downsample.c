@@ -35,9 +35,9 @@ void ob_downsample_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_dept
     ob_resample_constants c;
     ob_resample_fill(&c, g);
     ob_compute_pass_use(p, &c, sizeof c);
-    glBindTextureUnit(0, full_depth);
-    glBindTextureUnit(1, full_normal);
-    glBindImageTexture(0, low_depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    glBindImageTexture(1, low_normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindTextureUnit(OB_UNIT_DEPTH, full_depth);
+    glBindTextureUnit(OB_UNIT_NORMAL, full_normal);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, low_depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(OB_IMAGE_UNIT_DOWNSAMPLE_NORMAL, low_normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(g->width, g->height, OB_RESAMPLE_GROUP_X, OB_RESAMPLE_GROUP_Y);
 }

@@ -20,9 +20,9 @@ void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLui
     c.edge_depth_step = EDGE_DEPTH_STEP;
     c.edge_normal_turn = EDGE_NORMAL_TURN;
     ob_compute_pass_use(p, &c, sizeof c);
-    glBindTextureUnit(0, ao_depth);
-    glBindTextureUnit(1, ao_normal);
-    glBindImageTexture(0, multiplier, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindTextureUnit(OB_UNIT_DEPTH, ao_depth);
+    glBindTextureUnit(OB_UNIT_NORMAL, ao_normal);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, multiplier, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     ob_dispatch_2d((g->width + OB_EDGE_BLOCK - 1) / OB_EDGE_BLOCK, (g->height + OB_EDGE_BLOCK - 1) / OB_EDGE_BLOCK,
                    OB_RESAMPLE_GROUP_X, OB_RESAMPLE_GROUP_Y);
 }

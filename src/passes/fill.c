@@ -14,6 +14,6 @@ void ob_fill_run(ob_compute_pass *p, bool rgb, GLuint target, const float value[
     glGetTextureLevelParameteriv(target, 0, GL_TEXTURE_WIDTH, &w);
     glGetTextureLevelParameteriv(target, 0, GL_TEXTURE_HEIGHT, &h);
     ob_compute_pass_use(p, value, 4 * sizeof(float));
-    glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, rgb ? GL_RGBA16F : GL_R32F);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, rgb ? GL_RGBA16F : GL_R32F);
     ob_dispatch_2d(w, h, 8, 8);
 }

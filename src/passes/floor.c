@@ -103,9 +103,9 @@ ob_error ob_floor_run(ob_floor *f, const ob_floor_desc *d, GLuint linear_depth, 
     glNamedBufferSubData(f->taps_buffer, 0, (GLsizeiptr)((size_t)d->taps * 4 * sizeof(float)), table);
     ob_compute_pass_use(&f->pass, &c, sizeof c);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OB_FLOOR_TAPS_BINDING, f->taps_buffer);
-    glBindTextureUnit(0, linear_depth);
-    glBindTextureUnit(1, view_normal);
-    glBindImageTexture(0, f->texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindTextureUnit(OB_UNIT_DEPTH, linear_depth);
+    glBindTextureUnit(OB_UNIT_NORMAL, view_normal);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, f->texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     ob_dispatch_2d(width, height, OB_FLOOR_GROUP_X, OB_FLOOR_GROUP_Y);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     return OB_OK;

@@ -54,7 +54,7 @@ ob_error ob_gbuffer_resize(ob_gbuffer *g, int width, int height)
 {
     GLuint made[4] = {0, 0, 0, 0};
     make_targets(made, width, height);
-    GLenum e = glGetError();
+    GLenum e = ob_gl_error();
     GLenum status = e == GL_NO_ERROR ? attach(g->fbo, made) : GL_FRAMEBUFFER_COMPLETE;
     if (e != GL_NO_ERROR || status != GL_FRAMEBUFFER_COMPLETE) {
         /* Back to the old targets, which still work at the old size. */
@@ -220,7 +220,7 @@ void ob_gbuffer_run_from(ob_gbuffer *g, const ob_gbuffer *scene, const float *vi
             c.diffuse[2] = mi >= 0 ? scene->diffuse[mi][2] : 0.8f;
             c.textured = textures && mi >= 0 && scene->textures[mi] ? 1 : 0;
             glNamedBufferSubData(g->ubo, 0, sizeof c, &c);
-            glBindTextureUnit(0, c.textured ? scene->textures[mi] : 0);
+            glBindTextureUnit(OB_UNIT_DIFFUSE_MAP, c.textured ? scene->textures[mi] : 0);
             last_material = m->material;
         }
         glBindVertexArray(m->vao);

@@ -65,10 +65,10 @@ ob_error ob_lighting_run(ob_lighting_pass *l, const ob_frame_constants *frame, i
     const ob_lighting_constants *c = &l->constants;
     ob_compute_pass_use(&l->pass, c, sizeof *c);
     glUseProgram(program);
-    glBindTextureUnit(0, linear_depth);
-    glBindTextureUnit(1, normal);
-    glBindTextureUnit(2, albedo);
-    glBindImageTexture(0, radiance_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindTextureUnit(OB_UNIT_DEPTH, linear_depth);
+    glBindTextureUnit(OB_UNIT_NORMAL, normal);
+    glBindTextureUnit(OB_UNIT_ALBEDO, albedo);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, radiance_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     ob_dispatch_2d(width, height, OB_LIGHTING_GROUP_X, OB_LIGHTING_GROUP_Y);
     return OB_OK;
 }

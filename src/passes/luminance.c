@@ -71,7 +71,7 @@ void ob_luminance_run(ob_luminance_pass *p, GLuint radiance, float exposure, flo
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OB_BINDING_HDR_RESULT, p->result);
 
     ob_compute_pass_use(&p->partial, &k, sizeof k);
-    glBindTextureUnit(0, radiance);
+    glBindTextureUnit(OB_UNIT_SOURCE, radiance);
     glDispatchCompute((GLuint)p->groups_x, (GLuint)p->groups_y, 1);
     /* The final reduction reads the partial sums the first dispatch stored. */
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

@@ -113,7 +113,7 @@ void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLui
  * length N. The history's age: an R16F texture beside the R32F value, or RGBA16F (rgb, age). A
  * program per shape of the chains (made on first use): scalar with or without a result, RGB;
  * each with or without the bounce. */
-enum { OB_TEMPORAL_PROGRAMS = 6 };
+enum { OB_TEMPORAL_PROGRAMS = 12 }; /* 3 shapes x bounce or not x a host's motion vectors or not */
 typedef struct ob_temporal_pass {
     ob_compute_pass programs[OB_TEMPORAL_PROGRAMS]; /* a slot whose .program is 0 is not made yet */
     ob_compute_pass motion_program;                 /* ob_temporal_motion's, made on first use */
@@ -137,7 +137,11 @@ typedef struct ob_temporal_chain {
     GLuint result;        /* 0: none, the next history is the output (visibility only) */
     bool rgb;
     GLuint bounce_current, bounce_history, bounce_next_history, bounce_result;
+    GLuint host_motion;   /* a host's motion vectors (RG16F/RG32F, full resolution), or 0: the camera's */
 } ob_temporal_chain;
+/* The host's motion vectors in the constants: on (motion != 0) with their scale to full-resolution
+ * pixels (zeros = 1). */
+void ob_temporal_set_motion(ob_temporal_constants *c, GLuint motion, const float scale[2]);
 typedef struct ob_temporal_geometry {
     GLuint depth;  /* R32F linear depth */
     GLuint normal; /* R32UI view normal, octahedral snorm16 x 2 (temporal.glsl's pack_normal) */
@@ -350,7 +354,7 @@ void ob_hdr_query(ob_hdr_pass *h, float *log_average, float *key);
 void ob_hdr_destroy(ob_hdr_pass *h);
 
 /* ---- shadow maps (seed 003 §2.1, §5.1, §6.1): shadow.c, shaders/shadow_depth.{vert,frag}.glsl,
- * shaders/shadow_vsm.glsl; looked up by shaders/shadow.glsl (units 8..10, see shadow_params.h) ----
+ * shaders/shadow_vsm.glsl; looked up by shaders/shadow.glsl (OB_UNIT_SHADOW_*, ob_units.h) ----
  * Directional lights: an orthographic map along the light, fitted to the scene bounds. Spot lights:
  * a perspective map (fov = 2 x outer half-angle + 2 degrees, at most 160), storing distance/far.
  * Point lights: a cube map storing distance/far. The first OB_MAX_SHADOW_MAPS lights get a map. */
@@ -430,5 +434,34 @@ ob_error ob_view_present(ob_view_pass *v, const ob_view_inputs *in, GLuint frame
  * GL state is restored as for ob_view_present. Errors: OB_ERR_SHADER. */
 ob_error ob_view_render(ob_view_pass *v, const ob_view_inputs *in, GLuint *out);
 void ob_view_destroy(ob_view_pass *v);
+
+
+/* ---- the host path's own passes: host.c, shaders/host_input.glsl, host_output.glsl ----------
+ * The input pass turns an engine's depth and normals into the AO chain's R32F linear depth and
+ * RGBA16F view normals (and a second layer's linear depth); the output pass crops one of the
+ * chain's results to the visible frame in the host's texture format. A sampler object (GL_NEAREST,
+ * no comparison) reads the host's textures whatever their own filter and compare state. */
+#include "host_params.h"
+enum { OB_HOST_OUTPUT_FORMATS = 7 };
+typedef struct ob_host_passes {
+    ob_compute_pass input;                           /* .program 0 until made */
+    ob_compute_pass output[OB_HOST_OUTPUT_FORMATS];  /* one per image format, made on first use */
+    GLuint sampler;
+    GLuint second;                                   /* R32F: the host's second layer, linearised */
+    int second_width, second_height;
+} ob_host_passes;
+/* The output formats, in the order of ob_host_passes.output; -1 for one it does not write. */
+int ob_host_output_format_index(GLenum internal_format);
+ob_error ob_host_input_prepare(ob_host_passes *h);
+ob_error ob_host_output_prepare(ob_host_passes *h, GLenum format);
+/* The input pass over c->size; second (and out_second) 0 when there is no second layer. */
+ob_error ob_host_input_run(ob_host_passes *h, const ob_host_input_constants *c, GLuint depth, GLuint normal,
+                           GLuint second, GLuint out_depth, GLuint out_normal, GLuint out_second);
+/* The output pass: source (at the enlarged size) cropped at c->offset to c->size into target. */
+ob_error ob_host_output_run(ob_host_passes *h, const ob_host_output_constants *c, GLuint source, GLuint target,
+                            GLenum format);
+/* The R32F target of the host's second layer at this size, made or remade as needed (0 on failure). */
+GLuint ob_host_second_target(ob_host_passes *h, int width, int height);
+void ob_host_passes_destroy(ob_host_passes *h);
 
 #endif

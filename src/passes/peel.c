@@ -71,7 +71,7 @@ ob_error ob_peel_run(ob_peel *p, const ob_gbuffer *g, const float *view, const f
     glDisable(GL_BLEND);
     glUseProgram(p->program);
     glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_PASS, p->ubo);
-    glBindTextureUnit(1, g->linear_depth);
+    glBindTextureUnit(OB_UNIT_FIRST_LAYER, g->linear_depth);
     for (int i = 0; i < g->mesh_count; ++i) {
         glBindVertexArray(g->meshes[i].vao);
         glDrawElements(GL_TRIANGLES, g->meshes[i].index_count, GL_UNSIGNED_INT, NULL);

@@ -403,16 +403,16 @@ static void blur_moments(ob_shadow_maps *s, float sigma)
         c.axis[0] = 1;
         c.axis[1] = 0;
         ob_compute_pass_use(pass_x, &c, sizeof c);
-        glBindTextureUnit(0, s->maps_2d);
-        glBindImageTexture(0, s->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+        glBindTextureUnit(OB_UNIT_SOURCE, s->maps_2d);
+        glBindImageTexture(OB_IMAGE_UNIT_OUT, s->scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
         ob_dispatch_2d(runs, s->size, OB_SHADOW_GROUP_X, OB_SHADOW_GROUP_Y);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         /* y: scratch -> the moments layer (bound as a plain 2D image). */
         c.axis[0] = 0;
         c.axis[1] = 1;
         ob_compute_pass_use(pass_y, &c, sizeof c);
-        glBindTextureUnit(0, s->scratch);
-        glBindImageTexture(0, s->moments, 0, GL_FALSE, layer, GL_WRITE_ONLY, format);
+        glBindTextureUnit(OB_UNIT_SOURCE, s->scratch);
+        glBindImageTexture(OB_IMAGE_UNIT_OUT, s->moments, 0, GL_FALSE, layer, GL_WRITE_ONLY, format);
         ob_dispatch_2d(runs, s->size, OB_SHADOW_GROUP_X, OB_SHADOW_GROUP_Y);
         /* The next layer's x pass overwrites the scratch this pass reads, and the lighting pass
          * samples the moments. */
@@ -588,7 +588,7 @@ void ob_shadows_fill(const ob_shadow_maps *s, ob_lighting_constants *c, ob_frame
     for (int i = 0; i < OB_MAX_LIGHTS; ++i) frame->light_direction[i][3] = on ? (float)s->light_map[i] : -1.0f;
     /* A shadow sampler only sees a comparing texture: VSM's 2D depth (comparison off) stays
      * unbound, its lookups read the moments. */
-    glBindTextureUnit(OB_SHADOW_UNIT_2D, on && s->method != OB_SHADOW_VSM ? s->maps_2d : 0);
-    glBindTextureUnit(OB_SHADOW_UNIT_CUBE, on ? s->maps_cube : 0);
-    glBindTextureUnit(OB_SHADOW_UNIT_MOMENTS, on && s->method == OB_SHADOW_VSM ? s->moments : 0);
+    glBindTextureUnit(OB_UNIT_SHADOW_MAPS_2D, on && s->method != OB_SHADOW_VSM ? s->maps_2d : 0);
+    glBindTextureUnit(OB_UNIT_SHADOW_MAPS_CUBE, on ? s->maps_cube : 0);
+    glBindTextureUnit(OB_UNIT_SHADOW_MOMENTS, on && s->method == OB_SHADOW_VSM ? s->moments : 0);
 }

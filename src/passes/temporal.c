@@ -51,6 +51,13 @@ void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const
     c->detail = detail;
 }
 
+void ob_temporal_set_motion(ob_temporal_constants *c, GLuint motion, const float scale[2])
+{
+    c->has_motion = motion != 0;
+    c->motion_scale[0] = scale && scale[0] != 0.0f ? scale[0] : 1.0f;
+    c->motion_scale[1] = scale && scale[1] != 0.0f ? scale[1] : 1.0f;
+}
+
 ob_error ob_temporal_init(ob_temporal_pass *p)
 {
     memset(p, 0, sizeof *p);
@@ -68,28 +75,45 @@ ob_error ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, co
     static const char *const shapes[3] = {"", "#define OB_TEMPORAL_NO_RESULT 1\n", "#define OB_TEMPORAL_RGB 1\n"};
     const int shape = chain->rgb ? 2 : chain->result ? 0 : 1;
     const bool bounce = chain->bounce_current != 0;
-    const int k = shape + (bounce ? 3 : 0);
+    const bool motion = chain->host_motion != 0;
+    const int k = shape + (bounce ? 3 : 0) + (motion ? 6 : 0);
     if (!p->programs[k].program) {
-        char defines[128];
-        snprintf(defines, sizeof defines, "%s%s", shapes[shape], bounce ? "#define OB_TEMPORAL_BOUNCE 1\n" : "");
+        char defines[192];
+        snprintf(defines, sizeof defines, "%s%s%s", shapes[shape], bounce ? "#define OB_TEMPORAL_BOUNCE 1\n" : "",
+                 motion ? "#define OB_TEMPORAL_HOST_MOTION 1\n" : "");
         if (ob_compute_pass_init(&p->programs[k], "temporal.glsl", defines, sizeof(ob_temporal_constants)) != OB_OK)
             return ob_peek_error(NULL);
     }
     ob_compute_pass_use(&p->programs[k], c, sizeof *c);
     p->last = *c;
-    const GLuint units[9] = {chain->current,        chain->history,         depth,      normal,          prev->depth,
-                             chain->bounce_current, chain->bounce_history, chain->age, prev->normal};
-    for (int i = 0; i < 9; ++i)
-        if (units[i]) glBindTextureUnit((GLuint)i, units[i]);
-    glBindImageTexture(3, next->depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    glBindImageTexture(6, next->normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+    const struct {
+        GLuint unit, texture;
+    } units[] = {{OB_UNIT_TEMPORAL_CURRENT, chain->current},
+                 {OB_UNIT_TEMPORAL_HISTORY, chain->history},
+                 {OB_UNIT_TEMPORAL_DEPTH, depth},
+                 {OB_UNIT_TEMPORAL_NORMAL, normal},
+                 {OB_UNIT_TEMPORAL_PREV_DEPTH, prev->depth},
+                 {OB_UNIT_TEMPORAL_BOUNCE_CURRENT, chain->bounce_current},
+                 {OB_UNIT_TEMPORAL_BOUNCE_HISTORY, chain->bounce_history},
+                 {OB_UNIT_TEMPORAL_HISTORY_AGE, chain->age},
+                 {OB_UNIT_TEMPORAL_PREV_NORMAL, prev->normal},
+                 {OB_UNIT_TEMPORAL_HOST_MOTION, chain->host_motion}};
+    for (size_t i = 0; i < sizeof units / sizeof units[0]; ++i)
+        if (units[i].texture) glBindTextureUnit(units[i].unit, units[i].texture);
+    glBindImageTexture(OB_IMAGE_UNIT_TEMPORAL_NEXT_DEPTH, next->depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(OB_IMAGE_UNIT_TEMPORAL_NEXT_NORMAL, next->normal, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
     if (chain->result)
-        glBindImageTexture(0, chain->result, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_R32F);
-    glBindImageTexture(1, chain->next_history, 0, GL_FALSE, 0, GL_WRITE_ONLY, chain->rgb ? GL_RGBA16F : GL_R32F);
-    if (!chain->rgb) glBindImageTexture(2, chain->next_age, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+        glBindImageTexture(OB_IMAGE_UNIT_TEMPORAL_RESULT, chain->result, 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                           chain->rgb ? GL_RGBA16F : GL_R32F);
+    glBindImageTexture(OB_IMAGE_UNIT_TEMPORAL_NEXT_HISTORY, chain->next_history, 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                       chain->rgb ? GL_RGBA16F : GL_R32F);
+    if (!chain->rgb)
+        glBindImageTexture(OB_IMAGE_UNIT_TEMPORAL_NEXT_AGE, chain->next_age, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     if (bounce) {
-        glBindImageTexture(4, chain->bounce_result, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        glBindImageTexture(5, chain->bounce_next_history, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(OB_IMAGE_UNIT_TEMPORAL_BOUNCE_RESULT, chain->bounce_result, 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                           GL_RGBA16F);
+        glBindImageTexture(OB_IMAGE_UNIT_TEMPORAL_BOUNCE_NEXT_HISTORY, chain->bounce_next_history, 0, GL_FALSE, 0,
+                           GL_WRITE_ONLY, GL_RGBA16F);
     }
     ob_dispatch_2d(g->width, g->height, OB_TEMPORAL_GROUP_X, OB_TEMPORAL_GROUP_Y);
     return OB_OK;
@@ -101,9 +125,10 @@ ob_error ob_temporal_motion(ob_temporal_pass *p, const ob_ao_grid *g, GLuint dep
         ob_compute_pass_init(&p->motion_program, "temporal.glsl", "#define OB_TEMPORAL_MOTION 1\n",
                              sizeof(ob_temporal_constants)) != OB_OK)
         return ob_peek_error(NULL);
+    /* The camera's reprojection alone: the read-back shows what the frame's own depth says. */
     ob_compute_pass_use(&p->motion_program, &p->last, sizeof p->last);
-    glBindTextureUnit(2, depth);
-    glBindImageTexture(2, motion, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+    glBindTextureUnit(OB_UNIT_TEMPORAL_DEPTH, depth);
+    glBindImageTexture(OB_IMAGE_UNIT_TEMPORAL_MOTION, motion, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
     ob_dispatch_2d(g->width, g->height, OB_TEMPORAL_GROUP_X, OB_TEMPORAL_GROUP_Y);
     return OB_OK;
 }

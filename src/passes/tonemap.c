@@ -30,9 +30,9 @@ void ob_tonemap_run(ob_tonemap_pass *t, const ob_tonemap_inputs *in, const ob_hd
     k.bloom_strength = s->enabled && in->bloom && s->bloom_strength > 0.0f ? s->bloom_strength : 0.0f;
     ob_compute_pass_use(&t->pass, &k, sizeof k);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OB_BINDING_HDR_RESULT, in->result);
-    glBindTextureUnit(0, in->radiance);
-    glBindTextureUnit(1, in->bloom);
-    glBindImageTexture(0, final_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    glBindTextureUnit(OB_UNIT_TONEMAP_RADIANCE, in->radiance);
+    glBindTextureUnit(OB_UNIT_TONEMAP_BLOOM, in->bloom);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, final_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
     ob_dispatch_2d(in->width, in->height, OB_TONEMAP_GROUP_X, OB_TONEMAP_GROUP_Y);
 }
 

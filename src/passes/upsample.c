@@ -55,15 +55,15 @@ ob_error ob_upsample_run(ob_upsample *u, int program, const ob_ao_grid *g, GLuin
     c.upsample_depth_sigma = UPSAMPLE_SIGMA_DEPTH;
     c.upsample_sky_value = sky;
     ob_compute_pass_use(p, &c, sizeof c);
-    glBindTextureUnit(0, full_depth);
-    glBindTextureUnit(1, full_normal);
-    glBindTextureUnit(2, low_depth);
-    glBindTextureUnit(3, low_normal);
-    glBindTextureUnit(4, low_ao);
-    glBindImageTexture(0, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, u->rgb ? GL_RGBA16F : GL_R32F);
+    glBindTextureUnit(OB_UNIT_DEPTH, full_depth);
+    glBindTextureUnit(OB_UNIT_NORMAL, full_normal);
+    glBindTextureUnit(OB_UNIT_UPSAMPLE_LOW_DEPTH, low_depth);
+    glBindTextureUnit(OB_UNIT_UPSAMPLE_LOW_NORMAL, low_normal);
+    glBindTextureUnit(OB_UNIT_UPSAMPLE_LOW_AO, low_ao);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, ao_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, u->rgb ? GL_RGBA16F : GL_R32F);
     if (pair) {
-        glBindTextureUnit(5, low_second);
-        glBindImageTexture(1, second_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindTextureUnit(OB_UNIT_UPSAMPLE_LOW_SECOND, low_second);
+        glBindImageTexture(OB_IMAGE_UNIT_UPSAMPLE_SECOND, second_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     }
     const int k = block ? g->k : 1; /* full pixels per invocation and axis */
     ob_dispatch_2d((g->full_width + k - 1) / k, (g->full_height + k - 1) / k, OB_RESAMPLE_GROUP_X, OB_RESAMPLE_GROUP_Y);

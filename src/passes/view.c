@@ -7,60 +7,11 @@
 #include "passes/passes.h"
 #include "view_params.h"
 
-enum { VIEW_UNITS = 2 }; /* texture units view.glsl samples */
+enum { VIEW_UNITS = OB_UNIT_VIEW_MULTIPLIER + 1 }; /* texture units view.glsl samples: 0 and 1 */
 
-/* What the compute pass changes; the blit itself binds nothing (DSA) and only obeys the scissor
- * test and GL_FRAMEBUFFER_SRGB among the fragment operations. */
-typedef struct saved_state {
-    GLint program;
-    GLint active_texture;
-    GLint textures[VIEW_UNITS];
-    GLint ubo_generic, ubo;
-    GLint64 ubo_start, ubo_size;
-    GLint image, image_level, image_layered, image_layer, image_access, image_format;
-} saved_state;
-
-static void save_compute_state(saved_state *s)
-{
-    glGetIntegerv(GL_CURRENT_PROGRAM, &s->program);
-    glGetIntegerv(GL_ACTIVE_TEXTURE, &s->active_texture);
-    for (int i = 0; i < VIEW_UNITS; ++i) {
-        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
-        glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->textures[i]);
-    }
-    glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &s->ubo_generic);
-    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, OB_BINDING_PASS, &s->ubo);
-    glGetInteger64i_v(GL_UNIFORM_BUFFER_START, OB_BINDING_PASS, &s->ubo_start);
-    glGetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, OB_BINDING_PASS, &s->ubo_size);
-    glGetIntegeri_v(GL_IMAGE_BINDING_NAME, 0, &s->image);
-    glGetIntegeri_v(GL_IMAGE_BINDING_LEVEL, 0, &s->image_level);
-    glGetIntegeri_v(GL_IMAGE_BINDING_LAYERED, 0, &s->image_layered);
-    glGetIntegeri_v(GL_IMAGE_BINDING_LAYER, 0, &s->image_layer);
-    glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, 0, &s->image_access);
-    glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, 0, &s->image_format);
-}
-
-static void restore_compute_state(const saved_state *s)
-{
-    /* A program deleted while current lived on only as long as it stayed current: then there is
-     * nothing to go back to. */
-    glUseProgram(s->program && glIsProgram((GLuint)s->program) ? (GLuint)s->program : 0);
-    /* glBindTexture on each unit, not glBindTextureUnit(unit, 0), which would also unbind the
-     * caller's textures of other targets there. */
-    for (int i = 0; i < VIEW_UNITS; ++i) {
-        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
-        glBindTexture(GL_TEXTURE_2D, (GLuint)s->textures[i]);
-    }
-    glActiveTexture((GLenum)s->active_texture);
-    if (s->ubo && s->ubo_size > 0)
-        glBindBufferRange(GL_UNIFORM_BUFFER, OB_BINDING_PASS, (GLuint)s->ubo, (GLintptr)s->ubo_start,
-                          (GLsizeiptr)s->ubo_size);
-    else
-        glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_PASS, (GLuint)s->ubo);
-    glBindBuffer(GL_UNIFORM_BUFFER, (GLuint)s->ubo_generic); /* glBindBuffer{Base,Range} set it too */
-    glBindImageTexture(0, (GLuint)s->image, s->image_level, (GLboolean)s->image_layered, s->image_layer,
-                       (GLenum)s->image_access, (GLenum)s->image_format);
-}
+/* The compute pass changes what ob_gl_state covers (gpu.h) on VIEW_UNITS texture units and image
+ * unit 0; the blit itself binds nothing (DSA) and only obeys the scissor test and
+ * GL_FRAMEBUFFER_SRGB among the fragment operations. */
 
 static ob_error run_view(ob_view_pass *v, const ob_view_inputs *in)
 {
@@ -92,20 +43,23 @@ static ob_error run_view(ob_view_pass *v, const ob_view_inputs *in)
     k.size[0] = in->width;
     k.size[1] = in->height;
 
-    saved_state saved;
+    ob_gl_state saved;
     memset(&saved, 0, sizeof saved);
-    save_compute_state(&saved);
+    ob_gl_state_save(&saved, VIEW_UNITS, 1);
     ob_compute_pass_use(&v->pass, &k, sizeof k);
-    const GLuint units[VIEW_UNITS] = {in->source, in->multiplier};
-    for (int i = 0; i < VIEW_UNITS; ++i) {
-        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
-        glBindTexture(GL_TEXTURE_2D, units[i]);
+    /* glBindTexture on the unit, not glBindTextureUnit: a 0 (no multiplier) must not unbind the
+     * caller's textures of other targets there. */
+    const GLuint units[2] = {OB_UNIT_VIEW_SOURCE, OB_UNIT_VIEW_MULTIPLIER};
+    const GLuint textures[2] = {in->source, in->multiplier};
+    for (int i = 0; i < 2; ++i) {
+        glActiveTexture(GL_TEXTURE0 + units[i]);
+        glBindTexture(GL_TEXTURE_2D, textures[i]);
     }
-    glBindImageTexture(0, v->display, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    glBindImageTexture(OB_IMAGE_UNIT_OUT, v->display, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
     /* The frame's passes wrote their targets with image stores. */
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     ob_dispatch_2d(in->width, in->height, OB_VIEW_GROUP_X, OB_VIEW_GROUP_Y);
-    restore_compute_state(&saved);
+    ob_gl_state_restore(&saved);
     return OB_OK;
 }
 

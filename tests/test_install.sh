@@ -77,6 +77,18 @@ if PKG_CONFIG_PATH="$libdir/pkgconfig" step "make (pkg-config) of examples/embed
     loads_installed "$tmp/pc/embed" || bad "embed (pkg-config) does not load the installed library"
 fi
 
+# ---- examples/host (its own renderer around ob_host_ao) through the CMake package ----
+if step "cmake configure of examples/host" "$cmake" -S "$src/examples/host" -B "$tmp/hm" -DCMAKE_PREFIX_PATH="$prefix" \
+        -DCMAKE_BUILD_TYPE=Release "-DCMAKE_C_COMPILER=$cc" "-DCMAKE_C_FLAGS=$flags" &&
+   step "cmake build of examples/host" "$cmake" --build "$tmp/hm"; then
+    if [ -f "$src/data/armadillo.off" ]; then
+        if "$tmp/hm/host" --model "$src/data/armadillo.off" --size 96x72 --frames 2 --out-ao "$tmp/hm_ao.pfm" >/dev/null; then ok
+        else bad "host example (CMake) failed"; fi
+        [ -s "$tmp/hm_ao.pfm" ] || bad "host example (CMake) wrote no AO"
+    fi
+    loads_installed "$tmp/hm/host" || bad "host example (CMake) does not load the installed library"
+fi
+
 # ---- the example's own check must be able to fail: no AO, no darker contact ----
 if [ -x "$tmp/pc/embed" ]; then
     "$tmp/pc/embed" --method none --size 64x48 >/dev/null
@@ -85,4 +97,4 @@ if [ -x "$tmp/pc/embed" ]; then
 fi
 
 if [ $fails -gt 0 ]; then echo "install: $fails failure(s)"; exit 1; fi
-echo "install: ok ($(find "$prefix" -type f | wc -l) files installed, both builds of examples/embed ran)"
+echo "install: ok ($(find "$prefix" -type f | wc -l) files installed, both builds of examples/embed and examples/host ran)"

@@ -1,8 +1,11 @@
 /* obscura bench: GPU time per pass of every method over sample counts N and radii r (seed 000
- * §5.1 tables), against a no-AO frame, optionally in stereo against the 90 Hz budget (§5.2) or as
- * a scaling study over resolution and triangle count. DESIGN.md "Performance method": warm-up
+ * §5.1 tables), against a no-AO frame, optionally in stereo against the 90 Hz budget (§5.2), as
+ * a scaling study over resolution and triangle count, or (--host) the host path ob_host_ao beside
+ * ob_render_frame's AO chain (issue 45). DESIGN.md "Performance method": warm-up
  * frames first, then median/min/max over the measured frames, every ratio from the same run. */
+#include <cglm/cglm.h>
 #include <cjson/cJSON.h>
+#include <epoxy/gl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +16,7 @@
 #include "cli_options.h"
 #include "outputs.h"
 #include "progress.h"
+#include "reference_cache.h"
 #include "run_program.h"
 
 /* --json and --csv (outputs.h): added while parsing, committed by cmd_bench. */
@@ -45,6 +49,9 @@ typedef struct bench_opts {
     bool stereo, scaling;
     bool floor;                   /* --floor: time the bare N-tap kernel beside each AO pass */
     bool full;                    /* --full: the whole seed table (see QUICK_* above) */
+    bool host;                    /* --host: the host path (ob_host_ao) beside the frame's AO chain */
+    bool samples_given;           /* --samples or --quality was given (--host-rmse: else each method's own) */
+    const char *host_views;       /* --host-rmse SCENE[:CAMERA],...: the rebuilt normals' accuracy */
     bool keep_shadows;            /* render the shadow maps once, not every frame (the quick run) */
     float ipd;
     int sizes[MAX_SIZES][2], size_count;
@@ -121,12 +128,37 @@ static void bench_usage(FILE *f, const cli_common *defaults)
           "                        configuration's N, radius and AO grid, one floor frame after each\n"
           "                        of the method's, and report AO pass / floor (the median of the\n"
           "                        frames' ratios: the floor of the machine at hand, at that moment)\n"
+          "  --host                instead of the sweep: the host path (ob_host_ao) beside the frame's AO\n"
+          "                        chain, per configuration (method, N, r, filter, AO scale, temporal),\n"
+          "                        four paths in one run, alternated frame by frame:\n"
+          "                          (a) frame: ob_render_frame, the sum of its chain passes (downsample,\n"
+          "                              edges, depth_mips, ao, temporal, filter, upsample)\n"
+          "                          (b) host_linear: ob_host_ao on that frame's G-buffer, read back and\n"
+          "                              uploaded as R32F linear depth + RGBA16F view normals -> R32F\n"
+          "                          (c) host_packed: as a D32F reversed-Z [0,1] depth buffer + octahedral\n"
+          "                              RG16F world normals -> R8 (input pass + chain + output pass)\n"
+          "                          (d) host_no_normals: (c) without normals (rebuilt from depth)\n"
+          "                        each path's chain, input, output and total ms, total / (a) in the same\n"
+          "                        frame, and (b)/(a) against issue 45's 1.05x; one renderer per path.\n"
+          "                        Not with --stereo, --scaling, --floor or --guard\n"
+          "  --host-rmse S[:C],... with --host, before the timing: on each view (at most 8) the RMSE and\n"
+          "                        bias of (a)-(d) against the ray-traced AO_R (compare's reference and\n"
+          "                        cache: 320x240, 512 rays/px), each view at its scene's suggested radius,\n"
+          "                        N the first --samples/--quality if given, else the method's own, after\n"
+          "                        5 calls of each path\n"
           "  --json FILE           every number, with GL renderer/version, CPU, commit and date\n"
-          "  --csv FILE            one row per configuration and pass\n"
+          "  --csv FILE            one row per configuration and pass (--host: per configuration and path:\n"
+          "                        scene, camera, method, samples, r, radius_world, filter, ao_scale,\n"
+          "                        temporal, width, height, path, depth, normals, output, then median, min\n"
+          "                        and max of chain_ms, input_ms, output_ms, total_ms and ratio_frame\n"
+          "                        (total / (a) per frame), label; the RMSE is in the JSON only)\n"
           "\n"
           "stdout: one table per method (per combination), rows N, columns r, cells 'AO-pass ms /\n"
-          "frame ms' (medians); stderr: a progress bar with the configurations done and the time left.\n"
-          "The methods' --methods default is every method but none, which is always measured.\n",
+          "frame ms' (medians); --host: per configuration the four paths' 'median (min-max)' and the\n"
+          "(b)/(a) line, then the --host-rmse table; stderr: a progress bar with the configurations\n"
+          "done and the time left.\n"
+          "The methods' --methods default is every method but none, which is always measured\n"
+          "(not with --host).\n",
           f);
     cli_common_usage(f, defaults);
 }
@@ -167,6 +199,8 @@ static bool parse_size_list(const char *v, int sizes[][2], int *count)
     return *count > 0;
 }
 
+static int host_views_check(const char *v);
+
 static int parse(int argc, char **argv, bench_opts *o)
 {
     /* frames, warmup and radii 0: not given (resolved after the loop, by --full). */
@@ -188,10 +222,12 @@ static int parse(int argc, char **argv, bench_opts *o)
         if (!strcmp(a, "--scaling")) { o->scaling = true; continue; }
         if (!strcmp(a, "--floor")) { o->floor = true; continue; }
         if (!strcmp(a, "--full")) { o->full = true; continue; }
+        if (!strcmp(a, "--host")) { o->host = true; continue; }
         int taken = cli_common_option(c, argc, argv, &i);
         if (taken == CLI_TAKEN) continue;
         if (taken != CLI_NOT_MINE) return taken;
-        const char *const own[] = {"--cameras", "--json", "--csv", "--radius", "--sizes", "--frames", "--warmup", "--ipd"};
+        const char *const own[] = {"--cameras", "--json", "--csv", "--radius", "--sizes", "--frames", "--warmup", "--ipd",
+                                   "--host-rmse"};
         bool known = false;
         for (size_t k = 0; k < sizeof own / sizeof own[0]; ++k) known = known || !strcmp(a, own[k]);
         if (!known) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura bench --help)", a);
@@ -200,6 +236,11 @@ static int parse(int argc, char **argv, bench_opts *o)
         if (!strcmp(a, "--cameras")) o->cameras = v;
         else if (!strcmp(a, "--json")) o->json = v;
         else if (!strcmp(a, "--csv")) o->csv = v;
+        else if (!strcmp(a, "--host-rmse")) {
+            int code = host_views_check(v);
+            if (code != EXIT_OK) return code;
+            o->host_views = v;
+        }
         else if (!strcmp(a, "--radius")) {
             if (!parse_float_list(v, o->radii, &o->radius_count))
                 return cli_fail(EXIT_USAGE, "--radius: expected a comma list of positive numbers, got '%s'", v);
@@ -216,13 +257,17 @@ static int parse(int argc, char **argv, bench_opts *o)
         }
     }
     if (o->stereo && o->scaling) return cli_fail(EXIT_USAGE, "--stereo and --scaling exclude each other");
+    if (o->host && (o->stereo || o->scaling || o->floor))
+        return cli_fail(EXIT_USAGE, "--host and %s exclude each other", o->stereo ? "--stereo" : o->scaling ? "--scaling" : "--floor");
+    if (o->host_views && !o->host) return cli_fail(EXIT_USAGE, "--host-rmse needs --host");
     if (o->stereo && (c->path || c->has_orbit)) return cli_fail(EXIT_USAGE, "--stereo and --path/--orbit exclude each other");
     /* The stereo size before cli_common_finish: its memory estimate is for the renderers made. */
     if (o->stereo && !c->has_size) {
         c->width = 1080;
         c->height = 1200;
     }
-    c->renderers = o->stereo ? 2 : 1;
+    /* --host: the frame's renderer and one per host path (HOST_PATHS). */
+    c->renderers = o->stereo ? 2 : o->host ? 4 : 1;
     for (int z = 0; o->scaling && z < o->size_count; ++z)
         if ((long long)o->sizes[z][0] * o->sizes[z][1] > (long long)c->memory_width * c->memory_height) {
             c->memory_width = o->sizes[z][0];
@@ -230,6 +275,12 @@ static int parse(int argc, char **argv, bench_opts *o)
         }
     int code = cli_common_finish(c);
     if (code != EXIT_OK) return code;
+    /* The CLI reads the frame's G-buffer back through the public API, which gives the visible frame
+     * only: a host with a guard band renders the band itself (ob_host_input_size). */
+    if (o->host && c->guard_px > 0)
+        return cli_fail(EXIT_USAGE, "--host and --guard exclude each other: the frame's G-buffer is read back without "
+                        "its band");
+    o->samples_given = c->sample_count > 0;
     /* The sample counts are the sweep's rows (set per configuration by configure), not a list of
      * the combinations: they leave the common lists. */
     if (c->sample_count > 0) {
@@ -256,6 +307,8 @@ static int parse(int argc, char **argv, bench_opts *o)
     for (int k = 0; k < c->method_count; ++k)
         if (strcmp(ob_method_at(c->methods[k])->name, "none")) c->methods[kept++] = c->methods[k];
     c->method_count = kept;
+    if (o->host && kept == 0)
+        return cli_fail(EXIT_USAGE, "--host: no method to time ('none' runs no AO chain); name one with --methods");
     /* Both checked before anything is measured; written only as a pair (outputs.h). */
     if (o->json && (code = cli_outputs_add(&bench_outs, "--json", o->json, CLI_FMT_TEXT, &bench_json)) != EXIT_OK)
         return code;
@@ -852,6 +905,798 @@ static const char *floor_note(const bench_row *r)
     return note;
 }
 
+/* ---- --host: the host path beside the frame's AO chain (issue 45, item 7) ---------------------
+ * For each configuration, four paths measured in one run, alternated frame by frame (the frame,
+ * then each host call on that frame's G-buffer), so that a machine that slows down or speeds up
+ * (a core taken on the shared 2-core machine) slows all four alike:
+ *   (a) frame            ob_render_frame; the sum of its AO chain passes (CHAIN_PASSES)
+ *   (b) host_linear      ob_host_ao on the frame's G-buffer read back (ob_read_image) and uploaded as
+ *                        R32F linear depth and RGBA16F view normals, into an R32F output: the chain
+ *                        alone, no input or output pass (a directional method's output still
+ *                        needs the output pass: the chain writes its M as RGB)
+ *   (c) host_packed      the same depth as a GL_DEPTH_COMPONENT32F reversed-Z [0,1] depth buffer
+ *                        (window depth computed here from the linear depth with the frame's near
+ *                        and far planes) and octahedral RG16F world-space normals, into an R8
+ *                        output: input pass + chain + output pass
+ *   (d) host_no_normals  (c) without normals: the input pass rebuilds them from the depth
+ * Each host path has its own renderer (its own temporal history and targets). --host-rmse adds the
+ * accuracy of those inputs against the ray-traced reference, on views of other scenes. */
+
+enum { HOST_FRAME = 0, HOST_LINEAR, HOST_PACKED, HOST_NO_NORMALS, HOST_PATHS };
+enum { HOST_MAX_VIEWS = 8, HOST_RMSE_W = 320, HOST_RMSE_H = 240, HOST_RMSE_SPP = 512, HOST_RMSE_FRAMES = 5 };
+static const double HOST_TARGET = 1.05; /* issue 45: the host path at most 1.05x the frame's chain */
+
+static const char *const host_path_names[HOST_PATHS] = {"frame", "host_linear", "host_packed", "host_no_normals"};
+static const char *const host_path_depth[HOST_PATHS] = {"G-buffer", "R32F linear", "D32F reversed-Z 0-to-1",
+                                                        "D32F reversed-Z 0-to-1"};
+static const char *const host_path_normals[HOST_PATHS] = {"G-buffer", "RGBA16F view", "RG16F octahedral world",
+                                                          "none (rebuilt from depth)"};
+static const char *const host_path_output[HOST_PATHS] = {"renderer's own", "R32F", "R8", "R8"};
+/* The passes of the AO chain (src/core/chain.c) that (a) sums; a host call's other passes are its
+ * input and output passes. */
+static const char *const CHAIN_PASSES[] = {"downsample", "edges", "depth_mips", "ao", "temporal", "filter", "upsample"};
+
+static bool is_chain_pass(const char *name)
+{
+    for (size_t i = 0; i < sizeof CHAIN_PASSES / sizeof CHAIN_PASSES[0]; ++i)
+        if (!strcmp(name, CHAIN_PASSES[i])) return true;
+    return false;
+}
+
+/* The GL calls bench makes itself to hand the frame's G-buffer over as an engine would (epoxy, as
+ * the viewer's; the library's context is current on this thread). */
+static unsigned host_texture(unsigned format, int width, int height)
+{
+    unsigned t = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, 1, format, width, height);
+    return t;
+}
+
+/* A host's textures for one size: the inputs of (b), (c), (d), each path's output, and the CPU
+ * copies they are filled from (bottom row first, as ob_read_image and GL both have them). */
+typedef struct host_inputs {
+    int w, h;
+    unsigned depth, normal, window, oct, radiance, albedo, out[HOST_PATHS];
+    float *lin, *nrm, *win, *oct_px, *rad, *alb;
+    float view[16], proj[16], reversed[16];
+} host_inputs;
+
+static void host_inputs_free(host_inputs *in)
+{
+    if (in->depth) {
+        const unsigned t[] = {in->depth, in->normal, in->window, in->oct, in->radiance, in->albedo,
+                              in->out[HOST_LINEAR], in->out[HOST_PACKED], in->out[HOST_NO_NORMALS]};
+        glDeleteTextures((int)(sizeof t / sizeof t[0]), t);
+    }
+    free(in->lin);
+    free(in->nrm);
+    free(in->win);
+    free(in->oct_px);
+    free(in->rad);
+    free(in->alb);
+    memset(in, 0, sizeof *in);
+}
+
+static int host_inputs_make(host_inputs *in, int w, int h)
+{
+    memset(in, 0, sizeof *in);
+    const size_t px = (size_t)w * (size_t)h;
+    in->w = w;
+    in->h = h;
+    in->lin = malloc(px * sizeof(float));
+    in->nrm = malloc(3 * px * sizeof(float));
+    in->win = malloc(px * sizeof(float));
+    in->oct_px = malloc(2 * px * sizeof(float));
+    in->rad = malloc(3 * px * sizeof(float));
+    in->alb = malloc(3 * px * sizeof(float));
+    if (!in->lin || !in->nrm || !in->win || !in->oct_px || !in->rad || !in->alb) {
+        host_inputs_free(in);
+        return cli_fail(EXIT_RUNTIME, "out of memory");
+    }
+    in->depth = host_texture(GL_R32F, w, h);
+    in->normal = host_texture(GL_RGBA16F, w, h);
+    in->window = host_texture(GL_DEPTH_COMPONENT32F, w, h);
+    in->oct = host_texture(GL_RG16F, w, h);
+    in->radiance = host_texture(GL_RGBA16F, w, h);
+    in->albedo = host_texture(GL_RGBA16F, w, h);
+    in->out[HOST_LINEAR] = host_texture(GL_R32F, w, h);
+    in->out[HOST_PACKED] = host_texture(GL_R8, w, h);
+    in->out[HOST_NO_NORMALS] = host_texture(GL_R8, w, h);
+    unsigned e = glGetError();
+    if (e != 0) {
+        host_inputs_free(in);
+        return cli_fail(EXIT_RUNTIME, "--host: OpenGL error 0x%x making the host's %dx%d textures", e, w, h);
+    }
+    return EXIT_OK;
+}
+
+/* The camera's matrices as ob_render_frame makes them (src/core/frame.c): the renderer's defaults
+ * filled in, near and far fitted to the scene's bounds as ob_camera_fit_planes does (and left in
+ * *cam, so the frame uses the very planes the window depth is computed with), glm_lookat,
+ * glm_perspective, the lens shift in P20 and P21; and the same projection reversed-Z with
+ * glClipControl's [0, 1] range: window depth = n (f - d) / (d (f - n)), 1 at the near plane. */
+static void host_matrices(const ob_scene *scene, ob_camera *cam, int w, int h, host_inputs *in)
+{
+    if (cam->fov_y_deg <= 0.0f) cam->fov_y_deg = 60.0f;
+    if (cam->up[0] == 0.0f && cam->up[1] == 0.0f && cam->up[2] == 0.0f) cam->up[1] = 1.0f;
+    if (cam->near_z <= 0.0f || cam->far_z <= cam->near_z) {
+        const ob_scene_stats st = ob_query_scene_stats(scene);
+        float d2 = 0.0f, near2 = 0.0f, far2 = 0.0f;
+        for (int i = 0; i < 3; ++i) {
+            float e = st.bounds_max[i] - st.bounds_min[i];
+            d2 += e * e;
+        }
+        float r = 0.5f * sqrtf(d2); /* the bounds' radius */
+        if (!(r > 0.0f) || !isfinite(r)) r = 1.0f;
+        for (int i = 0; i < 3; ++i) {
+            float e = cam->eye[i];
+            float dn = e < st.bounds_min[i] ? st.bounds_min[i] - e : (e > st.bounds_max[i] ? e - st.bounds_max[i] : 0.0f);
+            float df = fmaxf(fabsf(e - st.bounds_min[i]), fabsf(e - st.bounds_max[i]));
+            near2 += dn * dn;
+            far2 += df * df;
+        }
+        float far_z = 1.1f * sqrtf(far2);
+        float near_z = fmaxf(0.9f * sqrtf(near2), fmaxf(far_z / 10000.0f, 1e-3f * r));
+        if (!isfinite(far_z) || !(far_z > near_z)) far_z = 2.0f * near_z + r;
+        cam->near_z = near_z;
+        cam->far_z = far_z;
+    }
+    mat4 view, proj;
+    glm_lookat(cam->eye, cam->target, cam->up, view);
+    glm_perspective(glm_rad(cam->fov_y_deg), (float)w / (float)h, cam->near_z, cam->far_z, proj);
+    proj[2][0] = cam->shift[0];
+    proj[2][1] = cam->shift[1];
+    memcpy(in->view, view, sizeof in->view);
+    memcpy(in->proj, proj, sizeof in->proj);
+    memcpy(in->reversed, proj, sizeof in->reversed);
+    const double n = cam->near_z, f = cam->far_z;
+    in->reversed[10] = (float)(n / (f - n));
+    in->reversed[14] = (float)(f * n / (f - n));
+}
+
+/* in->lin and in->nrm (and in->rad, in->alb with rgb) hold a G-buffer: the packed copies made
+ * from them and everything uploaded. */
+static void host_upload(host_inputs *in, bool rgb)
+{
+    const size_t px = (size_t)in->w * (size_t)in->h;
+    const float *v = in->view, *p = in->reversed;
+    for (size_t i = 0; i < px; ++i) {
+        const double d = in->lin[i];
+        /* ndc = -P22 + P32 / d; the far plane's 0 is sky. */
+        in->win[i] = d > 0.0 ? (float)(-(double)p[10] + (double)p[14] / d) : 0.0f;
+        /* World normal = the view's rotation transposed times the view normal (a rigid view). */
+        const float *nv = in->nrm + 3 * i;
+        float w[3];
+        for (int r = 0; r < 3; ++r) w[r] = v[4 * r + 0] * nv[0] + v[4 * r + 1] * nv[1] + v[4 * r + 2] * nv[2];
+        float l1 = fabsf(w[0]) + fabsf(w[1]) + fabsf(w[2]);
+        float ex = l1 > 0.0f ? w[0] / l1 : 0.0f, ey = l1 > 0.0f ? w[1] / l1 : 0.0f;
+        if (w[2] < 0.0f) { /* octahedral (Cigolle et al. 2014): the lower half folded over */
+            float tx = (1.0f - fabsf(ey)) * (ex >= 0.0f ? 1.0f : -1.0f);
+            float ty = (1.0f - fabsf(ex)) * (ey >= 0.0f ? 1.0f : -1.0f);
+            ex = tx;
+            ey = ty;
+        }
+        in->oct_px[2 * i] = ex;
+        in->oct_px[2 * i + 1] = ey;
+    }
+    glTextureSubImage2D(in->depth, 0, 0, 0, in->w, in->h, GL_RED, GL_FLOAT, in->lin);
+    glTextureSubImage2D(in->normal, 0, 0, 0, in->w, in->h, GL_RGB, GL_FLOAT, in->nrm);
+    glTextureSubImage2D(in->window, 0, 0, 0, in->w, in->h, GL_DEPTH_COMPONENT, GL_FLOAT, in->win);
+    glTextureSubImage2D(in->oct, 0, 0, 0, in->w, in->h, GL_RG, GL_FLOAT, in->oct_px);
+    if (rgb) {
+        glTextureSubImage2D(in->radiance, 0, 0, 0, in->w, in->h, GL_RGB, GL_FLOAT, in->rad);
+        glTextureSubImage2D(in->albedo, 0, 0, 0, in->w, in->h, GL_RGB, GL_FLOAT, in->alb);
+    }
+}
+
+/* The frame r just rendered, read back and uploaded. */
+static int host_grab(ob_renderer *r, host_inputs *in, bool rgb)
+{
+    const size_t px = (size_t)in->w * (size_t)in->h;
+    if (ob_read_image(r, OB_IMAGE_DEPTH_F32, in->lin, px * sizeof(float)) != OB_OK ||
+        ob_read_image(r, OB_IMAGE_NORMAL_F32, in->nrm, 3 * px * sizeof(float)) != OB_OK ||
+        (rgb && (ob_read_image(r, OB_IMAGE_RADIANCE_F32, in->rad, 3 * px * sizeof(float)) != OB_OK ||
+                 ob_read_image(r, OB_IMAGE_ALBEDO_F32, in->alb, 3 * px * sizeof(float)) != OB_OK)))
+        return cli_fail_from_library();
+    host_upload(in, rgb);
+    return EXIT_OK;
+}
+
+/* The host path calls no glGetError (obscura.h: a host's pending error stays the host's): bench,
+ * the host here, reads it after each call, so that a call that went wrong in GL is not timed. */
+static int host_gl_check(int p)
+{
+    unsigned e = glGetError();
+    if (e == 0) return EXIT_OK;
+    return cli_fail(EXIT_RUNTIME, "--host: OpenGL error 0x%x after ob_host_ao (%s)", e, host_path_names[p]);
+}
+
+/* Path p's frame and outputs over in's textures. */
+static void host_call_args(const host_inputs *in, int p, bool rgb, ob_host_frame *f, ob_host_outputs *out)
+{
+    memset(f, 0, sizeof *f);
+    memset(out, 0, sizeof *out);
+    f->depth = p == HOST_LINEAR ? in->depth : in->window;
+    f->normal = p == HOST_LINEAR ? in->normal : p == HOST_PACKED ? in->oct : 0;
+    f->normal_space = p == HOST_PACKED ? OB_NORMALS_WORLD : OB_NORMALS_VIEW;
+    f->depth_zero_to_one = p != HOST_LINEAR;
+    memcpy(f->projection, p == HOST_LINEAR ? in->proj : in->reversed, sizeof f->projection);
+    memcpy(f->view, in->view, sizeof f->view);
+    if (rgb) {
+        f->radiance = in->radiance;
+        f->albedo = in->albedo;
+    }
+    out->ao = in->out[p];
+}
+
+/* The settings a host passes for the frame's: the same, with the scene's lights named (a host has
+ * no scene; the indirect-light methods read them) and the radius the frame took from the scene
+ * when the configuration left it to the scene. */
+static int host_settings_of(const ob_settings *s, const ob_scene *scene, float scene_radius, ob_settings *hs)
+{
+    *hs = *s;
+    if (hs->light_count == 0) {
+        int n = ob_query_scene_light_count(scene);
+        hs->light_count = n < OB_MAX_LIGHTS ? n : OB_MAX_LIGHTS;
+        for (int i = 0; i < hs->light_count; ++i) hs->lights[i] = ob_query_scene_light(scene, i);
+    }
+    const ob_method_info *m = ob_method_at(hs->method);
+    for (int i = 0; i < m->param_count; ++i)
+        if (!strcmp(m->params[i].name, "radius") && !((hs->params_set >> i) & 1u)) {
+            char set[64];
+            snprintf(set, sizeof set, "radius=%.9g", (double)scene_radius);
+            if (ob_settings_set(hs, set) != OB_OK) return cli_fail_from_library();
+        }
+    return EXIT_OK;
+}
+
+/* One path's numbers over the measured frames. */
+typedef struct host_path_row {
+    int pass_count;
+    char pass[MAX_PASSES][16];
+    double med[MAX_PASSES], min[MAX_PASSES], max[MAX_PASSES];
+    /* median, min, max: its chain passes, its input and output passes, all of it, and all of it /
+     * (a)'s chain in the same frame */
+    double chain[3], input[3], output[3], total[3], ratio[3];
+    bool has_input, has_output;
+} host_path_row;
+
+typedef struct host_row {
+    int camera;
+    const cli_config *cfg;
+    int samples;
+    float r, radius_world;
+    int width, height;
+    host_path_row path[HOST_PATHS];
+} host_row;
+
+/* --host-rmse: one view and configuration, RMSE and bias against AO_R over its geometry pixels. */
+typedef struct host_acc_row {
+    char scene[256], camera[64];
+    const cli_config *cfg;
+    int samples;           /* 0: the method's own */
+    float radius;
+    bool ref_cached;
+    double ref_stderr;
+    ob_metrics m[HOST_PATHS];
+} host_acc_row;
+
+typedef struct host_state {
+    host_row *rows;
+    int count, cap;
+    host_acc_row *acc;
+    int acc_count, acc_cap;
+} host_state;
+
+/* Per path: MAX_PASSES pass columns of `frames`, then chain, input, output, total, ratio. */
+enum { HOST_COL_CHAIN = MAX_PASSES, HOST_COL_INPUT, HOST_COL_OUTPUT, HOST_COL_TOTAL, HOST_COL_RATIO, HOST_COLS };
+
+/* Path p's timings of frame m (its renderer's last frame, waited for). (a) keeps its chain passes. */
+static int host_record(ob_renderer *r, int p, host_path_row *row, double *v, int frames, int m)
+{
+    if (ob_wait_timings(r) != OB_OK) return cli_fail_from_library();
+    ob_pass_timing t[MAX_PASSES];
+    int n = ob_query_timings(r, t, MAX_PASSES);
+    for (int c = 0; c < HOST_COLS; ++c) v[(size_t)c * (size_t)frames + (size_t)m] = 0.0;
+    for (int q = 0; q < n; ++q) {
+        const bool chain = is_chain_pass(t[q].name), input = !strcmp(t[q].name, "input"),
+                   output = !strcmp(t[q].name, "output");
+        if (p == HOST_FRAME && !chain) continue;
+        int k = 0;
+        while (k < row->pass_count && strcmp(row->pass[k], t[q].name)) ++k;
+        if (k == row->pass_count) {
+            if (k == MAX_PASSES) continue;
+            snprintf(row->pass[row->pass_count++], sizeof row->pass[0], "%s", t[q].name);
+        }
+        v[(size_t)k * (size_t)frames + (size_t)m] += t[q].ms;
+        int col = chain ? HOST_COL_CHAIN : input ? HOST_COL_INPUT : output ? HOST_COL_OUTPUT : -1;
+        if (col >= 0) v[(size_t)col * (size_t)frames + (size_t)m] += t[q].ms;
+        v[(size_t)HOST_COL_TOTAL * (size_t)frames + (size_t)m] += t[q].ms;
+        row->has_input = row->has_input || input;
+        row->has_output = row->has_output || output;
+    }
+    return EXIT_OK;
+}
+
+/* Warm-up, then o->frames measured frames, each: the frame on eyes[0], its G-buffer handed to each
+ * host path's renderer. scratch: HOST_PATHS x HOST_COLS x frames. */
+static int host_measure(ob_renderer **rs, const ob_camera *base, const ob_scene *scene, const ob_settings *s,
+                        const ob_settings *hs, const bench_opts *o, host_inputs *in, double *scratch, host_row *row)
+{
+    const int frames = o->frames;
+    const bool rgb = ob_method_at(s->method)->directional;
+    for (int p = 0; p < HOST_PATHS; ++p) ob_renderer_reset_history(rs[p]);
+    for (int f = 0; f < o->warmup + frames; ++f) {
+        const bool measured = f >= o->warmup;
+        const int m = f - o->warmup;
+        ob_camera cam = *base;
+        if (moving.scene) {
+            int code = cli_common_path_camera(moving.common, moving.scene, base, f % moving.common->path_frames, &cam);
+            if (code != EXIT_OK) return code;
+        }
+        host_matrices(scene, &cam, in->w, in->h, in);
+        if (ob_render_frame(rs[HOST_FRAME], &cam, s) != OB_OK) return cli_fail_from_library();
+        int code = EXIT_OK;
+        if (measured) code = host_record(rs[HOST_FRAME], HOST_FRAME, &row->path[HOST_FRAME], scratch, frames, m);
+        if (code == EXIT_OK) code = host_grab(rs[HOST_FRAME], in, rgb);
+        for (int p = HOST_LINEAR; p < HOST_PATHS && code == EXIT_OK; ++p) {
+            ob_host_frame hf;
+            ob_host_outputs ho;
+            host_call_args(in, p, rgb, &hf, &ho);
+            if (ob_host_ao(rs[p], &hf, hs, &ho) != OB_OK) return cli_fail_from_library();
+            if ((code = host_gl_check(p)) != EXIT_OK) return code;
+            if (measured)
+                code = host_record(rs[p], p, &row->path[p], scratch + (size_t)p * HOST_COLS * (size_t)frames, frames, m);
+        }
+        if (code != EXIT_OK) return code;
+        if (!measured) continue;
+        const double base_ms = scratch[(size_t)HOST_COL_TOTAL * (size_t)frames + (size_t)m];
+        for (int p = 0; p < HOST_PATHS; ++p) {
+            double *v = scratch + (size_t)p * HOST_COLS * (size_t)frames;
+            v[(size_t)HOST_COL_RATIO * (size_t)frames + (size_t)m] =
+                base_ms > 0.0 ? v[(size_t)HOST_COL_TOTAL * (size_t)frames + (size_t)m] / base_ms : 0.0;
+        }
+    }
+    for (int p = 0; p < HOST_PATHS; ++p) {
+        host_path_row *pr = &row->path[p];
+        double *v = scratch + (size_t)p * HOST_COLS * (size_t)frames;
+        for (int k = 0; k < pr->pass_count; ++k) stats(v + (size_t)k * (size_t)frames, frames, &pr->med[k], &pr->min[k], &pr->max[k]);
+        double *cols[5] = {pr->chain, pr->input, pr->output, pr->total, pr->ratio};
+        for (int c = 0; c < 5; ++c)
+            stats(v + (size_t)(HOST_COL_CHAIN + c) * (size_t)frames, frames, &cols[c][0], &cols[c][1], &cols[c][2]);
+    }
+    return EXIT_OK;
+}
+
+/* --host-rmse's list: SCENE[:CAMERA] elements, checked for shape while parsing (the scenes and
+ * cameras themselves when they are loaded, before anything is timed). */
+static int host_views_check(const char *v)
+{
+    if (!*v) return cli_fail(EXIT_USAGE, "--host-rmse: expected a comma list of SCENE[:CAMERA], got ''");
+    if (strlen(v) >= 1024) return cli_fail(EXIT_USAGE, "--host-rmse: %zu bytes; at most 1023", strlen(v));
+    int n = 1;
+    for (const char *p = v; *p; ++p) n += *p == ',';
+    if (n > HOST_MAX_VIEWS) return cli_fail(EXIT_USAGE, "--host-rmse: %d views; at most %d", n, HOST_MAX_VIEWS);
+    for (const char *p = v;;) {
+        const char *end = strchr(p, ',');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        if (len == 0 || (len == 1 && *p == ':') || p[0] == ':' || p[len - 1] == ':')
+            return cli_fail(EXIT_USAGE, "--host-rmse: empty scene or camera in '%s'", v);
+        if (!end) break;
+        p = end + 1;
+    }
+    return EXIT_OK;
+}
+
+static host_acc_row *new_acc_row(host_state *hst)
+{
+    if (hst->acc_count == hst->acc_cap) {
+        int cap = hst->acc_cap ? 2 * hst->acc_cap : 16;
+        host_acc_row *p = realloc(hst->acc, (size_t)cap * sizeof *p);
+        if (!p) return NULL;
+        hst->acc = p;
+        hst->acc_cap = cap;
+    }
+    host_acc_row *a = &hst->acc[hst->acc_count++];
+    memset(a, 0, sizeof *a);
+    return a;
+}
+
+/* One view of --host-rmse: its G-buffer and AO_R (the reference cache compare and tune use, at
+ * compare's size and rays), then per configuration the frame's AO and each host path's after
+ * HOST_RMSE_FRAMES calls (compare's frames per row), against AO_R over the geometry pixels. */
+static int host_rmse_view(const bench_opts *o, const char *spec, ob_renderer *fr, ob_renderer *hr, host_inputs *in,
+                          const cli_config *configs, int count, const bool *has_samples, const bool *has_radius,
+                          host_state *hst)
+{
+    const cli_common *c = &o->common;
+    const int w = HOST_RMSE_W, h = HOST_RMSE_H;
+    const size_t px = (size_t)w * (size_t)h;
+    char name[256];
+    snprintf(name, sizeof name, "%s", spec);
+    const char *camera = NULL;
+    char *colon = strrchr(name, ':');
+    if (colon && !strchr(colon, '/')) {
+        *colon = '\0';
+        camera = colon + 1;
+    }
+    ob_scene *scene = NULL;
+    cli_view_frame vf = {0};
+    float *ref = NULL, *ao = NULL;
+    uint8_t *mask = NULL;
+    int code = cli_common_load_scene(c, name, &scene);
+    ob_camera cam = {0};
+    if (code == EXIT_OK) code = cli_common_camera(c, scene, camera, &cam);
+    if (code == EXIT_OK && ob_renderer_set_scene(fr, scene) != OB_OK) code = cli_fail_from_library();
+    if (code == EXIT_OK) code = cli_common_prepare(c, fr);
+    if (code == EXIT_OK) code = cli_view_frame_make(fr, &cam, w, h, &vf);
+    if (code == EXIT_OK)
+        code = cli_check_visible(fr, w, h, ob_query_scene_name(scene), cam.name, c->allow_empty, EXIT_USAGE);
+    ref = malloc(px * sizeof(float));
+    ao = malloc(px * sizeof(float));
+    mask = malloc(px);
+    if (code == EXIT_OK && (!ref || !ao || !mask)) code = cli_fail(EXIT_RUNTIME, "out of memory");
+    const float radius = scene ? ob_query_scene_ao_radius(scene) : 0.0f;
+    cli_reference_info info = {0};
+    if (code == EXIT_OK) {
+        char key[900] = "";
+        cli_reference_key(c, name, cam.name, key, sizeof key);
+        code = cli_reference_ao(scene, &vf, key, radius, HOST_RMSE_SPP, false, c->verbose, ref, &info);
+    }
+    bool rgb = false;
+    for (int k = 0; k < count; ++k) rgb = rgb || ob_method_at(configs[k].method)->directional;
+    if (code == EXIT_OK) {
+        for (size_t i = 0; i < px; ++i) mask[i] = vf.depth[i] > 0.0f;
+        memcpy(in->lin, vf.depth, px * sizeof(float));
+        memcpy(in->nrm, vf.normals, 3 * px * sizeof(float));
+        /* The direct light and albedo of the same (none) frame, for the indirect-light methods. */
+        if (rgb && (ob_read_image(fr, OB_IMAGE_RADIANCE_F32, in->rad, 3 * px * sizeof(float)) != OB_OK ||
+                    ob_read_image(fr, OB_IMAGE_ALBEDO_F32, in->alb, 3 * px * sizeof(float)) != OB_OK))
+            code = cli_fail_from_library();
+        cam = vf.cam;
+        host_matrices(scene, &cam, w, h, in);
+        host_upload(in, rgb);
+    }
+    for (int k = 0; k < count && code == EXIT_OK; ++k) {
+        ob_settings s, hs;
+        const int n = o->samples_given && has_samples[k] ? o->samples[0] : 0;
+        if ((code = configure(&configs[k], n, has_radius[k] ? radius : 0.0f, &s)) != EXIT_OK) break;
+        if ((code = host_settings_of(&s, scene, radius, &hs)) != EXIT_OK) break;
+        const bool directional = ob_method_at(s.method)->directional;
+        host_acc_row *a = new_acc_row(hst);
+        if (!a) {
+            code = cli_fail(EXIT_RUNTIME, "out of memory");
+            break;
+        }
+        snprintf(a->scene, sizeof a->scene, "%s", name);
+        snprintf(a->camera, sizeof a->camera, "%s", cam.name);
+        a->cfg = &configs[k];
+        a->samples = n;
+        a->radius = radius;
+        a->ref_cached = info.cached;
+        a->ref_stderr = info.stderr_mean;
+        for (int p = 0; p < HOST_PATHS && code == EXIT_OK; ++p) {
+            ob_renderer *r = p == HOST_FRAME ? fr : hr;
+            ob_renderer_reset_history(r);
+            for (int f = 0; f < HOST_RMSE_FRAMES && code == EXIT_OK; ++f) {
+                if (p == HOST_FRAME) {
+                    if (ob_render_frame(fr, &cam, &s) != OB_OK) code = cli_fail_from_library();
+                    continue;
+                }
+                ob_host_frame hf;
+                ob_host_outputs ho;
+                host_call_args(in, p, directional, &hf, &ho);
+                if (ob_host_ao(hr, &hf, &hs, &ho) != OB_OK) code = cli_fail_from_library();
+                else code = host_gl_check(p);
+            }
+            if (code != EXIT_OK) break;
+            if (p == HOST_FRAME) {
+                if (ob_read_image(fr, OB_IMAGE_AO_F32, ao, px * sizeof(float)) != OB_OK) code = cli_fail_from_library();
+            } else {
+                glGetTextureImage(in->out[p], 0, GL_RED, GL_FLOAT, (int)(px * sizeof(float)), ao);
+            }
+            if (code == EXIT_OK && ob_compare_images(ao, ref, mask, w, h, 1, &a->m[p]) != OB_OK) code = cli_fail_from_library();
+        }
+    }
+    cli_view_frame_free(&vf);
+    free(ref);
+    free(ao);
+    free(mask);
+    ob_destroy_scene(scene);
+    return code;
+}
+
+/* Every --host-rmse view, before anything is timed (a bad scene or camera fails first). */
+static int host_rmse(const bench_opts *o, ob_context *ctx, const cli_config *configs, int count, const bool *has_samples,
+                     const bool *has_radius, host_state *hst)
+{
+    ob_renderer *fr = ob_make_renderer(ctx, &(ob_renderer_desc){.width = HOST_RMSE_W, .height = HOST_RMSE_H});
+    ob_renderer *hr = ob_make_renderer(ctx, &(ob_renderer_desc){.width = HOST_RMSE_W, .height = HOST_RMSE_H});
+    host_inputs in = {0};
+    int code = fr && hr ? host_inputs_make(&in, HOST_RMSE_W, HOST_RMSE_H) : cli_fail_from_library();
+    char list[1024];
+    snprintf(list, sizeof list, "%s", o->host_views);
+    char *save = NULL;
+    for (char *t = strtok_r(list, ",", &save); t && code == EXIT_OK; t = strtok_r(NULL, ",", &save))
+        code = host_rmse_view(o, t, fr, hr, &in, configs, count, has_samples, has_radius, hst);
+    host_inputs_free(&in);
+    ob_destroy_renderer(fr);
+    ob_destroy_renderer(hr);
+    return code;
+}
+
+static host_row *new_host_row(host_state *hst)
+{
+    if (hst->count == hst->cap) {
+        int cap = hst->cap ? 2 * hst->cap : 16;
+        host_row *p = realloc(hst->rows, (size_t)cap * sizeof *p);
+        if (!p) return NULL;
+        hst->rows = p;
+        hst->cap = cap;
+    }
+    host_row *r = &hst->rows[hst->count++];
+    memset(r, 0, sizeof *r);
+    return r;
+}
+
+/* The timing run: per camera, per configuration (the sweep's N and r), host_measure. */
+static int host_bench(const bench_opts *o, ob_context *ctx, const ob_scene *scene, const int *cams, int cam_count,
+                      const cli_config *configs, int count, const bool *has_samples, const bool *has_radius,
+                      bench_state *st, host_state *hst)
+{
+    const cli_common *c = &o->common;
+    const float suggested = ob_query_scene_ao_radius(scene);
+    ob_renderer *rs[HOST_PATHS] = {NULL, NULL, NULL, NULL};
+    host_inputs in = {0};
+    double *scratch = calloc((size_t)HOST_PATHS * HOST_COLS * (size_t)o->frames, sizeof(double));
+    int code = scratch ? EXIT_OK : cli_fail(EXIT_RUNTIME, "out of memory");
+    for (int p = 0; p < HOST_PATHS && code == EXIT_OK; ++p) {
+        rs[p] = ob_make_renderer(ctx, &(ob_renderer_desc){.width = c->width, .height = c->height});
+        if (!rs[p]) code = cli_fail_from_library();
+    }
+    if (code == EXIT_OK && ob_renderer_set_scene(rs[HOST_FRAME], scene) != OB_OK) code = cli_fail_from_library();
+    if (code == EXIT_OK) code = cli_common_prepare(c, rs[HOST_FRAME]);
+    if (code == EXIT_OK) code = host_inputs_make(&in, c->width, c->height);
+    int per_cam = 0;
+    for (int k = 0; k < count; ++k) per_cam += (has_samples[k] ? o->sample_count : 1) * (has_radius[k] ? o->radius_count : 1);
+    st->total = per_cam * cam_count;
+    if (code == EXIT_OK) ob_progress_begin(&st->bar, "bench --host", st->total);
+    for (int ci = 0; ci < cam_count && code == EXIT_OK; ++ci) {
+        const ob_camera cam = ob_query_camera(scene, cams[ci]);
+        for (int k = 0; k < count && code == EXIT_OK; ++k) {
+            const int nn = has_samples[k] ? o->sample_count : 1, rn = has_radius[k] ? o->radius_count : 1;
+            for (int j = 0; j < nn && code == EXIT_OK; ++j)
+                for (int q = 0; q < rn && code == EXIT_OK; ++q) {
+                    const int n = has_samples[k] ? o->samples[j] : 0;
+                    const float r = has_radius[k] ? o->radii[q] : 0.0f, rw = r * suggested / 4.0f;
+                    ob_settings s, hs;
+                    if ((code = configure(&configs[k], n, rw, &s)) != EXIT_OK) break;
+                    if ((code = host_settings_of(&s, scene, suggested, &hs)) != EXIT_OK) break;
+                    host_row *row = new_host_row(hst);
+                    if (!row) {
+                        code = cli_fail(EXIT_RUNTIME, "out of memory");
+                        break;
+                    }
+                    *row = (host_row){.camera = cams[ci], .cfg = &configs[k], .samples = n, .r = r, .radius_world = rw,
+                                      .width = c->width, .height = c->height};
+                    code = host_measure(rs, &cam, scene, &s, &hs, o, &in, scratch, row);
+                    /* Once per camera: timing an empty frame times nothing. */
+                    if (code == EXIT_OK && k == 0 && j == 0 && q == 0)
+                        code = cli_check_visible(rs[HOST_FRAME], c->width, c->height, ob_query_scene_name(scene), cam.name,
+                                                 c->allow_empty, EXIT_INPUT);
+                    char what[512] = "";
+                    snprintf(what, sizeof what, "%s %s N=%d r=%g", cam.name, configs[k].label, n, (double)r);
+                    if (code == EXIT_OK) progress(st, what);
+                }
+        }
+    }
+    host_inputs_free(&in);
+    for (int p = 0; p < HOST_PATHS; ++p) ob_destroy_renderer(rs[p]);
+    free(scratch);
+    return code;
+}
+
+/* "12.345 (12.1-13.0)", or "-" for a pass the path did not run. */
+static void host_cell(char *out, size_t n, const double *v, bool ran)
+{
+    if (!ran) snprintf(out, n, "-");
+    else snprintf(out, n, "%.3f (%.3f-%.3f)", v[0], v[1], v[2]);
+}
+
+static void print_host_tables(const bench_opts *o, const ob_scene *scene, const host_state *hst, const int *cams,
+                              int cam_count)
+{
+    static const char *const letter[HOST_PATHS] = {"(a)", "(b)", "(c)", "(d)"};
+    for (int ci = 0; ci < cam_count; ++ci) {
+        printf("\n== %s, camera %s, %dx%d%s: the host path (ob_host_ao) beside the frame's AO chain, ms median (min-max) "
+               "of %d frames, the four alternated frame by frame ==\n",
+               ob_query_scene_name(scene), ob_query_camera(scene, cams[ci]).name, o->common.width, o->common.height,
+               o->common.temporal ? ", temporal on" : "", o->frames);
+        printf("(a) frame            ob_render_frame, the sum of its chain passes (downsample, edges, depth_mips, ao, "
+               "temporal, filter, upsample)\n"
+               "(b) host_linear      ob_host_ao, R32F linear depth + RGBA16F view normals -> R32F\n"
+               "(c) host_packed      ob_host_ao, D32F reversed-Z depth + octahedral RG16F world normals -> R8\n"
+               "(d) host_no_normals  ob_host_ao, D32F reversed-Z depth, no normals (rebuilt by the input pass) -> R8\n"
+               "x (a): the median over the frames of each frame's total / (a) in the same frame\n");
+        for (int i = 0; i < hst->count; ++i) {
+            const host_row *r = &hst->rows[i];
+            if (r->camera != cams[ci]) continue;
+            char label[CLI_MAX_LABEL + 32];
+            snprintf(label, sizeof label, "%s", r->cfg->label);
+            if (r->samples > 0) snprintf(label + strlen(label), sizeof label - strlen(label), " \xc2\xb7 N %d", r->samples);
+            if (r->r > 0.0f) snprintf(label + strlen(label), sizeof label - strlen(label), " \xc2\xb7 r %g", (double)r->r);
+            printf("\n%s\n  %-20s %-26s %-26s %-26s %-26s %s\n", label, "path", "chain ms", "input ms", "output ms",
+                   "total ms", "x (a)");
+            for (int p = 0; p < HOST_PATHS; ++p) {
+                const host_path_row *pr = &r->path[p];
+                char ch[64], inp[64], out[64], tot[64];
+                host_cell(ch, sizeof ch, pr->chain, true);
+                host_cell(inp, sizeof inp, pr->input, pr->has_input);
+                host_cell(out, sizeof out, pr->output, pr->has_output);
+                host_cell(tot, sizeof tot, pr->total, true);
+                printf("  %s %-16s %-26s %-26s %-26s %-26s %.3fx\n", letter[p], host_path_names[p], ch, inp, out, tot,
+                       pr->ratio[0]);
+            }
+            const double *q = r->path[HOST_LINEAR].ratio;
+            printf("  (b)/(a) = %.3fx (frames' ratios: median, min %.3f, max %.3f): %s %.2fx\n", q[0], q[1], q[2],
+                   q[0] <= HOST_TARGET ? "within" : "over", HOST_TARGET);
+        }
+    }
+    if (hst->acc_count > 0) {
+        printf("\n== host path accuracy: RMSE (bias) against the ray-traced AO_R (%d rays/px), %dx%d, each view's "
+               "suggested radius, after %d calls ==\n",
+               HOST_RMSE_SPP, HOST_RMSE_W, HOST_RMSE_H, HOST_RMSE_FRAMES);
+        printf("  %-28s %-24s %-20s %-20s %-20s %-20s %s\n", "view", "configuration", "(a) frame", "(b) host_linear",
+               "(c) host_packed", "(d) host_no_normals", "(d) - (b)");
+        for (int i = 0; i < hst->acc_count; ++i) {
+            const host_acc_row *a = &hst->acc[i];
+            char view[330], cells[HOST_PATHS][48];
+            snprintf(view, sizeof view, "%s:%s", a->scene, a->camera);
+            for (int p = 0; p < HOST_PATHS; ++p)
+                snprintf(cells[p], sizeof cells[p], "%.4f (%+.4f)", a->m[p].rmse, a->m[p].bias);
+            printf("  %-28s %-24s %-20s %-20s %-20s %-20s %+.4f\n", view, a->cfg->label, cells[0], cells[1], cells[2],
+                   cells[3], a->m[HOST_NO_NORMALS].rmse - a->m[HOST_LINEAR].rmse);
+        }
+    }
+}
+
+static void stat_json(cJSON *parent, const char *name, const double *v, bool ran)
+{
+    if (!ran) {
+        cJSON_AddNullToObject(parent, name);
+        return;
+    }
+    cJSON *j = cJSON_AddObjectToObject(parent, name);
+    cJSON_AddNumberToObject(j, "median", v[0]);
+    cJSON_AddNumberToObject(j, "min", v[1]);
+    cJSON_AddNumberToObject(j, "max", v[2]);
+}
+
+static cJSON *host_row_json(const host_row *r, const ob_scene *scene)
+{
+    cJSON *j = cJSON_CreateObject();
+    char label[CLI_MAX_LABEL + 32] = "";
+    row_label(&(bench_row){.cfg = r->cfg, .samples = r->samples, .r = r->r}, label, sizeof label);
+    cJSON_AddStringToObject(j, "method", method_name(r->cfg->method));
+    cJSON_AddStringToObject(j, "label", label);
+    cJSON_AddStringToObject(j, "filter", ob_filter_at(r->cfg->filter)->name);
+    cJSON_AddNumberToObject(j, "ao_scale", 1.0 / r->cfg->ao_divisor);
+    cJSON_AddBoolToObject(j, "temporal", r->cfg->settings.temporal);
+    cJSON_AddStringToObject(j, "camera", ob_query_camera(scene, r->camera).name);
+    if (r->samples > 0) cJSON_AddNumberToObject(j, "samples", r->samples);
+    else cJSON_AddNullToObject(j, "samples");
+    if (r->r > 0.0f) {
+        cJSON_AddNumberToObject(j, "radius", r->r);
+        cJSON_AddNumberToObject(j, "radius_world", r->radius_world);
+    } else {
+        cJSON_AddNullToObject(j, "radius");
+        cJSON_AddNullToObject(j, "radius_world");
+    }
+    cJSON_AddNumberToObject(j, "width", r->width);
+    cJSON_AddNumberToObject(j, "height", r->height);
+    cJSON *paths = cJSON_AddObjectToObject(j, "paths");
+    for (int p = 0; p < HOST_PATHS; ++p) {
+        const host_path_row *pr = &r->path[p];
+        cJSON *x = cJSON_AddObjectToObject(paths, host_path_names[p]);
+        cJSON_AddStringToObject(x, "depth", host_path_depth[p]);
+        cJSON_AddStringToObject(x, "normals", host_path_normals[p]);
+        cJSON_AddStringToObject(x, "output", host_path_output[p]);
+        cJSON *passes = cJSON_AddArrayToObject(x, "passes");
+        for (int k = 0; k < pr->pass_count; ++k) {
+            cJSON *q = cJSON_CreateObject();
+            cJSON_AddStringToObject(q, "name", pr->pass[k]);
+            cJSON_AddNumberToObject(q, "median", pr->med[k]);
+            cJSON_AddNumberToObject(q, "min", pr->min[k]);
+            cJSON_AddNumberToObject(q, "max", pr->max[k]);
+            cJSON_AddItemToArray(passes, q);
+        }
+        stat_json(x, "chain_ms", pr->chain, true);
+        stat_json(x, "input_ms", pr->input, pr->has_input);
+        stat_json(x, "output_ms", pr->output, pr->has_output);
+        stat_json(x, "total_ms", pr->total, true);
+        stat_json(x, "ratio_to_frame", pr->ratio, true);
+    }
+    const double *q = r->path[HOST_LINEAR].ratio;
+    cJSON_AddNumberToObject(j, "host_ratio", q[0]);
+    cJSON_AddBoolToObject(j, "host_within_target", q[0] <= HOST_TARGET);
+    return j;
+}
+
+static cJSON *host_acc_json(const host_state *hst)
+{
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddNumberToObject(j, "width", HOST_RMSE_W);
+    cJSON_AddNumberToObject(j, "height", HOST_RMSE_H);
+    cJSON_AddNumberToObject(j, "reference_spp", HOST_RMSE_SPP);
+    cJSON_AddNumberToObject(j, "calls", HOST_RMSE_FRAMES);
+    cJSON *arr = cJSON_AddArrayToObject(j, "views");
+    for (int i = 0; i < hst->acc_count; ++i) {
+        const host_acc_row *a = &hst->acc[i];
+        cJSON *x = cJSON_CreateObject();
+        cJSON_AddStringToObject(x, "scene", a->scene);
+        cJSON_AddStringToObject(x, "camera", a->camera);
+        cJSON_AddStringToObject(x, "method", method_name(a->cfg->method));
+        cJSON_AddStringToObject(x, "label", a->cfg->label);
+        if (a->samples > 0) cJSON_AddNumberToObject(x, "samples", a->samples);
+        else cJSON_AddNullToObject(x, "samples");
+        cJSON_AddNumberToObject(x, "radius_world", a->radius);
+        cJSON_AddBoolToObject(x, "reference_cached", a->ref_cached);
+        cJSON_AddNumberToObject(x, "reference_stderr", a->ref_stderr);
+        cJSON_AddNumberToObject(x, "pixels", (double)a->m[HOST_FRAME].count);
+        for (int p = 0; p < HOST_PATHS; ++p) {
+            cJSON *m = cJSON_AddObjectToObject(x, host_path_names[p]);
+            cJSON_AddNumberToObject(m, "rmse", a->m[p].rmse);
+            cJSON_AddNumberToObject(m, "bias", a->m[p].bias);
+            cJSON_AddNumberToObject(m, "mae", a->m[p].mae);
+            cJSON_AddNumberToObject(m, "ssim", a->m[p].ssim);
+        }
+        cJSON_AddNumberToObject(x, "no_normals_minus_linear_rmse", a->m[HOST_NO_NORMALS].rmse - a->m[HOST_LINEAR].rmse);
+        cJSON_AddItemToArray(arr, x);
+    }
+    return j;
+}
+
+static int write_host_csv(int index, const host_state *hst, const ob_scene *scene)
+{
+    size_t cap = 4096 + (size_t)hst->count * HOST_PATHS * (700 + CLI_MAX_LABEL), len = 0;
+    char *buf = malloc(cap);
+    if (!buf) return cli_fail(EXIT_RUNTIME, "out of memory");
+    len += (size_t)snprintf(buf + len, cap - len,
+                            "scene,camera,method,samples,r,radius_world,filter,ao_scale,temporal,width,height,path,depth,"
+                            "normals,output,chain_ms,chain_min_ms,chain_max_ms,input_ms,input_min_ms,input_max_ms,output_ms,"
+                            "output_min_ms,output_max_ms,total_ms,total_min_ms,total_max_ms,ratio_frame,ratio_frame_min,"
+                            "ratio_frame_max,label\n");
+    for (int i = 0; i < hst->count; ++i) {
+        const host_row *r = &hst->rows[i];
+        char label[CLI_MAX_LABEL + 32] = "", samples[16] = "", rr[32] = "", rw[32] = "";
+        row_label(&(bench_row){.cfg = r->cfg, .samples = r->samples, .r = r->r}, label, sizeof label);
+        if (r->samples > 0) snprintf(samples, sizeof samples, "%d", r->samples);
+        if (r->r > 0.0f) {
+            snprintf(rr, sizeof rr, "%g", (double)r->r);
+            snprintf(rw, sizeof rw, "%g", (double)r->radius_world);
+        }
+        for (int p = 0; p < HOST_PATHS; ++p) {
+            const host_path_row *pr = &r->path[p];
+            char in[96] = ",,", out[96] = ",,";
+            if (pr->has_input) snprintf(in, sizeof in, "%.4f,%.4f,%.4f", pr->input[0], pr->input[1], pr->input[2]);
+            if (pr->has_output) snprintf(out, sizeof out, "%.4f,%.4f,%.4f", pr->output[0], pr->output[1], pr->output[2]);
+            len += (size_t)snprintf(buf + len, cap - len,
+                                    "%s,%s,%s,%s,%s,%s,%s,%g,%s,%d,%d,%s,%s,%s,%s,%.4f,%.4f,%.4f,%s,%s,%.4f,%.4f,%.4f,"
+                                    "%.4f,%.4f,%.4f,%s\n",
+                                    ob_query_scene_name(scene), ob_query_camera(scene, r->camera).name,
+                                    method_name(r->cfg->method), samples, rr, rw, ob_filter_at(r->cfg->filter)->name,
+                                    1.0 / r->cfg->ao_divisor, r->cfg->settings.temporal ? "on" : "off", r->width, r->height,
+                                    host_path_names[p], host_path_depth[p], host_path_normals[p], host_path_output[p],
+                                    pr->chain[0], pr->chain[1], pr->chain[2], in, out, pr->total[0], pr->total[1],
+                                    pr->total[2], pr->ratio[0], pr->ratio[1], pr->ratio[2], label);
+        }
+    }
+    int code = cli_outputs_write_text(&bench_outs, index, buf);
+    free(buf);
+    return code;
+}
+
 /* ---- the command ----------------------------------------------------------------------------- */
 
 static int bench_run(int argc, char **argv);
@@ -881,6 +1726,7 @@ static int bench_run(int argc, char **argv)
     ob_renderer *eyes[2] = {NULL, NULL};
     ob_scene *tess[3] = {NULL, NULL, NULL};
     double *scratch = NULL;
+    host_state hst = {0};
     if (c->method_count > 0 && (code = cli_common_configs(c, &configs, &count)) != EXIT_OK) return code;
     /* The none frames, one per filter and AO scale: the same settings but the method. */
     bases = calloc((size_t)base_count, sizeof *bases);
@@ -936,7 +1782,13 @@ static int bench_run(int argc, char **argv)
     int per_cam = base_count;
     for (int k = 0; k < count; ++k) per_cam += (has_samples[k] ? o.sample_count : 1) * (has_radius[k] ? o.radius_count : 1);
 
-    if (!o.scaling) {
+    if (o.host) {
+        /* The accuracy first: a bad --host-rmse view fails before minutes of timing. */
+        if (o.host_views) code = host_rmse(&o, ctx, configs, count, has_samples, has_radius, &hst);
+        if (code == EXIT_OK)
+            code = host_bench(&o, ctx, scene, cams, cam_count, configs, count, has_samples, has_radius, &st, &hst);
+        if (code == EXIT_OK) print_host_tables(&o, scene, &hst, cams, cam_count);
+    } else if (!o.scaling) {
         st.total = per_cam * cam_count;
         ob_progress_begin(&st.bar, "bench", st.total);
         for (int e = 0; e < eye_count && code == EXIT_OK; ++e) {
@@ -1071,14 +1923,16 @@ static int bench_run(int argc, char **argv)
         }
     }
     ob_progress_end(&st.bar);
-    if (code == EXIT_OK && !o.full && !o.scaling) full_table_hint(&o, scene, has_samples, has_radius, count, base_count,
+    if (code == EXIT_OK && !o.full && !o.scaling && !o.host) full_table_hint(&o, scene, has_samples, has_radius, count, base_count,
                                                                   st.count, now_s() - t0);
     const double seconds = now_s() - t0;
-    if (code == EXIT_OK) printf("\n%d configurations in %.0f s on %s\n", st.count, seconds, ob_query_renderer(ctx));
+    if (code == EXIT_OK)
+        printf("\n%d configurations in %.0f s on %s\n", o.host ? hst.count : st.count, seconds, ob_query_renderer(ctx));
 
     /* Into temporary files, the CSV first: cmd_bench renames the pair only when both were
      * written, so a JSON that fails after it leaves neither. */
-    if (code == EXIT_OK && o.csv) code = write_csv(bench_csv, &st, scene, eye_count);
+    if (code == EXIT_OK && o.csv)
+        code = o.host ? write_host_csv(bench_csv, &hst, scene) : write_csv(bench_csv, &st, scene, eye_count);
     if (code == EXIT_OK && o.json) {
         char cpu[256], commit[64], date[64];
         cpu_model(cpu, sizeof cpu);
@@ -1107,7 +1961,7 @@ static int bench_run(int argc, char **argv)
         cJSON_AddNumberToObject(root, "triangles", ob_query_scene_stats(scene).triangles);
         cJSON_AddNumberToObject(root, "scene_radius", suggested);
         cJSON_AddStringToObject(root, "radius_rule", "radius_world = r x scene_radius / 4 (r = 4: the suggested radius)");
-        cJSON_AddStringToObject(root, "mode", o.scaling ? "scaling" : o.stereo ? "stereo" : "sweep");
+        cJSON_AddStringToObject(root, "mode", o.host ? "host" : o.scaling ? "scaling" : o.stereo ? "stereo" : "sweep");
         cJSON_AddNumberToObject(root, "width", c->width);
         cJSON_AddNumberToObject(root, "height", c->height);
         cJSON_AddNumberToObject(root, "eyes", eye_count);
@@ -1127,6 +1981,21 @@ static int bench_run(int argc, char **argv)
         cJSON_AddStringToObject(root, "filter", filters);
         cJSON_AddNumberToObject(root, "seconds", seconds);
         cJSON *arr = cJSON_AddArrayToObject(root, "configurations");
+        if (o.host) {
+            cJSON_AddNumberToObject(root, "host_target", HOST_TARGET);
+            cJSON *hp = cJSON_AddArrayToObject(root, "host_paths");
+            for (int p = 0; p < HOST_PATHS; ++p) {
+                cJSON *x = cJSON_CreateObject();
+                cJSON_AddStringToObject(x, "name", host_path_names[p]);
+                cJSON_AddStringToObject(x, "depth", host_path_depth[p]);
+                cJSON_AddStringToObject(x, "normals", host_path_normals[p]);
+                cJSON_AddStringToObject(x, "output", host_path_output[p]);
+                cJSON_AddItemToArray(hp, x);
+            }
+            for (int i = 0; i < hst.count; ++i) cJSON_AddItemToArray(arr, host_row_json(&hst.rows[i], scene));
+            if (hst.acc_count > 0) cJSON_AddItemToObject(root, "host_rmse", host_acc_json(&hst));
+            else cJSON_AddNullToObject(root, "host_rmse");
+        }
         for (int i = 0; i < st.count; ++i) {
             cJSON *j = row_json(&st.rows[i], baseline_of(&st, &st.rows[i]), scene);
             if (o.stereo) cJSON_AddBoolToObject(j, "within_budget", st.rows[i].frame_med <= VR_BUDGET_MS);
@@ -1157,6 +2026,8 @@ cleanup:
     ob_progress_end(&st.bar); /* a failed run's bar line ends before the shell prompt */
     free(scratch);
     free(st.rows);
+    free(hst.rows);
+    free(hst.acc);
     for (int e = 0; e < 2; ++e) ob_destroy_renderer(eyes[e]);
     for (int l = 0; l < 3; ++l) ob_destroy_scene(tess[l]);
     ob_destroy_context(ctx);

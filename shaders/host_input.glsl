@@ -26,11 +26,14 @@ layout(binding = OB_IMAGE_UNIT_HOST_SECOND_DEPTH, r32f) uniform writeonly image2
 
 float linearise(float w)
 {
-    if (hi.depth_kind == OB_HOST_DEPTH_LINEAR) return w > 0.0 ? w : 0.0;
+#if OB_HOST_DEPTH_KIND == OB_HOST_DEPTH_LINEAR
+    return w > 0.0 ? w : 0.0;
+#else
     if (hi.reversed != 0 ? w <= 0.0 : w >= 1.0) return 0.0; /* the cleared far plane: sky */
     float ndc = w * hi.ndc_scale + hi.ndc_bias;
     float d = hi.orthographic != 0 ? (hi.p32 - ndc) / hi.p22 : hi.p32 / (ndc + hi.p22);
     return d > 0.0 && !isinf(d) && !isnan(d) ? d : 0.0;
+#endif
 }
 
 float depth_at(ivec2 q)
@@ -76,21 +79,27 @@ void main()
     float d = depth_at(pix);
     vec3 n = vec3(0.0);
     if (d > 0.0) {
-        if (hi.normal_encoding == OB_HOST_NORMAL_NONE) {
-            n = rebuilt_normal(pix, d);
-        } else {
-            vec4 t = texelFetch(host_normal, pix, 0);
-            if (hi.normal_encoding == OB_HOST_NORMAL_RAW) n = t.xyz;
-            else if (hi.normal_encoding == OB_HOST_NORMAL_UNORM) n = t.xyz * 2.0 - 1.0;
-            else if (hi.normal_encoding == OB_HOST_NORMAL_OCT) n = octahedral_decode(t.xy);
-            else n = octahedral_decode(t.xy * 2.0 - 1.0);
-            n = mat3(hi.normal_to_view) * n;
-            float len = length(n);
-            n = len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
-        }
+#if OB_HOST_NORMAL_ENCODING == OB_HOST_NORMAL_NONE
+        n = rebuilt_normal(pix, d);
+#else
+        vec4 t = texelFetch(host_normal, pix, 0);
+#if OB_HOST_NORMAL_ENCODING == OB_HOST_NORMAL_RAW
+        n = t.xyz;
+#elif OB_HOST_NORMAL_ENCODING == OB_HOST_NORMAL_UNORM
+        n = t.xyz * 2.0 - 1.0;
+#elif OB_HOST_NORMAL_ENCODING == OB_HOST_NORMAL_OCT
+        n = octahedral_decode(t.xy);
+#else
+        n = octahedral_decode(t.xy * 2.0 - 1.0);
+#endif
+        n = mat3(hi.normal_to_view) * n;
+        float len = length(n);
+        n = len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
+#endif
     }
     imageStore(linear_depth, pix, vec4(d));
     imageStore(view_normal, pix, vec4(n, 1.0));
-    if (hi.has_second != 0)
-        imageStore(second_linear_depth, pix, vec4(linearise(texelFetch(host_second_depth, pix, 0).r)));
+#if OB_HOST_SECOND
+    imageStore(second_linear_depth, pix, vec4(linearise(texelFetch(host_second_depth, pix, 0).r)));
+#endif
 }

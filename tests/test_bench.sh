@@ -113,17 +113,18 @@ fi
 if grep -q "AO-pass ms / frame ms" "$dir/stdout" && grep -q "N = 12" "$dir/stdout" && grep -q "r = 4" "$dir/stdout"; then ok; else bad "bench table: $(cat "$dir/stdout")"; fi
 
 # --ao-scale and --adaptive take effect: the AO runs at half size (downsample and upsample passes)
-# in every configuration, none included, and the edge pre-pass only for the method that takes
-# adaptive counts (ssao): none's frame, the baseline, has none, so the pass counts as ssao's cost.
+# in every configuration with an AO pass, and the edge pre-pass only for the method that takes
+# adaptive counts (ssao). none's frame, the baseline, runs no AO-grid pass at all (AO 1 straight
+# into the output), so downsample, upsample and edges count as ssao's cost.
 if "$OBSCURA" "${B[@]}" --methods ssao --samples 12 --radius 4 --ao-scale 0.5 --adaptive on >"$dir/stdout" 2>"$dir/stderr" &&
-    check_json "$dir/b.json" sweep && python3 - "$dir/b.json" <<'PY'
+    check_json "$dir/b.json" sweep && python3 - "$dir/b.json" <<'PY' &&
 import json, sys
 for c in json.load(open(sys.argv[1]))["configurations"]:
     passes = [p["name"] for p in c["passes"]]
     assert c["ao_scale"] == 0.5, c["ao_scale"]
-    for p in ("downsample", "upsample"):
-        assert p in passes, (c["label"], passes)
-    assert ("edges" in passes) == c["label"].startswith("ssao"), (c["label"], passes)
+    ssao = c["label"].startswith("ssao")
+    for p in ("downsample", "upsample", "edges"):
+        assert (p in passes) == ssao, (c["label"], passes)
 PY
     ! grep -q "note" "$dir/stderr"
 then ok; else bad "bench --ao-scale 0.5 --adaptive on: $(cat "$dir/stderr")"; fi
@@ -161,6 +162,96 @@ if "$OBSCURA" "${B[@]}" --methods ssao --samples 12 --radius 4 --scaling --sizes
     ok
 else
     bad "bench --scaling: $(cat "$dir/stderr") $(cat "$dir/stdout")"
+fi
+
+# --host (issue 45): the host path beside the frame's AO chain, four paths per configuration in one
+# run. Rows, columns and the (b)/(a) ratio are there and every time is positive and finite; no
+# speed is asserted (bench/results/ holds the measurements).
+expect 2 "^obscura: --host and --stereo exclude each other$" -- "${B[@]}" --host --stereo
+expect 2 "^obscura: --host and --floor exclude each other$" -- "${B[@]}" --host --floor
+expect 2 "^obscura: --host and --guard exclude" -- "${B[@]}" --host --guard 8
+expect 2 "^obscura: --host-rmse needs --host$" -- "${B[@]}" --host-rmse corner:diagonal
+expect 2 "^obscura: --host-rmse: empty scene or camera in 'corner:'$" -- "${B[@]}" --host --host-rmse corner:
+expect 2 "^obscura: --host: no method to time" -- "${B[@]}" --host --methods none
+expect 2 "unknown camera 'nosuch'" -- "${B[@]}" --host --host-rmse corner:nosuch
+
+check_host() { # JSON CSV STDOUT [rmse]
+    python3 - "$@" <<'PY'
+import csv, json, math, sys
+d = json.load(open(sys.argv[1]))
+out = open(sys.argv[3]).read()
+want_rmse = len(sys.argv) > 4
+def pos(x, what):
+    assert isinstance(x, (int, float)) and math.isfinite(x) and x > 0, f"{what} = {x!r}"
+assert d["mode"] == "host", d["mode"]
+assert [p["name"] for p in d["host_paths"]] == ["frame", "host_linear", "host_packed", "host_no_normals"]
+chain = {"downsample", "edges", "depth_mips", "ao", "temporal", "filter", "upsample"}
+cfgs = d["configurations"]
+assert [c["label"] for c in cfgs] == ["vbao \u00b7 ao 1 \u00b7 N 12 \u00b7 r 4", "vbao \u00b7 ao 0.5 \u00b7 N 12 \u00b7 r 4"], [c["label"] for c in cfgs]
+for c in cfgs:
+    paths = c["paths"]
+    assert list(paths) == ["frame", "host_linear", "host_packed", "host_no_normals"], list(paths)
+    for name, p in paths.items():
+        names = [q["name"] for q in p["passes"]]
+        assert "ao" in names and "filter" in names, (name, names)
+        assert ("upsample" in names) == (c["ao_scale"] == 0.5), (name, names)
+        for q in p["passes"]:
+            for k in ("median", "min", "max"):
+                pos(q[k], f'{c["label"]} {name} {q["name"]} {k}')
+        for k in ("chain_ms", "total_ms", "ratio_to_frame"):
+            pos(p[k]["median"], f"{name} {k}")
+            assert p[k]["min"] <= p[k]["median"] <= p[k]["max"], (name, k, p[k])
+        # (a) counts its chain passes only; (b) runs no input or output pass; (c) and (d) both.
+        if name == "frame":
+            assert set(names) <= chain, names
+        if name in ("frame", "host_linear"):
+            assert p["input_ms"] is None and p["output_ms"] is None, (name, p["input_ms"], p["output_ms"])
+        else:
+            assert names[0] == "input" and names[-1] == "output", (name, names)
+            pos(p["input_ms"]["median"], f"{name} input")
+            pos(p["output_ms"]["median"], f"{name} output")
+    assert abs(paths["frame"]["ratio_to_frame"]["median"] - 1.0) < 1e-9
+    pos(c["host_ratio"], "host_ratio")
+    assert c["host_ratio"] == paths["host_linear"]["ratio_to_frame"]["median"]
+    assert isinstance(c["host_within_target"], bool)
+rows = list(csv.DictReader(open(sys.argv[2], encoding="utf-8")))
+assert len(rows) == 4 * len(cfgs), len(rows)
+assert [r["path"] for r in rows[:4]] == ["frame", "host_linear", "host_packed", "host_no_normals"]
+for r in rows:
+    for k in ("chain_ms", "total_ms", "ratio_frame"):
+        pos(float(r[k]), k)
+    assert (r["input_ms"] == "") == (r["path"] in ("frame", "host_linear")), r
+assert out.count("(b)/(a) = ") == len(cfgs), out
+for p in ("(a) frame ", "(b) host_linear ", "(c) host_packed ", "(d) host_no_normals "):
+    assert out.count(p) >= len(cfgs), p
+if want_rmse:
+    acc = d["host_rmse"]
+    assert acc["width"] == 320 and acc["reference_spp"] == 512, acc
+    views = acc["views"]
+    assert [(v["scene"], v["camera"], v["label"]) for v in views] == [("corner", "diagonal", "vbao \u00b7 ao 1"), ("corner", "diagonal", "vbao \u00b7 ao 0.5")], views
+    for v in views:
+        for p in ("frame", "host_linear", "host_packed", "host_no_normals"):
+            pos(v[p]["rmse"], f'{v["label"]} {p} rmse')
+        # One chain, two front doors: the host call on the frame's own G-buffer grades as the frame.
+        assert abs(v["frame"]["rmse"] - v["host_linear"]["rmse"]) < 1e-3, v
+    assert "host path accuracy" in out and "corner:diagonal" in out, out
+else:
+    assert d["host_rmse"] is None
+PY
+}
+H=(bench --scene corner --cameras diagonal --size 64x48 --frames 2 --warmup 1 --methods vbao --samples 12 --radius 4
+    --ao-scales 1,0.5 --json "$dir/b.json" --csv "$dir/b.csv")
+if "$OBSCURA" "${H[@]}" --host >"$dir/stdout" 2>"$dir/stderr" && check_host "$dir/b.json" "$dir/b.csv" "$dir/stdout"; then
+    ok
+else
+    bad "bench --host: $(cat "$dir/stderr")"
+fi
+# --host-rmse: the reference traced into a cache of the test's own (320x240, 512 rays a pixel).
+if XDG_CACHE_HOME="$dir/cache" "$OBSCURA" "${H[@]}" --host --host-rmse corner:diagonal >"$dir/stdout" 2>"$dir/stderr" &&
+    check_host "$dir/b.json" "$dir/b.csv" "$dir/stdout" rmse; then
+    ok
+else
+    bad "bench --host --host-rmse: $(cat "$dir/stderr") $(tail -5 "$dir/stdout")"
 fi
 
 echo "test_bench: $passed passed, $failed failed"

@@ -353,23 +353,24 @@ static ob_error check_call(ob_renderer *r, const ob_host_frame *f, const ob_sett
     return OB_OK;
 }
 
-/* The input pass's constants: how to read the host's depth and normals. */
-static void fill_input(const host_plan *hp, const ob_host_frame *f, ob_host_input_constants *c)
+/* The input pass's variant and constants: how to read the host's depth and normals. */
+static void fill_input(const host_plan *hp, const ob_host_frame *f, ob_host_input_variant *v, ob_host_input_constants *c)
 {
+    *v = (ob_host_input_variant){.depth_kind = hp->hardware ? OB_HOST_DEPTH_WINDOW : OB_HOST_DEPTH_LINEAR,
+                                 .normal_encoding = f->normal ? normal_encoding(hp->normal.format) : OB_HOST_NORMAL_NONE,
+                                 .second = hp->second_pass};
     memset(c, 0, sizeof *c);
     mat4 to_view = GLM_MAT4_IDENTITY_INIT;
     if (f->normal_space == OB_NORMALS_WORLD) {
         /* Normals turn with the view's rotation; its inverse transpose for a view with scale. */
-        mat4 v, inv;
-        memcpy(v, hp->view, sizeof v);
-        glm_mat4_inv(v, inv);
+        mat4 view, inv;
+        memcpy(view, hp->view, sizeof view);
+        glm_mat4_inv(view, inv);
         glm_mat4_transpose_to(inv, to_view);
     }
     memcpy(c->normal_to_view, to_view, sizeof c->normal_to_view);
     c->size[0] = hp->in_width;
     c->size[1] = hp->in_height;
-    c->depth_kind = hp->hardware ? OB_HOST_DEPTH_WINDOW : OB_HOST_DEPTH_LINEAR;
-    c->normal_encoding = f->normal ? normal_encoding(hp->normal.format) : OB_HOST_NORMAL_NONE;
     c->ndc_scale = f->depth_zero_to_one ? 1.0f : 2.0f;
     c->ndc_bias = f->depth_zero_to_one ? 0.0f : -1.0f;
     c->p22 = f->projection[10];
@@ -377,7 +378,6 @@ static void fill_input(const host_plan *hp, const ob_host_frame *f, ob_host_inpu
     c->orthographic = 0;
     /* Window depth falls with distance when ndc = -P22 + P32 / d does: P32 > 0 (reversed Z). */
     c->reversed = f->projection[14] > 0.0f;
-    c->has_second = hp->second_pass;
 }
 
 /* One output through the output pass: the chain's `source` at the enlarged size, cropped. */
@@ -426,8 +426,9 @@ static ob_error run_call(ob_renderer *r, const ob_host_frame *f, const ob_settin
                       .motion_scale = {f->motion_scale[0], f->motion_scale[1]}};
     if (hp->input_pass || hp->second_pass) {
         ob_timer_begin(&r->timers, "input");
+        ob_host_input_variant v;
         ob_host_input_constants c;
-        fill_input(hp, f, &c);
+        fill_input(hp, f, &v, &c);
         GLuint second_out = hp->second_pass ? ob_host_second_target(&r->host, hp->in_width, hp->in_height) : 0;
         /* A depth-stencil texture the host reads as stencil is read as depth here, then put back
          * (the dispatch keeps the mode it was issued with). */
@@ -435,7 +436,7 @@ static ob_error run_call(ob_renderer *r, const ob_host_frame *f, const ob_settin
                                      hp->second_pass && hp->second.stencil_mode == GL_STENCIL_INDEX ? f->second_depth : 0};
         for (int i = 0; i < 2; ++i)
             if (stenciled[i]) glTextureParameteri(stenciled[i], GL_DEPTH_STENCIL_TEXTURE_MODE, GL_DEPTH_COMPONENT);
-        err = ob_host_input_run(&r->host, &c, f->depth, f->normal, hp->second_pass ? f->second_depth : 0,
+        err = ob_host_input_run(&r->host, &v, &c, f->depth, f->normal, hp->second_pass ? f->second_depth : 0,
                                 r->gbuffer.linear_depth, r->gbuffer.normal, second_out);
         for (int i = 0; i < 2; ++i)
             if (stenciled[i]) glTextureParameteri(stenciled[i], GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);

@@ -35,11 +35,21 @@ static ob_error make_sampler(ob_host_passes *h)
     return h->sampler ? OB_OK : ob_set_error(OB_ERR_OUT_OF_MEMORY, "the GL made no sampler object");
 }
 
-ob_error ob_host_input_prepare(ob_host_passes *h)
+static ob_compute_pass *input_pass(ob_host_passes *h, const ob_host_input_variant *v)
+{
+    return &h->input[v->depth_kind != 0][v->normal_encoding][v->second];
+}
+
+ob_error ob_host_input_prepare(ob_host_passes *h, const ob_host_input_variant *v)
 {
     if (make_sampler(h) != OB_OK) return ob_peek_error(NULL);
-    if (h->input.program) return OB_OK;
-    return ob_compute_pass_init(&h->input, "host_input.glsl", NULL, sizeof(ob_host_input_constants));
+    ob_compute_pass *p = input_pass(h, v);
+    if (p->program) return OB_OK;
+    char defines[160];
+    snprintf(defines, sizeof defines,
+             "#define OB_HOST_DEPTH_KIND %d\n#define OB_HOST_NORMAL_ENCODING %d\n#define OB_HOST_SECOND %d\n",
+             v->depth_kind, v->normal_encoding, v->second ? 1 : 0);
+    return ob_compute_pass_init(p, "host_input.glsl", defines, sizeof(ob_host_input_constants));
 }
 
 ob_error ob_host_output_prepare(ob_host_passes *h, GLenum format)
@@ -67,11 +77,12 @@ GLuint ob_host_second_target(ob_host_passes *h, int width, int height)
     return h->second;
 }
 
-ob_error ob_host_input_run(ob_host_passes *h, const ob_host_input_constants *c, GLuint depth, GLuint normal,
-                           GLuint second, GLuint out_depth, GLuint out_normal, GLuint out_second)
+ob_error ob_host_input_run(ob_host_passes *h, const ob_host_input_variant *v, const ob_host_input_constants *c,
+                           GLuint depth, GLuint normal, GLuint second, GLuint out_depth, GLuint out_normal,
+                           GLuint out_second)
 {
-    if (ob_host_input_prepare(h) != OB_OK) return ob_peek_error(NULL);
-    ob_compute_pass_use(&h->input, c, sizeof *c);
+    if (ob_host_input_prepare(h, v) != OB_OK) return ob_peek_error(NULL);
+    ob_compute_pass_use(input_pass(h, v), c, sizeof *c);
     /* Units without a host texture get the output depth (bound, never read): a unit bound to 0
      * would unbind the host's textures of every target there. */
     const GLuint units[3] = {OB_UNIT_HOST_DEPTH, OB_UNIT_HOST_NORMAL, OB_UNIT_HOST_SECOND_DEPTH};
@@ -103,7 +114,9 @@ ob_error ob_host_output_run(ob_host_passes *h, const ob_host_output_constants *c
 
 void ob_host_passes_destroy(ob_host_passes *h)
 {
-    ob_compute_pass_destroy(&h->input);
+    for (int k = 0; k < 2; ++k)
+        for (int e = 0; e < OB_HOST_NORMAL_ENCODINGS; ++e)
+            for (int s = 0; s < 2; ++s) ob_compute_pass_destroy(&h->input[k][e][s]);
     for (int i = 0; i < OB_HOST_OUTPUT_FORMATS; ++i) ob_compute_pass_destroy(&h->output[i]);
     if (h->sampler) glDeleteSamplers(1, &h->sampler);
     if (h->second) glDeleteTextures(1, &h->second);

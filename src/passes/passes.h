@@ -443,8 +443,14 @@ void ob_view_destroy(ob_view_pass *v);
  * no comparison) reads the host's textures whatever their own filter and compare state. */
 #include "host_params.h"
 enum { OB_HOST_OUTPUT_FORMATS = 7 };
+/* The input pass's variant (host_params.h): the depth's kind, the normals' encoding, a second layer. */
+typedef struct ob_host_input_variant {
+    int depth_kind;       /* OB_HOST_DEPTH_* */
+    int normal_encoding;  /* OB_HOST_NORMAL_* */
+    bool second;
+} ob_host_input_variant;
 typedef struct ob_host_passes {
-    ob_compute_pass input;                           /* .program 0 until made */
+    ob_compute_pass input[2][OB_HOST_NORMAL_ENCODINGS][2]; /* by variant; .program 0 until made */
     ob_compute_pass output[OB_HOST_OUTPUT_FORMATS];  /* one per image format, made on first use */
     GLuint sampler;
     GLuint second;                                   /* R32F: the host's second layer, linearised */
@@ -452,11 +458,12 @@ typedef struct ob_host_passes {
 } ob_host_passes;
 /* The output formats, in the order of ob_host_passes.output; -1 for one it does not write. */
 int ob_host_output_format_index(GLenum internal_format);
-ob_error ob_host_input_prepare(ob_host_passes *h);
+ob_error ob_host_input_prepare(ob_host_passes *h, const ob_host_input_variant *v);
 ob_error ob_host_output_prepare(ob_host_passes *h, GLenum format);
 /* The input pass over c->size; second (and out_second) 0 when there is no second layer. */
-ob_error ob_host_input_run(ob_host_passes *h, const ob_host_input_constants *c, GLuint depth, GLuint normal,
-                           GLuint second, GLuint out_depth, GLuint out_normal, GLuint out_second);
+ob_error ob_host_input_run(ob_host_passes *h, const ob_host_input_variant *v, const ob_host_input_constants *c,
+                           GLuint depth, GLuint normal, GLuint second, GLuint out_depth, GLuint out_normal,
+                           GLuint out_second);
 /* The output pass: source (at the enlarged size) cropped at c->offset to c->size into target. */
 ob_error ob_host_output_run(ob_host_passes *h, const ob_host_output_constants *c, GLuint source, GLuint target,
                             GLenum format);

@@ -1,7 +1,8 @@
 #version 450 core
 /* Alchemy screen-space ambient obscurance (McGuire, Osman, Bukowski, Hennessy 2011; seed 004
  * §2.5 and §3.4). Samples lie on a spiral in a disk of world radius r around C, projected to the
- * screen (r_px = r * scale / z); each gives v_i = P_i - C and the final equation (seed 004 §2.5):
+ * screen (r_px = r * scale / z; r * scale for an orthographic camera); each gives v_i = P_i - C
+ * and the final equation (seed 004 §2.5):
  *
  *   A = max(0, 1 - (2 sigma / s) * sum_i max(0, v_i . n - beta z_C) / (v_i . v_i + eps))^k
  *
@@ -47,7 +48,7 @@ void main()
     float bias = alchemy.beta * d / r; /* beta * |z_C|, in units of r */
     float eps = alchemy.epsilon;
     float turns = alchemy.turns;
-    float r_px = r * alchemy.px_per_unit / d;
+    float r_px = r * alchemy.px_per_unit / ob_depth_scale(d); /* no d for an orthographic camera */
     /* Adaptive sample counts (seed 003 §4.1): a denser spiral at depth and normal edges. */
     int s = alchemy.adaptive != 0 ? alchemy.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r)
                                   : alchemy.samples;

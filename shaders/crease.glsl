@@ -8,9 +8,10 @@
  *       exactly, as box4 does, but centred on p (box4's -2..1 shifts the image by half a pixel).
  *   (2) plane:    x_q = |n_p . (P_q - P_p)| / d_p,  g_q = exp(-x_q^2 / 2 s_p^2)
  *       the distance of q's view position from p's tangent plane, relative to p's depth so the
- *       same s_p works in metres and millimetres. Along p's own plane x_q = 0 at any distance and
- *       any viewing angle (a grazing floor is not cut up as a depth test would cut it); a depth
- *       step or a surface behind a silhouette is off the plane.
+ *       same s_p works in metres and millimetres (an orthographic camera's depth too: the
+ *       distance from its plane, docs/embedding.md "Projection"). Along p's own plane x_q = 0
+ *       at any distance and any viewing angle (a grazing floor is not cut up as a depth test
+ *       would cut it); a depth step or a surface behind a silhouette is off the plane.
  *   (3) normal:   h_q = exp(-theta_q^2 / 2 s_n^2),  theta_q = acos(n_p . n_q)
  *       a wall meeting the floor passes through the floor's plane at the crease itself, where
  *       (2) cannot tell them apart; the normals can.
@@ -137,8 +138,12 @@ void main()
  * exp2 with the CPU's log2(e)-scaled falloffs. Eq. 2 needs no view positions: with
  * L(q) = n_p . P_q / d_q, which is linear in q's pixel coordinates (ob_view_position),
  *   n_p . (P_q - P_p) = d_q L(p + o) - d_p L(p),  L(p + o) = L(p) + o . dL/dq,
- * one multiply-add per tap. Window texels past the image's edge or on the sky have d = 0 and
- * weigh nothing, as in the other programs; pixels of a block past the edge write nothing. */
+ * one multiply-add per tap. For an orthographic camera (frame.orthographic; crease.c compiles
+ * OB_ORTHOGRAPHIC into its own program, so the perspective one keeps its instructions) P_q's x and
+ * y do not scale with d_q: n_p . P_q = M(q) - n_p.z d_q with M linear in q's pixel coordinates,
+ *   n_p . (P_q - P_p) = o . dM/dq - n_p.z (d_q - d_p),  dM/dq = dL/dq above.
+ * Window texels past the image's edge or on the sky have d = 0 and weigh nothing, as in the other
+ * programs; pixels of a block past the edge write nothing. */
 const int BLOCK = 4;
 const int WINDOW = BLOCK + 4; /* 2 px each side at r = 2 */
 float win_depth[WINDOW * WINDOW];           /* 0 off the image and on the sky */
@@ -156,12 +161,21 @@ OB_FILTER_T win_ao[WINDOW * WINDOW];
     win_ao[WIN(x, y)] = OB_FILTER_FETCH(ao_in, qc); }
 #define LOAD_ROW(y) LOAD(-2, y) LOAD(-1, y) LOAD(0, y) LOAD(1, y) LOAD(2, y) LOAD(3, y) LOAD(4, y) LOAD(5, y)
 
+/* n_p . (P_q - P_p) for the window texels at +o (index ia) and -o (ib), t = o . dL/dq. */
+#ifdef OB_ORTHOGRAPHIC
+#define PLANE_A(ia, t) (t - np.z * (win_depth[ia] - dp))
+#define PLANE_B(ib, t) (-t - np.z * (win_depth[ib] - dp))
+#else
+#define PLANE_A(ia, t) (win_depth[ia] * (lp + t) - dp * lp)
+#define PLANE_B(ib, t) (win_depth[ib] * (lp - t) - dp * lp)
+#endif
+
 /* Offsets (ox, oy) and (-ox, -oy) of pixel (bx, by) of the block: eq. 2-4 with eq. 1's weight. */
 #define PAIR(bx, by, ox, oy) { \
     int ia = WIN(bx + ox, by + oy), ib = WIN(bx - ox, by - oy); \
     float t = float(ox) * dl.x + float(oy) * dl.y; \
-    float xa = (win_depth[ia] * (lp + t) - dp * lp) * inv_dp; \
-    float xb = (win_depth[ib] * (lp - t) - dp * lp) * inv_dp; \
+    float xa = PLANE_A(ia, t) * inv_dp; \
+    float xb = PLANE_B(ib, t) * inv_dp; \
     float ta = fast_acos(clamp(dot(np, win_normal[ia]), -1.0, 1.0)); \
     float tb = fast_acos(clamp(dot(np, win_normal[ib]), -1.0, 1.0)); \
     float ga = win_depth[ia] > 0.0 ? exp2(xa * xa * flt.depth_falloff + ta * ta * flt.normal_falloff) : 0.0; \

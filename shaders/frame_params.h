@@ -16,7 +16,8 @@ OB_CONSTANTS_BEGIN(ob_frame_constants, OB_BINDING_FRAME)
     OB_MAT4 proj;            /* the full-resolution projection (column-major, OpenGL clip space) */
     OB_MAT4 ao_proj;         /* the same as seen from the AO grid: AO pixel i lies at full pixel k i + o
                                 (src/core/frame.c grid_projection keeps reconstruction exact) */
-    OB_VEC4 proj_info;       /* 1/P00, 1/P11, P20, P21 of proj: common.glsl ob_view_position */
+    OB_VEC4 proj_info;       /* 1/P00, 1/P11, P20, P21 of proj: common.glsl ob_view_position;
+                                orthographic: 1/P00, 1/P11, -P30, -P31 (ob_proj_info) */
     OB_VEC4 ao_proj_info;    /* the same of ao_proj */
     OB_VEC2 size;            /* full resolution, px */
     OB_VEC2 inv_size;        /* 1 / size */
@@ -31,6 +32,12 @@ OB_CONSTANTS_BEGIN(ob_frame_constants, OB_BINDING_FRAME)
     OB_FLOAT far_z;
     OB_FLOAT noise_turn;     /* ob_settings.temporal: the per-frame turn (fraction of a circle) of every
                                 random-kernel method's rotation noise (noise.glsl), 0 otherwise */
+    OB_INT orthographic;     /* 1: proj is orthographic (P23 = 0, P33 = 1): view rays are parallel to -Z,
+                                and screen sizes do not shrink with depth (common.glsl ob_depth_scale,
+                                ob_view_ray); 0: perspective (every ob_render_frame) */
+    OB_FLOAT pad0;
+    OB_FLOAT pad1;
+    OB_FLOAT pad2;
     OB_VEC4 ambient;         /* constant ambient radiance (rgb) */
     OB_VEC4 sky;             /* hemisphere ambient: radiance from +Y (rgb) */
     OB_VEC4 ground;          /* hemisphere ambient: radiance from -Y (rgb) */
@@ -44,6 +51,6 @@ OB_CONSTANTS_BEGIN(ob_frame_constants, OB_BINDING_FRAME)
                                                (src/passes/shadow.c ob_shadows_fill) */
     OB_VEC4 light_spot[OB_MAX_LIGHTS];      /* cos(inner half-angle), cos(outer half-angle), unused x2 */
 OB_CONSTANTS_END(ob_frame_constants, frame)
-OB_CONSTANTS_SIZE(ob_frame_constants, 4 * 64 + 2 * 16 + 2 * 16 + 2 * 16 + 4 * 16 + 9 * 16 + 4 * 8 * 16);
+OB_CONSTANTS_SIZE(ob_frame_constants, 4 * 64 + 2 * 16 + 2 * 16 + 3 * 16 + 4 * 16 + 9 * 16 + 4 * 8 * 16);
 
 #endif

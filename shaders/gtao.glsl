@@ -82,7 +82,10 @@ bool behind_object(vec3 w, vec3 p, vec3 t, vec3 n_slice, float rise, float z2)
     float fm = pm - sn * dot(w, t) + c * dot(w, n_slice);
     float lambda = pm / fm;
     float z1 = -(p.z + w.z);
-    return lambda > 1.0 && lambda * z1 > z2;
+    /* An orthographic camera's view ray is F + mu (0, 0, -1): it meets the line where
+     * (w + mu (0, 0, -1)) . m = 0, mu = (F . m - p . m) / m.z behind the sample, at depth z1 + mu. */
+    float mu = (fm - pm) / (-sn * t.z + c * n_slice.z);
+    return frame.orthographic != 0 ? mu > 0.0 && z1 + mu > z2 : lambda > 1.0 && lambda * z1 > z2;
 }
 
 /* A side's candidate for ob_column_entry: the highest sample beyond R whose column may still reach
@@ -133,8 +136,8 @@ void horizon_step(ob_slice s, vec2 at, float dist_px, vec3 p, vec3 t, bool refin
 float column_rise(column_candidate cand, vec3 p, vec3 t, vec3 n_slice)
 {
     vec3 entry;
-    bool meets =
-        cand.k > 0.0 && ob_column_entry(cand.w, normalize(p + cand.w), gtao.full_reach, gtao.column, entry);
+    bool meets = cand.k > 0.0 &&
+                 ob_column_entry(cand.w, normalize(ob_view_ray(p + cand.w)), gtao.full_reach, gtao.column, entry);
     return meets ? ob_rise_key(entry, t, n_slice) : 0.0;
 }
 

@@ -55,6 +55,8 @@ float hbao_jitter(ivec2 pix, int mode)
  * through P see the plane through the eye, P and P + D, not the plane of D and the Z axis
  * through P; the tangent in that slice is the line where it meets P's tangent plane:
  *   T = (P x D) x n = D (P.n) - P (D.n),   oriented along D,
+ * where `p` is the view ray through P (common.glsl ob_view_ray): P itself, or -Z for an
+ * orthographic camera, whose slices are the planes of D and the Z axis (and pn = p.n),
  * so on a flat surface every sample of the slice lies exactly on T. The vertical-slice tangent
  * (D, -n.xy.D / n.z) is off by the perspective angle: with it the open floor of `corner` read
  * 0.957 with no angle bias, with this one 0.980 (the rest is texel snapping, see main), and 1.000
@@ -68,7 +70,8 @@ float hbao_sin_tangent(vec3 p, float pn, vec3 n, vec2 d)
     float s = t.z * inversesqrt(len2);
     /* Orient T toward D on screen. P + λT projects to a screen offset along
      * T.xy * depth + P.xy * T.z (the derivative of P.xy / -P.z), not along T.xy: on surfaces
-     * seen at a grazing angle T.z dominates and the sign of dot(T.xy, D) is wrong. */
+     * seen at a grazing angle T.z dominates and the sign of dot(T.xy, D) is wrong. With the
+     * orthographic ray (0, 0, -1) this is T.xy, the orthographic projection's own. */
     return dot(t.xy * -p.z + p.xy * t.z, d) < 0.0 ? -s : s;
 }
 
@@ -85,9 +88,10 @@ void main()
     }
     float radius = hbao.radius;
     float inv_radius = hbao.inv_radius;
-    /* R projected at P's depth: R_px = R * (height/2) * P11 / d, clamped so that close-ups do
-     * not march (and miss the cache) across half the screen. */
-    float radius_px = min(radius * hbao.px_per_unit / d, hbao.max_radius_px);
+    /* R projected at P's depth: R_px = R * (height/2) * P11 / d (no d for an orthographic camera:
+     * ob_depth_scale), clamped so that close-ups do not march (and miss the cache) across half the
+     * screen. */
+    float radius_px = min(radius * hbao.px_per_unit / ob_depth_scale(d), hbao.max_radius_px);
     if (radius_px < 1.0) {
         imageStore(ao_out, pix, vec4(1.0)); /* R covers less than a pixel: nothing to march */
         return;
@@ -101,7 +105,8 @@ void main()
      * starts from a tangent pointing into the screen, and the whole surface reads as occluder
      * (single black pixels along the sphere's outline in `sphere-on-plane`). Tilt such normals
      * until they face the camera by a little. */
-    vec3 to_eye = -normalize(p);
+    vec3 ray = ob_view_ray(p);
+    vec3 to_eye = -normalize(ray);
     float nv = dot(n, to_eye);
     if (nv < 0.02) n = normalize(n + (0.02 - nv) * to_eye);
     int mode = hbao.noise;
@@ -119,9 +124,10 @@ void main()
     float start_px = 1.0 + jitter * step_px;
     float sin_bias = hbao.sin_bias, cos_bias = hbao.cos_bias;
     /* A screen offset (dx, dy) px is a view-space offset (dx/P00 * 2/w, dy/P11 * 2/h) * d at P's
-     * depth: the same direction only for square pixels, so directions are converted. */
+     * depth (without d, orthographic): the same direction only for square pixels, so directions
+     * are converted. */
     vec2 to_view = frame.ao_proj_info.xy * frame.ao_inv_size;
-    float pn = dot(p, n);
+    float pn = dot(ray, n);
 
     float occlusion = 0.0;
     float angle_step = 6.28318530718 / float(directions);
@@ -134,7 +140,7 @@ void main()
         /* sin(t + bias): the angle bias (NVIDIA's HBAO) lifts the tangent so that horizons only
          * slightly above it - the creases of a tessellated curved surface, depth and normal
          * quantisation - do not count as occlusion. */
-        float sin_t = hbao_sin_tangent(p, pn, n, dir * to_view);
+        float sin_t = hbao_sin_tangent(ray, pn, n, dir * to_view);
         float cos_t = sqrt(max(1.0 - sin_t * sin_t, 0.0)); /* t in [-π/2, π/2] */
         /* t + bias stops at π/2: past it sin would fall again and lower the horizon. */
         float sin_h = sin_t >= cos_bias ? 1.0 : sin_t * cos_bias + cos_t * sin_bias;
@@ -166,7 +172,7 @@ void main()
              * occlusion (the open floor of `corner` read 0.980 instead of 1 with no bias).
              * Carry the sample into slice k by its rise above the tangent of its own slice:
              * exact on any plane, one more tangent per sample. */
-            sin_e += sin_t - hbao_sin_tangent(p, pn, n, (snapped - centre) * to_view);
+            sin_e += sin_t - hbao_sin_tangent(ray, pn, n, (snapped - centre) * to_view);
             if (sin_e > sin_h) {
                 ao_dir += max(0.0, 1.0 - r * inv_radius) * (sin_e - sin_h);
                 sin_h = sin_e;

@@ -42,7 +42,7 @@ float depth_at(ivec2 q)
 }
 
 /* The view-space point of pixel q at depth d (common.glsl; the frame block holds the jittered
- * projection the host rasterised with). */
+ * projection the host rasterised with, and whether it is orthographic). */
 vec3 point_at(ivec2 q, float d)
 {
     return ob_view_position(vec2(q) + 0.5, d, 1.0 / vec2(hi.size), frame.proj_info);
@@ -67,9 +67,10 @@ vec3 rebuilt_normal(ivec2 pix, float d)
     vec3 ey = use_top ? point_at(pix + ivec2(0, 1), dt) - p : (db > 0.0 ? p - point_at(pix - ivec2(0, 1), db) : vec3(0.0));
     vec3 n = cross(ex, ey);
     float len = length(n);
-    if (!(len > 0.0)) return normalize(-p); /* an isolated pixel: face the camera */
+    vec3 ray = ob_view_ray(p); /* p itself, or -Z for an orthographic camera */
+    if (!(len > 0.0)) return normalize(-ray); /* an isolated pixel: face the camera */
     n /= len;
-    return dot(n, p) > 0.0 ? -n : n; /* towards the camera */
+    return dot(n, ray) > 0.0 ? -n : n; /* towards the camera */
 }
 
 void main()

@@ -63,16 +63,17 @@ int ob_slice_count(ivec2 pix, int fixed_slices, int adaptive, int base, sampler2
 }
 
 /* The pixel's point P at linear depth d > 0: its AO-grid centre, view position p, unit view
- * vector v toward the eye and unit normal n, and to_view, which turns a screen offset in AO pixels
- * into a view offset per unit depth. Interpolated normals at silhouettes can face away from the
- * eye; the integral then has no visible hemisphere left, so they are tilted until they face it by
- * a little (as hbao.glsl). */
+ * vector v toward the eye (+Z for an orthographic camera: common.glsl ob_view_ray) and unit
+ * normal n, and to_view, which turns a screen offset in AO pixels into a view offset per unit of
+ * ob_depth_scale (per unit depth in perspective, absolute in orthographic). Interpolated normals
+ * at silhouettes can face away from the eye; the integral then has no visible hemisphere left, so
+ * they are tilted until they face it by a little (as hbao.glsl). */
 void ob_slice_pixel(ivec2 pix, float d, sampler2D view_normal, out vec2 centre, out vec3 p, out vec3 v, out vec3 n,
                     out vec2 to_view)
 {
     centre = vec2(pix) + 0.5;
     p = ob_view_position(centre, d, frame.ao_inv_size, frame.ao_proj_info);
-    v = -normalize(p);
+    v = -normalize(ob_view_ray(p));
     n = normalize(texelFetch(view_normal, pix, 0).xyz);
     float nv = dot(n, v);
     if (nv < 0.02) n = normalize(n + (0.02 - nv) * v);
@@ -112,13 +113,13 @@ struct ob_slice {
 };
 
 /* The slice along screen direction dir through P at linear depth d. to_view turns a screen
- * offset in AO pixels into a view offset per unit depth. False when the normal lies (almost)
- * across the slice: the slice then carries no weight (|n_φ| ~ 0). */
+ * offset in AO pixels into a view offset per unit of ob_depth_scale(d). False when the normal lies
+ * (almost) across the slice: the slice then carries no weight (|n_φ| ~ 0). */
 bool ob_slice_setup(vec2 dir, vec3 p, vec3 v, vec3 n, float d, vec2 to_view, float radius, out ob_slice s)
 {
     s.dir = dir;
-    /* The slice's normal is P x (the view offset of a step along dir): exact for any pixel aspect
-     * and an off-centre frustum. */
+    /* The slice's normal is V x (the view offset of a step along dir), V along the view ray through
+     * P: exact for any pixel aspect, an off-centre frustum and an orthographic camera. */
     vec3 dv = vec3(dir * to_view, 0.0);
     s.axis = normalize(cross(v, dv));
     s.o = cross(s.axis, v);
@@ -130,7 +131,7 @@ bool ob_slice_setup(vec2 dir, vec3 p, vec3 v, vec3 n, float d, vec2 to_view, flo
     s.cos_n = dot(pn, v) * inv_len_n;
     s.sin_n = dot(pn, s.o) * inv_len_n;
     s.ang_n = ob_fast_atan2(s.sin_n, s.cos_n);
-    s.radius_px = radius / (d * length(dir * to_view));
+    s.radius_px = radius / (ob_depth_scale(d) * length(dir * to_view));
     /* The surface falls away on the side the normal leans to: its tangent lies at π/2 + n from v
      * on dir's side and at π/2 - n on the other, cos(π/2 ± n) v ± sin(π/2 ± n) o. */
     s.t_pos = -s.sin_n * v + s.cos_n * s.o;
@@ -224,13 +225,15 @@ float ob_second_depth(ivec2 q)
 
 /* A sample's thickness from the second layer, z2 - z1 along its view ray, but never less than the
  * world distance between two consecutive steps at the sample's depth z1 (the step in pixels times
- * the pixel's size there, R / (d radius_px) per unit depth, d = P's depth). The march sees an
- * object only at its steps: a thin slab seen from below covers the directions between its samples
- * too, and a sample as thick as the spacing closes those gaps; thinner, the gaps would open to
- * light that the slab blocks. z2 = 0 (nothing behind): -1, the method's own assumption. */
+ * the pixel's size there, R / (d radius_px) per unit depth, d = P's depth; R / radius_px at every
+ * depth for an orthographic camera: ob_depth_scale). The march sees an object only at its steps: a
+ * thin slab seen from below covers the directions between its samples too, and a sample as thick
+ * as the spacing closes those gaps; thinner, the gaps would open to light that the slab blocks.
+ * z2 = 0 (nothing behind): -1, the method's own assumption. */
 float ob_layer_thickness(float z1, float z2, float d, float radius, float radius_px, int steps)
 {
-    float spacing = max(radius_px - 1.5, 0.0) / float(steps) * z1 * radius / (d * max(radius_px, 1e-6));
+    float spacing =
+        max(radius_px - 1.5, 0.0) / float(steps) * ob_depth_scale(z1) * radius / (ob_depth_scale(d) * max(radius_px, 1e-6));
     return z2 > 0.0 ? max(z2 - z1, spacing) : -1.0;
 }
 

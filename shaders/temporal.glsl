@@ -258,8 +258,8 @@ void main()
     vec2 w = f - vec2(base);
     float tolerance = tp.plane_tolerance * -pp.z;
     /* OB_TEMPORAL_NEAR_PIXELS previous AO pixels' width at the point's previous depth (common.glsl's
-     * ob_view_position). */
-    float footprint = OB_TEMPORAL_NEAR_PIXELS * 2.0 * -pp.z *
+     * ob_view_position; the same at every depth for an orthographic camera, ob_depth_scale). */
+    float footprint = OB_TEMPORAL_NEAR_PIXELS * 2.0 * ob_depth_scale(-pp.z) *
                       max(frame.ao_inv_size.x * tp.prev_ao_proj_info.x, frame.ao_inv_size.y * tp.prev_ao_proj_info.y);
     /* 2: which of the four bilinear taps are this point's surface (their geometry alone). The loop
      * has a constant trip count and no branch, so it unrolls and tap_weight stays in registers: a
@@ -328,14 +328,15 @@ void main()
 #endif
     vec3 past = clamp(h, lo, hi);
     /* 5's age, discounted by the change of the point's footprint (tp.footprint_falloff): a pixel's
-     * size at the point is its depth times 1/P11 (common.glsl's ob_view_position), so s is that
-     * ratio between the previous view and this one. A screen-space method's estimate at a point is
+     * size at the point is its depth times 1/P11 (1/P11 alone for an orthographic camera:
+     * common.glsl's ob_view_position, ob_depth_scale), so s is that ratio between the previous view
+     * and this one. A screen-space method's estimate at a point is
      * a function of how the depth buffer samples R around it, so history gathered from farther
      * (fewer pixels per R, thin steps missed) is a different, brighter estimate, not more samples of
      * this one: on a dolly toward the stair (`walk`) a full-length history kept that brightness and
      * was further from AO_R than the single frame (docs/temporal.md, "Footprint"). A still camera,
      * an orbit or a sideways move keep s = 1 and the whole age. */
-    float s = (-pp.z * tp.prev_ao_proj_info.y) / (d * frame.ao_proj_info.y);
+    float s = (ob_depth_scale(-pp.z) * tp.prev_ao_proj_info.y) / (ob_depth_scale(d) * frame.ao_proj_info.y);
     float trust = exp2(-tp.footprint_falloff * abs(log2(s)));
     float age = min((kept ? h_age * trust : 0.0) + 1.0, tp.history_frames);
     float alpha = max(1.0 / age, 1.0 / tp.history_frames);

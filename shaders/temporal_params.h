@@ -15,7 +15,7 @@
 OB_CONSTANTS_BEGIN(ob_temporal_constants, OB_BINDING_PASS)
     OB_MAT4 to_prev_view;       /* this frame's view space -> the previous frame's (prev view x inv view) */
     OB_MAT4 prev_ao_proj;       /* the previous frame's projection as seen from the AO grid */
-    OB_VEC4 prev_ao_proj_info;  /* 1/P00, 1/P11, P20, P21 of prev_ao_proj (common.glsl) */
+    OB_VEC4 prev_ao_proj_info;  /* 1/P00, 1/P11, P20, P21 of prev_ao_proj (common.glsl; ob_proj_info) */
     OB_INT history_valid;       /* 0: no history (first frame, new method, size or scale): age 0 everywhere */
     OB_FLOAT history_frames;    /* N: the blend never weighs the current frame below 1 / N */
     OB_FLOAT plane_tolerance;   /* a history tap is the same surface when it lies within this x depth of

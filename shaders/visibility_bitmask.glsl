@@ -71,19 +71,21 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     bool inside = hit && w2 < vb.radius * vb.radius;
     vec3 t = positive ? s.t_pos : -s.t_pos; /* t_neg is -t_pos: one vector fewer held through the march */
     /* §3.2: the back of the sample, its front pushed away from the eye along its view ray u by
-     * the thickness. */
+     * the thickness (-Z for an orthographic camera: common.glsl ob_view_ray). */
     vec3 sv = p + w;
     float sv_inv = inversesqrt(max(dot(sv, sv), 1e-20));
-    vec3 u = sv * sv_inv;
+    bool ortho = frame.orthographic != 0;
+    vec3 u = ortho ? vec3(0.0, 0.0, -1.0) : sv * sv_inv;
     float thick = vb.thickness + vb.thickness_slope * max(-sv.z, 0.0);
 #ifdef OB_MARCH_LAYERS
     /* The sample's true back: the second layer on the same view ray, at least the steps' spacing
      * (ob_layer_thickness; linear depth scales along the ray, so depth z1 + t lies |sv| t / z1
-     * along it); nothing behind: the constant above. Its own program variant (OB_SLICE_LAYERS):
-     * llvmpipe would run the block for every sample with the layer off too. */
+     * along it, t along an orthographic camera's); nothing behind: the constant above. Its own
+     * program variant (OB_SLICE_LAYERS): llvmpipe would run the block for every sample with the
+     * layer off too. */
     float z1 = max(-sv.z, 1e-20);
     float t2 = ob_layer_thickness(z1, ob_second_depth(texel), -p.z, vb.radius, s.radius_px, vb.steps);
-    thick = t2 > 0.0 ? t2 / (z1 * sv_inv) : thick;
+    thick = t2 > 0.0 ? t2 / (ortho ? 1.0 : z1 * sv_inv) : thick;
 #endif
     /* The front and its view ray in the slice's 2D coordinates (ob_rise_angle_of): the back and
      * the column's entry are the front moved along the ray there, and no 3D point past this line

@@ -1,8 +1,9 @@
-/* The host of the host-path tests, shared by test_host_inputs.c and test_host_state.c: its own
- * EGL context (a surfaceless OpenGL 4.5 core context, as an engine makes it), and its scene, a
- * sphere on a floor against a wall with a box in the corner, ray-cast on the CPU into linear
- * depth and view and world normals, with the helpers that encode them as a host's depth and
- * normal textures would hold them (window depth through a projection, octahedral normals). */
+/* The host of the host-path tests, shared by test_host_inputs.c, test_host_state.c and
+ * test_host_ortho.c: its own EGL context (a surfaceless OpenGL 4.5 core context, as an engine
+ * makes it), and its scene, a sphere on a floor against a wall with a box in the corner, ray-cast
+ * on the CPU through a perspective or an orthographic camera into linear depth and view and world
+ * normals, with the helpers that encode them as a host's depth and normal textures would hold them
+ * (window depth through a projection, octahedral normals). */
 #ifndef OB_TEST_HOST_SCENE_H
 #define OB_TEST_HOST_SCENE_H
 
@@ -101,6 +102,27 @@ static inline void perspective(float p[16], float fov_y, float aspect, double n,
     p[14] = (float)b;
 }
 
+/* An orthographic projection of the box [-hw, hw] x [-hh, hh] around the view axis, depths n..f,
+ * as glm_ortho makes it (P23 = 0, P33 = 1); reversed and zero_to_one as perspective's. */
+static inline void orthographic(float p[16], double hw, double hh, double n, double f, bool reversed, bool zero_to_one)
+{
+    memset(p, 0, 16 * sizeof(float));
+    p[0] = (float)(1.0 / hw);
+    p[5] = (float)(1.0 / hh);
+    p[15] = 1.0f;
+    double a, b; /* ndc z = a z + b (w = 1) */
+    if (zero_to_one) a = -1.0 / (f - n), b = -n / (f - n);             /* -n -> 0, -f -> 1 */
+    else a = -2.0 / (f - n), b = -(f + n) / (f - n);                   /* -n -> -1, -f -> 1 */
+    if (reversed) {
+        if (zero_to_one) a = -a, b = 1.0 - b;                            /* z' = 1 - z */
+        else a = -a, b = -b;
+    }
+    p[10] = (float)a;
+    p[14] = (float)b;
+}
+
+static inline bool is_orthographic(const float p[16]) { return p[11] == 0.0f && p[15] == 1.0f; }
+
 static inline void make_view(host_view *v, int w, int h, const float proj[16], const float eye[3], const float target[3])
 {
     v->w = w, v->h = h;
@@ -170,19 +192,32 @@ static inline float scene_hit(const float o[3], const float d[3], float n[3])
     return isfinite(best) ? best : -1.0f;
 }
 
+/* The ray of pixel (x, y) (row 0 at the bottom): from o along d, with a forward component 1, so
+ * that its parameter is the linear depth. Perspective: from the eye through the projection (P20,
+ * P21 included), d = r dx + u dy + f. Orthographic: from the eye's plane at
+ * o = eye + r (ndc.x - P30) / P00 + u (ndc.y - P31) / P11, along d = f. */
+static inline void pixel_ray(const host_view *v, int x, int y, float o[3], float d[3])
+{
+    float nx = 2.0f * ((float)x + 0.5f) / (float)v->w - 1.0f, ny = 2.0f * ((float)y + 0.5f) / (float)v->h - 1.0f;
+    if (is_orthographic(v->proj)) {
+        float ox = (nx - v->proj[12]) / v->proj[0], oy = (ny - v->proj[13]) / v->proj[5];
+        for (int k = 0; k < 3; ++k) o[k] = v->eye[k] + v->r[k] * ox + v->u[k] * oy, d[k] = v->f[k];
+        return;
+    }
+    float dx = (nx + v->proj[8]) / v->proj[0], dy = (ny + v->proj[9]) / v->proj[5];
+    for (int k = 0; k < 3; ++k) o[k] = v->eye[k], d[k] = v->r[k] * dx + v->u[k] * dy + v->f[k];
+}
+
 /* Per pixel (row 0 at the bottom): linear view depth (0 = sky), the view and world normals (4
- * floats each, zeros for sky). The ray of pixel (x, y) through the projection (P20, P21 included),
- * d = r dx + u dy + f with a forward component 1, so its parameter is the linear depth. */
+ * floats each, zeros for sky), along pixel_ray. */
 static inline void raycast(const host_view *v, float *depth, float *view_n, float *world_n)
 {
     for (int y = 0; y < v->h; ++y)
         for (int x = 0; x < v->w; ++x) {
             size_t i = (size_t)y * (size_t)v->w + (size_t)x;
-            float nx = 2.0f * ((float)x + 0.5f) / (float)v->w - 1.0f, ny = 2.0f * ((float)y + 0.5f) / (float)v->h - 1.0f;
-            float dx = (nx + v->proj[8]) / v->proj[0], dy = (ny + v->proj[9]) / v->proj[5];
-            float d[3], n[3] = {0, 0, 0};
-            for (int k = 0; k < 3; ++k) d[k] = v->r[k] * dx + v->u[k] * dy + v->f[k];
-            float t = scene_hit(v->eye, d, n);
+            float o[3], d[3], n[3] = {0, 0, 0};
+            pixel_ray(v, x, y, o, d);
+            float t = scene_hit(o, d, n);
             depth[i] = t > 0.0f ? t : 0.0f;
             float vn[4] = {dot3(n, v->r), dot3(n, v->u), -dot3(n, v->f), 0.0f};
             for (int k = 0; k < 4; ++k) {

@@ -544,7 +544,10 @@ static void test_wrong_inputs(ob_renderer *r, GLuint lin32, GLuint nrm32)
     memset(f.projection, 0, sizeof f.projection);
     f.projection[0] = 2.0f / 8.0f, f.projection[5] = 2.0f / 6.0f, f.projection[10] = -2.0f / 99.9f;
     f.projection[14] = -100.1f / 99.9f, f.projection[15] = 1.0f;
-    wrong("an orthographic projection", "projection", "orthographic", NULL, r, &f, &s, &out, ao);
+    /* Orthographic projections are taken (test_host_ortho grades them); one whose z row cannot be
+     * linearised (P22 = 0) is not. */
+    f.projection[10] = 0.0f;
+    wrong("an orthographic projection with P22 = 0", "projection", "orthographic", NULL, r, &f, &s, &out, ao);
     f = good, f.projection[5] = NAN;
     wrong("a NaN in the projection", "projection", NULL, NULL, r, &f, &s, &out, ao);
     f = good, f.projection[10] = INFINITY;

@@ -751,7 +751,8 @@ ob_error ob_set_shader_directory(const char *dir);
  * the renderer's size, on an engine's linear depth (R32F or R16F positive view depth, or a depth
  * buffer) and view-space normals (any format ob_host_frame takes), written to ao_out (any format
  * ob_host_outputs.ao takes) as the raw AO, OB_IMAGE_AO_RAW_F32 of a frame; proj is the
- * column-major projection used to rasterise them, view space is taken as world space. AO scale,
+ * column-major projection used to rasterise them (perspective or orthographic, as
+ * ob_host_frame.projection), view space is taken as world space. AO scale,
  * adaptive sampling, temporal accumulation and the guard band are ignored here, and a radius that
  * was not set stays its default (0.5 world units). Only methods that read depth and normals
  * alone and write plain visibility (not ssdo*, vbgi: OB_ERR_INVALID_ARGUMENT). It runs through
@@ -771,7 +772,8 @@ ob_error ob_compute_ao_filtered(ob_renderer *r, uint32_t linear_depth_tex, uint3
  * same AO chain as ob_render_frame: [input pass] -> [downsample] -> [edges] -> [depth MIPs] ->
  * method -> [temporal accumulation] -> filter -> [joint bilateral upsample] -> [output pass], so
  * every method, filter, AO scale, temporal accumulation, the guard band and a second depth layer
- * work here as they do in the CLI. Zero (or NULL) in every field means its default.
+ * work here as they do in the CLI, under a perspective or an orthographic projection (the CLI's
+ * own cameras are perspective). Zero (or NULL) in every field means its default.
  *
  * GL state: the call binds its programs, the GL_TEXTURE_2D and GL_TEXTURE_2D_ARRAY targets and
  * the sampler object of texture units 0..OB_HOST_TEXTURE_UNITS-1 (never texture 0, which would
@@ -821,16 +823,20 @@ typedef struct ob_host_frame {
     uint32_t normal;
     ob_normal_space normal_space;
     /* The projection the host rasterised with, before any TAA jitter: column-major, OpenGL clip
-     * space, perspective (orthographic is not taken: the methods march in perspective). */
+     * space, perspective (P23 = -1, P33 = 0; an off-axis P20, P21 taken) or orthographic (P23 = 0,
+     * P33 = 1, P20 = P21 = 0; an off-centre P30, P31 taken), with P00, P11 and the z row's P22
+     * (orthographic) or P32 (perspective) non-zero. Every method, filter and pass of the chain
+     * follows the camera's kind: view positions, projected radii and view rays. */
     float projection[16];
     /* World -> view, column-major; all zeros = identity. Needed for world-space normals and for
      * temporal accumulation (the history follows the camera through it). */
     float view[16];
     /* The TAA jitter of this frame, in pixels of the input size: the host rasterised with
      * `projection` plus 2 jitter[0] / width in P20 (element 8) and 2 jitter[1] / height in P21
-     * (element 9), which moves the image by -jitter pixels. The library does the same, so the AO
-     * lines up with the jittered depth and the temporal accumulation reprojects through the
-     * jittered cameras. */
+     * (element 9), which moves the image by -jitter pixels; an orthographic one with `projection`
+     * minus 2 jitter[0] / width in P30 (element 12) and 2 jitter[1] / height in P31 (element 13),
+     * the same move. The library does the same, so the AO lines up with the jittered depth and the
+     * temporal accumulation reprojects through the jittered cameras. */
     float jitter[2];
     /* The depth buffer was written under glClipControl(..., GL_ZERO_TO_ONE): window depth = NDC z.
      * false: GL's default, window depth = NDC z * 0.5 + 0.5. */
@@ -904,8 +910,9 @@ ob_error ob_settings_from_host(ob_settings *settings, const ob_host_settings *ho
  * size with its projection widened as ob_guard_projection does (identity without a band). */
 void ob_host_input_size(const ob_renderer *r, const ob_settings *settings, int *width, int *height, int *guard);
 /* Widen a projection for a guard band of `guard` px per side around width x height (in place,
- * column-major): P00, P20 scaled by width / (width + 2 guard), P11, P21 by height / (height +
- * 2 guard), so that the enlarged image's centre is the visible frame, pixel for pixel. */
+ * column-major): P00, P20, P30 scaled by width / (width + 2 guard), P11, P21, P31 by height /
+ * (height + 2 guard), so that the enlarged image's centre is the visible frame, pixel for pixel
+ * (perspective or orthographic). */
 void ob_guard_projection(float proj[16], int width, int height, int guard);
 
 /* Compile and allocate everything these settings will use (method, filter, input and output

@@ -82,12 +82,13 @@ static ob_error make_depth_mips(ob_renderer *r, GLuint depth, int width, int hei
 
 /* Filter one chain (src -> dst through the scratch target) at the AO resolution, guided by the AO
  * grid's depth and normals. */
-static ob_error run_filter(const ob_filter_impl *filter, void *fstate, const ao_targets *t, const GLuint guide[2],
-                           GLuint src, GLuint dst, GLuint scratch, bool rgb, float sky, const ob_settings *s)
+static ob_error run_filter(const ob_renderer *r, const ob_filter_impl *filter, void *fstate, const ao_targets *t,
+                           const GLuint guide[2], GLuint src, GLuint dst, GLuint scratch, bool rgb, float sky,
+                           const ob_settings *s)
 {
     const ob_filter_inputs fin = {.src = src, .dst = dst, .scratch = scratch, .linear_depth = guide[0],
                                   .view_normal = guide[1], .width = t->grid.width, .height = t->grid.height,
-                                  .rgb = rgb, .sky = sky};
+                                  .rgb = rgb, .sky = sky, .orthographic = r->frame_constants.orthographic != 0};
     return filter->run(fstate, &fin, s->filter_params);
 }
 
@@ -100,7 +101,8 @@ static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const ob_meth
                              GLuint bounce_in, GLuint bounce_out)
 {
     const ob_history_key key = {.method = plan->index, .scale = r->last.scale, .at = s->temporal_at,
-                                .width = r->inner_width, .height = r->inner_height, .rgb = plan->rgb,
+                                .width = r->inner_width, .height = r->inner_height,
+                                .orthographic = r->frame_constants.orthographic, .rgb = plan->rgb,
                                 .bounce = plan->bounce};
     const bool valid = r->history_valid && !memcmp(&key, &r->history_key, sizeof key);
     ob_temporal_constants c;
@@ -277,14 +279,14 @@ static ob_error run_filter_stage(chain_run *c)
     const ob_filter_impl *filter = ob_filter_impl_at(s->filter);
     /* M and the bounce through the same filter (seed 003 §5.3 smooths them separately); the sky is
      * 1 in M and 0 in the bounce. The barriers order the shared scratch targets. */
-    err = run_filter(filter, fstate, t, c->guide, c->main_in, c->main_out, plan->rgb ? t->scratch_rgb : t->scratch,
+    err = run_filter(r, filter, fstate, t, c->guide, c->main_in, c->main_out, plan->rgb ? t->scratch_rgb : t->scratch,
                      plan->rgb, 1.0f, s);
     if (err == OB_OK && plan->bounce) {
         /* A bounce beside a scalar visibility (vbgi) takes the filter's RGB variant. */
         void *bstate = plan->rgb ? fstate : ob_renderer_filter_state(r, s->filter, true, &err);
         glMemoryBarrier(BARRIER);
         if (err == OB_OK)
-            err = run_filter(filter, bstate, t, c->guide, c->bounce_in, c->bounce_out, t->scratch_rgb, true, 0.0f, s);
+            err = run_filter(r, filter, bstate, t, c->guide, c->bounce_in, c->bounce_out, t->scratch_rgb, true, 0.0f, s);
     }
     if (err == OB_OK && plan->bent) {
         /* The bent normal through the same filter's RGB variant (sky 0, no direction); compose and
@@ -292,7 +294,7 @@ static ob_error run_filter_stage(chain_run *c)
         void *bstate = ob_renderer_filter_state(r, s->filter, true, &err);
         glMemoryBarrier(BARRIER);
         if (err == OB_OK)
-            err = run_filter(filter, bstate, t, c->guide, t->bent_raw, g->k > 1 ? t->bent_filtered : r->bent,
+            err = run_filter(r, filter, bstate, t, c->guide, t->bent_raw, g->k > 1 ? t->bent_filtered : r->bent,
                              t->scratch_rgb, true, 0.0f, s);
     }
     if (err != OB_OK) return err;

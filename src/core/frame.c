@@ -15,33 +15,46 @@
 #include "core/error.h"
 #include "core/renderer.h"
 
+bool ob_projection_is_orthographic(const float *proj)
+{
+    /* Column-major: P23 = proj[11], P33 = proj[15] (clip w = P23 z + P33). */
+    return proj[11] == 0.0f && proj[15] == 1.0f;
+}
+
 void ob_proj_info(const float *proj, float out[4])
 {
-    /* Column-major: P00 = proj[0], P11 = proj[5], P20 = proj[8], P21 = proj[9]. */
+    /* Column-major: P00 = proj[0], P11 = proj[5], P20 = proj[8], P21 = proj[9]; orthographic
+     * (w = 1): ndc.x = P00 X + P30, so -P30 (proj[12]) takes P20's place in common.glsl's
+     * X = (ndc.x + proj_info.z) * ob_depth_scale(d) / P00, and -P31 (proj[13]) P21's. */
+    const bool ortho = ob_projection_is_orthographic(proj);
     out[0] = 1.0f / proj[0];
     out[1] = 1.0f / proj[5];
-    out[2] = proj[8];
-    out[3] = proj[9];
+    out[2] = ortho ? -proj[12] : proj[8];
+    out[3] = ortho ? -proj[13] : proj[9];
 }
 
 void ob_guard_projection(float proj[16], int width, int height, int guard)
 {
     /* Seed 000 §3.2.2: the enlarged image must hold the visible one at its centre, pixel for pixel.
      * ndc' = 2 (x + g + 1/2) / (W + 2g) - 1 = (2 (x + 1/2) / W - 1) W / (W + 2g), so ndc scales
-     * about the centre by W / (W + 2g); ndc = (P00 X + P20 Z) / -Z scales with P00 and P20. */
+     * about the centre by W / (W + 2g); ndc = (P00 X + P20 Z + P30) / w scales with P00, P20 and
+     * P30 (an orthographic camera's offset; 0 in a perspective one, which stays 0). */
     if (guard <= 0) return;
     float sx = (float)width / (float)(width + 2 * guard);
     float sy = (float)height / (float)(height + 2 * guard);
     proj[0] *= sx;
     proj[8] *= sx;
+    proj[12] *= sx;
     proj[5] *= sy;
     proj[9] *= sy;
+    proj[13] *= sy;
 }
 
 /* The projection as seen from the AO grid. AO pixel i sits at full pixel k i + o, so along x
  * ndc_grid = a ndc_full + b with a = W / (k w) and b = a - 1 + (1 - (2o + 1)/k) / w (from
  * ndc_full = 2 (k i + o + 1/2) / W - 1 and ndc_grid = 2 (i + 1/2) / w - 1). Folding that into
- * P00, P20 (and P11, P21) keeps every method's reconstruction and projection exact. */
+ * P00, P20 (and P11, P21) keeps every method's reconstruction and projection exact; for an
+ * orthographic camera (w = 1) the offset b goes into P30 (P31) instead. */
 static void grid_projection(const ob_ao_grid *g, const float *proj, float *out)
 {
     memcpy(out, proj, 16 * sizeof(float));
@@ -50,6 +63,16 @@ static void grid_projection(const ob_ao_grid *g, const float *proj, float *out)
     float ay = (float)g->full_height / (float)(g->k * g->height);
     float bx = ax - 1.0f + (1.0f - (2.0f * (float)g->o + 1.0f) / (float)g->k) / (float)g->width;
     float by = ay - 1.0f + (1.0f - (2.0f * (float)g->o + 1.0f) / (float)g->k) / (float)g->height;
+    if (ob_projection_is_orthographic(proj)) {
+        /* ndc = P00 X + P20 Z + P30  ->  a ndc + b = a P00 X + a P20 Z + (a P30 + b) */
+        out[0] = ax * proj[0];
+        out[8] = ax * proj[8];
+        out[12] = ax * proj[12] + bx;
+        out[5] = ay * proj[5];
+        out[9] = ay * proj[9];
+        out[13] = ay * proj[13] + by;
+        return;
+    }
     /* ndc = (P00 X + P20 Z) / -Z  ->  a ndc + b = (a P00 X + (a P20 - b) Z) / -Z */
     out[0] = ax * proj[0];
     out[8] = ax * proj[8] - bx;
@@ -79,6 +102,7 @@ void ob_frame_constants_fill(ob_frame_constants *f, const ob_frame_desc *d)
     grid_projection(g, d->proj, f->ao_proj);
     ob_proj_info(f->proj, f->proj_info);
     ob_proj_info(f->ao_proj, f->ao_proj_info);
+    f->orthographic = ob_projection_is_orthographic(d->proj) ? 1 : 0;
     f->size[0] = (float)g->full_width;
     f->size[1] = (float)g->full_height;
     f->inv_size[0] = 1.0f / (float)g->full_width;
@@ -366,7 +390,9 @@ ob_error ob_render_floor(ob_renderer *r, const ob_settings *s, ob_floor_info *in
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_floor: %s has no %s", m->name,
                             taps <= 0 ? "sample count" : "radius");
     const ao_targets *t = &r->scales[si];
-    /* R_px = R x (height / 2) x P11 / d, the methods' projection (hbao.c, alchemy.c px_per_unit). */
+    /* R_px = R x (height / 2) x P11 / d, the methods' projection (hbao.c, alchemy.c px_per_unit):
+     * the floor follows an ob_render_frame, whose camera is perspective (after an ob_host_ao, which
+     * may be orthographic, has_frame is false). */
     const ob_floor_desc d = {.taps = taps,
                              .rays = plan.impl->count_rays ? plan.impl->count_rays(plan.params) : 0,
                              .radius = radius,

@@ -230,6 +230,7 @@ typedef struct host_plan {
     int guard, in_width, in_height;
     texture_info depth, normal, second, ao, bent, indirect;
     bool hardware;              /* the depth is a depth buffer */
+    bool orthographic;          /* the projection is orthographic (P23 = 0, P33 = 1) */
     bool input_pass;            /* depth and normals go through the input pass */
     bool second_pass;           /* the second layer goes through it too */
     bool ao_direct;             /* the chain writes the host's ao texture itself */
@@ -271,18 +272,38 @@ static ob_error check_call(ob_renderer *r, const ob_host_frame *f, const ob_sett
     if (!finite16(p) || !finite16(f->view) || !isfinite(f->jitter[0]) || !isfinite(f->jitter[1]) ||
         !isfinite(f->motion_scale[0]) || !isfinite(f->motion_scale[1]))
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "the projection, view, jitter or motion_scale is not finite");
-    if (p[11] == 0.0f && p[15] == 1.0f)
+    hp->orthographic = ob_projection_is_orthographic(p);
+    if (hp->orthographic) {
+        /* x and y scaled and offset, z scaled (its row linearises a depth buffer: P22 != 0), no
+         * shear: the methods rebuild X = (ndc.x - P30) / P00 (common.glsl ob_view_position). */
+        if (p[3] != 0.0f || p[7] != 0.0f || p[0] == 0.0f || p[5] == 0.0f || p[10] == 0.0f)
+            return ob_set_error(OB_ERR_INVALID_ARGUMENT,
+                                "the projection is orthographic (P23 = 0, P33 = 1) but not an OpenGL orthographic matrix "
+                                "(column-major; P03 = %g, P13 = %g, P00 = %g, P11 = %g, P22 = %g; expected P03 = P13 = 0, "
+                                "P00, P11, P22 non-zero)",
+                                (double)p[3], (double)p[7], (double)p[0], (double)p[5], (double)p[10]);
+        if (p[8] != 0.0f || p[9] != 0.0f)
+            return ob_set_error(OB_ERR_INVALID_ARGUMENT,
+                                "the projection is an oblique orthographic one (P20 = %g, P21 = %g): an orthographic "
+                                "projection is taken with P20 = P21 = 0 (an off-centre one offsets P30, P31)",
+                                (double)p[8], (double)p[9]);
+    } else if (p[11] != -1.0f || p[15] != 0.0f || p[3] != 0.0f || p[7] != 0.0f || p[0] == 0.0f || p[5] == 0.0f ||
+               p[14] == 0.0f) {
         return ob_set_error(OB_ERR_INVALID_ARGUMENT,
-                            "the projection is orthographic (P23 = 0, P33 = 1): the methods march in perspective; "
-                            "orthographic hosts are not supported yet");
-    if (p[11] != -1.0f || p[15] != 0.0f || p[3] != 0.0f || p[7] != 0.0f || p[0] == 0.0f || p[5] == 0.0f || p[14] == 0.0f)
-        return ob_set_error(OB_ERR_INVALID_ARGUMENT,
-                            "the projection is not an OpenGL perspective matrix (column-major; P23 = %g, P33 = %g, P00 = %g, "
-                            "P11 = %g, P32 = %g; expected P23 = -1, P33 = 0, the rest non-zero)",
+                            "the projection is neither an OpenGL perspective matrix nor an orthographic one (column-major; "
+                            "P23 = %g, P33 = %g, P00 = %g, P11 = %g, P32 = %g; expected P23 = -1, P33 = 0, the rest "
+                            "non-zero, or P23 = 0, P33 = 1)",
                             (double)p[11], (double)p[15], (double)p[0], (double)p[5], (double)p[14]);
+    }
     memcpy(hp->proj, p, sizeof hp->proj);
-    hp->proj[8] += 2.0f * f->jitter[0] / (float)w;
-    hp->proj[9] += 2.0f * f->jitter[1] / (float)h;
+    if (hp->orthographic) {
+        /* The same move of the image by -jitter pixels: ndc - 2 jitter / size, with w = 1. */
+        hp->proj[12] -= 2.0f * f->jitter[0] / (float)w;
+        hp->proj[13] -= 2.0f * f->jitter[1] / (float)h;
+    } else {
+        hp->proj[8] += 2.0f * f->jitter[0] / (float)w;
+        hp->proj[9] += 2.0f * f->jitter[1] / (float)h;
+    }
     if (all_zero16(f->view)) {
         mat4 identity = GLM_MAT4_IDENTITY_INIT;
         memcpy(hp->view, identity, sizeof hp->view);
@@ -375,9 +396,10 @@ static void fill_input(const host_plan *hp, const ob_host_frame *f, ob_host_inpu
     c->ndc_bias = f->depth_zero_to_one ? 0.0f : -1.0f;
     c->p22 = f->projection[10];
     c->p32 = f->projection[14];
-    c->orthographic = 0;
-    /* Window depth falls with distance when ndc = -P22 + P32 / d does: P32 > 0 (reversed Z). */
-    c->reversed = f->projection[14] > 0.0f;
+    c->orthographic = hp->orthographic ? 1 : 0;
+    /* Window depth falls with distance when ndc does (reversed Z): perspective ndc = -P22 + P32 / d
+     * when P32 > 0; orthographic ndc = P32 - P22 d when P22 > 0. */
+    c->reversed = hp->orthographic ? f->projection[10] > 0.0f : f->projection[14] > 0.0f;
 }
 
 /* One output through the output pass: the chain's `source` at the enlarged size, cropped. */

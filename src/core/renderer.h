@@ -41,6 +41,7 @@ typedef struct ao_targets {
 typedef struct ob_history_key {
     int method, scale, at;
     int width, height;          /* the inner size */
+    int orthographic;           /* the camera's kind: the previous frame's matrices are read as this one's */
     bool rgb, bounce;
 } ob_history_key;
 
@@ -162,8 +163,6 @@ void ob_frame_constants_fill(ob_frame_constants *f, const ob_frame_desc *d);
 /* The extra view's camera (seed 000 §4.4): c's eye turned 90 degrees about its up axis (world +Y
  * when zero) around its target, the same target, up, fov and planes. */
 void ob_extra_view_camera(const ob_camera *c, ob_camera *out);
-/* 1/P00, 1/P11, P20, P21 of a column-major projection. */
-void ob_proj_info(const float *proj, float out[4]);
 
 /* chain.c: the AO chain both front doors run (ob_render_frame, ob_host_ao). */
 /* The method of a frame, resolved once: its entry, state, parameters as it sees them (explicit

@@ -65,9 +65,11 @@ static const ob_param_info crease_params[P_COUNT] = {
 };
 
 /* The three programs, each compiled at its first use (a GPU's auto never compiles the block
- * program, llvmpipe's never the tiled one), so a frame can switch between them. */
+ * program, llvmpipe's never the tiled one), so a frame can switch between them. The block program
+ * has an orthographic twin (crease.glsl OB_ORTHOGRAPHIC: its plane distance is unrolled from the
+ * perspective reconstruction); the other two rebuild view positions with the frame's own camera. */
 typedef struct crease_state {
-    ob_compute_pass plain, tiled, block;
+    ob_compute_pass plain, tiled, block, block_ortho;
     bool rgb;      /* the RGBA16F variant (SSDO's M and bounce) */
     bool software; /* the context is a software rasteriser: what `tiled` auto follows */
 } crease_state;
@@ -91,6 +93,7 @@ static void crease_destroy(void *state)
     ob_compute_pass_destroy(&s->plain);
     ob_compute_pass_destroy(&s->tiled);
     ob_compute_pass_destroy(&s->block);
+    ob_compute_pass_destroy(&s->block_ortho);
     free(s);
 }
 
@@ -106,15 +109,21 @@ static void *make_state(bool rgb)
     return s;
 }
 
-/* The program for `mode` (TILED_OFF, TILED_ON or TILED_BLOCK), compiled now if this is its first
- * use; NULL + ob_set_error when it does not compile. */
-static ob_compute_pass *program_for(crease_state *s, int mode)
+/* The program for `mode` (TILED_OFF, TILED_ON or TILED_BLOCK; `ortho`: the frame's camera is
+ * orthographic), compiled now if this is its first use; NULL + ob_set_error when it does not
+ * compile. */
+static ob_compute_pass *program_for(crease_state *s, int mode, bool ortho)
 {
-    ob_compute_pass *p = mode == TILED_BLOCK ? &s->block : mode == TILED_ON ? &s->tiled : &s->plain;
+    const bool block_ortho = mode == TILED_BLOCK && ortho;
+    ob_compute_pass *p = block_ortho           ? &s->block_ortho
+                         : mode == TILED_BLOCK ? &s->block
+                         : mode == TILED_ON    ? &s->tiled
+                                               : &s->plain;
     if (p->program) return p;
-    char defines[96];
-    snprintf(defines, sizeof defines, "%s%s", s->rgb ? "#define OB_FILTER_RGB 1\n" : "",
-             mode == TILED_BLOCK ? "#define OB_CREASE_BLOCK 1\n" : mode == TILED_ON ? "#define OB_CREASE_TILED 1\n" : "");
+    char defines[128];
+    snprintf(defines, sizeof defines, "%s%s%s", s->rgb ? "#define OB_FILTER_RGB 1\n" : "",
+             mode == TILED_BLOCK ? "#define OB_CREASE_BLOCK 1\n" : mode == TILED_ON ? "#define OB_CREASE_TILED 1\n" : "",
+             block_ortho ? "#define OB_ORTHOGRAPHIC 1\n" : "");
     return ob_compute_pass_init(p, "crease.glsl", defines, sizeof(ob_filter_constants)) == OB_OK ? p : NULL;
 }
 
@@ -138,7 +147,7 @@ static ob_error crease_run(void *state, const ob_filter_inputs *in, const float 
     }
     /* One pass: the view positions come from the frame's block at OB_BINDING_FRAME, which the
      * renderer binds for every pass of the frame (and ob_compute_ao_filtered for its own). */
-    ob_compute_pass *p = program_for(s, mode);
+    ob_compute_pass *p = program_for(s, mode, in->orthographic);
     if (!p) return ob_peek_error(NULL);
     if (mode == TILED_BLOCK)
         ob_filter_run_blocks(p, &c, ob_filter_constants_used(&c), in, 4); /* crease.glsl's BLOCK */

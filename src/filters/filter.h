@@ -21,6 +21,9 @@ typedef struct ob_filter_inputs {
      * the bounce). false: R32F, sky pixels 1. */
     bool rgb;
     float sky;
+    /* The frame's camera is orthographic (frame_params.h's `orthographic`, which the shaders read
+     * themselves): for a filter that compiles a program of its own for it (crease's block). */
+    bool orthographic;
 } ob_filter_inputs;
 
 /* The image format of a filter's targets. */

@@ -197,6 +197,13 @@ int ob_depth_mips_reference(const float *depth, int width, int height, float *co
 /* ---- the floor: floor.c, shaders/floor.glsl (obscura bench --floor; issue 18) ---------------
  * A bare N-tap kernel over the AO grid's depth and normals: what any AO method at N taps and radius
  * R must at least do (the shader says exactly what it does and leaves out). */
+/* core/frame.c: a column-major OpenGL projection is orthographic when P23 = 0 and P33 = 1 (clip
+ * w = 1), else perspective; ob_proj_info fills what common.glsl's ob_view_position takes of it:
+ * 1/P00, 1/P11, P20, P21 (perspective) or 1/P00, 1/P11, -P30, -P31 (orthographic). The frame's
+ * camera kind is frame_params.h's `orthographic`. */
+bool ob_projection_is_orthographic(const float *proj);
+void ob_proj_info(const float *proj, float out[4]);
+
 typedef struct ob_floor_desc {
     int taps;            /* N, 1..OB_FLOOR_MAX_TAPS */
     int rays;            /* 0: a spiral over the disk of R_px; D: D rays of N / D steps (N a multiple of D) */

@@ -38,11 +38,9 @@ void ob_temporal_fill(ob_temporal_constants *c, const float prev_view[16], const
     glm_mat4_mul(prev, inv, to_prev);
     memcpy(c->to_prev_view, to_prev, sizeof c->to_prev_view);
     memcpy(c->prev_ao_proj, prev_ao_proj, sizeof c->prev_ao_proj);
-    /* 1/P00, 1/P11, P20, P21 (column-major), as ob_proj_info and common.glsl's ob_view_position. */
-    c->prev_ao_proj_info[0] = 1.0f / prev_ao_proj[0];
-    c->prev_ao_proj_info[1] = 1.0f / prev_ao_proj[5];
-    c->prev_ao_proj_info[2] = prev_ao_proj[8];
-    c->prev_ao_proj_info[3] = prev_ao_proj[9];
+    /* 1/P00, 1/P11, P20, P21 (column-major; -P30, -P31 orthographic), as common.glsl's
+     * ob_view_position takes them. */
+    ob_proj_info(prev_ao_proj, c->prev_ao_proj_info);
     c->history_valid = history_valid ? 1 : 0;
     c->history_frames = (float)(history_frames > 0 ? history_frames : 1);
     c->plane_tolerance = PLANE_TOLERANCE;

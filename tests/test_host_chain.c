@@ -389,6 +389,47 @@ static void motion_vectors(ob_context *ctx, ob_scene *scene)
     ob_destroy_renderer(c);
 }
 
+/* After a host call the renderer's own frame is gone: its read-backs are refused, not stale; the
+ * AO grid's own images (raw AO, history age) are the call's; the motion only where the depth went
+ * through the input pass (the read-back reprojects the G-buffer's depth). */
+static void read_back_after_host(ob_context *ctx, ob_scene *scene)
+{
+    ob_renderer *a = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
+    CHECK(a && ob_renderer_set_scene(a, scene) == OB_OK, "read-back: renderer");
+    if (!a) return;
+    ob_settings s;
+    ob_settings_init(&s, "vbao");
+    s.temporal = true;
+    const ob_settings hs = host_settings(&s, ob_query_scene_ao_radius(scene));
+    const ob_camera cam = camera_at(0);
+    CHECK(ob_render_frame(a, &cam, &s) == OB_OK, "read-back: frame: %s", error_text());
+    host_inputs in;
+    grab(a, &in);
+    static float img[4 * W * H];
+    CHECK(ob_read_image(a, OB_IMAGE_AO_F32, img, sizeof img) == OB_OK, "read-back: the frame's AO");
+    ob_host_frame f = {.depth = in.depth, .normal = in.normal};
+    memcpy(f.view, in.view, sizeof f.view);
+    memcpy(f.projection, in.proj, sizeof f.projection);
+    GLuint out = ob_make_texture_2d(GL_R32F, W, H);
+    CHECK(ob_host_ao(a, &f, &hs, &(ob_host_outputs){.ao = out}) == OB_OK, "read-back: host call: %s", error_text());
+    const ob_image_kind refused[] = {OB_IMAGE_AO_F32, OB_IMAGE_FINAL_RGBA8, OB_IMAGE_DEPTH_F32, OB_IMAGE_MOTION_F32};
+    for (size_t i = 0; i < sizeof refused / sizeof refused[0]; ++i) {
+        CHECK(ob_read_image(a, refused[i], img, sizeof img) == OB_ERR_INVALID_ARGUMENT,
+              "read-back of image kind %d after a host call on linear depth is refused", (int)refused[i]);
+        ob_get_error(NULL);
+    }
+    CHECK(ob_read_image(a, OB_IMAGE_AO_RAW_F32, img, sizeof img) == OB_OK, "raw AO after a host call: %s", error_text());
+    CHECK(ob_read_image(a, OB_IMAGE_HISTORY_AGE_F32, img, sizeof img) == OB_OK, "history age after a host call: %s",
+          error_text());
+    CHECK(ob_present(a, OB_VIEW_FINAL, 0, 0, 0, W, H) == OB_ERR_INVALID_ARGUMENT, "ob_present after a host call");
+    ob_get_error(NULL);
+    CHECK(ob_render_frame(a, &cam, &s) == OB_OK && ob_read_image(a, OB_IMAGE_AO_F32, img, sizeof img) == OB_OK,
+          "a frame after the host call reads back again: %s", error_text());
+    release(&in);
+    glDeleteTextures(1, &out);
+    ob_destroy_renderer(a);
+}
+
 int main(void)
 {
     ob_context *ctx = check_context();
@@ -411,6 +452,7 @@ int main(void)
     same_bits(ctx, scene, "gtao", "layers=2", 2, false, 0, false, 1);
     through_input_pass(ctx, scene);
     motion_vectors(ctx, scene);
+    read_back_after_host(ctx, scene);
     ob_destroy_scene(scene);
     ob_destroy_context(ctx);
     return check_finish("host_chain");

@@ -625,6 +625,11 @@ typedef enum ob_image_kind {
 
 /* Bytes needed for an image of the renderer's size. */
 size_t ob_image_size(const ob_renderer *r, ob_image_kind kind);
+/* One of the last ob_render_frame's images into dst (dst_size at least ob_image_size). After an
+ * ob_host_ao call (whose results are in the host's own textures) only OB_IMAGE_AO_RAW_F32,
+ * OB_IMAGE_HISTORY_AGE_F32 and, when the depth went through the input pass, OB_IMAGE_MOTION_F32
+ * are the call's, at the AO grid of its input size. Errors: OB_ERR_INVALID_ARGUMENT (NULL, a small
+ * dst, or no such image: none rendered yet, or not since a resize or a failed frame). */
 ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst_size);
 
 typedef struct ob_pass_timing {

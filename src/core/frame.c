@@ -355,6 +355,7 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
 
     /* From here the targets are being overwritten: no whole frame to present until the end. */
     r->has_frame = false;
+    r->has_host_chain = false;
     ob_timers_frame_begin(&r->timers);
     err = run_passes(r, s, &plan, t, lights, light_count);
     ob_timers_frame_end(&r->timers);

@@ -438,6 +438,7 @@ static ob_error run_call(ob_renderer *r, const ob_host_frame *f, const ob_settin
                                              .sh = (const float(*)[3])r->environment.sh});
     ob_upload_frame(r);
     r->has_frame = false; /* the renderer's own frame is being overwritten */
+    r->has_host_chain = false;
     ob_chain_io io = {.depth = f->depth,
                       .normal = f->normal,
                       .radiance = f->radiance,
@@ -507,6 +508,8 @@ static ob_error run_call(ob_renderer *r, const ob_host_frame *f, const ob_settin
     }
     /* The host reads what the passes wrote, by any means. */
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    r->has_host_chain = true;
+    r->host_depth_in_gbuffer = io.depth == r->gbuffer.linear_depth;
     return OB_OK;
 }
 

@@ -111,6 +111,17 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
     size_t need = ob_image_size(r, kind);
     if (!r || !dst || need == 0) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_read_image: bad argument");
     if (dst_size < need) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_read_image: buffer of %zu bytes, need %zu", dst_size, need);
+    /* The targets hold a whole frame only after a frame that finished: not after a resize, a
+     * failure half-way, or a host call, which overwrites some of them and writes its results
+     * into the host's textures. */
+    /* After a host call only the AO grid's own images are the call's (the motion's when its depth
+     * went through the input pass into the G-buffer's target, which the read-back reprojects). */
+    const bool grid_kind = kind == OB_IMAGE_AO_RAW_F32 || kind == OB_IMAGE_HISTORY_AGE_F32 ||
+                           (kind == OB_IMAGE_MOTION_F32 && r->host_depth_in_gbuffer);
+    if (!r->has_frame && !(r->has_host_chain && grid_kind))
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_read_image: no frame to read (none rendered yet, or not since a "
+                                                     "resize or a failed frame; after ob_host_ao only the raw AO, the "
+                                                     "history age and, with a depth buffer, the motion)");
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     switch (kind) {
     case OB_IMAGE_FINAL_RGBA8: {

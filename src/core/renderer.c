@@ -237,6 +237,7 @@ ob_error ob_renderer_reshape(ob_renderer *r, int width, int height, int guard)
     r->inner_width = inner_w;
     r->inner_height = inner_h;
     r->has_frame = false;
+    r->has_host_chain = false;
     return OB_OK;
 }
 

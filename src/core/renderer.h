@@ -105,6 +105,9 @@ struct ob_renderer {
     ob_frame_record last;
     ob_host_passes host;       /* ob_host_ao's input and output passes, made on first use */
     bool has_frame;            /* the targets hold a whole frame (ob_present) */
+    /* The AO grid's targets (raw AO, history age, motion) hold the last ob_host_ao call's, and the
+     * motion read-back can find its depth (the input pass wrote it into the G-buffer's). */
+    bool has_host_chain, host_depth_in_gbuffer;
     ob_view_pass view;         /* ob_present */
     ob_depth_mips depth_mips;  /* for methods that read OB_READS_DEPTH_MIPS, made on first use */
     ob_floor floor;            /* ob_render_floor, made on first use */

@@ -1016,43 +1016,16 @@ static int host_inputs_make(host_inputs *in, int w, int h)
  * *cam, so the frame uses the very planes the window depth is computed with), glm_lookat,
  * glm_perspective, the lens shift in P20 and P21; and the same projection reversed-Z with
  * glClipControl's [0, 1] range: window depth = n (f - d) / (d (f - n)), 1 at the near plane. */
-static void host_matrices(const ob_scene *scene, ob_camera *cam, int w, int h, host_inputs *in)
+static int host_matrices(const ob_scene *scene, ob_camera *cam, int w, int h, host_inputs *in)
 {
-    if (cam->fov_y_deg <= 0.0f) cam->fov_y_deg = 60.0f;
-    if (cam->up[0] == 0.0f && cam->up[1] == 0.0f && cam->up[2] == 0.0f) cam->up[1] = 1.0f;
-    if (cam->near_z <= 0.0f || cam->far_z <= cam->near_z) {
-        const ob_scene_stats st = ob_query_scene_stats(scene);
-        float d2 = 0.0f, near2 = 0.0f, far2 = 0.0f;
-        for (int i = 0; i < 3; ++i) {
-            float e = st.bounds_max[i] - st.bounds_min[i];
-            d2 += e * e;
-        }
-        float r = 0.5f * sqrtf(d2); /* the bounds' radius */
-        if (!(r > 0.0f) || !isfinite(r)) r = 1.0f;
-        for (int i = 0; i < 3; ++i) {
-            float e = cam->eye[i];
-            float dn = e < st.bounds_min[i] ? st.bounds_min[i] - e : (e > st.bounds_max[i] ? e - st.bounds_max[i] : 0.0f);
-            float df = fmaxf(fabsf(e - st.bounds_min[i]), fabsf(e - st.bounds_max[i]));
-            near2 += dn * dn;
-            far2 += df * df;
-        }
-        float far_z = 1.1f * sqrtf(far2);
-        float near_z = fmaxf(0.9f * sqrtf(near2), fmaxf(far_z / 10000.0f, 1e-3f * r));
-        if (!isfinite(far_z) || !(far_z > near_z)) far_z = 2.0f * near_z + r;
-        cam->near_z = near_z;
-        cam->far_z = far_z;
-    }
-    mat4 view, proj;
-    glm_lookat(cam->eye, cam->target, cam->up, view);
-    glm_perspective(glm_rad(cam->fov_y_deg), (float)w / (float)h, cam->near_z, cam->far_z, proj);
-    proj[2][0] = cam->shift[0];
-    proj[2][1] = cam->shift[1];
-    memcpy(in->view, view, sizeof in->view);
-    memcpy(in->proj, proj, sizeof in->proj);
-    memcpy(in->reversed, proj, sizeof in->reversed);
+    const ob_scene_stats st = ob_query_scene_stats(scene);
+    if (ob_camera_matrices(cam, st.bounds_min, st.bounds_max, w, h, in->view, in->proj) != OB_OK)
+        return cli_fail_from_library_in("--host: the camera");
+    memcpy(in->reversed, in->proj, sizeof in->reversed);
     const double n = cam->near_z, f = cam->far_z;
     in->reversed[10] = (float)(n / (f - n));
     in->reversed[14] = (float)(f * n / (f - n));
+    return EXIT_OK;
 }
 
 /* in->lin and in->nrm (and in->rad, in->alb with rgb) hold a G-buffer: the packed copies made
@@ -1235,9 +1208,9 @@ static int host_measure(ob_renderer **rs, const ob_camera *base, const ob_scene 
             int code = cli_common_path_camera(moving.common, moving.scene, base, f % moving.common->path_frames, &cam);
             if (code != EXIT_OK) return code;
         }
-        host_matrices(scene, &cam, in->w, in->h, in);
+        int code = host_matrices(scene, &cam, in->w, in->h, in);
+        if (code != EXIT_OK) return code;
         if (ob_render_frame(rs[HOST_FRAME], &cam, s) != OB_OK) return cli_fail_from_library();
-        int code = EXIT_OK;
         if (measured) code = host_record(rs[HOST_FRAME], HOST_FRAME, &row->path[HOST_FRAME], scratch, frames, m);
         if (code == EXIT_OK) code = host_grab(rs[HOST_FRAME], in, rgb);
         for (int p = HOST_LINEAR; p < HOST_PATHS && code == EXIT_OK; ++p) {
@@ -1355,8 +1328,8 @@ static int host_rmse_view(const bench_opts *o, const char *spec, ob_renderer *fr
                     ob_read_image(fr, OB_IMAGE_ALBEDO_F32, in->alb, 3 * px * sizeof(float)) != OB_OK))
             code = cli_fail_from_library();
         cam = vf.cam;
-        host_matrices(scene, &cam, w, h, in);
-        host_upload(in, rgb);
+        if (code == EXIT_OK) code = host_matrices(scene, &cam, w, h, in);
+        if (code == EXIT_OK) host_upload(in, rgb);
     }
     for (int k = 0; k < count && code == EXIT_OK; ++k) {
         ob_settings s, hs;

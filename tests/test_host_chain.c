@@ -430,6 +430,34 @@ static void read_back_after_host(ob_context *ctx, ob_scene *scene)
     ob_destroy_renderer(a);
 }
 
+/* ob_camera_matrices gives the very matrices ob_render_frame drew with, and refuses what it cannot
+ * fill in. */
+static void camera_matrices(ob_context *ctx, ob_scene *scene)
+{
+    ob_renderer *a = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
+    CHECK(a && ob_renderer_set_scene(a, scene) == OB_OK, "camera matrices: renderer");
+    if (!a) return;
+    ob_settings s;
+    ob_settings_init(&s, "vbao");
+    ob_camera cam = camera_at(3);
+    CHECK(ob_render_frame(a, &cam, &s) == OB_OK, "camera matrices: frame: %s", error_text());
+    const ob_scene_stats st = ob_query_scene_stats(scene);
+    float view[16], proj[16];
+    CHECK(ob_camera_matrices(&cam, st.bounds_min, st.bounds_max, W, H, view, proj) == OB_OK, "ob_camera_matrices: %s",
+          error_text());
+    CHECK(!memcmp(view, a->frame_constants.view, sizeof view) && !memcmp(proj, a->frame_constants.proj, sizeof proj),
+          "ob_camera_matrices gives the frame's view and projection bit for bit");
+    CHECK(cam.near_z > 0.0f && cam.far_z > cam.near_z, "the fitted planes are left in the camera");
+    ob_camera no_planes = camera_at(0);
+    no_planes.near_z = no_planes.far_z = 0.0f;
+    CHECK(ob_camera_matrices(&no_planes, NULL, NULL, W, H, view, proj) == OB_ERR_INVALID_ARGUMENT,
+          "no planes and no bounds are refused");
+    ob_get_error(NULL);
+    CHECK(ob_camera_matrices(&cam, NULL, NULL, 0, H, view, proj) == OB_ERR_INVALID_ARGUMENT, "a 0-wide frame is refused");
+    ob_get_error(NULL);
+    ob_destroy_renderer(a);
+}
+
 int main(void)
 {
     ob_context *ctx = check_context();
@@ -453,6 +481,7 @@ int main(void)
     through_input_pass(ctx, scene);
     motion_vectors(ctx, scene);
     read_back_after_host(ctx, scene);
+    camera_matrices(ctx, scene);
     ob_destroy_scene(scene);
     ob_destroy_context(ctx);
     return check_finish("host_chain");

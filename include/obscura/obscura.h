@@ -171,6 +171,16 @@ typedef struct ob_camera {
 #define OB_MAX_COORDINATE 1e18f
 #define OB_MIN_FOV_DEG 0.01f
 ob_error ob_check_camera(const ob_camera *cam);
+/* The matrices ob_render_frame draws a camera with, for a frame of width x height: *cam's
+ * defaults filled in (fov 0 = 60 degrees, up 0 = +Y, near_z and far_z both 0 = fitted to
+ * bounds_min..bounds_max, the scene's ob_query_scene_stats bounds; NULL bounds = keep them, then
+ * they must be set), view = lookAt(eye, target, up) and an OpenGL perspective projection with the
+ * lens shift in P20, P21, column-major. A host that draws a project scene itself uses them to
+ * match `obscura render` (and *cam then holds the planes used). Pure CPU. Errors:
+ * OB_ERR_INVALID_ARGUMENT (NULL, a size below 1x1, what ob_check_camera refuses, no planes and no
+ * bounds). */
+ob_error ob_camera_matrices(ob_camera *cam, const float bounds_min[3], const float bounds_max[3], int width, int height,
+                            float view[16], float proj[16]);
 
 typedef struct ob_headset {
     const char *name;        /* "vive" */

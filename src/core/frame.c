@@ -321,10 +321,7 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     if (err != OB_OK) return err;
 
     mat4 view, proj;
-    glm_lookat(cam.eye, cam.target, cam.up, view);
-    glm_perspective(glm_rad(cam.fov_y_deg), (float)r->width / (float)r->height, cam.near_z, cam.far_z, proj);
-    proj[2][0] = cam.shift[0]; /* off-axis frustum (ob_camera.shift): P20, P21 */
-    proj[2][1] = cam.shift[1];
+    ob_camera_view_proj(&cam, r->width, r->height, (float *)view, (float *)proj);
     ob_guard_projection((float *)proj, r->width, r->height, r->guard);
     if (plan.reads & OB_READS_EXTRA_VIEW) {
         /* The extra camera: an unshifted frustum of the same fov over the same (enlarged) buffer. */

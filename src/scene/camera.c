@@ -1,8 +1,10 @@
 /* Default framing camera and near/far planes derived from scene bounds. */
 #include "scene/scene.h"
 
+#include <cglm/cglm.h>
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "core/error.h"
 
@@ -126,5 +128,39 @@ ob_error ob_check_camera(const ob_camera *cam)
         !(cam->near_z > 0.0f && cam->far_z > cam->near_z && isfinite(cam->far_z)))
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "near %g and far %g planes: expected both 0 (fitted) or 0 < near < far",
                             (double)cam->near_z, (double)cam->far_z);
+    return OB_OK;
+}
+
+void ob_camera_view_proj(const ob_camera *cam, int width, int height, float view[16], float proj[16])
+{
+    /* Through aligned cglm matrices: its SIMD paths assume them. */
+    vec3 eye = {cam->eye[0], cam->eye[1], cam->eye[2]}, target = {cam->target[0], cam->target[1], cam->target[2]};
+    vec3 up = {cam->up[0], cam->up[1], cam->up[2]};
+    mat4 v, p;
+    glm_lookat(eye, target, up, v);
+    glm_perspective(glm_rad(cam->fov_y_deg), (float)width / (float)height, cam->near_z, cam->far_z, p);
+    p[2][0] = cam->shift[0]; /* off-axis frustum (ob_camera.shift): P20, P21 */
+    p[2][1] = cam->shift[1];
+    memcpy(view, v, sizeof v);
+    memcpy(proj, p, sizeof p);
+}
+
+ob_error ob_camera_matrices(ob_camera *cam, const float bounds_min[3], const float bounds_max[3], int width, int height,
+                            float view[16], float proj[16])
+{
+    if (!cam || !view || !proj || width < 1 || height < 1)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_camera_matrices: %s",
+                            !cam ? "NULL camera" : (!view || !proj) ? "NULL matrix" : "size below 1x1");
+    if (ob_check_camera(cam) != OB_OK) return ob_peek_error(NULL);
+    /* ob_render_frame's defaults (frame.c). */
+    if (cam->fov_y_deg <= 0.0f) cam->fov_y_deg = 60.0f;
+    if (cam->up[0] == 0.0f && cam->up[1] == 0.0f && cam->up[2] == 0.0f) cam->up[1] = 1.0f;
+    if (cam->near_z <= 0.0f || cam->far_z <= cam->near_z) {
+        if (!bounds_min || !bounds_max)
+            return ob_set_error(OB_ERR_INVALID_ARGUMENT,
+                                "ob_camera_matrices: the camera's near and far planes are 0 and no bounds to fit them to");
+        ob_camera_fit_planes(cam, bounds_min, bounds_max);
+    }
+    ob_camera_view_proj(cam, width, height, view, proj);
     return OB_OK;
 }

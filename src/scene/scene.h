@@ -84,5 +84,8 @@ ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path);
 ob_camera ob_camera_frame_bounds(const float bmin[3], const float bmax[3], float fov_y_deg);
 /* Near/far planes that enclose the bounds from the camera's eye. */
 void ob_camera_fit_planes(ob_camera *cam, const float bmin[3], const float bmax[3]);
+/* lookAt and the OpenGL perspective (lens shift in P20, P21) of a camera whose defaults and planes
+ * are filled in: what ob_render_frame and ob_camera_matrices draw with. Column-major. */
+void ob_camera_view_proj(const ob_camera *cam, int width, int height, float view[16], float proj[16]);
 
 #endif

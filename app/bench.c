@@ -349,18 +349,28 @@ static void progress(bench_state *st, const char *what)
     ob_progress_advance(&st->bar, 1, what);
 }
 
+/* One more zeroed element of a growing array (*items, *count of *cap, `size` bytes each): its
+ * address, or NULL when memory ran out (nothing changed then). */
+static void *grow(void **items, int *count, int *cap, size_t size)
+{
+    if (*count == *cap) {
+        int more = *cap ? 2 * *cap : 16;
+        void *p = realloc(*items, (size_t)more * size);
+        if (!p) return NULL;
+        *items = p;
+        *cap = more;
+    }
+    void *item = (char *)*items + (size_t)(*count)++ * size;
+    memset(item, 0, size);
+    return item;
+}
+
 static bench_row *new_row(bench_state *st)
 {
-    if (st->count == st->cap) {
-        int cap = st->cap ? st->cap * 2 : 64;
-        bench_row *p = realloc(st->rows, (size_t)cap * sizeof *p);
-        if (!p) return NULL;
-        st->rows = p;
-        st->cap = cap;
-    }
-    bench_row *r = &st->rows[st->count++];
-    memset(r, 0, sizeof *r);
-    r->baseline = -1;
+    void *rows = st->rows;
+    bench_row *r = grow(&rows, &st->count, &st->cap, sizeof *r);
+    st->rows = rows;
+    if (r) r->baseline = -1;
     return r;
 }
 
@@ -733,27 +743,34 @@ static void row_label(const bench_row *r, char *out, size_t n)
     if (r->r > 0.0f && len >= 0 && (size_t)len < n) snprintf(out + len, n - (size_t)len, " \xc2\xb7 r %g", (double)r->r);
 }
 
+/* The fields every row's JSON starts with: what was run, on which camera, at what size. */
+static void config_json(cJSON *j, const char *label, int method, const cli_config *cfg, const ob_scene *scene,
+                        int camera, int samples, float r, float radius_world, int width, int height)
+{
+    cJSON_AddStringToObject(j, "method", method_name(method));
+    cJSON_AddStringToObject(j, "label", label);
+    cJSON_AddStringToObject(j, "filter", ob_filter_at(cfg->filter)->name);
+    cJSON_AddNumberToObject(j, "ao_scale", 1.0 / cfg->ao_divisor);
+    cJSON_AddStringToObject(j, "camera", ob_query_camera(scene, camera).name);
+    if (samples > 0) cJSON_AddNumberToObject(j, "samples", samples);
+    else cJSON_AddNullToObject(j, "samples");
+    if (r > 0.0f) {
+        cJSON_AddNumberToObject(j, "radius", r);
+        cJSON_AddNumberToObject(j, "radius_world", radius_world);
+    } else {
+        cJSON_AddNullToObject(j, "radius");
+        cJSON_AddNullToObject(j, "radius_world");
+    }
+    cJSON_AddNumberToObject(j, "width", width);
+    cJSON_AddNumberToObject(j, "height", height);
+}
+
 static cJSON *row_json(const bench_row *r, const bench_row *none, const ob_scene *scene)
 {
     cJSON *j = cJSON_CreateObject();
     char label[CLI_MAX_LABEL + 32] = "";
     row_label(r, label, sizeof label);
-    cJSON_AddStringToObject(j, "method", method_name(r->method));
-    cJSON_AddStringToObject(j, "label", label);
-    cJSON_AddStringToObject(j, "filter", ob_filter_at(r->cfg->filter)->name);
-    cJSON_AddNumberToObject(j, "ao_scale", 1.0 / r->cfg->ao_divisor);
-    cJSON_AddStringToObject(j, "camera", ob_query_camera(scene, r->camera).name);
-    if (r->samples > 0) cJSON_AddNumberToObject(j, "samples", r->samples);
-    else cJSON_AddNullToObject(j, "samples");
-    if (r->r > 0.0f) {
-        cJSON_AddNumberToObject(j, "radius", r->r);
-        cJSON_AddNumberToObject(j, "radius_world", r->radius_world);
-    } else {
-        cJSON_AddNullToObject(j, "radius");
-        cJSON_AddNullToObject(j, "radius_world");
-    }
-    cJSON_AddNumberToObject(j, "width", r->width);
-    cJSON_AddNumberToObject(j, "height", r->height);
+    config_json(j, label, r->method, r->cfg, scene, r->camera, r->samples, r->r, r->radius_world, r->width, r->height);
     cJSON_AddNumberToObject(j, "triangles", r->triangles);
     cJSON_AddNumberToObject(j, "tessellation_levels", r->tess);
     cJSON *passes = cJSON_AddArrayToObject(j, "passes");
@@ -1264,15 +1281,9 @@ static int host_views_check(const char *v)
 
 static host_acc_row *new_acc_row(host_state *hst)
 {
-    if (hst->acc_count == hst->acc_cap) {
-        int cap = hst->acc_cap ? 2 * hst->acc_cap : 16;
-        host_acc_row *p = realloc(hst->acc, (size_t)cap * sizeof *p);
-        if (!p) return NULL;
-        hst->acc = p;
-        hst->acc_cap = cap;
-    }
-    host_acc_row *a = &hst->acc[hst->acc_count++];
-    memset(a, 0, sizeof *a);
+    void *acc = hst->acc;
+    host_acc_row *a = grow(&acc, &hst->acc_count, &hst->acc_cap, sizeof *a);
+    hst->acc = acc;
     return a;
 }
 
@@ -1401,15 +1412,9 @@ static int host_rmse(const bench_opts *o, ob_context *ctx, const cli_config *con
 
 static host_row *new_host_row(host_state *hst)
 {
-    if (hst->count == hst->cap) {
-        int cap = hst->cap ? 2 * hst->cap : 16;
-        host_row *p = realloc(hst->rows, (size_t)cap * sizeof *p);
-        if (!p) return NULL;
-        hst->rows = p;
-        hst->cap = cap;
-    }
-    host_row *r = &hst->rows[hst->count++];
-    memset(r, 0, sizeof *r);
+    void *rows = hst->rows;
+    host_row *r = grow(&rows, &hst->count, &hst->cap, sizeof *r);
+    hst->rows = rows;
     return r;
 }
 
@@ -1551,23 +1556,9 @@ static cJSON *host_row_json(const host_row *r, const ob_scene *scene)
     cJSON *j = cJSON_CreateObject();
     char label[CLI_MAX_LABEL + 32] = "";
     row_label(&(bench_row){.cfg = r->cfg, .samples = r->samples, .r = r->r}, label, sizeof label);
-    cJSON_AddStringToObject(j, "method", method_name(r->cfg->method));
-    cJSON_AddStringToObject(j, "label", label);
-    cJSON_AddStringToObject(j, "filter", ob_filter_at(r->cfg->filter)->name);
-    cJSON_AddNumberToObject(j, "ao_scale", 1.0 / r->cfg->ao_divisor);
+    config_json(j, label, r->cfg->method, r->cfg, scene, r->camera, r->samples, r->r, r->radius_world, r->width,
+                r->height);
     cJSON_AddBoolToObject(j, "temporal", r->cfg->settings.temporal);
-    cJSON_AddStringToObject(j, "camera", ob_query_camera(scene, r->camera).name);
-    if (r->samples > 0) cJSON_AddNumberToObject(j, "samples", r->samples);
-    else cJSON_AddNullToObject(j, "samples");
-    if (r->r > 0.0f) {
-        cJSON_AddNumberToObject(j, "radius", r->r);
-        cJSON_AddNumberToObject(j, "radius_world", r->radius_world);
-    } else {
-        cJSON_AddNullToObject(j, "radius");
-        cJSON_AddNullToObject(j, "radius_world");
-    }
-    cJSON_AddNumberToObject(j, "width", r->width);
-    cJSON_AddNumberToObject(j, "height", r->height);
     cJSON *paths = cJSON_AddObjectToObject(j, "paths");
     for (int p = 0; p < HOST_PATHS; ++p) {
         const host_path_row *pr = &r->path[p];

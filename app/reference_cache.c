@@ -69,7 +69,7 @@ void cli_view_frame_free(cli_view_frame *f)
  * entry is found, named once as older and replaced) is one file: a text header, then the payload.
  *
  *   obscura reference cache 2
- *   tool obscura 0.1.0
+ *   tool obscura 0.2.0
  *   view corner|default|v1                      the view key (escaped: %XX)
  *   sources model:SIZE:FNV,sidecar:SIZE:FNV     the scene's files, or "none (built in)"
  *   camera eye ... target ... up ... fov ... near ... far ... shift ...

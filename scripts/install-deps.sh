@@ -10,6 +10,8 @@ packages=(
     # libclang_rt.fuzzer, is in libclang-rt-14-dev, which clang only recommends (and this script
     # installs without recommends)
     clang libclang-rt-14-dev
+    # make test: the ABI check of libobscura against abi/libobscura.abi (abidw, abidiff)
+    abigail-tools
     # GL/EGL: libepoxy loads both; Mesa's EGL gives the device platform and llvmpipe
     libepoxy-dev libegl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libgl-dev
     # libraries

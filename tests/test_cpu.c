@@ -524,8 +524,23 @@ static void test_method_roles(void)
     CHECK(declared > 0, "some method declares a role (%d)", declared);
 }
 
+/* The library's version is the header's (obscura.h "version"). */
+static void test_version(void)
+{
+    int major = -1, minor = -1, patch = -1;
+    const char *v = ob_version(&major, &minor, &patch);
+    char want[32];
+    snprintf(want, sizeof want, "%d.%d.%d", OB_VERSION_MAJOR, OB_VERSION_MINOR, OB_VERSION_PATCH);
+    CHECK(major == OB_VERSION_MAJOR && minor == OB_VERSION_MINOR && patch == OB_VERSION_PATCH,
+          "ob_version numbers %d.%d.%d", major, minor, patch);
+    CHECK(v && !strcmp(v, want) && !strcmp(v, OB_VERSION_STRING), "ob_version \"%s\", header %s", v ? v : "(null)",
+          want);
+    CHECK(ob_version(NULL, NULL, NULL) == v, "ob_version with NULL pointers");
+}
+
 int main(void)
 {
+    test_version();
     test_errors();
     test_frame_constants();
     test_registry_and_settings();

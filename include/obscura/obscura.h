@@ -37,7 +37,23 @@ extern "C" {
 #pragma GCC visibility push(default)
 #endif
 
-#define OB_VERSION_STRING "0.1.0"
+/* ---- version ---------------------------------------------------------------------------------
+ * The version of this header; ob_version gives the library's, so a host can check at run time that
+ * the library it loaded is the one it was built against. The shared library's soname follows the
+ * ABI: libobscura.so.MAJOR from 1.0 on, libobscura.so.0.MINOR before (every 0.x minor release may
+ * break the ABI). `make test` compares the library's ABI with the committed abi/libobscura.abi
+ * (abidiff): any change fails until the baseline is remade (scripts/abi-baseline.sh), which refuses
+ * an incompatible change unless the version, and with it the soname, moved. docs/changelog.md says
+ * what changed for hosts in each version. CMake's project version is read from these lines. */
+#define OB_VERSION_MAJOR 0
+#define OB_VERSION_MINOR 2
+#define OB_VERSION_PATCH 0
+#define OB_VERSION_STRING "0.2.0"
+
+/* The library's version: its numbers (each pointer may be NULL) and "MAJOR.MINOR.PATCH". A host
+ * built against this header works with a library of the same MAJOR (and, before 1.0, the same
+ * MINOR). */
+const char *ob_version(int *major, int *minor, int *patch);
 
 /* ---- errors ---------------------------------------------------------------------------------
  * One X-macro list yields the enum, the names and the default messages. The CLI maps classes of

@@ -1,6 +1,6 @@
 /* obscura view --test-mode (seed 004 §3.5): every camera preset x every method, each slot timed
  * for --seconds and repeated --cycles times: a table on stdout (a camera's row as soon as its last
- * cycle is measured), progress on stderr (core/progress.h), then a CSV log (one row
+ * cycle is measured), progress on stderr (base/progress.h), then a CSV log (one row
  * per camera x method, ms per pass in frame order) and one screenshot per slot. */
 #include <ctype.h>
 #include <math.h>

@@ -9,7 +9,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "core/renderer.h"
 
 void ob_upload_frame(ob_renderer *r)

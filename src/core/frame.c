@@ -12,7 +12,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "core/renderer.h"
 
 bool ob_projection_is_orthographic(const float *proj)

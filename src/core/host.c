@@ -14,7 +14,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "core/renderer.h"
 
 /* ---- what a texture is ------------------------------------------------------------------------ */

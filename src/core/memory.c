@@ -4,7 +4,7 @@
  * GPU's. Each figure stands for an allocation elsewhere, named beside it: a new target there
  * belongs here too, or a run that fits the estimate can still take more than --max-memory. */
 
-#include "core/error.h"
+#include "base/error.h"
 #include "core/renderer.h"
 #include "methods/method.h"
 #include "scene/model_io.h"

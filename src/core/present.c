@@ -4,7 +4,7 @@
 #include <limits.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "core/renderer.h"
 
 /* The inputs of the view pass for the last frame's `view` (ob_present, ob_read_view). */

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "core/renderer.h"
 
 /* The visible frame of a target with the guard band (renderer.h): its rows from (guard, guard), the

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "core/renderer.h"
 
 /* Delete every AO-resolution target and mark each scale not ready, so the next frame remakes it. */

@@ -7,7 +7,7 @@
 #include <string.h>
 #include <strings.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "filters/filter.h"
 #include "methods/method.h"
 #include "obscura/obscura.h"

@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "obscura/obscura.h"
 
 /* Reference AO_R below 0.75 is occluded: a floor point at 0.6 R from one wall (DESIGN.md's analytic

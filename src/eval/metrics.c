@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "obscura/obscura.h"
 
 /* Wang et al. 2004, §III.C: an 11x11 circular-symmetric Gaussian with sigma = 1.5 samples. */

@@ -12,7 +12,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "obscura/obscura.h"
 
 /* Relative depth agreement for "the same point": above the depth buffer's float error and the

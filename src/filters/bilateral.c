@@ -5,7 +5,7 @@
  * Shader: shaders/bilateral.glsl. */
 #include <stdlib.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "filters/filter.h"
 
 enum { P_RADIUS, P_SIGMA, P_SIGMA_DEPTH, P_COUNT };

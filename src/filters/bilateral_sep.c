@@ -4,7 +4,7 @@
  * between the two measures the approximation alone. Shader: shaders/bilateral_sep.glsl. */
 #include <stdlib.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "filters/filter.h"
 
 enum { P_RADIUS, P_SIGMA, P_SIGMA_DEPTH, P_COUNT };

@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "filters/filter.h"
 
 enum { P_RADIUS, P_SIGMA_PLANE, P_SIGMA_NORMAL, P_TILED, P_COUNT };

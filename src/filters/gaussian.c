@@ -4,7 +4,7 @@
  * Shader: shaders/gaussian.glsl; kernel and dispatches: kernel.c. */
 #include <stdlib.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "filters/filter.h"
 
 enum { P_RADIUS, P_SIGMA, P_COUNT };

@@ -5,7 +5,7 @@
  * keeping both silhouettes (depth) and creases (normals) crisp. Shader: shaders/geometry.glsl. */
 #include <stdlib.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "filters/filter.h"
 
 enum { P_RADIUS, P_SIGMA, P_SIGMA_DEPTH, P_SIGMA_NORMAL, P_COUNT };

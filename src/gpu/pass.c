@@ -1,7 +1,7 @@
 /* Compute-pass plumbing shared by every pass and method: program + constants, dispatch, textures. */
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "gpu/gpu.h"
 #include "ob_shared.h"
 #include "sampling/sampling.h"

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "gpu/gpu.h"
 #include "gpu/shader_expand.h"
 #include "gpu/shaders_embedded.h"

@@ -7,7 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "scene/model_io.h"
 
 FILE *ob_fopen_regular(const char *path, const char *what)

@@ -10,7 +10,7 @@
 
 #include <stb/stb_image_write.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "obscura/obscura.h"
 
 typedef struct atomic_file {

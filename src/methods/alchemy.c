@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "alchemy_params.h"
-#include "core/error.h"
+#include "base/error.h"
 #include "methods/method.h"
 #include "sampling/sampling.h"
 

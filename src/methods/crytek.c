@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "crytek_params.h"
 #include "methods/method.h"
 #include "sampling/sampling.h"

@@ -10,7 +10,7 @@
  * cache gains at large radii (NVIDIA measured 2.86x on HBAO's pass at 1080p); llvmpipe's
  * rasteriser gains nothing from it (docs/methods.md). The method writes its AO pixel where it is,
  * so no pass interleaves the result back. */
-#include "core/error.h"
+#include "base/error.h"
 #include "methods/method.h"
 
 #define SPLIT_GROUP 8 /* shaders/deinterleave.glsl's OB_DEINTERLEAVE_GROUP */

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "hbao_params.h"
 #include "methods/method.h"
 #include "sampling/sampling.h"

@@ -3,7 +3,7 @@
  * its parameter table, its settings -> constants function and its dispatch. */
 #include <stdlib.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "methods/method.h"
 
 void *ob_method_make_state(const ob_method_impl *m)

@@ -6,7 +6,7 @@
  * whatever its size; a GPU skips them where a whole group is open and would read 16 bytes a
  * sample for 4, so the methods pack only on a software rasteriser by default. Shader:
  * shaders/sample_pack.glsl. */
-#include "core/error.h"
+#include "base/error.h"
 #include "methods/method.h"
 
 #define PACK_GROUP 8 /* shaders/sample_pack.glsl's OB_PACK_GROUP */

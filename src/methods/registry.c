@@ -3,7 +3,7 @@
 #include <pthread.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "methods/method.h"
 
 #define OB_METHODS(X) \

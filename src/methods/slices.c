@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "methods/method.h"
 
 /* The R2 sequence's steps (Roberts 2018, the plastic number's powers): the best-spread 2D

@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "methods/method.h"
 #include "sampling/sampling.h"
 #include "ssao_params.h"

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "bloom_params.h"
-#include "core/error.h"
+#include "base/error.h"
 #include "passes/passes.h"
 
 static void fill_weights(ob_bloom_constants *k)

@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "compose_params.h"
-#include "core/error.h"
+#include "base/error.h"
 #include "passes/passes.h"
 
 ob_error ob_compose_init(ob_compose_pass *c)

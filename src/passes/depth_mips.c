@@ -3,7 +3,7 @@
  * §2.2). Shader and the reasons for its reduction: shaders/depth_mips.glsl. */
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "depth_mips_params.h"
 #include "passes/passes.h"
 

@@ -11,7 +11,7 @@
 
 #include <stb/stb_image.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "io/file.h"
 #include "passes/passes.h"
 

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "passes/passes.h"
 
 /* A dielectric's specular reflectance (~4%) and a moderate lobe: scenes without material

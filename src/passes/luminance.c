@@ -4,7 +4,7 @@
  * read, so a frame never waits on a read-back. */
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "luminance_params.h"
 #include "passes/passes.h"
 

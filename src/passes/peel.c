@@ -3,7 +3,7 @@
  * G-buffer's size, so a resize (or a guard band) remakes them on the next run. */
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "gbuffer_params.h"
 #include "passes/passes.h"
 

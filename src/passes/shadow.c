@@ -22,7 +22,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "passes/passes.h"
 #include "shadow_params.h"
 

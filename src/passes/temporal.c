@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "passes/passes.h"
 
 /* A history tap is this point's surface when it lies within 1 % of the depth from this point's

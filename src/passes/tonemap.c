@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "bloom_params.h"
-#include "core/error.h"
+#include "base/error.h"
 #include "passes/passes.h"
 #include "tonemap_params.h"
 

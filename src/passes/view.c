@@ -3,7 +3,7 @@
  * (the viewer's window), so everything it binds is put back as it was. */
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "passes/passes.h"
 #include "view_params.h"
 

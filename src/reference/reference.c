@@ -22,8 +22,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "core/error.h"
-#include "core/progress.h"
+#include "base/error.h"
+#include "base/progress.h"
 #include "sampling/sampling.h"
 #include "scene/scene.h"
 

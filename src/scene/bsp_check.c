@@ -24,7 +24,7 @@
 
 #include <zlib.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "scene/model_io.h"
 
 /* ---- the BSP --------------------------------------------------------------------------------- */

@@ -22,7 +22,7 @@
 
 #include <stb/stb_image.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "scene/model_io.h"
 
 #define OB_PI_F 3.14159265358979f

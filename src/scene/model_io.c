@@ -25,7 +25,7 @@
 
 #include <cjson/cJSON.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "scene/bsp_check.h"
 
 /* Peak bytes per element of an import, measured with Assimp 5.2.5 and our post-processing flags

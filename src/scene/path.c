@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "scene/scene.h"
 
 int ob_query_path_count(const ob_scene *scene) { return scene ? scene->path_count : 0; }

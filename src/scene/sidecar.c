@@ -70,7 +70,7 @@
 
 #include <cjson/cJSON.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "io/file.h"
 #include "scene/scene.h"
 

@@ -19,7 +19,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "obscura/obscura.h"
 
 /* HTC Vive (the seed's headset): 1080x1200 pixels per eye (seed 000 §5.2), 64 mm ipd (the

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/error.h"
+#include "base/error.h"
 #include "scene/scene.h"
 
 enum { MAX_LEVELS = 4 };

@@ -1,6 +1,6 @@
 /* Internal error recording: every public entry point that fails calls ob_set_error once. */
-#ifndef OB_CORE_ERROR_H
-#define OB_CORE_ERROR_H
+#ifndef OB_BASE_ERROR_H
+#define OB_BASE_ERROR_H
 
 #include "obscura/obscura.h"
 

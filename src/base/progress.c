@@ -1,4 +1,4 @@
-/* The progress helper (core/progress.h). */
+/* The progress helper (base/progress.h), compiled into libobscura (hidden) and into the CLI. */
 #include "progress.h"
 
 #include <stdio.h>

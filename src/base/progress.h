@@ -1,6 +1,6 @@
 /* Progress of a long job on stderr, one helper for every long job there is: the reference renderer
  * (here in the library) and the CLI's compare, tune, bench and the viewer's test mode (which
- * compile this same file through app/progress.c: the library's copy is hidden, so the two never
+ * compile src/base/progress.c into the CLI too: the library's copy is hidden, so the two never
  * meet).
  *
  * On a terminal: one bar redrawn in place with '\r', closed with a newline when the job ends.
@@ -12,8 +12,8 @@
  * happen under one lock, so the threads of the reference renderer cannot print out of order
  * (issue 20 saw 97 % -> 94 % -> 100 %: a thread moved the shown percentage first and printed it
  * later, after a faster thread had printed a higher one). */
-#ifndef OB_CORE_PROGRESS_H
-#define OB_CORE_PROGRESS_H
+#ifndef OB_BASE_PROGRESS_H
+#define OB_BASE_PROGRESS_H
 
 #include <pthread.h>
 #include <stdbool.h>

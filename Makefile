@@ -6,7 +6,7 @@ JOBS       ?= $(shell nproc)
 CMAKE_FLAGS ?=
 PREFIX     ?= /usr/local
 
-.PHONY: all build deps demo test test-gpu test-asan test-fuzz fuzz fuzz-build install clean abi-baseline
+.PHONY: all build deps demo test test-gpu test-asan test-fuzz fuzz fuzz-build install package clean abi-baseline
 
 all: build
 
@@ -24,6 +24,12 @@ demo: deps build
 # directory (share/obscura) under PREFIX; DESTDIR works as usual.
 install: build
 	@cmake --install $(BUILD) --prefix $(PREFIX)
+
+# Debian packages of this build (CPack): libobscura0.MINOR (the library), libobscura-dev (header,
+# CMake package, obscura.pc) and obscura (the CLI, the viewer and the data directory), with their
+# dependencies from dpkg-shlibdeps, into $(BUILD)/packages.
+package: build
+	@cd $(BUILD) && cpack -G DEB -B packages
 
 # Every test: the GPU/CLI suite on llvmpipe (or a GPU) in the normal build, the CPU tests again
 # under AddressSanitizer + UndefinedBehaviorSanitizer, and a short libFuzzer run of every parser

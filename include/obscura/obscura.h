@@ -603,14 +603,22 @@ ob_error ob_renderer_resize(ob_renderer *r, int width, int height);
 /* The renderer's size (0 x 0 for NULL), the visible frame's: a guard band (ob_settings.guard)
  * does not change it; either pointer may be NULL. */
 void ob_query_renderer_size(const ob_renderer *r, int *width, int *height);
-/* Upload a scene's meshes and textures. The renderer keeps no pointer to the ob_scene. */
+/* Upload a scene's meshes and textures. The renderer keeps no pointer to the ob_scene. Errors:
+ * OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_MODEL (a texture larger than the GL takes),
+ * OB_ERR_OUT_OF_MEMORY, OB_ERR_GL (the GL could not make the buffers); the renderer keeps its
+ * old scene then. */
 ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene);
 /* The environment map (equirectangular Radiance .hdr) for OB_AMBIENT_ENVIRONMENT and SSDO.
  * Errors: OB_ERR_IO. */
 ob_error ob_renderer_set_environment(ob_renderer *r, const char *hdr_path);
 
 /* shadow maps -> G-buffer -> direct light -> [downsample] -> [edges] -> AO -> filter -> [upsample]
- * -> compose -> HDR (luminance, bloom, tone map), each pass timed. */
+ * -> compose -> HDR (luminance, bloom, tone map), each pass timed. Errors: OB_ERR_INVALID_ARGUMENT
+ * (NULL, settings not initialised, no scene yet, environment ambient without an environment map,
+ * a camera that is not finite or whose fov is not in (0, 179)), OB_ERR_OUT_OF_RANGE (a settings
+ * field outside its range), OB_ERR_BAD_SIZE (a guard band beyond GL_MAX_TEXTURE_SIZE),
+ * OB_ERR_SHADER (a pass compiled on first use), OB_ERR_OUT_OF_MEMORY, OB_ERR_GL (an error during
+ * the frame). After an error no frame can be read back or presented until the next one renders. */
 ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *settings);
 /* Forget the temporal history (ob_settings.temporal): the next frame starts every pixel's history
  * again, as after a camera cut, and the frame index that moves the methods' noise starts again at
@@ -792,7 +800,8 @@ ob_error ob_set_shader_directory(const char *dir);
 ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex,
                        const float proj[16], const ob_settings *settings, uint32_t ao_out_tex);
 /* The same, followed by the settings' filter (ob_settings_set_filter) on the same depth and
- * normals: the denoised AO an engine composes with, as OB_IMAGE_AO_F32 of a full-size frame. */
+ * normals: the denoised AO an engine composes with, as OB_IMAGE_AO_F32 of a full-size frame.
+ * Errors: as ob_compute_ao. */
 ob_error ob_compute_ao_filtered(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex,
                                 const float proj[16], const ob_settings *settings, uint32_t ao_out_tex);
 
@@ -968,16 +977,21 @@ ob_error ob_host_ao(ob_renderer *r, const ob_host_frame *frame, const ob_setting
                     const ob_host_outputs *outputs);
 
 /* ---- image files (written atomically: temporary file, then rename) -------------------------- */
-/* Top-row-first RGBA8 or grey (channels 1, 3 or 4). */
+/* Top-row-first RGBA8 or grey (channels 1, 3 or 4). Errors: OB_ERR_INVALID_ARGUMENT (NULL, a
+ * size below 1x1, another channel count), OB_ERR_IO (naming the path; an existing file is kept). */
 ob_error ob_write_png(const char *path, int width, int height, int channels, const uint8_t *px);
 /* Baseline JPEG of the same top-row-first pixels (channels 1, 3 or 4; a fourth is dropped: JPEG
  * has no alpha), quality 1..100. Errors: OB_ERR_INVALID_ARGUMENT, OB_ERR_OUT_OF_RANGE, OB_ERR_IO. */
 ob_error ob_write_jpg(const char *path, int width, int height, int channels, const uint8_t *px, int quality);
-/* PFM: bottom-row-first floats, channels 1 (Pf) or 3 (PF), little-endian. */
+/* PFM: bottom-row-first floats, channels 1 (Pf) or 3 (PF), little-endian. Errors: as
+ * ob_write_png. */
 ob_error ob_write_pfm(const char *path, int width, int height, int channels, const float *px);
-/* A text file (JSON, HTML), written atomically like the images. */
+/* A text file (JSON, HTML), written atomically like the images. Errors: OB_ERR_INVALID_ARGUMENT
+ * (NULL), OB_ERR_IO (naming the path; an existing file is kept). */
 ob_error ob_write_text(const char *path, const char *text);
-/* Reads a PFM; *px is malloc'd (free it). */
+/* Reads a little-endian PFM; *px is malloc'd and the caller's (free it); nothing is allocated on
+ * an error. Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_IO (unreadable, not a little-endian
+ * PFM, truncated), OB_ERR_OUT_OF_MEMORY. */
 ob_error ob_read_pfm(const char *path, int *width, int *height, int *channels, float **px);
 
 /* ---- ground truth (Embree ray tracing on the CPU) -------------------------------------------

@@ -49,6 +49,25 @@ static inline bool make_host_context(bool debug)
     return false;
 }
 
+/* The host's context made current (debug or not) and adopted by libobscura (*ctx), with a renderer
+ * of w x h; NULL after one line on stderr naming why. */
+static inline ob_renderer *make_host_renderer(bool debug, int w, int h, ob_context **ctx_out)
+{
+    if (!make_host_context(debug)) {
+        fprintf(stderr, "no EGL device gives an OpenGL 4.5 core context\n");
+        return NULL;
+    }
+    ob_context *ctx = ob_make_context(&(ob_context_desc){.use_current = true});
+    ob_renderer *r = ctx ? ob_make_renderer(ctx, &(ob_renderer_desc){.width = w, .height = h}) : NULL;
+    if (!r) {
+        const char *msg = "";
+        ob_get_error(&msg);
+        fprintf(stderr, "libobscura: %s\n", msg);
+    }
+    *ctx_out = ctx;
+    return r;
+}
+
 static inline void destroy_host_context(void)
 {
     if (host_dpy == EGL_NO_DISPLAY) return;

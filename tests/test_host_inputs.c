@@ -1005,18 +1005,9 @@ static void test_accepted(ob_renderer *r)
 
 int main(void)
 {
-    if (!make_host_context(false)) {
-        fprintf(stderr, "no EGL device gives an OpenGL 4.5 core context\n");
-        return 1;
-    }
-    ob_context *ctx = ob_make_context(&(ob_context_desc){.use_current = true});
-    ob_renderer *r = ctx ? ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H}) : NULL;
-    if (!r) {
-        const char *msg = "";
-        ob_get_error(&msg);
-        fprintf(stderr, "libobscura: %s\n", msg);
-        return 1;
-    }
+    ob_context *ctx = NULL;
+    ob_renderer *r = make_host_renderer(false, W, H, &ctx);
+    if (!r) return 1;
     printf("host context: %s\n", (const char *)glGetString(GL_RENDERER));
     test_settings();
     float proj[16];

@@ -716,16 +716,9 @@ static void check_refusals(ob_renderer *r, const views *vw)
 
 int main(void)
 {
-    if (!make_host_context(false)) {
-        fprintf(stderr, "no EGL device gives an OpenGL 4.5 core context\n");
-        return 1;
-    }
-    ob_context *ctx = ob_make_context(&(ob_context_desc){.use_current = true});
-    ob_renderer *r = ctx ? ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H}) : NULL;
-    if (!r) {
-        fprintf(stderr, "libobscura: %s\n", last_error());
-        return 1;
-    }
+    ob_context *ctx = NULL;
+    ob_renderer *r = make_host_renderer(false, W, H, &ctx);
+    if (!r) return 1;
     printf("host context: %s\n", (const char *)glGetString(GL_RENDERER));
     char dir[] = "/tmp/obscura-ortho-XXXXXX", path[64];
     if (!mkdtemp(dir)) {

@@ -43,7 +43,9 @@ done
 [ "$(dpkg-deb -c "$tmp/pk/${runtime}_${version}_amd64.deb" | grep -c 'usr/include\|usr/bin')" -eq 0 ] ||
     bad "the runtime package holds headers or programs"
 
-loads_root() { ldd "$1" | grep -q "$lib/$soname"; }
+# ldd's whole output first: under pipefail, `ldd | grep -q` fails when grep
+# exits at the first match and ldd dies of SIGPIPE (CI saw exactly that).
+loads_root() { local deps; deps=$(ldd "$1") && [[ $deps == *"$lib/$soname"* ]]; }
 # examples/embed through the CMake package of the unpacked root, and run.
 if "$cmake" -S "$src/examples/embed" -B "$tmp/cm" -DCMAKE_PREFIX_PATH="$tmp/root/usr" -DCMAKE_BUILD_TYPE=Release \
         "-DCMAKE_C_COMPILER=$cc" >"$tmp/cm.log" 2>&1 && "$cmake" --build "$tmp/cm" >>"$tmp/cm.log" 2>&1; then

@@ -1149,6 +1149,9 @@ typedef struct host_path_row {
     /* median, min, max: its chain passes, its input and output passes, all of it, and all of it /
      * (a)'s chain in the same frame */
     double chain[3], input[3], output[3], total[3], ratio[3];
+    /* the call's wall time on the CPU (ob_render_frame for (a), ob_host_ao for the others): its
+     * checks, GL-state save and restore and command submission; the GPU runs on asynchronously */
+    double call[3];
     bool has_input, has_output;
 } host_path_row;
 
@@ -1180,7 +1183,7 @@ typedef struct host_state {
 } host_state;
 
 /* Per path: MAX_PASSES pass columns of `frames`, then chain, input, output, total, ratio. */
-enum { HOST_COL_CHAIN = MAX_PASSES, HOST_COL_INPUT, HOST_COL_OUTPUT, HOST_COL_TOTAL, HOST_COL_RATIO, HOST_COLS };
+enum { HOST_COL_CHAIN = MAX_PASSES, HOST_COL_INPUT, HOST_COL_OUTPUT, HOST_COL_TOTAL, HOST_COL_RATIO, HOST_COL_CALL, HOST_COLS };
 
 /* Path p's timings of frame m (its renderer's last frame, waited for). (a) keeps its chain passes. */
 static int host_record(ob_renderer *r, int p, host_path_row *row, double *v, int frames, int m)
@@ -1227,17 +1230,23 @@ static int host_measure(ob_renderer **rs, const ob_camera *base, const ob_scene 
         }
         int code = host_matrices(scene, &cam, in->w, in->h, in);
         if (code != EXIT_OK) return code;
+        double t0 = now_s();
         if (ob_render_frame(rs[HOST_FRAME], &cam, s) != OB_OK) return cli_fail_from_library();
+        double call_ms = 1e3 * (now_s() - t0);
         if (measured) code = host_record(rs[HOST_FRAME], HOST_FRAME, &row->path[HOST_FRAME], scratch, frames, m);
+        if (measured) scratch[(size_t)HOST_COL_CALL * (size_t)frames + (size_t)m] = call_ms;
         if (code == EXIT_OK) code = host_grab(rs[HOST_FRAME], in, rgb);
         for (int p = HOST_LINEAR; p < HOST_PATHS && code == EXIT_OK; ++p) {
             ob_host_frame hf;
             ob_host_outputs ho;
             host_call_args(in, p, rgb, &hf, &ho);
+            t0 = now_s();
             if (ob_host_ao(rs[p], &hf, hs, &ho) != OB_OK) return cli_fail_from_library();
+            call_ms = 1e3 * (now_s() - t0);
             if ((code = host_gl_check(p)) != EXIT_OK) return code;
-            if (measured)
-                code = host_record(rs[p], p, &row->path[p], scratch + (size_t)p * HOST_COLS * (size_t)frames, frames, m);
+            double *v = scratch + (size_t)p * HOST_COLS * (size_t)frames;
+            if (measured) code = host_record(rs[p], p, &row->path[p], v, frames, m);
+            if (measured) v[(size_t)HOST_COL_CALL * (size_t)frames + (size_t)m] = call_ms;
         }
         if (code != EXIT_OK) return code;
         if (!measured) continue;
@@ -1252,8 +1261,8 @@ static int host_measure(ob_renderer **rs, const ob_camera *base, const ob_scene 
         host_path_row *pr = &row->path[p];
         double *v = scratch + (size_t)p * HOST_COLS * (size_t)frames;
         for (int k = 0; k < pr->pass_count; ++k) stats(v + (size_t)k * (size_t)frames, frames, &pr->med[k], &pr->min[k], &pr->max[k]);
-        double *cols[5] = {pr->chain, pr->input, pr->output, pr->total, pr->ratio};
-        for (int c = 0; c < 5; ++c)
+        double *cols[6] = {pr->chain, pr->input, pr->output, pr->total, pr->ratio, pr->call};
+        for (int c = 0; c < 6; ++c)
             stats(v + (size_t)(HOST_COL_CHAIN + c) * (size_t)frames, frames, &cols[c][0], &cols[c][1], &cols[c][2]);
     }
     return EXIT_OK;
@@ -1496,7 +1505,9 @@ static void print_host_tables(const bench_opts *o, const ob_scene *scene, const 
                "(b) host_linear      ob_host_ao, R32F linear depth + RGBA16F view normals -> R32F\n"
                "(c) host_packed      ob_host_ao, D32F reversed-Z depth + octahedral RG16F world normals -> R8\n"
                "(d) host_no_normals  ob_host_ao, D32F reversed-Z depth, no normals (rebuilt by the input pass) -> R8\n"
-               "x (a): the median over the frames of each frame's total / (a) in the same frame\n");
+               "x (a): the median over the frames of each frame's total / (a) in the same frame\n"
+               "call cpu ms: the call's wall time on the CPU (checks, GL-state save and restore, submission; the "
+               "GPU runs on asynchronously), with (a)'s G-buffer and lighting\n");
         for (int i = 0; i < hst->count; ++i) {
             const host_row *r = &hst->rows[i];
             if (r->camera != cams[ci]) continue;
@@ -1504,17 +1515,18 @@ static void print_host_tables(const bench_opts *o, const ob_scene *scene, const 
             snprintf(label, sizeof label, "%s", r->cfg->label);
             if (r->samples > 0) snprintf(label + strlen(label), sizeof label - strlen(label), " \xc2\xb7 N %d", r->samples);
             if (r->r > 0.0f) snprintf(label + strlen(label), sizeof label - strlen(label), " \xc2\xb7 r %g", (double)r->r);
-            printf("\n%s\n  %-20s %-26s %-26s %-26s %-26s %s\n", label, "path", "chain ms", "input ms", "output ms",
-                   "total ms", "x (a)");
+            printf("\n%s\n  %-20s %-26s %-26s %-26s %-26s %-8s %s\n", label, "path", "chain ms", "input ms", "output ms",
+                   "total ms", "x (a)", "call cpu ms");
             for (int p = 0; p < HOST_PATHS; ++p) {
                 const host_path_row *pr = &r->path[p];
-                char ch[64], inp[64], out[64], tot[64];
+                char ch[64], inp[64], out[64], tot[64], cpu[64];
                 host_cell(ch, sizeof ch, pr->chain, true);
                 host_cell(inp, sizeof inp, pr->input, pr->has_input);
                 host_cell(out, sizeof out, pr->output, pr->has_output);
                 host_cell(tot, sizeof tot, pr->total, true);
-                printf("  %s %-16s %-26s %-26s %-26s %-26s %.3fx\n", letter[p], host_path_names[p], ch, inp, out, tot,
-                       pr->ratio[0]);
+                host_cell(cpu, sizeof cpu, pr->call, true);
+                printf("  %s %-16s %-26s %-26s %-26s %-26s %.3fx   %s\n", letter[p], host_path_names[p], ch, inp, out, tot,
+                       pr->ratio[0], cpu);
             }
             const double *q = r->path[HOST_LINEAR].ratio;
             printf("  (b)/(a) = %.3fx (frames' ratios: median, min %.3f, max %.3f): %s %.2fx\n", q[0], q[1], q[2],
@@ -1580,6 +1592,7 @@ static cJSON *host_row_json(const host_row *r, const ob_scene *scene)
         stat_json(x, "output_ms", pr->output, pr->has_output);
         stat_json(x, "total_ms", pr->total, true);
         stat_json(x, "ratio_to_frame", pr->ratio, true);
+        stat_json(x, "call_cpu_ms", pr->call, true);
     }
     const double *q = r->path[HOST_LINEAR].ratio;
     cJSON_AddNumberToObject(j, "host_ratio", q[0]);
@@ -1630,7 +1643,7 @@ static int write_host_csv(int index, const host_state *hst, const ob_scene *scen
                             "scene,camera,method,samples,r,radius_world,filter,ao_scale,temporal,width,height,path,depth,"
                             "normals,output,chain_ms,chain_min_ms,chain_max_ms,input_ms,input_min_ms,input_max_ms,output_ms,"
                             "output_min_ms,output_max_ms,total_ms,total_min_ms,total_max_ms,ratio_frame,ratio_frame_min,"
-                            "ratio_frame_max,label\n");
+                            "ratio_frame_max,call_cpu_ms,call_cpu_min_ms,call_cpu_max_ms,label\n");
     for (int i = 0; i < hst->count; ++i) {
         const host_row *r = &hst->rows[i];
         char label[CLI_MAX_LABEL + 32] = "", samples[16] = "", rr[32] = "", rw[32] = "";
@@ -1647,13 +1660,14 @@ static int write_host_csv(int index, const host_state *hst, const ob_scene *scen
             if (pr->has_output) snprintf(out, sizeof out, "%.4f,%.4f,%.4f", pr->output[0], pr->output[1], pr->output[2]);
             len += (size_t)snprintf(buf + len, cap - len,
                                     "%s,%s,%s,%s,%s,%s,%s,%g,%s,%d,%d,%s,%s,%s,%s,%.4f,%.4f,%.4f,%s,%s,%.4f,%.4f,%.4f,"
-                                    "%.4f,%.4f,%.4f,%s\n",
+                                    "%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%s\n",
                                     ob_query_scene_name(scene), ob_query_camera(scene, r->camera).name,
                                     method_name(r->cfg->method), samples, rr, rw, ob_filter_at(r->cfg->filter)->name,
                                     1.0 / r->cfg->ao_divisor, r->cfg->settings.temporal ? "on" : "off", r->width, r->height,
                                     host_path_names[p], host_path_depth[p], host_path_normals[p], host_path_output[p],
                                     pr->chain[0], pr->chain[1], pr->chain[2], in, out, pr->total[0], pr->total[1],
-                                    pr->total[2], pr->ratio[0], pr->ratio[1], pr->ratio[2], label);
+                                    pr->total[2], pr->ratio[0], pr->ratio[1], pr->ratio[2], pr->call[0], pr->call[1],
+                                    pr->call[2], label);
         }
     }
     int code = cli_outputs_write_text(&bench_outs, index, buf);

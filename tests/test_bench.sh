@@ -198,7 +198,7 @@ for c in cfgs:
         for q in p["passes"]:
             for k in ("median", "min", "max"):
                 pos(q[k], f'{c["label"]} {name} {q["name"]} {k}')
-        for k in ("chain_ms", "total_ms", "ratio_to_frame"):
+        for k in ("chain_ms", "total_ms", "ratio_to_frame", "call_cpu_ms"):
             pos(p[k]["median"], f"{name} {k}")
             assert p[k]["min"] <= p[k]["median"] <= p[k]["max"], (name, k, p[k])
         # (a) counts its chain passes only; (b) runs no input or output pass; (c) and (d) both.
@@ -218,8 +218,9 @@ rows = list(csv.DictReader(open(sys.argv[2], encoding="utf-8")))
 assert len(rows) == 4 * len(cfgs), len(rows)
 assert [r["path"] for r in rows[:4]] == ["frame", "host_linear", "host_packed", "host_no_normals"]
 for r in rows:
-    for k in ("chain_ms", "total_ms", "ratio_frame"):
+    for k in ("chain_ms", "total_ms", "ratio_frame", "call_cpu_ms"):
         pos(float(r[k]), k)
+    assert float(r["call_cpu_min_ms"]) <= float(r["call_cpu_ms"]) <= float(r["call_cpu_max_ms"]), r
     assert (r["input_ms"] == "") == (r["path"] in ("frame", "host_linear")), r
 assert out.count("(b)/(a) = ") == len(cfgs), out
 for p in ("(a) frame ", "(b) host_linear ", "(c) host_packed ", "(d) host_no_normals "):

@@ -22,7 +22,10 @@ static EGLContext host_ctx = EGL_NO_CONTEXT;
  * makes it (examples/embed/embed.c); a debug context when `debug` and the driver has one. */
 static inline bool make_host_context(bool debug)
 {
-    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") ||
+    /* EGL_EXT_device_base is device_enumeration + device_query in one name: NVIDIA's EGL lists
+     * only that one, Mesa's both. */
+    if (!(epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") ||
+          epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base")) ||
         !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device"))
         return false;
     EGLDeviceEXT devices[16];

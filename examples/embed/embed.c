@@ -32,7 +32,10 @@ static int fail(int code, const char *what)
 /* The host's context: the first EGL device that gives a surfaceless OpenGL 4.5 core context. */
 static EGLDisplay make_gl_context(void)
 {
-    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") ||
+    /* EGL_EXT_device_base is device_enumeration + device_query in one name: NVIDIA's EGL lists
+     * only that one, Mesa's both. */
+    if (!(epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") ||
+          epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base")) ||
         !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device"))
         return EGL_NO_DISPLAY;
     EGLDeviceEXT devices[16];

@@ -599,7 +599,10 @@ static GLuint compile_program(const char *vs, const char *fs)
 /* Headless: the first EGL device that gives a surfaceless OpenGL 4.5 core context. */
 static EGLDisplay make_egl_context(bool debug)
 {
-    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") ||
+    /* EGL_EXT_device_base is device_enumeration + device_query in one name: NVIDIA's EGL lists
+     * only that one, Mesa's both. */
+    if (!(epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") ||
+          epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base")) ||
         !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device"))
         return EGL_NO_DISPLAY;
     EGLDeviceEXT devices[16];

@@ -5,7 +5,7 @@
 
 #include <stdbool.h>
 
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 /* Exit codes: documented in README.md and `obscura --help`. */
 enum {

@@ -12,7 +12,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 enum { CLI_MAX_TUNED_PARAMS = OB_MAX_PARAMS + 1, CLI_MAX_TUNED_FILES = 32 };
 

@@ -35,7 +35,7 @@ if $device; then
     mkdir -p /tmp/amd64/partial .gl/bin
     apt-get $o update -qq
     (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
-    cp -L "$BIN" "$(dirname "$BIN")"/libobscura.so.0.* .gl/bin/
+    cp -L "$BIN" "$(dirname "$BIN")"/libobscura.so.0.* "$(dirname "$BIN")"/libobscura-eval.so.0.* .gl/bin/
     ifc=/usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc
     [ -f "$ifc" ] && cp "$ifc" .gl/
     # The test suite as built here (bench/run-gpu.sh tests): the build tree without its objects,

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 static int check_passed = 0;
 static int check_failed = 0;

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

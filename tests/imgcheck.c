@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 static int region(int argc, char **argv)
 {

@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
-# The ABI check (issue 46): libobscura's ABI as abidw reads it from the library's DWARF, restricted
-# to the types of include/obscura/ (abidiff --headers-dir), against the committed baseline
-# abi/libobscura.abi. Any difference fails: a compatible one (an added function) until the
+# The ABI check (issue 46): a library's ABI (libobscura or libobscura-eval) as abidw reads it from
+# its DWARF, restricted to the types of include/obscura/ (abidiff --headers-dir), against the
+# committed baseline abi/NAME.abi. Any difference fails: a compatible one (an added function) until the
 # baseline is remade with scripts/abi-baseline.sh, an incompatible one until the version and with
 # it the soname moved too (the script refuses otherwise). Also: the soname is the one the header's
-# version gives (libobscura.so.0.MINOR before 1.0, libobscura.so.MAJOR after).
-# usage: test_abi.sh LIBOBSCURA.SO SOURCE_DIR
+# version gives (NAME.so.0.MINOR before 1.0, NAME.so.MAJOR after): both libraries carry the one
+# version of obscura.h.
+# usage: test_abi.sh LIB.SO SOURCE_DIR [NAME (default libobscura)]
 set -uo pipefail
-lib=$1 src=$2
-base=$src/abi/libobscura.abi
+lib=$1 src=$2 name=${3:-libobscura}
+base=$src/abi/$name.abi
 for tool in abidw abidiff readelf; do
     command -v $tool >/dev/null || { echo "abi: $tool not found (scripts/install-deps.sh installs abigail-tools, binutils)"; exit 1; }
 done
@@ -25,10 +26,11 @@ bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
 ver() { sed -n "s/^#define OB_VERSION_$1 \([0-9]*\)$/\1/p" "$src/include/obscura/obscura.h"; }
 major=$(ver MAJOR) minor=$(ver MINOR)
 [ -n "$major" ] && [ -n "$minor" ] || { echo "abi: no OB_VERSION_MAJOR/MINOR in obscura.h"; exit 1; }
-if [ "$major" -eq 0 ]; then want=libobscura.so.0.$minor; else want=libobscura.so.$major; fi
+if [ "$major" -eq 0 ]; then want=$name.so.0.$minor; else want=$name.so.$major; fi
 soname=$(readelf -d "$lib" | sed -n 's/.*Library soname: \[\(.*\)\]/\1/p')
 [ "$soname" = "$want" ] || bad "soname $soname; the header's version $major.$minor gives $want"
-grep -q "soname='$want'" "$base" || bad "abi/libobscura.abi is not the baseline of $want: remake it (scripts/abi-baseline.sh)"
+[ -f "$base" ] || { echo "abi: no baseline abi/$name.abi: make it (scripts/abi-baseline.sh)"; exit 1; }
+grep -q "soname='$want'" "$base" || bad "abi/$name.abi is not the baseline of $want: remake it (scripts/abi-baseline.sh)"
 
 # Both sides as scripts/abi-baseline.sh writes them: abidw with the same options (the public
 # headers' types alone, no source locations), then abidiff of the two.
@@ -49,4 +51,4 @@ if [ $rc -ne 0 ]; then
     fi
 fi
 if [ $fails -gt 0 ]; then echo "abi: $fails failure(s)"; exit 1; fi
-echo "abi: ok ($soname, $(grep -c '<elf-symbol ' "$base") symbols, no change against abi/libobscura.abi)"
+echo "abi: ok ($soname, $(grep -c '<elf-symbol ' "$base") symbols, no change against abi/$name.abi)"

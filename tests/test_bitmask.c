@@ -14,7 +14,7 @@
 #include "check.h"
 #include "corner_wall.h"
 #include "gpu/gpu.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

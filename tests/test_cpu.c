@@ -14,7 +14,7 @@
 #include "gpu/shaders_embedded.h"
 #include "methods/method.h"
 #include "passes/passes.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 #include "sampling/sampling.h"
 
 static void test_registry_and_settings(void)

@@ -17,7 +17,7 @@
 #include "check.h"
 #include "depth_mips_params.h"
 #include "gpu/gpu.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 #include "passes/passes.h"
 #include "sampling/sampling.h"
 

@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 static int cmp_float(const void *a, const void *b)
 {

@@ -15,7 +15,7 @@
 #include "check.h"
 #include "core/renderer.h"
 #include "scene/scene.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 enum { W = 96, H = 72 };
 

@@ -17,7 +17,7 @@
 #include "check.h"
 #include "filters/filter.h"
 #include "frame_params.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 #include "passes/passes.h"
 #include "sampling/sampling.h"
 

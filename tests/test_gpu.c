@@ -9,7 +9,7 @@
 #include "check.h"
 #include "gpu/gpu.h"
 #include "gpu/shaders_embedded.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 enum { W = 128, H = 96 };
 

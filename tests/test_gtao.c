@@ -11,7 +11,7 @@
 #include "check.h"
 #include "corner_wall.h"
 #include "gpu/gpu.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 #include "sampling/sampling.h"
 
 #ifndef M_PI

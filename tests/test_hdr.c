@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 #include "passes/passes.h"
 
 /* An odd size: partial 64x64 reduction blocks on both axes and an odd half-resolution bloom. */

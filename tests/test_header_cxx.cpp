@@ -1,6 +1,10 @@
-// The public header from C++: it compiles with -Wall -Wextra -Werror -pedantic as C++11, its
-// functions link with C names (extern "C") from libobscura.so, and a few of them work.
+// The public headers from C++: they compile with -Wall -Wextra -Werror -pedantic as C++11, their
+// functions link with C names (extern "C") from libobscura.so and libobscura-eval.so, and a few of
+// them work. eval.h includes scene.h, which includes obscura.h; each is also included on its own
+// first, so that each stands alone.
 #include <obscura/obscura.h>
+#include <obscura/scene.h>
+#include <obscura/eval.h>
 
 #include <cmath>
 #include <cstdio>
@@ -33,6 +37,13 @@ int main()
     check(ob_settings_init(&s, "no-such-method") == OB_ERR_UNKNOWN_METHOD, "unknown method refused");
     check(ob_get_error(&msg) == OB_ERR_UNKNOWN_METHOD && msg && msg[0], "ob_get_error names it");
     check(ob_get_error(nullptr) == OB_OK, "ob_get_error clears");
+
+    ob_scene_desc desc;
+    std::memset(&desc, 0, sizeof desc);
+    desc.name = "corner";
+    ob_scene *scene = ob_load_scene(&desc); // libobscura-eval, the built-in scene from libobscura
+    check(scene && ob_query_scene_stats(scene).triangles > 0, "ob_load_scene(corner)");
+    ob_destroy_scene(scene);
 
     const char *dir = ob_data_dir();
     check(dir != nullptr && dir[0] != '\0', "ob_data_dir");

@@ -26,7 +26,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 #include "host_scene.h"
 
 enum { W = 96, H = 72 };

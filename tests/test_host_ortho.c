@@ -31,7 +31,7 @@
 
 #include "check.h"
 #include "host_scene.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 enum { W = 128, H = 96 };
 #define NPX ((size_t)W * (size_t)H)

@@ -33,7 +33,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 #include "host_scene.h"
 
 enum { W = 64, H = 48 };

@@ -25,18 +25,19 @@ pc=$(find "$prefix" -name obscura.pc)
 libdir=$(dirname "$(dirname "$pc")")
 
 # ---- the tree ----
-for f in include/obscura/obscura.h bin/obscura share/obscura/scenes/bunny.obscura.json \
+for f in include/obscura/obscura.h include/obscura/scene.h include/obscura/eval.h bin/obscura share/obscura/scenes/bunny.obscura.json \
          share/obscura/shaders/ssao.glsl; do
     [ -f "$prefix/$f" ] || bad "not installed: $f"
 done
-for f in libobscura.so cmake/obscura/obscura-config.cmake cmake/obscura/obscura-config-version.cmake \
-         cmake/obscura/obscura-targets.cmake pkgconfig/obscura.pc; do
+for f in libobscura.so libobscura-eval.so cmake/obscura/obscura-config.cmake cmake/obscura/obscura-config-version.cmake \
+         cmake/obscura/obscura-targets.cmake cmake/obscura/obscura-eval-targets.cmake pkgconfig/obscura.pc \
+         pkgconfig/obscura-eval.pc; do
     [ -e "$libdir/$f" ] || bad "not installed: ${libdir#"$prefix"/}/$f"
 done
 [ -z "$(find "$prefix" -name '*.a')" ] || bad "a static library was installed"
 
 # ---- no path of this machine's trees in the installed binaries (debug info aside) ----
-for bin in "$libdir/libobscura.so" "$prefix/bin/obscura"; do
+for bin in "$libdir/libobscura.so" "$libdir/libobscura-eval.so" "$prefix/bin/obscura"; do
     objcopy --strip-debug "$bin" "$tmp/stripped"
     if grep -qaF -e "$src" -e "$build" "$tmp/stripped"; then
         bad "$(basename "$bin") names the source or build tree: $(strings "$tmp/stripped" | grep -F -e "$src" -e "$build" | head -3)"
@@ -48,7 +49,7 @@ if (cd / && "$prefix/bin/obscura" list) >"$tmp/list" 2>&1 && grep -q "^  bunny" 
 else bad "installed obscura list names no bunny: $(tail -3 "$tmp/list")"; fi
 
 # ---- a host program elsewhere finds the data directory beside the installed library ----
-printf '#include <obscura/obscura.h>\n#include <stdio.h>\nint main(void) { puts(ob_data_dir()); return 0; }\n' >"$tmp/host.c"
+printf '#include <obscura/scene.h>\n#include <stdio.h>\nint main(void) { puts(ob_data_dir()); return 0; }\n' >"$tmp/host.c"
 if step "a host program against the installed library" "$cc" -std=c11 -Wall -Werror -I"$prefix/include" "$tmp/host.c" \
         -o "$tmp/host" -L"$libdir" -lobscura -Wl,-rpath,"$libdir"; then
     found=$(cd / && "$tmp/host")

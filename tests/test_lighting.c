@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 enum { W = 160, H = 120 };
 

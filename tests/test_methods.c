@@ -8,7 +8,7 @@
 
 #include "check.h"
 #include "methods/method.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 enum { W = 192, H = 144 };
 

@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 #define C1 (0.01 * 0.01)
 #define C2 (0.03 * 0.03)

@@ -9,7 +9,7 @@
 
 #include "check.h"
 #include "gpu/gpu.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 /* IEEE 754 binary16 to float, from its definition. */
 static float half_value(uint32_t h)

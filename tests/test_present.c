@@ -14,7 +14,7 @@
 #include "gpu/gpu.h"
 #include "gpu/shaders_embedded.h"
 #include "methods/method.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 enum { W = 64, H = 48 };
 

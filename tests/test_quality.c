@@ -16,7 +16,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 #ifndef OB_QUALITY_THRESHOLDS
 #define OB_QUALITY_THRESHOLDS "tests/quality_thresholds.txt"

@@ -8,8 +8,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
-#include "reference/reference.h"
+#include "obscura/eval.h"
+#include "eval/reference.h"
 
 #define PI 3.14159265358979323846
 

@@ -16,7 +16,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 #include "scene/scene.h" /* mesh data: normals and winding are not in the public API */
 
 #define BUNNY_OBJ "/usr/share/glmark2/models/bunny.obj"

@@ -17,7 +17,7 @@
 
 #include "check.h"
 #include "gpu/gpu.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 #include "passes/passes.h"
 #include "scene/scene.h"
 

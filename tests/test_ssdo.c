@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 enum { W = 128, H = 96 };
 

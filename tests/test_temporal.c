@@ -18,7 +18,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 enum { W = 96, H = 72, N = 16 };
 

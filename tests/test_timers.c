@@ -9,7 +9,7 @@
 
 #include "check.h"
 #include "gpu/gpu.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 enum { W = 64, H = 48, MAXP = 32 };
 

@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 /* Small: the GPU tests run on llvmpipe. */
 enum { W = 160, H = 120 };

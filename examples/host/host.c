@@ -36,6 +36,7 @@
 #include <time.h>
 
 #include <obscura/obscura.h>
+#include <obscura/eval.h> /* the image writers (ob_write_png, ob_write_pfm) and ob_data_dir's scene.h */
 
 #define PI_F 3.14159265358979f
 

@@ -1,5 +1,16 @@
 /*
- * obscura.h — public API of libobscura: screen-space ambient occlusion and indirect light.
+ * obscura.h — libobscura's engine API: screen-space ambient occlusion and indirect light on an
+ * engine's own depth and normals (the host path, docs/embedding.md), and what it is configured
+ * with (methods, filters, settings, the renderer that holds the targets).
+ *
+ * libobscura is the core library: it needs OpenGL 4.5 (through libepoxy) and nothing else. Two
+ * more headers go with it:
+ *   obscura/scene.h  also libobscura: scenes, lights, stereo cameras and the frame renderer that
+ *                    draws a scene itself (G-buffer, lighting, shadows, HDR), as the CLI does;
+ *   obscura/eval.h   libobscura-eval, the laboratory above the core: scenes loaded from files
+ *                    (Assimp), the ray-traced ground truth (Embree), metrics, masks, image files.
+ * CMake: find_package(obscura) gives obscura::obscura; find_package(obscura COMPONENTS eval) adds
+ * obscura::eval. pkg-config: obscura, obscura-eval.
  *
  * The frame flows one way (README.md, docs/methods.md): scene -> G-buffer -> AO method -> filter ->
  * [upsample] -> compose -> sRGB. Every screen-space pass is a GLSL compute shader with its own GPU timer.
@@ -11,8 +22,15 @@
  *   - Desc structs: zero means "default" (sokol style), resolved in one place per object.
  *
  * Errors
- *   Functions that can fail return an ob_error (or NULL) and record a one-line message that
- *   ob_get_error() returns (glfwGetError style). Library code never aborts or prints.
+ *   Functions that can fail return an ob_error (or NULL, or a value documented as the failure)
+ *   and record a one-line message that ob_get_error() returns (glfwGetError style); each
+ *   function's comment names the errors it returns. Library code never aborts or prints.
+ *
+ * Lifetimes
+ *   Strings and table entries the library returns (names, ob_method_info, ob_query_renderer...)
+ *   are static or owned by the object they came from, valid as long as it lives; the caller
+ *   frees nothing the library returns unless the comment says so (ob_read_pfm's pixels, and the
+ *   objects made by ob_make_* / ob_load_scene / ob_tessellate_scene, destroyed by ob_destroy_*).
  *
  * Threading
  *   An ob_context and everything made from it belong to the thread that made the context (its
@@ -30,9 +48,9 @@
 extern "C" {
 #endif
 
-/* libobscura.so exports what this header declares and nothing else: the library is compiled with
- * -fvisibility=hidden, and this pragma (popped at the end) gives these declarations default
- * visibility. */
+/* libobscura.so exports what this header and obscura/scene.h declare (and libobscura-eval.so what
+ * obscura/eval.h declares): the libraries are compiled with -fvisibility=hidden, and this pragma
+ * (popped at the end) gives these declarations default visibility. */
 #if defined(__GNUC__)
 #pragma GCC visibility push(default)
 #endif
@@ -46,9 +64,9 @@ extern "C" {
  * an incompatible change unless the version, and with it the soname, moved. docs/changelog.md says
  * what changed for hosts in each version. CMake's project version is read from these lines. */
 #define OB_VERSION_MAJOR 0
-#define OB_VERSION_MINOR 2
+#define OB_VERSION_MINOR 3
 #define OB_VERSION_PATCH 0
-#define OB_VERSION_STRING "0.2.0"
+#define OB_VERSION_STRING "0.3.0"
 
 /* The library's version: its numbers (each pointer may be NULL) and "MAJOR.MINOR.PATCH". A host
  * built against this header works with a library of the same MAJOR (and, before 1.0, the same
@@ -127,38 +145,7 @@ const char *ob_query_device(const ob_context *ctx);   /* which EGL device was us
 bool ob_query_is_software(const ob_context *ctx);
 int ob_query_max_texture_size(const ob_context *ctx);
 
-/* ---- scenes (CPU side) ---------------------------------------------------------------------- */
-typedef enum ob_up_axis { OB_UP_DEFAULT = 0, OB_UP_Y, OB_UP_Z } ob_up_axis;
-
-typedef struct ob_scene_desc {
-    /* A built-in scene ("cornell", "corner", "sphere-on-plane"), a named scene from the data
-     * directory's scenes/NAME.obscura.json (e.g. "bunny", "fzk-haus"), or a model path. */
-    const char *name;
-    const char *sidecar; /* explicit sidecar JSON; default: MODEL.obscura.json beside the model */
-    ob_up_axis up;       /* overrides the sidecar's up axis */
-    /* Untrusted models (README "Untrusted models"): every file a model refers to (glTF buffers
-     * and images, OBJ's MTL and textures, ...) must resolve into the model's directory tree and
-     * not be an absolute path, else OB_ERR_MODEL naming the reference; true lifts that. Device
-     * files, FIFOs and directories are refused either way. */
-    bool allow_external_files;
-    /* The most memory, in bytes, the run may take (ob_default_max_memory() when 0). The import is
-     * estimated from the counts the file declares before Assimp allocates and again from the raw
-     * scene before post-processing; then, before any texture is decoded, the geometry, every
-     * texture the materials name (sized from its image header: decoded RGBA8 and its mipmapped
-     * copy on the GPU, each file or embedded image once however many materials name it, and the
-     * largest one's decoding) and reserved_memory together. A model over it is OB_ERR_MODEL, the
-     * message naming the largest items. */
-    uint64_t max_memory;
-    /* What the caller's run takes besides the scene (render targets: ob_estimate_renderer_memory,
-     * its own image buffers) and a few words on it for that message, e.g. "render targets 21 MiB
-     * (--size 640x480)" (NULL: "the rest of the run"). 0 = nothing besides the scene. */
-    uint64_t reserved_memory;
-    const char *reserved_what;
-} ob_scene_desc;
-
-/* ob_scene_desc.max_memory's default: 4 GiB or half the physical memory, whichever is less. */
-uint64_t ob_default_max_memory(void);
-
+/* ---- cameras and lights: what a frame is seen with and lit by ---------------------------------- */
 typedef struct ob_camera {
     float eye[3];
     float target[3];
@@ -174,7 +161,6 @@ typedef struct ob_camera {
     char name[64];
 } ob_camera;
 
-/* ---- stereo: the two eyes of a headset (seed 000 §5.2) -------------------------------------- */
 
 /* Checks a camera as every source must have it (the CLI's options, sidecars, built-in presets, a
  * host's own), so that no frame renders nothing or NaN from a camera: eye, target, up and shift
@@ -198,46 +184,6 @@ ob_error ob_check_camera(const ob_camera *cam);
 ob_error ob_camera_matrices(ob_camera *cam, const float bounds_min[3], const float bounds_max[3], int width, int height,
                             float view[16], float proj[16]);
 
-typedef struct ob_headset {
-    const char *name;        /* "vive" */
-    const char *description;
-    int width, height;       /* pixels per eye */
-    float ipd;               /* default eye separation, metres */
-    float fov_y_deg;         /* each eye's vertical field of view (its frustum's window height) */
-    float shift[2];          /* the left eye's lens shift (ob_camera.shift); the right eye's is
-                                mirrored in x (-shift[0], shift[1]) */
-} ob_headset;
-
-int ob_headset_count(void);
-/* NULL when index is out of range. */
-const ob_headset *ob_headset_at(int index);
-/* By name. Errors: OB_ERR_INVALID_ARGUMENT (NULL, or an unknown name: the message lists the
- * presets). */
-ob_error ob_find_headset(const char *name, ob_headset *out);
-
-/* Zero means default. */
-typedef struct ob_stereo_desc {
-    float ipd;          /* eye separation in world units; zero = the headset's, else 0.064 */
-    float convergence;  /* parallel-axis stereo: distance of the zero-parallax plane along the view;
-                           zero = |target - eye| of the centre camera */
-    float aspect;       /* width / height of each eye's image: the shift is in units of the window's
-                           half-width; zero = the headset's, else 1 */
-    const char *headset;/* NULL or "": parallel-axis asymmetric frusta from the centre camera's fov;
-                           a preset name: the preset's fov and per-eye frustum (convergence unused) */
-} ob_stereo_desc;
-
-/* The left (eyes_out[0]) and right eye of a centre camera: each moved by -+ipd/2 along the right
- * vector (forward x up), eye and target alike, so the view directions stay parallel; each frustum
- * off axis (ob_camera.shift) so that the two windows coincide on the convergence plane (Bourke's
- * parallel-axis asymmetric-frustum stereo: the left eye's window moves right by
- * (ipd/2) / (convergence tan(fov_x/2)) of its half-width, the right eye's left by as much; a point
- * on that plane lands at the same NDC in both eyes), or with the headset's per-eye frustum. The
- * centre camera's own shift is added to each eye's; near, far and name are kept ("NAME-left",
- * "NAME-right"). Pure CPU, thread-safe.
- * Errors: OB_ERR_INVALID_ARGUMENT (NULL centre or eyes_out, an unknown headset, ipd, convergence or
- * aspect negative or not finite, eye = target, forward parallel to up). */
-ob_error ob_stereo_cameras(const ob_camera *centre, const ob_stereo_desc *desc, ob_camera eyes_out[2]);
-
 #define OB_MAX_LIGHTS 8
 
 typedef enum ob_light_type { OB_LIGHT_DIRECTIONAL = 0, OB_LIGHT_POINT, OB_LIGHT_SPOT } ob_light_type;
@@ -252,26 +198,6 @@ typedef struct ob_light {
     float range;         /* point, spot: smooth cut-off distance; 0 = pure 1/d^2 */
     float spot_inner_deg, spot_outer_deg; /* spot: half-angles, full inside inner, 0 outside outer */
 } ob_light;
-
-/* Checks a light as every source must have it (--light, sidecars, models, a host's own): colour,
- * intensity, position, range and cone finite; a directional or spot light's direction finite and
- * not zero (it need not be unit: the renderer uses it as given, so callers normalise it, as
- * ob_parse_light and the sidecar do); colour >= 0, intensity >= 0; position within
- * +-OB_MAX_COORDINATE; the brightest channel's colour x intensity at most OB_MAX_DIRECTIONAL for a
- * directional light and OB_MAX_POINT for a point or spot light (falling off as 1/d^2, 1e12 gives
- * 1 at 10^6 units). Why a ceiling: the frame's radiance targets are 16-bit floats (largest 65504),
- * so a sun above about 6e4 overflows to infinity at the first lit pixel and the tone mapper makes
- * the whole image white; the point light's ceiling leaves six orders of magnitude of scene scale
- * (shipped sidecars use up to 2.25e6). Errors: OB_ERR_INVALID_ARGUMENT naming the field. */
-#define OB_MAX_DIRECTIONAL 1e4f
-#define OB_MAX_POINT 1e12f
-ob_error ob_check_light(const ob_light *light);
-
-/* A light from text, as the CLI's --light takes it: a type, then key=value pairs separated by
- * spaces, e.g. "directional dir=0.3,1,0.2 color=1,0.9,0.8 intensity=2",
- * "point pos=0,2,0 intensity=8 range=10", "spot pos=0,3,0 dir=0,-1,0 cone=20,30 intensity=20".
- * Errors: OB_ERR_INVALID_ARGUMENT with what is wrong. */
-ob_error ob_parse_light(const char *text, ob_light *out);
 
 typedef enum ob_shadow_method { OB_SHADOW_NONE = 0, OB_SHADOW_HARD, OB_SHADOW_PCF, OB_SHADOW_VSM } ob_shadow_method;
 
@@ -293,88 +219,6 @@ typedef struct ob_shadow_settings {
      * the benchmarks time them. */
     bool reuse;
 } ob_shadow_settings;
-
-typedef struct ob_material_info {
-    char name[64];
-    float diffuse[3];
-    bool has_texture;
-} ob_material_info;
-
-typedef struct ob_scene_stats {
-    uint32_t triangles;
-    uint32_t vertices;
-    uint32_t meshes;
-    uint32_t materials;
-    float bounds_min[3];
-    float bounds_max[3];
-} ob_scene_stats;
-
-typedef struct ob_scene ob_scene;
-
-/* Errors: OB_ERR_UNKNOWN_SCENE, OB_ERR_IO, OB_ERR_MODEL, OB_ERR_SIDECAR. */
-ob_scene *ob_load_scene(const ob_scene_desc *desc);
-void ob_destroy_scene(ob_scene *scene);
-ob_scene_stats ob_query_scene_stats(const ob_scene *scene);
-const char *ob_query_scene_name(const ob_scene *scene);
-int ob_query_scene_material_count(const ob_scene *scene);
-ob_material_info ob_query_scene_material(const ob_scene *scene, int index);
-/* Suggested AO radius in world units (sidecar, else 5% of the bounds' diagonal). */
-float ob_query_scene_ao_radius(const ob_scene *scene);
-/* The scene's lights (sidecar or glTF KHR_lights_punctual, else one default directional light
- * from above-front-left); index 0 is the key light. */
-int ob_query_scene_light_count(const ob_scene *scene);
-ob_light ob_query_scene_light(const ob_scene *scene, int index);
-
-/* Camera presets: index 0 is always "default", which frames the scene's bounds. */
-int ob_query_camera_count(const ob_scene *scene);
-ob_camera ob_query_camera(const ob_scene *scene, int index);
-/* By name or decimal index. Errors: OB_ERR_UNKNOWN_CAMERA. */
-ob_error ob_find_camera(const ob_scene *scene, const char *name_or_index, ob_camera *out);
-
-/* ---- camera paths (issue 17): a scene's named paths (sidecar "paths") and orbits --------------
- * A path is 2..OB_MAX_PATH_KEYS keyframes (time, eye, target, fov) with increasing times. */
-#define OB_MAX_PATHS 8
-#define OB_MAX_PATH_KEYS 32
-int ob_query_path_count(const ob_scene *scene);
-/* The name of path `index`, or "" when out of range (or scene NULL). */
-const char *ob_query_path_name(const ob_scene *scene, int index);
-/* The camera at fraction u (clamped to [0, 1]) of path `name`'s time span: eye and target on
- * Catmull-Rom splines through the keys, parametrised by time (C1, through every key; the end
- * tangents mirror their neighbours), the fov linear between keys, up +Y, near and far 0 (the
- * renderer fits them to the scene). Errors: OB_ERR_INVALID_ARGUMENT (NULL, or `name` is none of
- * the scene's paths; the message lists them). */
-ob_error ob_camera_on_path(const ob_scene *scene, const char *name, float u, ob_camera *out);
-/* `camera` turned by `degrees` about the vertical (+Y) axis through its target: the orbit of the
- * CLI's --orbit DEG (frame i of N at degrees x i / (N - 1)). Everything else is kept. */
-ob_camera ob_camera_orbit(const ob_camera *camera, float degrees);
-
-/* A deep copy of `scene` with every triangle split `levels` times by midpoint subdivision (each
- * triangle becomes 4: levels 1 = 4x, 2 = 16x the triangles; 0 = a plain copy). New vertices lie on
- * the original triangles, so the surfaces, cameras, lights, bounds and suggested radius are
- * unchanged: for the benchmark's triangle-count scaling (`obscura bench --scaling`). Destroy the
- * result with ob_destroy_scene. Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_OUT_OF_RANGE
- * (levels outside [0, 4]), OB_ERR_OUT_OF_MEMORY (also when a mesh would pass 2^32 indices). */
-ob_scene *ob_tessellate_scene(const ob_scene *scene, int levels);
-
-/* The data directory: scenes/ (named scene sidecars), data/ (files they name, e.g. the repacked
- * oa_dm1.pk3) and shaders/ (what the viewer reloads). No path is compiled in; the first of these
- * wins:
- *   1. the OBSCURA_DATA_DIR environment variable when set and not empty (read on every call);
- *   2. beside the loaded libobscura (dladdr; in a static link, the executable): where the install
- *      puts it, <libdir>/../share/obscura = <prefix>/share/obscura, then a build tree's
- *      share/obscura in the library's directory or its parent (the build links that to the
- *      source tree's scenes/, data/ and shaders/);
- *   3. the same beside the executable (/proc/self/exe): <bindir>/../share/obscura, then a build
- *      tree's;
- *   4. "." (the working directory).
- * Steps 2-4 count a directory only when it holds scenes/, and run once per process. Never NULL;
- * thread-safe. */
-const char *ob_data_dir(void);
-
-/* Built-in scenes that need no file. */
-int ob_builtin_scene_count(void);
-const char *ob_builtin_scene_name(int index);
-const char *ob_builtin_scene_description(int index);
 
 /* ---- AO methods: the registry --------------------------------------------------------------- */
 #define OB_MAX_PARAMS 16
@@ -427,13 +271,6 @@ typedef struct ob_hdr_settings {
     float bloom_threshold; /* scaled luminance above which the bright pass keeps the excess */
     float bloom_strength;  /* how much of the blurred excess is added back; 0 = no bloom */
 } ob_hdr_settings;
-
-/* The HDR math on the CPU, the same formulas the shaders use (for tests and tools):
- * log-average luminance (eq. 2.1) of n values, Reinhard with L_white (eq. 2.4, eq. 2.3 when
- * l_white <= 0) and the automatic key for a log-average. */
-double ob_hdr_log_average(const float *luminance, size_t n);
-float ob_hdr_reinhard(float scaled_luminance, float l_white);
-float ob_hdr_auto_key(float log_average);
 
 /* ---- per-frame settings --------------------------------------------------------------------- */
 /* Ambient light: a constant, a sky/ground hemisphere, or the environment map given to
@@ -592,6 +429,9 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc);
  * import counts them: ob_scene_desc). 0 with OB_ERR_INVALID_ARGUMENT for a size below 1x1, NULL
  * settings, count < 1 or an unknown method. */
 uint64_t ob_estimate_renderer_memory(int width, int height, const ob_settings *settings, int count);
+/* The default memory limit of a run: 4 GiB or half the physical memory, whichever is less
+ * (ob_scene_desc.max_memory's default in obscura/eval.h, the CLI's --max-memory). Never fails. */
+uint64_t ob_default_max_memory(void);
 void ob_destroy_renderer(ob_renderer *r);
 /* A new size for every size-dependent target (a window was resized); the uploaded scene, the
  * environment map, the shadow maps and the compiled programs are kept. The same size is a no-op.
@@ -603,23 +443,7 @@ ob_error ob_renderer_resize(ob_renderer *r, int width, int height);
 /* The renderer's size (0 x 0 for NULL), the visible frame's: a guard band (ob_settings.guard)
  * does not change it; either pointer may be NULL. */
 void ob_query_renderer_size(const ob_renderer *r, int *width, int *height);
-/* Upload a scene's meshes and textures. The renderer keeps no pointer to the ob_scene. Errors:
- * OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_MODEL (a texture larger than the GL takes),
- * OB_ERR_OUT_OF_MEMORY, OB_ERR_GL (the GL could not make the buffers); the renderer keeps its
- * old scene then. */
-ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene);
-/* The environment map (equirectangular Radiance .hdr) for OB_AMBIENT_ENVIRONMENT and SSDO.
- * Errors: OB_ERR_IO. */
-ob_error ob_renderer_set_environment(ob_renderer *r, const char *hdr_path);
 
-/* shadow maps -> G-buffer -> direct light -> [downsample] -> [edges] -> AO -> filter -> [upsample]
- * -> compose -> HDR (luminance, bloom, tone map), each pass timed. Errors: OB_ERR_INVALID_ARGUMENT
- * (NULL, settings not initialised, no scene yet, environment ambient without an environment map,
- * a camera that is not finite or whose fov is not in (0, 179)), OB_ERR_OUT_OF_RANGE (a settings
- * field outside its range), OB_ERR_BAD_SIZE (a guard band beyond GL_MAX_TEXTURE_SIZE),
- * OB_ERR_SHADER (a pass compiled on first use), OB_ERR_OUT_OF_MEMORY, OB_ERR_GL (an error during
- * the frame). After an error no frame can be read back or presented until the next one renders. */
-ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *settings);
 /* Forget the temporal history (ob_settings.temporal): the next frame starts every pixel's history
  * again, as after a camera cut, and the frame index that moves the methods' noise starts again at
  * 0. NULL is a no-op. */
@@ -691,90 +515,6 @@ void ob_query_timings_frame(const ob_renderer *r, long long *timed, long long *r
  * stalls the CPU until the GPU is idle: an interactive loop reads ob_query_timings alone.
  * Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_GL. */
 ob_error ob_wait_timings(ob_renderer *r);
-
-/* The floor of this machine for a method (obscura bench --floor, issue 18): a bare compute kernel
- * (shaders/floor.glsl) over the last frame's AO-grid depth (R32F) and normals (RGBA16F) that takes
- * the N taps the settings' method would take (its sample count; HBAO directions x steps, GTAO and
- * VBAO 2 x slices x steps) spread over its radius in pixels, in the same pattern (a disk, or rays
- * for the horizon marchers), sums them and writes one R32F value per pixel: what any AO method at
- * those settings must at least do. It runs as a frame of the timers of its own with one pass,
- * "floor": ob_wait_timings then ob_query_timings gives its time (and ob_query_timings_frame counts
- * it as a frame). The last ob_render_frame must have used the same AO scale, and the frame's
- * outputs stay as they were. info (may be NULL) gets what the kernel took. Errors:
- * OB_ERR_INVALID_ARGUMENT (NULL r or settings, no frame yet or one at another AO scale, a method
- * without a sample count or a radius, more than 2048 taps), OB_ERR_SHADER, OB_ERR_GL. */
-typedef struct ob_floor_info {
-    int taps;        /* N */
-    int rays;        /* 0: spread over the disk of the radius; else the rays the taps lie on */
-    float radius;    /* the method's radius, world units */
-} ob_floor_info;
-ob_error ob_render_floor(ob_renderer *r, const ob_settings *settings, ob_floor_info *info);
-
-/* ---- presenting: the last frame or a debug view into a framebuffer, on the GPU --------------
- * The views are the CLI's --view images (app/render.c), made by one compute pass (shaders/view.glsl)
- * instead of a read-back:
- *   final     the tone-mapped sRGB frame (OB_IMAGE_FINAL_RGBA8)
- *   ao        the AO after filter and upsampling: grey for AO methods, M's RGB for directional ones
- *   normals   view-space normal n * 0.5 + 0.5
- *   depth     grey 1 - d / far, far = the last frame's far plane (the CLI divides by the image's
- *             largest depth instead, so its picture is darker); 0 for sky
- *   shadow    the key light's visibility, grey
- *   radiance  the direct light, clamped to [0, 1] and sRGB-encoded
- *   samples   samples each pixel took / the most any pixel could take that frame (the method's
- *             count, under adaptive sampling its base x 3; the CLI divides by the image's largest
- *             count instead), grey; 0 for sky
- *   bounce    the one-bounce light of methods that write one (SSDO, vbgi), clamped and sRGB-encoded; black otherwise
- *   bent_normals  the method's bent normal (renormalised) as b * 0.5 + 0.5; black when it wrote none
- *   luminance the composed HDR radiance's luminance before tone mapping in false colour (seed 003
- *             Fig. 6.16c): log2 over [OB_LUMINANCE_LOG2_LO, OB_LUMINANCE_LOG2_HI] through dark blue,
- *             blue, cyan, green, yellow and red, white above the top, black at 0; the scale itself
- *             along the bottom edge with a tick per stop (taller at 1) */
-typedef enum ob_view {
-    OB_VIEW_FINAL = 0,
-    OB_VIEW_AO,
-    OB_VIEW_NORMALS,
-    OB_VIEW_DEPTH,
-    OB_VIEW_SHADOW,
-    OB_VIEW_RADIANCE,
-    OB_VIEW_SAMPLES,
-    OB_VIEW_BOUNCE,
-    OB_VIEW_BENT_NORMALS,
-    OB_VIEW_LUMINANCE,
-    OB_VIEW_SECOND_DEPTH, /* the second depth layer as the depth view shows the first (black where
-                             none, or when the frame's method did not read it: layers=2) */
-    OB_VIEW_EXTRA,        /* the extra view's direct light as radiance shows the main one's (ssdo with
-                             extra_view=on; black otherwise): the camera turned 90 degrees around the
-                             target (seed 000 §4.4) */
-    OB_VIEW_HISTORY_AGE,  /* temporal accumulation: frames in each pixel's history / temporal_frames,
-                             grey (black at a disocclusion, on the sky, or with temporal off) */
-    OB_VIEW_COUNT
-} ob_view;
-
-/* The luminance view's range in stops: 1/256 to 16 (radiance 1 is the display's white before
- * tone mapping), shaders/view.glsl. */
-#define OB_LUMINANCE_LOG2_LO (-8)
-#define OB_LUMINANCE_LOG2_HI 4
-
-/* "final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce", "bent_normals",
- * "luminance", "second_depth", "extra", "history_age" (the CLI's --view names); "" if out of range. */
-const char *ob_view_name(ob_view view);
-
-/* Draw the last frame (OB_VIEW_FINAL) or one of its debug views into `framebuffer` (0 = the
- * default framebuffer, e.g. a window's), over x, y, width, height (GL convention, y from the
- * bottom), nearest-neighbour scaled, with glBlitNamedFramebuffer. The bytes are display-ready
- * sRGB: GL_FRAMEBUFFER_SRGB and the scissor test are switched off for the blit. Needs the
- * renderer's context current. Leaves GL state as it found it (bindings of programs, textures,
- * images, uniform buffers and framebuffers, enables); GL errors raised before the call are
- * cleared. Not timed (it is no part of the frame). Errors: OB_ERR_INVALID_ARGUMENT (NULL, no frame
- * rendered yet or since a resize, a view out of range, a non-positive width or height),
- * OB_ERR_SHADER (the view pass, compiled on the first debug view), OB_ERR_GL (e.g. `framebuffer`
- * is not a complete framebuffer). */
-ob_error ob_present(ob_renderer *r, ob_view view, uint32_t framebuffer, int x, int y, int width, int height);
-
-/* The same view as ob_present draws, read back: width x height x 4 sRGB bytes (alpha 255), top
- * row first, as image files want them (the CLI's --view). dst_size at least ob_image_size(r,
- * OB_IMAGE_FINAL_RGBA8). Errors: as ob_present, and OB_ERR_INVALID_ARGUMENT for a small dst. */
-ob_error ob_read_view(ob_renderer *r, ob_view view, uint8_t *dst, size_t dst_size);
 
 /* ---- development ---------------------------------------------------------------------------- */
 /* Compile shaders from the .glsl/.h files under `dir` (the source tree's shaders/), with #include
@@ -976,200 +716,6 @@ ob_error ob_host_prepare(ob_renderer *r, const ob_settings *settings);
 ob_error ob_host_ao(ob_renderer *r, const ob_host_frame *frame, const ob_settings *settings,
                     const ob_host_outputs *outputs);
 
-/* ---- image files (written atomically: temporary file, then rename) -------------------------- */
-/* Top-row-first RGBA8 or grey (channels 1, 3 or 4). Errors: OB_ERR_INVALID_ARGUMENT (NULL, a
- * size below 1x1, another channel count), OB_ERR_IO (naming the path; an existing file is kept). */
-ob_error ob_write_png(const char *path, int width, int height, int channels, const uint8_t *px);
-/* Baseline JPEG of the same top-row-first pixels (channels 1, 3 or 4; a fourth is dropped: JPEG
- * has no alpha), quality 1..100. Errors: OB_ERR_INVALID_ARGUMENT, OB_ERR_OUT_OF_RANGE, OB_ERR_IO. */
-ob_error ob_write_jpg(const char *path, int width, int height, int channels, const uint8_t *px, int quality);
-/* PFM: bottom-row-first floats, channels 1 (Pf) or 3 (PF), little-endian. Errors: as
- * ob_write_png. */
-ob_error ob_write_pfm(const char *path, int width, int height, int channels, const float *px);
-/* A text file (JSON, HTML), written atomically like the images. Errors: OB_ERR_INVALID_ARGUMENT
- * (NULL), OB_ERR_IO (naming the path; an existing file is kept). */
-ob_error ob_write_text(const char *path, const char *text);
-/* Reads a little-endian PFM; *px is malloc'd and the caller's (free it); nothing is allocated on
- * an error. Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_IO (unreadable, not a little-endian
- * PFM, truncated), OB_ERR_OUT_OF_MEMORY. */
-ob_error ob_read_pfm(const char *path, int *width, int *height, int *channels, float **px);
-
-/* ---- ground truth (Embree ray tracing on the CPU) -------------------------------------------
- * AO_R(x) = 1/pi * integral over the hemisphere of V_R(x, w) cos(theta) dw (seed 000 eq. 2.6-2.7,
- * t = 1), with V_R = 0 when a ray from x hits geometry within R, estimated from cosine-weighted
- * rays (pdf cos(theta)/pi, so the estimate is the plain mean of the visibility) cast from the very
- * G-buffer points the screen-space methods see. Every point's random numbers come from the seed
- * and the point's index, so results are bit-identical for a seed whatever the thread count.
- * Threading: the calls are CPU-only and may run on any thread; they use `threads` worker threads
- * of their own and keep nothing between calls. */
-typedef struct ob_reference_desc {
-    int spp;         /* rays per point; 0 = 512 (mean standard error under 0.01 on the demo scenes) */
-    float radius;    /* R in world units; ob_reference_ao needs R > 0, ob_reference_bounce takes
-                        <= 0 as unbounded */
-    int threads;     /* worker threads; 0 = all cores */
-    bool progress;   /* a progress bar on stderr */
-    uint64_t seed;
-} ob_reference_desc;
-
-/* AO_R at `count` points: world positions and unit normals, xyz each. A point whose normal is all
- * zero (sky) is skipped and gets ao 1 and standard error 0. ao_out gets count values; stderr_out
- * (may be NULL) the standard error of each estimate, sqrt(p (1 - p) / (n - 1)) of the Bernoulli
- * mean p over n rays. Rays start a little off the surface along the normal (1e-4 of the scene's
- * bounds diagonal) and end at R.
- * Errors: OB_ERR_INVALID_ARGUMENT (NULL scene, points or output with count > 0, R <= 0, spp < 0
- * or 1, threads < 0), OB_ERR_OUT_OF_MEMORY, OB_ERR_MODEL (Embree failed; the message names
- * rtcGetDeviceError's code). */
-ob_error ob_reference_ao(const ob_scene *scene, const float *positions, const float *normals, size_t count,
-                         const ob_reference_desc *desc, float *ao_out, float *stderr_out);
-
-/* One-bounce diffuse reference for SSDO, in the renderer's convention (shaders/lighting.glsl:
- * radiance = albedo x sum over lights of colour x intensity x falloff x max(0, n.l) x visibility,
- * no 1/pi; directional lights point toward the light, point and spot lights fall off as 1/d^2 with
- * the range window (1 - (d/range)^4)^2 and the spot's smoothstep between the cones). At each
- * point x with albedo a(x):
- *   rgb(x) = a(x) * direct(x)                                     shadow rays instead of maps
- *          + a(x) * mean over cosine rays of  hit within R ? a(h) * direct(h) : ambient
- * i.e. one diffuse bounce of the direct light plus the ambient radiance times AO_R. With the
- * cosine pdf the 1/pi of a Lambertian receiver cancels, so the mean is the outgoing radiance in
- * the same units as the direct term. direct(h) uses the hit triangle's interpolated normal (turned
- * toward the ray) and its material's diffuse colour (textures are ignored); specular is left out
- * on both ends. lights == NULL or light_count == 0 takes the scene's lights; ambient NULL = black;
- * radius <= 0 = unbounded rays. rgb_out gets 3 floats per point; points with a zero normal get 0.
- * Errors: as ob_reference_ao, and OB_ERR_INVALID_ARGUMENT for light_count outside
- * [0, OB_MAX_LIGHTS] or albedo_rgb NULL. */
-ob_error ob_reference_bounce(const ob_scene *scene, const ob_light *lights, int light_count, const float ambient[3],
-                             const float *positions, const float *normals, const float *albedo_rgb, size_t count,
-                             const ob_reference_desc *desc, float *rgb_out);
-
-/* The renderer's read-back G-buffer as world points, with the shaders' reconstruction
- * (shaders/common.glsl ob_view_position at pixel centres): linear_depth (1 float per pixel,
- * bottom row first, 0 = sky) and view_normals (3 floats per pixel) of width x height pixels,
- * proj_info = {1/P00, 1/P11, P20, P21} of the column-major projection, inv_view the column-major
- * camera-to-world matrix. positions_out and normals_out get 3 floats per pixel; sky pixels get
- * zeros (so ob_reference_ao skips them). Errors: OB_ERR_INVALID_ARGUMENT, OB_ERR_BAD_SIZE. */
-ob_error ob_reference_points(const float *linear_depth, const float *view_normals, int width, int height,
-                             const float proj_info[4], const float inv_view[16], float *positions_out,
-                             float *normals_out);
-
-/* ---- metrics: image comparison against the reference (src/eval/metrics.c) -------------------- */
-typedef struct ob_metrics {
-    double rmse;  /* sqrt(mean((test - reference)^2)) over every channel value compared */
-    double mae;   /* mean(|test - reference|) */
-    double bias;  /* mean(test - reference): > 0 when the test is brighter / less occluded */
-    double psnr;  /* 10 log10(1 / MSE) in dB with peak 1 (visibility's range); INFINITY when identical */
-    double psnr_srgb; /* the same after encoding both images with the sRGB transfer (IEC 61966-2-1),
-                       * values clamped to [0, 1] first: XeGTAO's measure, about 21.4 dB for its
-                       * High preset against 512-spp ray tracing */
-    double ssim;  /* mean SSIM (Wang et al. 2004) over the masked-in windows, averaged over channels */
-    size_t count; /* pixels compared (not channel values) */
-} ob_metrics;
-
-/* Compare `test` against `reference`: width x height pixels of `channels` interleaved floats each,
- * both in the same layout (either row order, as long as mask uses it too). mask: one byte per
- * pixel in the same layout, non-zero = compared; NULL = every pixel.
- * RMSE, MAE, bias, PSNR and sRGB PSNR are taken over every channel value of the masked-in pixels.
- * SSIM follows Wang et al. 2004 (eq. 13 with the 11x11 Gaussian window of sigma 1.5 normalised to
- * unit sum, eqs. 14-16, C1 = (0.01 L)^2, C2 = (0.03 L)^2, L = 1) on each channel of the full image;
- * the local SSIM is averaged (eq. 17) over the windows whose centre pixel is masked in, then over
- * the channels. The statistics use every pixel under the window, masked in or not (the mask picks
- * which windows count, it does not cut holes in them). At the image border the window is cut to
- * the pixels inside the image and its weights renormalised to unit sum, so every pixel has a
- * window (Wang's MATLAB code instead drops the 5-pixel border; values there differ slightly).
- * A NaN in either image makes the metrics NaN. Thread-safe; no GL context needed.
- * Errors: OB_ERR_INVALID_ARGUMENT (NULL test, reference or out, width/height/channels < 1 or too
- * large, no pixel in the mask), OB_ERR_OUT_OF_MEMORY (a few rows of doubles); *out is zeroed first. */
-ob_error ob_compare_images(const float *test, const float *reference, const uint8_t *mask, int width,
-                           int height, int channels, ob_metrics *out);
-
-/* Signed error heatmap of two 1-channel images: rgb_out (width x height x 3 bytes, top row first)
- * shows test - reference through a diverging map (ColorBrewer RdBu with a white centre): white at
- * 0, towards blue where the test is lower (darker / more occluded), towards red where it is higher,
- * saturating at +-range. Masked-out pixels (mask in the inputs' layout, NULL = all in) are grey
- * (128,128,128); a non-finite difference is black. bottom_first: the inputs' rows run bottom to
- * top (the renderer's *_F32 images), so they are flipped into rgb_out.
- * Errors: OB_ERR_INVALID_ARGUMENT (NULL test, reference or rgb_out, width/height < 1 or too large,
- * range not finite and > 0). */
-ob_error ob_error_heatmap(const float *test, const float *reference, const uint8_t *mask, int width, int height,
-                          bool bottom_first, float range, uint8_t *rgb_out);
-
-/* ---- metric masks: where the error matters (src/eval/masks.c) ------------------------------- */
-typedef enum ob_metric_mask {
-    OB_MASK_OCCLUDED = 0, /* the reference AO is below occluded_below: creases, contacts, corners */
-    OB_MASK_SILHOUETTE,   /* within edge_band pixels of a depth discontinuity: where halos sit */
-    OB_MASK_THIN,         /* background farther than R on both sides within thin_reach pixels */
-    OB_MASK_BORDER,       /* the outer border_fraction of each side of the image */
-    OB_MASK_COUNT
-} ob_metric_mask;
-
-/* "occluded", "silhouette", "thin", "border"; "" if out of range. */
-const char *ob_metric_mask_name(ob_metric_mask mask);
-
-/* Zero means default; ob_metric_mask_defaults says what each zero becomes. */
-typedef struct ob_metric_mask_desc {
-    float occluded_below;  /* occluded: reference < this (default 0.75) */
-    float edge_relative;   /* silhouette: a 4-neighbour is sky or its depth differs by more than this
-                            * fraction of the nearer of the two depths (default 0.1) */
-    int edge_band;         /* silhouette: pixels within this Euclidean distance of such an edge
-                            * pixel (default max(1, round(width / 160)): 2 at 320 wide) */
-    int thin_reach;        /* thin: how far to look for background on each side, in pixels
-                            * (default max(1, round(3 width / 320)): 3 at 320 wide) */
-    float border_fraction; /* border: this fraction of the width (height) on the left and right (bottom
-                            * and top) sides, at least 1 pixel (default 0.05) */
-} ob_metric_mask_desc;
-
-/* *desc (NULL = all zero) with every zero replaced by its default for an image `width` wide. */
-ob_metric_mask_desc ob_metric_mask_defaults(const ob_metric_mask_desc *desc, int width);
-
-/* The OB_MASK_COUNT masks of a width x height view, for measuring the error where it matters (e.g.
- * ob_compare_images with each mask). linear_depth: 1 float per pixel, 0 = sky (the renderer's
- * OB_IMAGE_DEPTH_F32); reference: the reference AO, 1 float per pixel in the same layout (either row
- * order: every definition is symmetric under a vertical flip); radius: the AO radius R in world
- * units. masks_out gets OB_MASK_COUNT planes of width x height bytes, plane m at m x width x height,
- * 1 = in the mask, 0 = out; sky (depth <= 0 or not finite) is in none. A pixel is:
- *   occluded    reference < occluded_below;
- *   silhouette  within edge_band pixels of an edge pixel: a geometry pixel with a 4-neighbour that
- *               is sky or whose depth differs by more than edge_relative x the nearer depth;
- *   thin        sky or a depth more than R farther than its own within thin_reach pixels on both
- *               sides, left and right or below and above (a part at most 2 thin_reach - 1 pixels
- *               across, in front of something far; pixels off the image do not count);
- *   border      within border_fraction x width of the left or right side, or border_fraction x
- *               height of the bottom or top.
- * desc: NULL = defaults. Thread-safe; no GL context needed.
- * Errors: OB_ERR_INVALID_ARGUMENT (NULL linear_depth, reference or masks_out, width/height < 1 or too
- * large, radius not finite and > 0, occluded_below or edge_relative not finite and > 0, edge_band or
- * thin_reach outside 1..1024, border_fraction outside (0, 0.5]), OB_ERR_OUT_OF_MEMORY (one byte per
- * pixel of scratch). */
-ob_error ob_metric_masks(const float *linear_depth, const float *reference, int width, int height, float radius,
-                         const ob_metric_mask_desc *desc, uint8_t *masks_out);
-
-/* ---- stereo consistency (src/eval/stereo.c) ------------------------------------------------- */
-/* One eye's rendered view. */
-typedef struct ob_stereo_view {
-    const float *ao;           /* 1 float per pixel, bottom row first (OB_IMAGE_AO_F32) */
-    const float *linear_depth; /* 1 float per pixel, bottom row first, 0 = sky (OB_IMAGE_DEPTH_F32) */
-    int width, height;
-    ob_camera camera;          /* as rendered: eye, target, up (zero = +Y), fov (zero = 60), shift;
-                                  near and far are not used */
-} ob_stereo_view;
-
-typedef struct ob_stereo_consistency {
-    double mean_abs;  /* mean |AO_right - AO_left reprojected| over the pixels seen by both eyes */
-    double fraction;  /* those pixels / the right eye's geometry pixels */
-    size_t count;     /* those pixels */
-} ob_stereo_consistency;
-
-/* How well the AO of two views of the same scene agree (AO_R is a property of the surface point,
- * not of the view: seed 000 eq. 2.6-2.7). Every right-eye geometry pixel is taken to the world by
- * its depth, into the left eye, and the left eye's AO is read there (bilinear); the pixel counts
- * only when it is seen by both eyes: the left position lies inside the left image, its four taps
- * are geometry, and the left depth there (bilinear) matches the point's left-eye depth within
- * depth_tolerance x that depth (else something else is in front: occluded in the left eye).
- * depth_tolerance: zero = 0.02. Thread-safe; no GL context needed.
- * Errors: OB_ERR_INVALID_ARGUMENT (NULL argument or image, size < 1, a camera with eye = target or
- * fov outside (0, 179), depth_tolerance negative or not finite, no pixel seen by both eyes: *out
- * then has count 0). */
-ob_error ob_metric_stereo_consistency(const ob_stereo_view *left, const ob_stereo_view *right,
-                                      float depth_tolerance, ob_stereo_consistency *out);
 
 #if defined(__GNUC__)
 #pragma GCC visibility pop

@@ -23,7 +23,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "obscura/obscura.h"
+#include "obscura/scene.h"
 
 #ifndef OB_DATA_REL_LIBDIR
 #define OB_DATA_REL_LIBDIR "../share/obscura"

@@ -1,7 +1,7 @@
 /* shaders/ob_enums.h repeats the public enums as numbers GLSL can use; here the compiler checks
  * that the two agree, so a new enum value cannot drift between C and the shaders. */
 #include "ob_enums.h"
-#include "obscura/obscura.h"
+#include "obscura/scene.h"
 #include "sampling/sampling.h"
 
 _Static_assert(OB_LIGHT_TYPE_DIRECTIONAL == OB_LIGHT_DIRECTIONAL && OB_LIGHT_TYPE_POINT == OB_LIGHT_POINT &&

@@ -6,7 +6,7 @@
 
 #include "base/error.h"
 #include "scene/scene.h"
-#include "obscura/obscura.h"
+#include "obscura/scene.h"
 
 static bool parse_floats(const char *v, float *out, int n)
 {

@@ -7,13 +7,21 @@
 #include "base/error.h"
 #include "core/renderer.h"
 #include "methods/method.h"
-#include "scene/model_io.h"
+#include <unistd.h>
 
 #include "bloom_params.h"
 #include "lighting_params.h"
 #include "ob_shared.h"
 
-uint64_t ob_default_max_memory(void) { return ob_model_default_max_memory(); }
+uint64_t ob_default_max_memory(void)
+{
+    const uint64_t four_gib = 4ull << 30;
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    if (pages <= 0 || page <= 0) return four_gib;
+    uint64_t half = (uint64_t)pages * (uint64_t)page / 2u;
+    return half < four_gib ? half : four_gib;
+}
+
 
 /* What a renderer has made once it has rendered with every one of the settings: its targets are
  * made on first use and kept (renderer.c), so features add up across the settings. */

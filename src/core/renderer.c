@@ -277,10 +277,10 @@ ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene)
     return OB_OK;
 }
 
-ob_error ob_renderer_set_environment(ob_renderer *r, const char *hdr_path)
+ob_error ob_renderer_set_environment_rgb(ob_renderer *r, int width, int height, const float *rgb, const char *name)
 {
-    if (!r || !hdr_path) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_renderer_set_environment: NULL argument");
-    return ob_environment_load(&r->environment, hdr_path);
+    if (!r || !rgb) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_renderer_set_environment_rgb: NULL argument");
+    return ob_environment_upload(&r->environment, rgb, width, height, name ? name : "(the host's pixels)");
 }
 
 void *ob_renderer_method_state(ob_renderer *r, int index, ob_error *err)

@@ -10,7 +10,7 @@
 #include "base/error.h"
 #include "filters/filter.h"
 #include "methods/method.h"
-#include "obscura/obscura.h"
+#include "obscura/scene.h"
 
 ob_error ob_settings_init(ob_settings *s, const char *method)
 {

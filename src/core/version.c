@@ -1,5 +1,5 @@
 /* ob_version (obscura.h, "version"): the numbers this library was built with. */
-#include "obscura/obscura.h"
+#include "obscura/scene.h"
 
 const char *ob_version(int *major, int *minor, int *patch)
 {

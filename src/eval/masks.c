@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 /* Reference AO_R below 0.75 is occluded: a floor point at 0.6 R from one wall (DESIGN.md's analytic
  * case) is there, an open plane (1) and a gentle slope are not. */

@@ -17,7 +17,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 /* Wang et al. 2004, §III.C: an 11x11 circular-symmetric Gaussian with sigma = 1.5 samples. */
 #define SSIM_RADIUS 5

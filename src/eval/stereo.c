@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 /* Relative depth agreement for "the same point": above the depth buffer's float error and the
  * bilinear depth's deviation from a plane, below the gap between a surface and what stands in

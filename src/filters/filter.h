@@ -6,7 +6,7 @@
 
 #include "filter_params.h"
 #include "gpu/gpu.h"
-#include "obscura/obscura.h"
+#include "obscura/scene.h"
 
 /* What a filter gets: textures of one size (the AO resolution). */
 typedef struct ob_filter_inputs {

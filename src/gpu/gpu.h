@@ -4,7 +4,7 @@
 
 #include <epoxy/gl.h>
 
-#include "obscura/obscura.h"
+#include "obscura/scene.h"
 
 struct ob_context {
     void *egl_display;  /* EGLDisplay */

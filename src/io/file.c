@@ -8,7 +8,16 @@
 #include <unistd.h>
 
 #include "base/error.h"
-#include "scene/model_io.h"
+
+const char *ob_file_kind(mode_t m)
+{
+    if (S_ISDIR(m)) return "a directory";
+    if (S_ISFIFO(m)) return "a FIFO";
+    if (S_ISCHR(m)) return "a character device";
+    if (S_ISBLK(m)) return "a block device";
+    if (S_ISSOCK(m)) return "a socket";
+    return "not a regular file";
+}
 
 FILE *ob_fopen_regular(const char *path, const char *what)
 {

@@ -9,7 +9,7 @@
 
 #include "frame_params.h"
 #include "gpu/gpu.h"
-#include "obscura/obscura.h"
+#include "obscura/scene.h"
 
 /* What a method reads (ob_method_impl.reads): the renderer provides these in ob_ao_inputs. */
 enum {

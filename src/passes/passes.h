@@ -253,15 +253,17 @@ ob_error ob_lighting_run(ob_lighting_pass *l, const ob_frame_constants *frame, i
                          GLuint normal, GLuint albedo, GLuint radiance_out);
 void ob_lighting_destroy(ob_lighting_pass *l);
 
-/* ---- the environment map: environment.c (CPU: load, spherical harmonics) ------------------- */
+/* ---- the environment map: environment.c (upload, spherical harmonics) ---------------------- */
 typedef struct ob_environment {
     GLuint texture;   /* RGBA16F equirectangular radiance with mipmaps; 0 = none */
     float sh[9][3];   /* diffuse irradiance / pi, convolved (Ramamoorthi & Hanrahan 2001) */
-    char path[512];
 } ob_environment;
 
-/* Load an equirectangular .hdr (stb_image). Errors: OB_ERR_IO. */
-ob_error ob_environment_load(ob_environment *e, const char *path);
+/* Upload w x h RGB floats (top row first), replacing e's map; `what` names it in messages (the
+ * file's path from the evaluation library's reader, src/eval/environment.c). Errors:
+ * OB_ERR_IO (too small, larger than GL_MAX_TEXTURE_SIZE, negative or non-finite radiance, the
+ * upload failed); e keeps its old map then, except after a failed upload (none). */
+ob_error ob_environment_upload(ob_environment *e, const float *rgb, int w, int h, const char *what);
 /* Project equirectangular radiance (w x h RGB floats, top row first) onto 9 SH and convolve with
  * the clamped cosine: out = E_lm / pi. Exposed for the unit test. */
 void ob_environment_sh(const float *rgb, int w, int h, float out[9][3]);

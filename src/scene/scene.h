@@ -2,7 +2,8 @@
 #ifndef OB_SCENE_INTERNAL_H
 #define OB_SCENE_INTERNAL_H
 
-#include "obscura/obscura.h"
+#include "base/error.h"
+#include "obscura/scene.h"
 
 /* One draw: triangles that share a material. Arrays are malloc'd and owned by the mesh. */
 typedef struct ob_mesh {
@@ -55,30 +56,22 @@ struct ob_scene {
 };
 
 /* Allocation helpers shared by the importers (scene.c). */
-ob_scene *ob_scene_alloc(const char *name);
-ob_mesh *ob_scene_add_mesh(ob_scene *s, uint32_t vertex_count, uint32_t index_count, bool uvs);
-int ob_scene_add_material(ob_scene *s, const char *name, float r, float g, float b);
+OB_EVAL_SHARED ob_scene *ob_scene_alloc(const char *name);
+OB_EVAL_SHARED ob_mesh *ob_scene_add_mesh(ob_scene *s, uint32_t vertex_count, uint32_t index_count, bool uvs);
+OB_EVAL_SHARED int ob_scene_add_material(ob_scene *s, const char *name, float r, float g, float b);
 /* Add a camera preset after "default", replacing a preset of the same name ("default" itself
  * included). Returns false (and sets no error) when all OB_MAX_CAMERAS slots are in use. */
-bool ob_scene_add_camera(ob_scene *s, const ob_camera *cam);
+OB_EVAL_SHARED bool ob_scene_add_camera(ob_scene *s, const ob_camera *cam);
 /* v scaled to unit length without overflow (src/core/lights.c); false for a zero or non-finite v. */
-bool ob_normalize_direction(float v[3]);
+OB_EVAL_SHARED bool ob_normalize_direction(float v[3]);
 /* After the meshes are in: bounds, default camera, default light and radius if unset. */
-void ob_scene_finish(ob_scene *s);
+OB_EVAL_SHARED void ob_scene_finish(ob_scene *s);
 
 /* Builders: return NULL with the error set (ob_peek_error) on failure. */
-ob_scene *ob_scene_builtin(const char *name); /* NULL + OB_ERR_UNKNOWN_SCENE if not built in */
-/* assimp; with desc's allow_external_files and max_memory (0 = the default). */
-ob_scene *ob_scene_import(const char *path, ob_up_axis up, bool allow_external_files, uint64_t max_memory);
-/* The same with the caller's share of max_memory (ob_scene_desc.reserved_memory, reserved_what):
- * the geometry, the textures and it must fit together. */
-ob_scene *ob_scene_import_within(const char *path, ob_up_axis up, bool allow_external_files, uint64_t max_memory,
-                                 uint64_t reserved, const char *reserved_what);
+OB_EVAL_SHARED ob_scene *ob_scene_builtin(const char *name); /* NULL + OB_ERR_UNKNOWN_SCENE if not built in */
 /* After ob_scene_finish: false (OB_ERR_MODEL naming source) when the bounds are not finite or
  * outside the range float depth and lighting handle (scene.c says why). */
-bool ob_scene_check_bounds(const ob_scene *s, const char *source);
-/* Apply a sidecar JSON (cameras, lights, ao_radius, ground) to a loaded scene. */
-ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path);
+OB_EVAL_SHARED bool ob_scene_check_bounds(const ob_scene *s, const char *source);
 
 /* The default framing camera for bounds, looking from the front-above-right. */
 ob_camera ob_camera_frame_bounds(const float bmin[3], const float bmax[3], float fov_y_deg);

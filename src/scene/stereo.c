@@ -20,7 +20,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "obscura/obscura.h"
+#include "obscura/scene.h"
 
 /* HTC Vive (the seed's headset): 1080x1200 pixels per eye (seed 000 §5.2), 64 mm ipd (the
  * population mean the seed's setup assumes). The per-eye frustum is OpenVR's GetProjectionRaw of a

@@ -9,8 +9,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "obscura/obscura.h"
-#include "scene/scene.h"
+#include "obscura/eval.h"
+#include "eval/import.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

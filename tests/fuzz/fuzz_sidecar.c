@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "obscura/obscura.h"
-#include "scene/scene.h"
+#include "obscura/eval.h"
+#include "eval/import.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

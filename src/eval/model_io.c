@@ -11,7 +11,7 @@
  * declared count with the bytes that can hold it, and the memory an import would take with the
  * limit, before Assimp sees the file. Quake 3 maps (.pk3 zips and their .bsp) have a file of their
  * own: bsp_check.c. */
-#include "scene/model_io.h"
+#include "eval/model_io.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -26,7 +26,8 @@
 #include <cjson/cJSON.h>
 
 #include "base/error.h"
-#include "scene/bsp_check.h"
+#include "eval/bsp_check.h"
+#include "io/file.h"
 
 /* Peak bytes per element of an import, measured with Assimp 5.2.5 and our post-processing flags
  * (peak RSS over the raw-scene element counts): a 33 MB OBJ of 2.94 M face corners peaked at
@@ -45,16 +46,6 @@ static struct aiFile *ai_open(struct aiFileIO *io, const char *path, const char 
 static void ai_close(struct aiFileIO *io, struct aiFile *a);
 
 /* ---- confinement ----------------------------------------------------------------------------- */
-
-const char *ob_file_kind(mode_t m)
-{
-    if (S_ISDIR(m)) return "a directory";
-    if (S_ISFIFO(m)) return "a FIFO";
-    if (S_ISCHR(m)) return "a character device";
-    if (S_ISBLK(m)) return "a block device";
-    if (S_ISSOCK(m)) return "a socket";
-    return "not a regular file";
-}
 
 bool ob_model_fs_init(ob_model_fs *fs, const char *model, bool allow_external)
 {
@@ -207,15 +198,6 @@ static void ai_close(struct aiFileIO *io, struct aiFile *a)
 
 
 /* ---- memory ---------------------------------------------------------------------------------- */
-
-uint64_t ob_model_default_max_memory(void)
-{
-    const uint64_t four_gib = 4ull << 30;
-    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-    if (pages <= 0 || page <= 0) return four_gib;
-    uint64_t half = (uint64_t)pages * (uint64_t)page / 2u;
-    return half < four_gib ? half : four_gib;
-}
 
 uint64_t ob_model_estimate_peak(uint64_t vertices, uint64_t face_indices)
 {

@@ -2,7 +2,7 @@
 #ifndef OB_REFERENCE_INTERNAL_H
 #define OB_REFERENCE_INTERNAL_H
 
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 /* One light at a surface point, exactly as shaders/lighting.glsl computes it before the shadow
  * term and the albedo: writes the unit direction toward the light and the distance to it (INFINITY

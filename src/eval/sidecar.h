@@ -4,7 +4,7 @@
 
 #include <stddef.h>
 
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 /* Validate a sidecar completely and report the two keys the loader needs before importing: the
  * "model" path as written (copied into model_out, "" when absent; model_out may be NULL) and the

@@ -15,7 +15,7 @@
  *   unchecked, and texture names are read as C strings.
  * So each of those is checked here, on the zip's own bytes and on the inflated map. Messages name
  * the model, the entry and the lump or face; a zip entry's name is made printable ASCII first. */
-#include "scene/bsp_check.h"
+#include "eval/bsp_check.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -25,7 +25,7 @@
 #include <zlib.h>
 
 #include "base/error.h"
-#include "scene/model_io.h"
+#include "eval/model_io.h"
 
 /* ---- the BSP --------------------------------------------------------------------------------- */
 

@@ -34,13 +34,6 @@ bool ob_model_fs_init(ob_model_fs *fs, const char *model, bool allow_external);
  * message (NULL = path). An absolute reference is refused when the file exists. */
 FILE *ob_model_fs_open(ob_model_fs *fs, const char *path, const char *reference);
 
-/* The default for ob_scene_desc.max_memory: 4 GiB or half the physical memory, whichever is less. */
-uint64_t ob_model_default_max_memory(void);
-
-/* What a path that is not a regular file is, for messages: "a directory", "a FIFO", "a character
- * device", "a block device", "a socket", else "not a regular file". */
-const char *ob_file_kind(mode_t m);
-
 /* Checks on the model's own bytes before Assimp reads it: element counts declared in the file
  * (PLY header, glTF accessors and buffers, OBJ statements) against the bytes that are there, and
  * the memory the import would need against max_memory. False with OB_ERR_MODEL set (naming the

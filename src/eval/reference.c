@@ -11,7 +11,7 @@
  * Determinism: points are handed out in chunks to pthreads, but each point's PCG32 is seeded from
  * (seed, point index) and writes only its own outputs, so the bytes do not depend on the thread
  * count or the schedule. */
-#include "reference/reference.h"
+#include "eval/reference.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>

@@ -4,7 +4,7 @@
  * The node tree is walked here instead of using aiProcess_PreTransformVertices, because glTF
  * cameras hang off nodes and need the same world transforms as the meshes; walking once for
  * both keeps cameras and geometry consistent by construction. */
-#include "scene/scene.h"
+#include "eval/import.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -23,7 +23,7 @@
 #include <stb/stb_image.h>
 
 #include "base/error.h"
-#include "scene/model_io.h"
+#include "eval/model_io.h"
 
 #define OB_PI_F 3.14159265358979f
 
@@ -937,7 +937,7 @@ ob_scene *ob_scene_import_within(const char *path, ob_up_axis up, bool allow_ext
         return NULL;
     }
     const bool max_memory_default = max_memory == 0;
-    if (max_memory == 0) max_memory = ob_model_default_max_memory();
+    if (max_memory == 0) max_memory = ob_default_max_memory();
     if (!ob_model_fs_init(fs, path, allow_external_files) || !ob_model_precheck(fs, max_memory)) {
         free(fs);
         return NULL;

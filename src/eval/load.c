@@ -6,7 +6,7 @@
 #define _POSIX_C_SOURCE 200809L /* stat() */
 #endif
 
-#include "scene/scene.h"
+#include "eval/import.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,8 +14,9 @@
 #include <sys/stat.h>
 
 #include "base/error.h"
-#include "scene/model_io.h"
-#include "scene/sidecar.h"
+#include "eval/model_io.h"
+#include "eval/sidecar.h"
+#include "io/file.h"
 
 /* Long enough for any path the loader builds (Linux PATH_MAX). */
 #define OB_PATH_MAX 4096

@@ -11,7 +11,7 @@
 #include <stb/stb_image_write.h>
 
 #include "base/error.h"
-#include "obscura/obscura.h"
+#include "obscura/eval.h"
 
 typedef struct atomic_file {
     FILE *f;

@@ -60,7 +60,7 @@
  * wrong view without any hint: unknown or duplicate keys, wrong types, wrong array lengths and
  * out-of-range numbers are all OB_ERR_SIDECAR with "path: where: what is wrong". Nothing is
  * applied unless the whole file is valid. */
-#include "scene/sidecar.h"
+#include "eval/sidecar.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -72,7 +72,7 @@
 
 #include "base/error.h"
 #include "io/file.h"
-#include "scene/scene.h"
+#include "eval/import.h"
 
 /* Sidecars are hand-written and tiny; anything bigger is the wrong file. */
 #define SIDECAR_MAX_BYTES (4u << 20)

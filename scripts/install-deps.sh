@@ -16,7 +16,7 @@ packages=(
     libepoxy-dev libegl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libgl-dev
     # libraries
     libassimp-dev libcglm-dev libstb-dev libcjson-dev
-    libembree-dev         # Embree 3: the ray-traced AO / bounce reference (src/reference)
+    libembree-dev         # Embree 3: the ray-traced AO / bounce reference (src/eval/reference.c)
     # the viewer (obscura view): a GLFW window with a GLX context, Dear ImGui 1.86 (its GLFW and
     # OpenGL 3 backends dlopen libGL.so.1), and Xvfb so its tests run with no display
     libglfw3-dev libimgui-dev libgl1 libglx-mesa0 xvfb xauth

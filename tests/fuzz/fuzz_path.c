@@ -1,4 +1,4 @@
-/* libFuzzer target: camera paths (issue 17), the sidecar's "paths" (src/scene/sidecar.c's
+/* libFuzzer target: camera paths (issue 17), the sidecar's "paths" (src/eval/sidecar.c's
  * parse_path) applied to a built-in scene, then every accepted path evaluated along its span as
  * render/compare/bench --path evaluate it (src/scene/path.c), at and beyond its ends. Seeds:
  * tests/fuzz/corpus_path, sidecars with paths (make fuzz, make test-fuzz). */

@@ -69,6 +69,7 @@ static void test_ring(ob_context *ctx, const ob_settings *s)
     ob_pass_timing two[2];
     CHECK(ob_query_timings(r, two, 2) == 2 && !strcmp(two[0].name, t[0].name) && !strcmp(two[1].name, t[1].name),
           "max 2 gives the first two");
+    CHECK(ob_query_timings(r, two, 0) == 0 && ob_query_timings(r, two, -3) == 0, "max 0 or negative: none written");
     /* Waiting makes the last frame the timed one. */
     CHECK(ob_wait_timings(r) == OB_OK, "ob_wait_timings");
     ob_query_timings_frame(r, &timed, &rendered);

@@ -48,17 +48,28 @@ typedef struct ob_scene_desc {
     const char *reserved_what;
 } ob_scene_desc;
 
-/* Errors: OB_ERR_UNKNOWN_SCENE, OB_ERR_IO, OB_ERR_MODEL, OB_ERR_SIDECAR. */
+/* The scene `desc->name` names: a built-in, else the data directory's scenes/NAME.obscura.json
+ * (ob_data_dir), else a model path. desc and its strings are read during the call only. The scene
+ * is the caller's: ob_destroy_scene. CPU-only: any thread, no GL context. NULL on failure.
+ * Errors: OB_ERR_INVALID_ARGUMENT (NULL desc, a NULL or empty name, an up axis outside the enum,
+ * a path too long), OB_ERR_UNKNOWN_SCENE (a bare name that is no built-in, named scene or file),
+ * OB_ERR_IO (a missing or unreadable file, or one that is no regular file), OB_ERR_MODEL (the
+ * import failed, a reference outside the model's tree, over max_memory), OB_ERR_SIDECAR,
+ * OB_ERR_OUT_OF_MEMORY. */
 ob_scene *ob_load_scene(const ob_scene_desc *desc);
 
 /* ---- environment maps from files --------------------------------------------------------------- */
 /* The environment map (equirectangular Radiance .hdr) for OB_AMBIENT_ENVIRONMENT and SSDO, read
  * with stb_image and handed to ob_renderer_set_environment_rgb. Errors: OB_ERR_INVALID_ARGUMENT
  * (NULL), OB_ERR_IO (naming the path: unreadable, not a Radiance file, truncated, a declared size
- * the file cannot hold, and ob_renderer_set_environment_rgb's); the renderer keeps its old map. */
+ * the file cannot hold, and ob_renderer_set_environment_rgb's); the renderer keeps its old map,
+ * except after a failed GL upload, which leaves it none. The file is closed and the pixels freed
+ * before the call returns (the GL texture is the renderer's copy). */
 ob_error ob_renderer_set_environment(ob_renderer *r, const char *hdr_path);
 
-/* ---- image files (written atomically: temporary file, then rename) -------------------------- */
+/* ---- image and text files: written atomically (temporary file, then rename); PFM read back -- */
+/* The writers read the caller's pixels during the call and keep nothing; a NULL or empty path is
+ * OB_ERR_INVALID_ARGUMENT. CPU-only, any thread. */
 /* Top-row-first RGBA8 or grey (channels 1, 3 or 4). Errors: OB_ERR_INVALID_ARGUMENT (NULL, a
  * size below 1x1, another channel count), OB_ERR_IO (naming the path; an existing file is kept). */
 ob_error ob_write_png(const char *path, int width, int height, int channels, const uint8_t *px);
@@ -66,17 +77,18 @@ ob_error ob_write_png(const char *path, int width, int height, int channels, con
  * has no alpha), quality 1..100. Errors: OB_ERR_INVALID_ARGUMENT, OB_ERR_OUT_OF_RANGE, OB_ERR_IO. */
 ob_error ob_write_jpg(const char *path, int width, int height, int channels, const uint8_t *px, int quality);
 /* PFM: bottom-row-first floats, channels 1 (Pf) or 3 (PF), little-endian. Errors: as
- * ob_write_png. */
+ * ob_write_png (another channel count than 1 or 3). */
 ob_error ob_write_pfm(const char *path, int width, int height, int channels, const float *px);
 /* A text file (JSON, HTML), written atomically like the images. Errors: OB_ERR_INVALID_ARGUMENT
  * (NULL), OB_ERR_IO (naming the path; an existing file is kept). */
 ob_error ob_write_text(const char *path, const char *text);
-/* Reads a little-endian PFM; *px is malloc'd and the caller's (free it); nothing is allocated on
- * an error. Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_IO (unreadable, not a little-endian
- * PFM, truncated), OB_ERR_OUT_OF_MEMORY. */
+/* Reads a little-endian PFM; *px is malloc'd and the caller's (free it with free()); nothing is
+ * allocated on an error, *px is then NULL and *width, *height, *channels are untouched. Errors:
+ * OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_IO (unreadable, not a little-endian PFM, a side above
+ * 65536, truncated), OB_ERR_OUT_OF_MEMORY. */
 ob_error ob_read_pfm(const char *path, int *width, int *height, int *channels, float **px);
 
-/* ---- ground truth (Embree ray tracing on the CPU) -------------------------------------------
+/* ---- ground truth: ray-traced AO and one bounce (Embree on the CPU) at G-buffer points -------
  * AO_R(x) = 1/pi * integral over the hemisphere of V_R(x, w) cos(theta) dw (seed 000 eq. 2.6-2.7,
  * t = 1), with V_R = 0 when a ray from x hits geometry within R, estimated from cosine-weighted
  * rays (pdf cos(theta)/pi, so the estimate is the plain mean of the visibility) cast from the very
@@ -98,9 +110,9 @@ typedef struct ob_reference_desc {
  * (may be NULL) the standard error of each estimate, sqrt(p (1 - p) / (n - 1)) of the Bernoulli
  * mean p over n rays. Rays start a little off the surface along the normal (1e-4 of the scene's
  * bounds diagonal) and end at R.
- * Errors: OB_ERR_INVALID_ARGUMENT (NULL scene, points or output with count > 0, R <= 0, spp < 0
- * or 1, threads < 0), OB_ERR_OUT_OF_MEMORY, OB_ERR_MODEL (Embree failed; the message names
- * rtcGetDeviceError's code). */
+ * count 0 returns at once. Errors: OB_ERR_INVALID_ARGUMENT (NULL scene or desc, points or output
+ * NULL with count > 0, R <= 0 or not finite, spp < 0 or 1, threads < 0), OB_ERR_OUT_OF_MEMORY,
+ * OB_ERR_MODEL (Embree failed; the message names rtcGetDeviceError's code). */
 ob_error ob_reference_ao(const ob_scene *scene, const float *positions, const float *normals, size_t count,
                          const ob_reference_desc *desc, float *ao_out, float *stderr_out);
 
@@ -128,7 +140,8 @@ ob_error ob_reference_bounce(const ob_scene *scene, const ob_light *lights, int 
  * bottom row first, 0 = sky) and view_normals (3 floats per pixel) of width x height pixels,
  * proj_info = {1/P00, 1/P11, P20, P21} of the column-major projection, inv_view the column-major
  * camera-to-world matrix. positions_out and normals_out get 3 floats per pixel; sky pixels get
- * zeros (so ob_reference_ao skips them). Errors: OB_ERR_INVALID_ARGUMENT, OB_ERR_BAD_SIZE. */
+ * zeros (so ob_reference_ao skips them). Pure CPU, no Embree. Errors: OB_ERR_INVALID_ARGUMENT (a
+ * NULL argument), OB_ERR_BAD_SIZE (width or height below 1). */
 ob_error ob_reference_points(const float *linear_depth, const float *view_normals, int width, int height,
                              const float proj_info[4], const float inv_view[16], float *positions_out,
                              float *normals_out);
@@ -169,6 +182,7 @@ ob_error ob_compare_images(const float *test, const float *reference, const uint
  * saturating at +-range. Masked-out pixels (mask in the inputs' layout, NULL = all in) are grey
  * (128,128,128); a non-finite difference is black. bottom_first: the inputs' rows run bottom to
  * top (the renderer's *_F32 images), so they are flipped into rgb_out.
+ * Thread-safe; no GL context needed.
  * Errors: OB_ERR_INVALID_ARGUMENT (NULL test, reference or rgb_out, width/height < 1 or too large,
  * range not finite and > 0). */
 ob_error ob_error_heatmap(const float *test, const float *reference, const uint8_t *mask, int width, int height,
@@ -183,7 +197,8 @@ typedef enum ob_metric_mask {
     OB_MASK_COUNT
 } ob_metric_mask;
 
-/* "occluded", "silhouette", "thin", "border"; "" if out of range. */
+/* "occluded", "silhouette", "thin", "border"; "" if out of range. Static storage, valid for the
+ * process. Never fails. */
 const char *ob_metric_mask_name(ob_metric_mask mask);
 
 /* Zero means default; ob_metric_mask_defaults says what each zero becomes. */
@@ -199,7 +214,8 @@ typedef struct ob_metric_mask_desc {
                             * and top) sides, at least 1 pixel (default 0.05) */
 } ob_metric_mask_desc;
 
-/* *desc (NULL = all zero) with every zero replaced by its default for an image `width` wide. */
+/* *desc (NULL = all zero) with every zero replaced by its default for an image `width` wide.
+ * Returned by value; non-zero fields are kept as given (ob_metric_masks checks them). Never fails. */
 ob_metric_mask_desc ob_metric_mask_defaults(const ob_metric_mask_desc *desc, int width);
 
 /* The OB_MASK_COUNT masks of a width x height view, for measuring the error where it matters (e.g.
@@ -246,10 +262,10 @@ typedef struct ob_stereo_consistency {
  * only when it is seen by both eyes: the left position lies inside the left image, its four taps
  * are geometry, and the left depth there (bilinear) matches the point's left-eye depth within
  * depth_tolerance x that depth (else something else is in front: occluded in the left eye).
- * depth_tolerance: zero = 0.02. Thread-safe; no GL context needed.
- * Errors: OB_ERR_INVALID_ARGUMENT (NULL argument or image, size < 1, a camera with eye = target or
- * fov outside (0, 179), depth_tolerance negative or not finite, no pixel seen by both eyes: *out
- * then has count 0). */
+ * depth_tolerance: zero = 0.02. Thread-safe; no GL context needed. *out (when not NULL) is zeroed
+ * first. Errors: OB_ERR_INVALID_ARGUMENT (NULL argument or image, size < 1, a camera with eye =
+ * target or fov outside (0, 179), depth_tolerance negative or not finite, no pixel seen by both
+ * eyes: *out then has count 0). */
 ob_error ob_metric_stereo_consistency(const ob_stereo_view *left, const ob_stereo_view *right,
                                       float depth_tolerance, ob_stereo_consistency *out);
 

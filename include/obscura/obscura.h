@@ -20,17 +20,23 @@
  *   - View space is OpenGL's: the camera looks down -Z; linear depth is the positive distance
  *     along -Z. Radii are in world units.
  *   - Desc structs: zero means "default" (sokol style), resolved in one place per object.
+ *   - "seed N §x" cites one of the three theses the methods come from (seed 000, 003, 004), as
+ *     the top of README.md lists them; docs/methods.md gives each method's sources.
  *
  * Errors
  *   Functions that can fail return an ob_error (or NULL, or a value documented as the failure)
  *   and record a one-line message that ob_get_error() returns (glfwGetError style); each
- *   function's comment names the errors it returns. Library code never aborts or prints.
+ *   function's comment names the errors it returns, or says "Never fails" (it records no error)
+ *   or what it returns for NULL or out-of-range arguments. Library code never aborts or prints.
  *
  * Lifetimes
  *   Strings and table entries the library returns (names, ob_method_info, ob_query_renderer...)
  *   are static or owned by the object they came from, valid as long as it lives; the caller
  *   frees nothing the library returns unless the comment says so (ob_read_pfm's pixels, and the
  *   objects made by ob_make_* / ob_load_scene / ob_tessellate_scene, destroyed by ob_destroy_*).
+ *   What a call is given (strings, arrays, desc structs) is read during the call: the library
+ *   copies what it keeps and holds no pointer into the caller's memory, except the objects it is
+ *   handed (a renderer keeps its context) and the error callback's user pointer.
  *
  * Threading
  *   An ob_context and everything made from it belong to the thread that made the context (its
@@ -70,7 +76,7 @@ extern "C" {
 
 /* The library's version: its numbers (each pointer may be NULL) and "MAJOR.MINOR.PATCH". A host
  * built against this header works with a library of the same MAJOR (and, before 1.0, the same
- * MINOR). */
+ * MINOR). The string is static (valid for the process). Never fails. */
 const char *ob_version(int *major, int *minor, int *patch);
 
 /* ---- errors ---------------------------------------------------------------------------------
@@ -101,19 +107,22 @@ typedef enum ob_error {
 } ob_error;
 
 /* The last error on this thread, then forgets it, as glfwGetError does: a second call returns
- * OB_OK. *message (never NULL) is the one-line message of the last error recorded on this thread,
- * kept after the read so that a log line can still quote it, until the next error or
- * ob_clear_error ("" before any). */
+ * OB_OK. message may be NULL; *message (never NULL) is the one-line message of the last error
+ * recorded on this thread, kept after the read so that a log line can still quote it ("" before
+ * any). It points into this thread's own buffer, valid on this thread until the next error
+ * recorded here or ob_clear_error overwrites it: copy it to keep it. Never fails. */
 ob_error ob_get_error(const char **message);
 /* Called on the failing thread with each error as it is recorded (before the failing call
  * returns), e.g. to log it; the message is valid during the call only. NULL removes it. The
- * error is still there for ob_get_error afterwards. Process-wide: set it before other threads use
- * the library. */
+ * error is still there for ob_get_error afterwards. `user` is kept and passed back until the
+ * callback is replaced. Process-wide and unsynchronised: set it before other threads use the
+ * library. Never fails. */
 typedef void (*ob_error_callback)(ob_error err, const char *message, void *user);
 void ob_set_error_callback(ob_error_callback callback, void *user);
-/* The enum's name, e.g. "OB_ERR_UNKNOWN_METHOD". */
+/* The enum's name, e.g. "OB_ERR_UNKNOWN_METHOD"; "OB_ERR_?" for a value outside the enum. Static
+ * storage, valid for the process. Never fails. */
 const char *ob_error_name(ob_error err);
-/* Forget the last error. */
+/* Forget this thread's last error and its message ("" after). Never fails. */
 void ob_clear_error(void);
 
 /* ---- GPU context ----------------------------------------------------------------------------
@@ -135,17 +144,25 @@ typedef struct ob_context_desc {
 
 typedef struct ob_context ob_context;
 
-/* Errors: OB_ERR_NO_CONTEXT (message names every device and step that was tried; use_current:
- * no current context, or one below desktop OpenGL 4.5, named by renderer and version). */
+/* desc NULL = all defaults. A headless context is left current on the calling thread. The
+ * context is the caller's: ob_destroy_context, after every renderer made from it. NULL on
+ * failure. Errors: OB_ERR_NO_CONTEXT (message names every device and step that was tried;
+ * use_current: no current context, or one below desktop OpenGL 4.5, named by renderer and
+ * version), OB_ERR_OUT_OF_MEMORY. */
 ob_context *ob_make_context(const ob_context_desc *desc);
+/* Destroy the context (its EGL context and display; an adopted one is left alone, current and
+ * alive). Destroy the renderers made from it first: they keep a pointer to it and need its GL
+ * context to free their objects. NULL is a no-op. Never fails. */
 void ob_destroy_context(ob_context *ctx);
+/* What the context is, read once when it was made. The strings are owned by the context, valid
+ * until ob_destroy_context; NULL gives "" (false, 0). Never fail. */
 const char *ob_query_renderer(const ob_context *ctx); /* GL_RENDERER */
 const char *ob_query_gl_version(const ob_context *ctx); /* GL_VERSION */
 const char *ob_query_device(const ob_context *ctx);   /* which EGL device was used, or "the caller's context" */
-bool ob_query_is_software(const ob_context *ctx);
-int ob_query_max_texture_size(const ob_context *ctx);
+bool ob_query_is_software(const ob_context *ctx);     /* a software rasteriser (llvmpipe) */
+int ob_query_max_texture_size(const ob_context *ctx); /* GL_MAX_TEXTURE_SIZE */
 
-/* ---- cameras and lights: what a frame is seen with and lit by ---------------------------------- */
+/* ---- cameras, lights and shadow maps: what a frame is seen with and lit by -------------------- */
 typedef struct ob_camera {
     float eye[3];
     float target[3];
@@ -249,20 +266,25 @@ typedef struct ob_method_info {
     const ob_param_info *params;
 } ob_method_info;
 
+/* The registry is fixed at build time and read-only: these are thread-safe and never fail. */
 int ob_method_count(void);
+/* NULL when index is out of range. The entry and everything it points to (names, parameter
+ * table, option names) are static: valid for the process, never freed. */
 const ob_method_info *ob_method_at(int index);
-/* Index of the method, or -1. */
+/* Index of the method, or -1 for an unknown name or NULL (no error recorded). */
 int ob_find_method(const char *name);
 
 /* ---- filters: the denoising registry (same table shape as the methods) --------------------- */
 typedef ob_method_info ob_filter_info;
 
+/* As the methods': thread-safe, never fail. */
 int ob_filter_count(void);
+/* NULL when index is out of range; the entry is static, valid for the process. */
 const ob_filter_info *ob_filter_at(int index);
-/* Index of the filter, or -1. */
+/* Index of the filter, or -1 for an unknown name or NULL (no error recorded). */
 int ob_find_filter(const char *name);
 
-/* ---- HDR (seed 003 §2.2, §5.5, §6.5) -------------------------------------------------------- */
+/* ---- HDR settings: exposure, tone mapping, bloom (seed 003 §2.2, §5.5, §6.5) ------------------ */
 typedef struct ob_hdr_settings {
     bool enabled;          /* false (--hdr off): radiance clamped to [0,1] before sRGB */
     float exposure;        /* linear scale applied to the radiance first (default 1) */
@@ -317,7 +339,7 @@ typedef struct ob_settings {
      * targets at the next ob_render_frame; W + 2g above GL_MAX_TEXTURE_SIZE is OB_ERR_BAD_SIZE
      * there. Not for ob_compute_ao (see there). "guard=PX" in ob_settings_set. */
     int guard;
-    /* Temporal accumulation (issue 17, docs/temporal.md): a pass at the AO resolution that
+    /* Temporal accumulation (docs/temporal.md): a pass at the AO resolution that
      * reprojects last frame's accumulated AO (and M, bounce) through this frame's depth and last
      * frame's camera (static scenes), drops it where depth or normal say the surface is new
      * (disocclusion), clamps it to this frame's 4x4 neighbourhood and blends with a history of
@@ -348,7 +370,8 @@ typedef enum ob_upsample_program {
     OB_UPSAMPLE_BLOCK,    /* one invocation per k x k pixels, the 4x4 AO samples around them read once */
     OB_UPSAMPLE_PROGRAM_COUNT
 } ob_upsample_program;
-/* "auto", "plain", "block" (--upsample and "upsample=" take these names); "" if out of range. */
+/* "auto", "plain", "block" (--upsample and "upsample=" take these names); "" if out of range.
+ * Static storage, valid for the process. Never fails. */
 const char *ob_upsample_program_name(ob_upsample_program program);
 
 /* Where the accumulation runs in the AO chain (ob_settings.temporal_at). */
@@ -370,7 +393,9 @@ typedef enum ob_temporal_at {
  * RMSE 0.0437 against gtao's 0.0469 over 16 views of 7 scenes, docs/methods.md). */
 #define OB_DEFAULT_METHOD "vbao"
 
-/* Defaults for a method (by name; NULL = OB_DEFAULT_METHOD). Errors: OB_ERR_UNKNOWN_METHOD. */
+/* Defaults for a method (by name; NULL = OB_DEFAULT_METHOD): every field of *settings is
+ * overwritten. Errors: OB_ERR_INVALID_ARGUMENT (NULL settings), OB_ERR_UNKNOWN_METHOD (the
+ * message lists the methods); *settings is untouched on error. */
 ob_error ob_settings_init(ob_settings *settings, const char *method);
 /* Set "method.param=value", "filter.param=value" (the current filter) or "param=value" (the
  * current method) from text, validated against the table; "method.radius_scale=value" for every
@@ -378,35 +403,42 @@ ob_error ob_settings_init(ob_settings *settings, const char *method);
  * pixels per side); "temporal=on|off", "temporal_at=before|after", "temporal_frames=N" and "temporal_detail=A"
  * the temporal accumulation (ob_settings.temporal*). Errors: OB_ERR_UNKNOWN_METHOD (an
  * unknown prefix), OB_ERR_UNKNOWN_PARAM, OB_ERR_OUT_OF_RANGE, OB_ERR_INVALID_ARGUMENT
- * (malformed, NaN, not an integer, a parameter of a method or filter not in use). */
+ * (NULL, settings not initialised, malformed, NaN, not an integer, a parameter of a method or
+ * filter not in use); *settings is unchanged on error. */
 ob_error ob_settings_set(ob_settings *settings, const char *assignment);
 /* The value of a parameter of the current method by name ("radius_scale", "guard", "temporal" (0/1),
- * "temporal_at" (ob_temporal_at), "temporal_frames" and "temporal_detail" too), or NaN if unknown. */
+ * "temporal_at" (ob_temporal_at), "temporal_frames" and "temporal_detail" too), or NaN if unknown,
+ * for NULL arguments or settings not initialised (no error recorded). */
 float ob_settings_get(const ob_settings *settings, const char *param);
-/* Pick the filter (its parameters reset to their defaults). Errors: OB_ERR_UNKNOWN_METHOD. */
+/* Pick the filter (its parameters reset to their defaults). Errors: OB_ERR_INVALID_ARGUMENT (NULL),
+ * OB_ERR_UNKNOWN_METHOD (an unknown filter; the message lists them); *settings is unchanged on
+ * error. */
 ob_error ob_settings_set_filter(ob_settings *settings, const char *filter);
-/* The value of a parameter of the current filter, or NaN. */
+/* The value of a parameter of the current filter, or NaN if unknown or for NULL arguments (no
+ * error recorded). */
 float ob_settings_get_filter(const ob_settings *settings, const char *param);
 /* The AO resolution as a divisor of the size: 1, 2 or 4 (seed 000 §4.7.1, seed 003 §4.4).
- * Errors: OB_ERR_OUT_OF_RANGE. */
+ * Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_OUT_OF_RANGE. */
 ob_error ob_settings_set_ao_divisor(ob_settings *settings, int divisor);
 /* The same as a fraction, as the CLI's --ao-scale takes it: exactly 1, 0.5 or 0.25 (divisor 1, 2,
- * 4). Errors: OB_ERR_OUT_OF_RANGE. */
+ * 4). Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_OUT_OF_RANGE. */
 ob_error ob_settings_set_ao_scale(ob_settings *settings, float scale);
 
 /* Quality presets (seed 000 §3.2.3, §5.1): "low" 12, "medium" 24, "high" 36, "ultra" 64 samples
- * per pixel. Returns the count, or -1 for an unknown name. */
+ * per pixel. Returns the count, or -1 for an unknown name or NULL (no error recorded). */
 int ob_quality_samples(const char *name);
 /* Give the current method `samples` samples per pixel: the `samples` parameter, or what the
  * method makes of the count (HBAO: directions x steps). Marks what it sets as explicit.
- * Errors: OB_ERR_OUT_OF_RANGE (beyond the method's table), OB_ERR_INVALID_ARGUMENT (the method
- * takes no sample count, e.g. none — then nothing changes). */
+ * Errors: OB_ERR_OUT_OF_RANGE (beyond the method's table), OB_ERR_INVALID_ARGUMENT (NULL or
+ * settings not initialised, or the method takes no sample count, e.g. none); nothing changes on
+ * error. */
 ob_error ob_settings_set_samples(ob_settings *settings, int samples);
 /* The sample kernel of the settings' method at their (fixed) sample count, as the shader gets it:
  * xyz per entry in the kernel's frame (+Z = the surface normal for hemisphere kernels; crytek's
- * fills the sphere), w 0, at most max entries (4 floats each). Returns the entries written: 0 for
- * a method without a kernel (the slice and horizon methods march instead), -1 with the error set
- * for NULL arguments. Halton kernels repeat their pattern every 10 entries (bases 2 x 5; 30 with
+ * fills the sphere), w 0, at most max entries (4 floats each, into the caller's xyzw). Returns the
+ * entries written: 0 for a method without a kernel (the slice and horizon methods march instead)
+ * or max 0, -1 with OB_ERR_INVALID_ARGUMENT recorded for NULL arguments, max < 0 or settings not
+ * initialised. Halton kernels repeat their pattern every 10 entries (bases 2 x 5; 30 with
  * the length's base 3): the viewer's kernel view shows it (seed 003 Fig. 4.1/4.2). */
 int ob_method_kernel(const ob_settings *settings, float *xyzw, int max);
 
@@ -417,7 +449,11 @@ typedef struct ob_renderer_desc {
 
 typedef struct ob_renderer ob_renderer;
 
-/* Errors: OB_ERR_BAD_SIZE (zero, negative or above GL_MAX_TEXTURE_SIZE), OB_ERR_SHADER. */
+/* A renderer on ctx's GL context, which must be current on this thread (desc NULL = 640x480).
+ * It keeps a pointer to ctx: destroy it (ob_destroy_renderer) before the context. NULL on
+ * failure. Errors: OB_ERR_INVALID_ARGUMENT (NULL ctx), OB_ERR_BAD_SIZE (one side zero, negative
+ * or above GL_MAX_TEXTURE_SIZE), OB_ERR_SHADER (the passes compiled up front),
+ * OB_ERR_OUT_OF_MEMORY, OB_ERR_GL (the GL could not make the targets). */
 ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc);
 /* About the bytes the targets of a renderer of width x height take once it has rendered with each
  * of settings[0..count-1] (targets are made on first use and kept): the G-buffer and full-size
@@ -427,27 +463,32 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc);
  * light, one map). A software rasteriser keeps all of it in host memory. Needs no context: for a
  * check before anything is allocated. The scene's meshes and textures are not included (the
  * import counts them: ob_scene_desc). 0 with OB_ERR_INVALID_ARGUMENT for a size below 1x1, NULL
- * settings, count < 1 or an unknown method. */
+ * settings, count < 1 or an unknown method. Pure CPU. */
 uint64_t ob_estimate_renderer_memory(int width, int height, const ob_settings *settings, int count);
 /* The default memory limit of a run: 4 GiB or half the physical memory, whichever is less
  * (ob_scene_desc.max_memory's default in obscura/eval.h, the CLI's --max-memory). Never fails. */
 uint64_t ob_default_max_memory(void);
+/* Free the renderer's GL objects and memory: its context must be current on this thread. The
+ * host's textures are not touched. NULL is a no-op. Never fails. */
 void ob_destroy_renderer(ob_renderer *r);
 /* A new size for every size-dependent target (a window was resized); the uploaded scene, the
  * environment map, the shadow maps and the compiled programs are kept. The same size is a no-op.
  * The last frame is dropped (ob_present refuses until the next ob_render_frame). Errors:
- * OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_BAD_SIZE (zero, negative or above GL_MAX_TEXTURE_SIZE;
- * unlike ob_make_renderer, 0x0 is not "default"), OB_ERR_GL (the GL could not make the targets);
- * on any error the renderer keeps its old size and still works. */
+ * OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_BAD_SIZE (zero, negative or above GL_MAX_TEXTURE_SIZE,
+ * also with the last frame's guard band added; unlike ob_make_renderer, 0x0 is not "default"),
+ * OB_ERR_GL (the GL could not make the targets); on any error the renderer keeps its old size and
+ * still works. */
 ob_error ob_renderer_resize(ob_renderer *r, int width, int height);
 /* The renderer's size (0 x 0 for NULL), the visible frame's: a guard band (ob_settings.guard)
- * does not change it; either pointer may be NULL. */
+ * does not change it; either pointer may be NULL. Never fails. */
 void ob_query_renderer_size(const ob_renderer *r, int *width, int *height);
 
 /* Forget the temporal history (ob_settings.temporal): the next frame starts every pixel's history
  * again, as after a camera cut, and the frame index that moves the methods' noise starts again at
- * 0. NULL is a no-op. */
+ * 0. NULL is a no-op. Never fails. */
 void ob_renderer_reset_history(ob_renderer *r);
+
+/* ---- read-back: the last frame's images into the caller's memory ---------------------------- */
 
 typedef enum ob_image_kind {
     OB_IMAGE_FINAL_RGBA8 = 0, /* sRGB, rows top to bottom, 4 bytes per pixel */
@@ -481,15 +522,19 @@ typedef enum ob_image_kind {
                                  zeros with temporal off. 2 floats per pixel, bottom row first */
 } ob_image_kind;
 
-/* Bytes needed for an image of the renderer's size. */
+/* Bytes needed for an image of the renderer's size (the AO-grid kinds: at the last frame's AO
+ * scale). 0 for NULL r or an unknown kind (no error recorded). */
 size_t ob_image_size(const ob_renderer *r, ob_image_kind kind);
 /* One of the last ob_render_frame's images into dst (dst_size at least ob_image_size). After an
  * ob_host_ao call (whose results are in the host's own textures) only OB_IMAGE_AO_RAW_F32,
  * OB_IMAGE_HISTORY_AGE_F32 and, when the depth went through the input pass, OB_IMAGE_MOTION_F32
- * are the call's, at the AO grid of its input size. Errors: OB_ERR_INVALID_ARGUMENT (NULL, a small
- * dst, or no such image: none rendered yet, or not since a resize or a failed frame). */
+ * are the call's, at the AO grid of its input size. dst is the caller's; nothing is kept. Errors:
+ * OB_ERR_INVALID_ARGUMENT (NULL, an unknown kind, a small dst, or no such image: none rendered
+ * yet, or not since a resize or a failed frame), OB_ERR_OUT_OF_MEMORY (scratch rows for the flip or
+ * the conversion), OB_ERR_GL. */
 ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst_size);
 
+/* ---- GPU timings: per-pass times of the frames ---------------------------------------------- */
 typedef struct ob_pass_timing {
     const char *name; /* "shadow", "gbuffer", "lighting", "downsample", "edges", "depth_mips", "ao", "temporal", "filter",
                          "upsample", "compose", "luminance", "bloom", "tonemap" */
@@ -500,14 +545,15 @@ typedef struct ob_pass_timing {
  * waiting: the queries of the last 4 frames are kept in a ring, so this is usually a frame one to
  * three behind the last ob_render_frame (ob_query_timings_frame says which). Only the passes that
  * ran in that frame are listed, in the order they ran: a frame that reused its shadow maps
- * (ob_shadow_settings.reuse) has no "shadow". Returns the count written (at most max); 0 before
- * any frame has finished. Call ob_wait_timings first for the last frame's own timings. */
+ * (ob_shadow_settings.reuse) has no "shadow". Returns the count written into out (at most max);
+ * 0 before any frame has finished, or for NULL r or out or max <= 0: never fails. The names are static strings, valid for the process. Call ob_wait_timings first for
+ * the last frame's own timings. */
 int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max);
 
 /* Which frame ob_query_timings describes: *timed gets its number, counting ob_render_frame calls
  * on this renderer from 0 (-1 when none has finished yet), *rendered the number of the last frame
  * rendered (-1 before the first). A host that averages timings adds them when *timed changes.
- * Either pointer may be NULL. */
+ * Either pointer may be NULL; NULL r gives -1 for both. Never fails. */
 void ob_query_timings_frame(const ob_renderer *r, long long *timed, long long *rendered);
 
 /* Wait until the GPU has finished every frame rendered so far, so that ob_query_timings returns
@@ -522,10 +568,12 @@ ob_error ob_wait_timings(ob_renderer *r);
  * program made from now on (existing programs are untouched: make a new renderer to pick them
  * up). Only files this build embeds can be used (their list numbers the lines); errors in the
  * files surface as OB_ERR_SHADER "shaders/FILE:LINE: ..." when a program is made. NULL = back to
- * the embedded copies. Errors: OB_ERR_IO (dir not a readable directory; the setting is then
- * unchanged). Process-wide and not thread-safe: call it between frames on the GL thread. */
+ * the embedded copies. dir is copied. Errors: OB_ERR_IO (dir not a readable directory, or longer
+ * than 4095 bytes; the setting is then unchanged). Process-wide and not thread-safe: call it
+ * between frames on the GL thread. */
 ob_error ob_set_shader_directory(const char *dir);
 
+/* ---- ob_compute_ao: the host path of the first releases --------------------------------------- */
 /* The host path of the first releases (ob_host_ao is the whole of it): the settings' method, at
  * the renderer's size, on an engine's linear depth (R32F or R16F positive view depth, or a depth
  * buffer) and view-space normals (any format ob_host_frame takes), written to ao_out (any format
@@ -536,7 +584,9 @@ ob_error ob_set_shader_directory(const char *dir);
  * was not set stays its default (0.5 world units). Only methods that read depth and normals
  * alone and write plain visibility (not ssdo*, vbgi: OB_ERR_INVALID_ARGUMENT). It runs through
  * ob_host_ao: its textures are checked and the GL state is kept as described there. Errors:
- * OB_ERR_INVALID_ARGUMENT, OB_ERR_SHADER. */
+ * OB_ERR_INVALID_ARGUMENT (NULL r, proj or settings, settings not initialised, a method above, a
+ * texture refused), OB_ERR_OUT_OF_RANGE (a settings field outside its range, even one ignored
+ * here), OB_ERR_SHADER, OB_ERR_OUT_OF_MEMORY. Not OB_ERR_GL, as ob_host_ao. */
 ob_error ob_compute_ao(ob_renderer *r, uint32_t linear_depth_tex, uint32_t normal_tex,
                        const float proj[16], const ob_settings *settings, uint32_t ao_out_tex);
 /* The same, followed by the settings' filter (ob_settings_set_filter) on the same depth and
@@ -563,12 +613,13 @@ ob_error ob_compute_ao_filtered(ob_renderer *r, uint32_t linear_depth_tex, uint3
  * for its uploads and timer reads; and a depth-stencil input read as stencil
  * (GL_DEPTH_STENCIL_TEXTURE_MODE) is read as depth. It puts every one of these back before
  * returning, on success and on failure. It binds no framebuffer, VAO, program pipeline or buffer
- * of any other target and changes no enable, viewport, clip control or pack state. It issues glMemoryBarrier(GL_ALL_BARRIER_BITS) before returning, so the host may read
- * the outputs by any means. It calls
- * no glGetError: a GL error the host left pending stays for the host to read, and every argument
- * is checked before anything is dispatched (OB_ERR_INVALID_ARGUMENT naming the argument, what it
- * is and what is accepted). In a debug context (GL_CONTEXT_FLAG_DEBUG_BIT) the call's commands
- * sit inside a KHR_debug group "obscura" so that the host's debug callback can tell them apart.
+ * of any other target and changes no enable, viewport, clip control or pack state. It issues
+ * glMemoryBarrier(GL_ALL_BARRIER_BITS) before returning, so the host may read the outputs by any
+ * means. It calls no glGetError: a GL error the host left pending stays for the host to read, and
+ * every argument is checked before anything is dispatched (OB_ERR_INVALID_ARGUMENT naming the
+ * argument, what it is and what is accepted). In a debug context (GL_CONTEXT_FLAG_DEBUG_BIT) the
+ * call's commands sit inside a KHR_debug group "obscura" so that the host's debug callback can
+ * tell them apart.
  * Threads: the renderer's context must be current on the calling thread. */
 
 /* The texture units and image units the host path (and every pass) may bind. */
@@ -681,18 +732,19 @@ typedef struct ob_host_settings {
 /* Fill `settings` from `host`. A field the method has no parameter for (intensity for vbao, say)
  * is an error, not ignored. Errors: OB_ERR_INVALID_ARGUMENT (NULL, radius not > 0, a field the
  * method lacks), OB_ERR_UNKNOWN_METHOD (method or filter), OB_ERR_OUT_OF_RANGE. On error
- * `settings` is unchanged. */
+ * `settings` is unchanged. `host` and its strings are read during the call only. Pure CPU. */
 ob_error ob_settings_from_host(ob_settings *settings, const ob_host_settings *host);
 
 /* The size the host's input textures must have for these settings: the renderer's size plus the
  * guard band, ob_settings.guard rounded up to a multiple of 4 x ao_divisor, on each side. Either
  * pointer may be NULL; *guard (may be NULL) gets the band's pixels per side. The host renders that
- * size with its projection widened as ob_guard_projection does (identity without a band). */
+ * size with its projection widened as ob_guard_projection does (identity without a band). NULL r
+ * gives 0 x 0 (and no band), NULL settings no band. Never fails. */
 void ob_host_input_size(const ob_renderer *r, const ob_settings *settings, int *width, int *height, int *guard);
 /* Widen a projection for a guard band of `guard` px per side around width x height (in place,
  * column-major): P00, P20, P30 scaled by width / (width + 2 guard), P11, P21, P31 by height /
  * (height + 2 guard), so that the enlarged image's centre is the visible frame, pixel for pixel
- * (perspective or orthographic). */
+ * (perspective or orthographic). guard <= 0 leaves proj as it is. Pure CPU; never fails. */
 void ob_guard_projection(float proj[16], int width, int height, int guard);
 
 /* Compile and allocate everything these settings will use (method, filter, input and output
@@ -702,17 +754,21 @@ void ob_guard_projection(float proj[16], int width, int height, int guard);
  * R32F depth with RGBA16F normals, and a D32F depth buffer with RG16F octahedral normals; AO
  * output in R8, R16F, R32F, RGBA8, RGBA16F), then forgets the temporal history and the frame
  * count. A driver that specialises programs per texture format may still compile at the first
- * call with other formats. GL state as ob_host_ao. Errors: OB_ERR_INVALID_ARGUMENT,
- * OB_ERR_SHADER, OB_ERR_BAD_SIZE. */
+ * call with other formats. GL state as ob_host_ao. Errors: OB_ERR_INVALID_ARGUMENT (NULL r,
+ * settings not initialised, what ob_host_ao refuses), OB_ERR_OUT_OF_RANGE (a settings field),
+ * OB_ERR_BAD_SIZE (the guard band beyond GL_MAX_TEXTURE_SIZE), OB_ERR_SHADER, OB_ERR_OUT_OF_MEMORY. */
 ob_error ob_host_prepare(ob_renderer *r, const ob_settings *settings);
 
 /* Run the settings' AO chain on the host's textures into its outputs (above). The method's
  * radius must have been set (ob_settings_from_host, or "radius=R"): with no scene there is no
  * default R. ssdo and ssdo_merged spread ob_settings.lights (light_count of them; none by
  * default) into their lobes, and take the ambient light from ob_settings as ob_render_frame does.
- * A method with extra_view = on needs the scene: refused. Errors: OB_ERR_INVALID_ARGUMENT (every texture
- * argument checked first: "normal texture 7 is 160x120 GL_RGBA8; expected 320x240 and one of
- * ..."), OB_ERR_SHADER, OB_ERR_OUT_OF_MEMORY. Not OB_ERR_GL: see "GL state" above. */
+ * A method with extra_view = on needs the scene: refused. frame, settings and outputs are read
+ * during the call; the textures stay the host's. Errors: OB_ERR_INVALID_ARGUMENT (NULL, settings
+ * not initialised, no radius set, every texture argument checked first: "normal texture 7 is
+ * 160x120 GL_RGBA8; expected 320x240 and one of ..."), OB_ERR_OUT_OF_RANGE (a settings field
+ * outside its range), OB_ERR_BAD_SIZE (the guard band makes the input larger than
+ * GL_MAX_TEXTURE_SIZE), OB_ERR_SHADER, OB_ERR_OUT_OF_MEMORY. Not OB_ERR_GL: see "GL state" above. */
 ob_error ob_host_ao(ob_renderer *r, const ob_host_frame *frame, const ob_settings *settings,
                     const ob_host_outputs *outputs);
 

@@ -19,7 +19,7 @@ extern "C" {
 #pragma GCC visibility push(default)
 #endif
 
-/* ---- scenes: what the frame renderer draws ----------------------------------------------------- */
+/* ---- scenes: the container and its queries (materials, lights, camera presets) ---------------- */
 typedef struct ob_material_info {
     char name[64];
     float diffuse[3];
@@ -37,47 +37,67 @@ typedef struct ob_scene_stats {
 
 typedef struct ob_scene ob_scene;
 
+/* Scenes are CPU memory only: the queries below are pure CPU, need no GL context, and may run on
+ * any thread while nothing destroys the scene. */
 
+/* Free the scene and everything it owns, which ends the strings its queries returned. A renderer
+ * it was uploaded to keeps its own copy. NULL is a no-op. Never fails. */
 void ob_destroy_scene(ob_scene *scene);
+/* Counts and bounds. NULL gives zeros, with OB_ERR_INVALID_ARGUMENT recorded. */
 ob_scene_stats ob_query_scene_stats(const ob_scene *scene);
+/* Owned by the scene: valid until ob_destroy_scene. "" for NULL. Never fails. */
 const char *ob_query_scene_name(const ob_scene *scene);
+/* 0 for NULL. Never fails. */
 int ob_query_scene_material_count(const ob_scene *scene);
+/* A copy (the name copied in). Zeros, with OB_ERR_OUT_OF_RANGE recorded, for NULL or an index out
+ * of range. */
 ob_material_info ob_query_scene_material(const ob_scene *scene, int index);
-/* Suggested AO radius in world units (sidecar, else 5% of the bounds' diagonal). */
+/* Suggested AO radius in world units (sidecar, else 5% of the bounds' diagonal); 0 for NULL.
+ * Never fails. */
 float ob_query_scene_ao_radius(const ob_scene *scene);
 /* The scene's lights (sidecar or glTF KHR_lights_punctual, else one default directional light
- * from above-front-left); index 0 is the key light. */
+ * from above-front-left); index 0 is the key light. The count is 0 for NULL; a light is a copy,
+ * all zero for NULL or an index out of range (no error recorded). Never fail. */
 int ob_query_scene_light_count(const ob_scene *scene);
 ob_light ob_query_scene_light(const ob_scene *scene, int index);
 
-/* Camera presets: index 0 is always "default", which frames the scene's bounds. */
+/* Camera presets: index 0 is always "default", which frames the scene's bounds. The count is 0
+ * for NULL (never fails); a camera is a copy, zeros with OB_ERR_OUT_OF_RANGE recorded for NULL or
+ * an index out of range. */
 int ob_query_camera_count(const ob_scene *scene);
 ob_camera ob_query_camera(const ob_scene *scene, int index);
-/* By name or decimal index. Errors: OB_ERR_UNKNOWN_CAMERA. */
+/* By name or decimal index, copied into *out (out may be NULL: a check only). Errors:
+ * OB_ERR_INVALID_ARGUMENT (NULL scene or name), OB_ERR_UNKNOWN_CAMERA (the message lists the
+ * scene's cameras). */
 ob_error ob_find_camera(const ob_scene *scene, const char *name_or_index, ob_camera *out);
 
-/* ---- camera paths (issue 17): a scene's named paths (sidecar "paths") and orbits --------------
+/* ---- camera paths: a scene's named paths (sidecar "paths", docs/temporal.md) and orbits ------
  * A path is 2..OB_MAX_PATH_KEYS keyframes (time, eye, target, fov) with increasing times. */
 #define OB_MAX_PATHS 8
 #define OB_MAX_PATH_KEYS 32
+/* 0 for NULL. Never fails. */
 int ob_query_path_count(const ob_scene *scene);
-/* The name of path `index`, or "" when out of range (or scene NULL). */
+/* The name of path `index`, or "" when out of range (or scene NULL). Owned by the scene: valid
+ * until ob_destroy_scene. Never fails. */
 const char *ob_query_path_name(const ob_scene *scene, int index);
 /* The camera at fraction u (clamped to [0, 1]) of path `name`'s time span: eye and target on
  * Catmull-Rom splines through the keys, parametrised by time (C1, through every key; the end
  * tangents mirror their neighbours), the fov linear between keys, up +Y, near and far 0 (the
  * renderer fits them to the scene). Errors: OB_ERR_INVALID_ARGUMENT (NULL, or `name` is none of
- * the scene's paths; the message lists them). */
+ * the scene's paths; the message lists them); *out is untouched on error. */
 ob_error ob_camera_on_path(const ob_scene *scene, const char *name, float u, ob_camera *out);
 /* `camera` turned by `degrees` about the vertical (+Y) axis through its target: the orbit of the
- * CLI's --orbit DEG (frame i of N at degrees x i / (N - 1)). Everything else is kept. */
+ * CLI's --orbit DEG (frame i of N at degrees x i / (N - 1)). Everything else is kept. camera must
+ * not be NULL. Pure CPU; never fails. */
 ob_camera ob_camera_orbit(const ob_camera *camera, float degrees);
 
+/* ---- scene sources: tessellated copies, the data directory, built-in scenes ------------------ */
 /* A deep copy of `scene` with every triangle split `levels` times by midpoint subdivision (each
  * triangle becomes 4: levels 1 = 4x, 2 = 16x the triangles; 0 = a plain copy). New vertices lie on
  * the original triangles, so the surfaces, cameras, lights, bounds and suggested radius are
- * unchanged: for the benchmark's triangle-count scaling (`obscura bench --scaling`). Destroy the
- * result with ob_destroy_scene. Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_OUT_OF_RANGE
+ * unchanged: for the benchmark's triangle-count scaling (`obscura bench --scaling`). The result is
+ * the caller's and shares nothing with `scene` (which may be destroyed first): destroy it with
+ * ob_destroy_scene. NULL on failure. Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_OUT_OF_RANGE
  * (levels outside [0, 4]), OB_ERR_OUT_OF_MEMORY (also when a mesh would pass 2^32 indices). */
 ob_scene *ob_tessellate_scene(const ob_scene *scene, int levels);
 
@@ -92,11 +112,14 @@ ob_scene *ob_tessellate_scene(const ob_scene *scene, int levels);
  *   3. the same beside the executable (/proc/self/exe): <bindir>/../share/obscura, then a build
  *      tree's;
  *   4. "." (the working directory).
- * Steps 2-4 count a directory only when it holds scenes/, and run once per process. Never NULL;
- * thread-safe. */
+ * Steps 2-4 count a directory only when it holds scenes/, and run once per process. Never NULL,
+ * never fails; thread-safe. The string is the environment's (step 1: valid until the environment
+ * changes) or static storage (valid for the process). */
 const char *ob_data_dir(void);
 
-/* Built-in scenes that need no file. */
+/* Built-in scenes that need no file (ob_load_scene in obscura/eval.h makes them). Name and
+ * description are static strings, valid for the process; NULL when index is out of range. Never
+ * fail. */
 int ob_builtin_scene_count(void);
 const char *ob_builtin_scene_name(int index);
 const char *ob_builtin_scene_description(int index);
@@ -112,11 +135,12 @@ typedef struct ob_headset {
                                 mirrored in x (-shift[0], shift[1]) */
 } ob_headset;
 
+/* The presets are a static table: these are thread-safe; the count never fails. */
 int ob_headset_count(void);
-/* NULL when index is out of range. */
+/* NULL when index is out of range. The entry and its strings are static, valid for the process. */
 const ob_headset *ob_headset_at(int index);
-/* By name. Errors: OB_ERR_INVALID_ARGUMENT (NULL, or an unknown name: the message lists the
- * presets). */
+/* By name, copied into *out (its strings static). Errors: OB_ERR_INVALID_ARGUMENT (NULL, or an
+ * unknown name: the message lists the presets); *out is untouched on error. */
 ob_error ob_find_headset(const char *name, ob_headset *out);
 
 /* Zero means default. */
@@ -137,9 +161,10 @@ typedef struct ob_stereo_desc {
  * (ipd/2) / (convergence tan(fov_x/2)) of its half-width, the right eye's left by as much; a point
  * on that plane lands at the same NDC in both eyes), or with the headset's per-eye frustum. The
  * centre camera's own shift is added to each eye's; near, far and name are kept ("NAME-left",
- * "NAME-right"). Pure CPU, thread-safe.
+ * "NAME-right"). desc NULL = all defaults. Pure CPU, thread-safe.
  * Errors: OB_ERR_INVALID_ARGUMENT (NULL centre or eyes_out, an unknown headset, ipd, convergence or
- * aspect negative or not finite, eye = target, forward parallel to up). */
+ * aspect negative or not finite, eye = target, forward parallel to up, fov not below 179);
+ * eyes_out is untouched on error. */
 ob_error ob_stereo_cameras(const ob_camera *centre, const ob_stereo_desc *desc, ob_camera eyes_out[2]);
 
 
@@ -153,7 +178,8 @@ ob_error ob_stereo_cameras(const ob_camera *centre, const ob_stereo_desc *desc, 
  * 1 at 10^6 units). Why a ceiling: the frame's radiance targets are 16-bit floats (largest 65504),
  * so a sun above about 6e4 overflows to infinity at the first lit pixel and the tone mapper makes
  * the whole image white; the point light's ceiling leaves six orders of magnitude of scene scale
- * (shipped sidecars use up to 2.25e6). Errors: OB_ERR_INVALID_ARGUMENT naming the field. */
+ * (shipped sidecars use up to 2.25e6). Pure CPU, thread-safe. Errors: OB_ERR_INVALID_ARGUMENT
+ * naming the field (or NULL, or a type that is none of the three). */
 #define OB_MAX_DIRECTIONAL 1e4f
 #define OB_MAX_POINT 1e12f
 ob_error ob_check_light(const ob_light *light);
@@ -161,30 +187,36 @@ ob_error ob_check_light(const ob_light *light);
 /* A light from text, as the CLI's --light takes it: a type, then key=value pairs separated by
  * spaces, e.g. "directional dir=0.3,1,0.2 color=1,0.9,0.8 intensity=2",
  * "point pos=0,2,0 intensity=8 range=10", "spot pos=0,3,0 dir=0,-1,0 cone=20,30 intensity=20".
- * Errors: OB_ERR_INVALID_ARGUMENT with what is wrong. */
+ * Unset fields: colour 1,1,1, intensity 1, cone 20,30; the result passes ob_check_light. Pure CPU.
+ * Errors: OB_ERR_INVALID_ARGUMENT with what is wrong (NULL, text over 511 bytes, an unknown type
+ * or key, a bad value, what ob_check_light refuses); *out is untouched on error. */
 ob_error ob_parse_light(const char *text, ob_light *out);
 
 /* ---- HDR on the CPU (seed 003 §2.2, §5.5, §6.5; the settings are in obscura/obscura.h) --------- */
 /* The HDR math on the CPU, the same formulas the shaders use (for tests and tools):
  * log-average luminance (eq. 2.1) of n values, Reinhard with L_white (eq. 2.4, eq. 2.3 when
- * l_white <= 0) and the automatic key for a log-average. */
+ * l_white <= 0) and the automatic key for a log-average. Pure CPU, thread-safe; never fail
+ * (ob_hdr_log_average gives 0 for NULL or n = 0; NaN, negative and above 65504 are clamped as on
+ * the GPU). */
 double ob_hdr_log_average(const float *luminance, size_t n);
 float ob_hdr_reinhard(float scaled_luminance, float l_white);
 float ob_hdr_auto_key(float log_average);
 
 /* ---- the frame: a scene rendered by libobscura itself ------------------------------------------ */
-/* Upload a scene's meshes and textures. The renderer keeps no pointer to the ob_scene. Errors:
- * OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_MODEL (a texture larger than the GL takes),
- * OB_ERR_OUT_OF_MEMORY, OB_ERR_GL (the GL could not make the buffers); the renderer keeps its
- * old scene then. */
+/* Upload a scene's meshes and textures. The renderer keeps no pointer to the ob_scene: it may be
+ * destroyed after the call. Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_MODEL (a texture
+ * larger than the GL takes; the renderer keeps its old scene), OB_ERR_OUT_OF_MEMORY (the old
+ * scene is released by then: the renderer has no scene, and ob_render_frame refuses until one is
+ * set). The upload's own GL errors are not
+ * checked here (no OB_ERR_GL). */
 ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene);
 /* The environment map for OB_AMBIENT_ENVIRONMENT and SSDO: width x height equirectangular linear
  * RGB radiance (3 floats a pixel, top row = +Y first), copied: the renderer keeps no pointer.
  * `name` is what error messages call the map (NULL: "(the host's pixels)"); obscura/eval.h's
- * ob_renderer_set_environment reads a Radiance .hdr file into it. Errors: OB_ERR_INVALID_ARGUMENT
- * (NULL r or rgb), OB_ERR_IO (smaller than 2x1, larger than GL_MAX_TEXTURE_SIZE, negative or
- * non-finite radiance, or the upload failed); the renderer keeps its old map then, except after a
- * failed upload (none). */
+ * ob_renderer_set_environment reads a Radiance .hdr file into it; name is used for the messages
+ * of this call only. Errors: OB_ERR_INVALID_ARGUMENT (NULL r or rgb), OB_ERR_IO (smaller than
+ * 2x1, larger than GL_MAX_TEXTURE_SIZE, negative or non-finite radiance, or the upload failed); the
+ * renderer keeps its old map then, except after a failed upload (none). */
 ob_error ob_renderer_set_environment_rgb(ob_renderer *r, int width, int height, const float *rgb, const char *name);
 
 /* shadow maps -> G-buffer -> direct light -> [downsample] -> [edges] -> AO -> filter -> [upsample]
@@ -196,17 +228,20 @@ ob_error ob_renderer_set_environment_rgb(ob_renderer *r, int width, int height, 
  * the frame). After an error no frame can be read back or presented until the next one renders. */
 ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_settings *settings);
 
-/* The floor of this machine for a method (obscura bench --floor, issue 18): a bare compute kernel
- * (shaders/floor.glsl) over the last frame's AO-grid depth (R32F) and normals (RGBA16F) that takes
- * the N taps the settings' method would take (its sample count; HBAO directions x steps, GTAO and
- * VBAO 2 x slices x steps) spread over its radius in pixels, in the same pattern (a disk, or rays
- * for the horizon marchers), sums them and writes one R32F value per pixel: what any AO method at
- * those settings must at least do. It runs as a frame of the timers of its own with one pass,
- * "floor": ob_wait_timings then ob_query_timings gives its time (and ob_query_timings_frame counts
- * it as a frame). The last ob_render_frame must have used the same AO scale, and the frame's
- * outputs stay as they were. info (may be NULL) gets what the kernel took. Errors:
- * OB_ERR_INVALID_ARGUMENT (NULL r or settings, no frame yet or one at another AO scale, a method
- * without a sample count or a radius, more than 2048 taps), OB_ERR_SHADER, OB_ERR_GL. */
+/* ---- the floor: the least any AO method must cost on this machine -------------------------- */
+/* The floor of this machine for a method (obscura bench --floor, bench/README.md): a bare compute
+ * kernel (shaders/floor.glsl) over the last frame's AO-grid depth (R32F) and normals (RGBA16F)
+ * that takes the N taps the settings' method would take (its sample count; HBAO directions x
+ * steps, GTAO and VBAO 2 x slices x steps) spread over its radius in pixels, in the same pattern
+ * (a disk, or rays for the horizon marchers), sums them and writes one R32F value per pixel: what
+ * any AO method at those settings must at least do. It runs as a frame of the timers of its own
+ * with one pass, "floor": ob_wait_timings then ob_query_timings gives its time (and
+ * ob_query_timings_frame counts it as a frame). The last ob_render_frame must have used the same
+ * AO scale, and the frame's outputs stay as they were. info (may be NULL) gets what the kernel
+ * took. Errors:
+ * OB_ERR_INVALID_ARGUMENT (NULL r or settings, settings not initialised, no frame yet or one at
+ * another AO scale, a method without a sample count or a radius, more than 2048 taps),
+ * OB_ERR_OUT_OF_RANGE (a settings field), OB_ERR_SHADER, OB_ERR_OUT_OF_MEMORY, OB_ERR_GL. */
 typedef struct ob_floor_info {
     int taps;        /* N */
     int rays;        /* 0: spread over the disk of the radius; else the rays the taps lie on */
@@ -261,7 +296,8 @@ typedef enum ob_view {
 #define OB_LUMINANCE_LOG2_HI 4
 
 /* "final", "ao", "normals", "depth", "shadow", "radiance", "samples", "bounce", "bent_normals",
- * "luminance", "second_depth", "extra", "history_age" (the CLI's --view names); "" if out of range. */
+ * "luminance", "second_depth", "extra", "history_age" (the CLI's --view names); "" if out of range.
+ * Static storage, valid for the process. Never fails. */
 const char *ob_view_name(ob_view view);
 
 /* Draw the last frame (OB_VIEW_FINAL) or one of its debug views into `framebuffer` (0 = the
@@ -278,7 +314,9 @@ ob_error ob_present(ob_renderer *r, ob_view view, uint32_t framebuffer, int x, i
 
 /* The same view as ob_present draws, read back: width x height x 4 sRGB bytes (alpha 255), top
  * row first, as image files want them (the CLI's --view). dst_size at least ob_image_size(r,
- * OB_IMAGE_FINAL_RGBA8). Errors: as ob_present, and OB_ERR_INVALID_ARGUMENT for a small dst. */
+ * OB_IMAGE_FINAL_RGBA8); dst is the caller's, nothing is kept. Errors: as ob_present,
+ * OB_ERR_INVALID_ARGUMENT for a NULL or small dst, OB_ERR_OUT_OF_MEMORY (a scratch row for the
+ * final view's flip). */
 ob_error ob_read_view(ob_renderer *r, ob_view view, uint8_t *dst, size_t dst_size);
 
 #if defined(__GNUC__)

@@ -245,7 +245,7 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
 
 int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max)
 {
-    if (!r || !out) return 0;
+    if (!r || !out || max <= 0) return 0;
     int n = r->timers.count < max ? r->timers.count : max;
     for (int i = 0; i < n; ++i) {
         out[i].name = r->timers.names[i];

@@ -267,7 +267,12 @@ ob_error ob_renderer_set_scene(ob_renderer *r, const ob_scene *scene)
 {
     if (!r || !scene) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_renderer_set_scene: NULL argument");
     ob_error err = ob_gbuffer_set_scene(&r->gbuffer, scene);
-    if (err != OB_OK) return err;
+    if (err != OB_OK) {
+        /* Past its checks the G-buffer has released the old scene: none is drawn from now on,
+         * so none may be claimed (ob_render_frame then says "no scene yet", not an empty frame). */
+        if (err != OB_ERR_MODEL) r->has_scene = false;
+        return err;
+    }
     memcpy(r->bounds_min, scene->bounds_min, sizeof r->bounds_min);
     memcpy(r->bounds_max, scene->bounds_max, sizeof r->bounds_max);
     r->scene_radius = scene->ao_radius;

@@ -22,6 +22,7 @@
 #include "progress.h"
 #include "reference_cache.h"
 #include "settings_file.h"
+#include "view_sets.h"
 
 enum { MAX_VIEWS = 16, MAX_TUNE = 8, MAX_CANDIDATES = 64 };
 
@@ -50,15 +51,16 @@ typedef struct tune_opts {
     const char *params_text, *out;
     cli_outputs *outs; /* --out, checked before the search and written only at its end */
     int out_index;
-    const char *train[MAX_VIEWS], *validate[MAX_VIEWS];
-    int train_count, validate_count;
+    const char *train[MAX_VIEWS], *validate[MAX_VIEWS], *check[MAX_VIEWS];
+    int train_count, validate_count, check_count;
     int passes, steps, spp;
     bool no_cache;
 } tune_opts;
 
 static void tune_usage(FILE *f, const cli_common *c)
 {
-    fputs("usage: obscura tune --method M --params LIST --train S:C[,S:C] --validate S:C[,S:C] --out FILE.json\n"
+    fputs("usage: obscura tune --method M --params LIST --train S:C[,S:C] [--validate S:C[,S:C]] [--check S:C[,S:C]]\n"
+          "                   --out FILE.json\n"
           "\n"
           "The values of M's parameters that minimise the mean MSE of its (filtered) AO against the\n"
           "ray-traced AO_R over the training views, by coordinate descent over a narrowing grid;\n"
@@ -71,6 +73,9 @@ static void tune_usage(FILE *f, const cli_common *c)
           "                        lie inside it\n"
           "  --train S:C           a training view, scene:camera (repeatable or comma-separated)\n"
           "  --validate S:C        a validation view, never a training one (repeatable or comma-separated)\n"
+          "  --check S:C           a check view, reported before and after like a validation view; the\n"
+          "                        project's check views (scenes/views.json, \"check\") are refused in\n"
+          "                        --train: no choice is made on them (docs/methods.md, choose and check)\n"
           "  --out FILE.json       the tuned settings, written whole at the end (nothing on failure)\n"
           "  --passes N            passes over the parameters (default 3); each halves the ranges\n"
           "  --steps N             values per parameter per pass (default 9)\n"
@@ -89,7 +94,7 @@ static int parse_int(const char *opt, const char *v, int lo, int hi, int *out)
     return EXIT_OK;
 }
 
-/* "a,b" after --train/--validate: each element a view. */
+/* "a,b" after --train/--validate/--check: each element a view. */
 static int add_views(const char *opt, char *v, const char **list, int *count)
 {
     for (char *save = NULL, *tok = strtok_r(v, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
@@ -118,7 +123,8 @@ static int parse(int argc, char **argv, tune_opts *o, cli_outputs *outs)
         int taken = cli_common_option(&o->common, argc, argv, &i);
         if (taken == CLI_TAKEN) continue;
         if (taken != CLI_NOT_MINE) return taken;
-        static const char *const own[] = {"--params", "--train", "--validate", "--out", "--passes", "--steps", "--spp"};
+        static const char *const own[] = {"--params", "--train", "--validate", "--check", "--out", "--passes", "--steps",
+                                          "--spp"};
         bool known = false;
         for (size_t k = 0; k < sizeof own / sizeof own[0]; ++k) known = known || !strcmp(a, own[k]);
         if (!known) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura tune --help)", a);
@@ -128,6 +134,7 @@ static int parse(int argc, char **argv, tune_opts *o, cli_outputs *outs)
         if (!strcmp(a, "--params")) o->params_text = v;
         else if (!strcmp(a, "--train")) code = add_views(a, v, o->train, &o->train_count);
         else if (!strcmp(a, "--validate")) code = add_views(a, v, o->validate, &o->validate_count);
+        else if (!strcmp(a, "--check")) code = add_views(a, v, o->check, &o->check_count);
         else if (!strcmp(a, "--out")) o->out = v;
         else if (!strcmp(a, "--passes")) code = parse_int(a, v, 1, 20, &o->passes);
         else if (!strcmp(a, "--steps")) code = parse_int(a, v, 2, MAX_CANDIDATES - 1, &o->steps);
@@ -142,10 +149,26 @@ static int parse(int argc, char **argv, tune_opts *o, cli_outputs *outs)
         for (int j = 0; j < o->train_count; ++j)
             if (!strcmp(o->validate[i], o->train[j]))
                 return cli_fail(EXIT_USAGE, "--validate %s is also a training view: validation must be unseen", o->validate[i]);
+    for (int i = 0; i < o->check_count; ++i) {
+        for (int j = 0; j < o->train_count; ++j)
+            if (!strcmp(o->check[i], o->train[j]))
+                return cli_fail(EXIT_USAGE, "--check %s is also a training view: check views choose nothing", o->check[i]);
+        for (int j = 0; j < o->validate_count; ++j)
+            if (!strcmp(o->check[i], o->validate[j]))
+                return cli_fail(EXIT_USAGE, "--check %s is also a validation view: give it once", o->check[i]);
+    }
     for (int i = 0; i < o->train_count; ++i)
         for (int j = 0; j < i; ++j)
             if (!strcmp(o->train[i], o->train[j])) return cli_fail(EXIT_USAGE, "--train %s is given twice", o->train[i]);
-    o->common.renderers = o->train_count + o->validate_count; /* every view keeps its renderer */
+    /* The project's check views choose nothing: not even through a training set given by hand. */
+    cli_view_sets sets;
+    int sets_code = cli_view_sets_load(&sets);
+    if (sets_code != EXIT_OK) return sets_code;
+    for (int i = 0; i < o->train_count; ++i)
+        if (cli_view_set_of(&sets, o->train[i]) && !strcmp(cli_view_set_of(&sets, o->train[i]), "check"))
+            return cli_fail(EXIT_USAGE, "--train %s is a check view (%s): check views are never chosen on; give it "
+                            "to --check", o->train[i], sets.path);
+    o->common.renderers = o->train_count + o->validate_count + o->check_count; /* every view keeps its renderer */
     int code = cli_common_finish(&o->common);
     if (code != EXIT_OK) return code;
     return cli_outputs_add(o->outs, "--out", o->out, CLI_FMT_TEXT, &o->out_index);
@@ -452,14 +475,14 @@ static int tune_checked(const tune_opts *op)
 
     ob_context *ctx = cli_make_context(c->gpu, c->verbose);
     if (!ctx) return cli_fail_library_as(EXIT_NO_GPU);
-    tune_view train[MAX_VIEWS] = {0}, validate[MAX_VIEWS] = {0};
-    int loaded_train = 0, loaded_validate = 0;
+    tune_view train[MAX_VIEWS] = {0}, validate[MAX_VIEWS] = {0}, checks[MAX_VIEWS] = {0};
+    int loaded_train = 0, loaded_validate = 0, loaded_check = 0;
     size_t max_px = 0;
     tune_run t = {.o = &o, .train = train, .validate = validate};
     tune_param best[MAX_TUNE];
-    double *rmse = calloc(4 * MAX_VIEWS, sizeof(double));
+    double *rmse = calloc(6 * MAX_VIEWS, sizeof(double));
     double *train_before = rmse, *train_after = rmse + MAX_VIEWS, *val_before = rmse + 2 * MAX_VIEWS,
-           *val_after = rmse + 3 * MAX_VIEWS;
+           *val_after = rmse + 3 * MAX_VIEWS, *check_before = rmse + 4 * MAX_VIEWS, *check_after = rmse + 5 * MAX_VIEWS;
     char *json = NULL;
     if (!rmse) {
         code = cli_fail(EXIT_RUNTIME, "out of memory");
@@ -470,6 +493,9 @@ static int tune_checked(const tune_opts *op)
     for (; loaded_validate < o.validate_count && code == EXIT_OK; ++loaded_validate)
         code = load_view(&o, ctx, o.validate[loaded_validate], &validate[loaded_validate], &max_px, validate,
                          loaded_validate, train, loaded_train);
+    for (; loaded_check < o.check_count && code == EXIT_OK; ++loaded_check)
+        code = load_view(&o, ctx, o.check[loaded_check], &checks[loaded_check], &max_px, checks, loaded_check, train,
+                         loaded_train);
     if (code != EXIT_OK) goto done;
     t.ao = malloc(max_px * sizeof(float));
     if (!t.ao) {
@@ -478,7 +504,7 @@ static int tune_checked(const tune_opts *op)
     }
     /* Evaluations: the start on both sets, then per pass and parameter its candidates (at most
      * steps + 1, or the enum's options), then the result on the validation views. */
-    t.total = 2;
+    t.total = o.check_count ? 4 : 2;
     for (int pass = 0; pass < o.passes; ++pass)
         for (int k = 0; k < pcount; ++k) t.total += ps[k].type == OB_PARAM_ENUM ? (int)(ps[k].hi - ps[k].lo) + 1 : o.steps + 1;
     t.start = now_s();
@@ -489,6 +515,11 @@ static int tune_checked(const tune_opts *op)
     if (o.validate_count && (code = mean_mse(&t, validate, o.validate_count, ps, pcount, &val_mse, val_before)) != EXIT_OK)
         goto done;
     progress(&t, "defaults, validation views", best_mse, false);
+    double check_mse = 0.0;
+    if (o.check_count) {
+        if ((code = mean_mse(&t, checks, o.check_count, ps, pcount, &check_mse, check_before)) != EXIT_OK) goto done;
+        progress(&t, "defaults, check views", best_mse, false);
+    }
     memcpy(best, ps, sizeof best);
     for (int pass = 0; pass < o.passes && code == EXIT_OK; ++pass) {
         for (int k = 0; k < pcount && code == EXIT_OK; ++k) {
@@ -527,7 +558,13 @@ static int tune_checked(const tune_opts *op)
     double val_after_mse = 0.0;
     if (o.validate_count && (code = mean_mse(&t, validate, o.validate_count, best, pcount, &val_after_mse, val_after)) != EXIT_OK)
         goto done;
-    progress(&t, "tuned, validation views", best_mse, true);
+    if (o.check_count) {
+        progress(&t, "tuned, validation views", best_mse, false);
+        if ((code = mean_mse(&t, checks, o.check_count, best, pcount, &check_mse, check_after)) != EXIT_OK) goto done;
+        progress(&t, "tuned, check views", best_mse, true);
+    } else {
+        progress(&t, "tuned, validation views", best_mse, true);
+    }
     ob_progress_end(&t.bar);
     double seconds = now_s() - t.start;
 
@@ -545,11 +582,16 @@ static int tune_checked(const tune_opts *op)
         printf("  %-40s %-10s %10.4f %10.4f\n", train[i].spec, "training", train_before[i], train_after[i]);
     for (int i = 0; i < o.validate_count; ++i)
         printf("  %-40s %-10s %10.4f %10.4f\n", validate[i].spec, "validation", val_before[i], val_after[i]);
+    for (int i = 0; i < o.check_count; ++i)
+        printf("  %-40s %-10s %10.4f %10.4f\n", checks[i].spec, "check", check_before[i], check_after[i]);
     printf("  %-40s %-10s %10.4f %10.4f\n", "mean RMSE", "training", mean_of(train_before, o.train_count),
            mean_of(train_after, o.train_count));
     if (o.validate_count)
         printf("  %-40s %-10s %10.4f %10.4f\n", "mean RMSE", "validation", mean_of(val_before, o.validate_count),
                mean_of(val_after, o.validate_count));
+    if (o.check_count)
+        printf("  %-40s %-10s %10.4f %10.4f\n", "mean RMSE", "check", mean_of(check_before, o.check_count),
+               mean_of(check_after, o.check_count));
 
     /* The settings file, whole or not at all. */
     cJSON *root = cJSON_CreateObject();
@@ -583,6 +625,11 @@ static int tune_checked(const tune_opts *op)
         cJSON_AddNumberToObject(how, "validation_rmse_default", mean_of(val_before, o.validate_count));
         cJSON_AddNumberToObject(how, "validation_rmse_tuned", mean_of(val_after, o.validate_count));
     }
+    cJSON_AddItemToObject(how, "check", views_json(checks, o.check_count, check_before, check_after));
+    if (o.check_count) {
+        cJSON_AddNumberToObject(how, "check_rmse_default", mean_of(check_before, o.check_count));
+        cJSON_AddNumberToObject(how, "check_rmse_tuned", mean_of(check_after, o.check_count));
+    }
     json = cJSON_Print(root);
     cJSON_Delete(root);
     if (!json) {
@@ -605,8 +652,10 @@ done:
     free(rmse);
     free_views(train, loaded_train);
     free_views(validate, loaded_validate);
+    free_views(checks, loaded_check);
     free_scenes(train, loaded_train);
     free_scenes(validate, loaded_validate);
+    free_scenes(checks, loaded_check);
     ob_destroy_context(ctx);
     return code;
 }

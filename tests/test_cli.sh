@@ -131,12 +131,15 @@ expect 2 "also a training view" -- "${T[@]}" --params hbao.intensity --train cor
 expect 2 "has no parameter 'nosuch'" -- "${T[@]}" --params hbao.nosuch --train corner:diagonal
 expect 2 "tune searches numeric and enum" -- tune --method gtao --params gtao.bent_normals --train corner:diagonal --out "$dir/tuned.json"
 expect 2 "every option is tried" -- "${T[@]}" --params hbao.noise=0:1 --train corner:diagonal
+# The project's check views (scenes/views.json) choose nothing: refused in --train, taken by --check.
+expect 2 "train sphere-on-plane:contact is a check view" -- "${T[@]}" --params hbao.intensity --train corner:diagonal,sphere-on-plane:contact
+expect 2 "check corner:diagonal is also a training view" -- "${T[@]}" --params hbao.intensity --train corner:diagonal --check corner:diagonal
 [ ! -e "$dir/tuned.json" ] && ok || bad "a refused tune left tuned.json"
 echo keep >"$dir/keep.json"
 "$OBSCURA" tune --size 48x36 --method hbao --params hbao.nosuch --train corner:diagonal --out "$dir/keep.json" 2>/dev/null
 [ "$(cat "$dir/keep.json")" = keep ] && ok || bad "a failing tune replaced an existing --out"
 if XDG_CACHE_HOME="$dir/cache" "$OBSCURA" tune --size 48x36 --method hbao --params hbao.radius_scale,hbao.noise \
-    --train corner:diagonal --validate sphere-on-plane:front --passes 1 --steps 3 --out "$dir/tuned.json" \
+    --train corner:diagonal --validate sphere-on-plane:front --check sphere-on-plane:contact --passes 1 --steps 3 --out "$dir/tuned.json" \
     >"$dir/tune.out" 2>"$dir/tune.err" && python3 - "$dir/tuned.json" <<'PY'
 import json, sys
 t = json.load(open(sys.argv[1]))
@@ -146,6 +149,8 @@ h = t["tuned"]
 # The start is a candidate: tuning never makes the training error worse.
 assert h["training"][0]["rmse_tuned"] <= h["training"][0]["rmse_default"] + 1e-9, h
 assert h["validation"][0]["view"] == "sphere-on-plane:front" and h["evaluations"] > 2, h
+assert h["check"][0]["view"] == "sphere-on-plane:contact" and h["check_rmse_default"] > 0, h
+assert abs(h["check_rmse_default"] - h["check"][0]["rmse_default"]) < 1e-12, h
 PY
 then ok; else bad "tune: $(cat "$dir/tune.err" | tail -2)"; fi
 grep -q "mean RMSE" "$dir/tune.out" && ok || bad "tune prints no table"

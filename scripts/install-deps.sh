@@ -95,9 +95,51 @@ unpack_cgal_meshes() {
     rm -rf "$tmp"
 }
 
+# The check set's models (scenes/views.json, "check"): files inside Debian packages that are
+# downloaded, not installed (openfoam-examples is 36 MB of case files around three models;
+# ippsample-data a printer test suite around one), each unpacked into data/ under its own name
+# (a .gz gunzipped): PACKAGE PATH-IN-PACKAGE NAME.
+of_geom=/usr/share/doc/openfoam-examples/examples
+deb_models=(
+    "openfoam-examples $of_geom/resources/geometry/motorBike.obj.gz motorbike.obj"
+    "openfoam-examples $of_geom/incompressible/simpleFoam/windAroundBuildings/constant/triSurface/buildings.obj.gz buildings.obj"
+    "openfoam-examples $of_geom/resources/geometry/flange.stl.gz flange.stl"
+    "ippsample-data /usr/share/ipptool/dodeca_chain_loop.3mf dodeca_chain_loop.3mf"
+)
+unpack_deb_models() {
+    local entry pkg path name debs=""
+    for entry in "${deb_models[@]}"; do
+        read -r pkg path name <<<"$entry"
+        [ -f "$data_dir/$name" ] && continue
+        mkdir -p "$data_dir"
+        [ -n "$debs" ] || debs=$(mktemp -d) # each package downloaded once, whatever it holds
+        if ! ls "$debs/${pkg}"_*.deb >/dev/null 2>&1; then
+            echo "install-deps: unpacking models from Debian's $pkg into $data_dir"
+            if ! (cd "$debs" && apt-get download -qq "$pkg" >"$debs/log" 2>&1); then
+                $sudo apt-get update -qq >/dev/null 2>&1 || true # lists missing or stale
+                if ! (cd "$debs" && apt-get download -qq "$pkg" >"$debs/log" 2>&1); then
+                    echo "install-deps: cannot download the Debian package $pkg:" \
+                         "$(grep -m1 '^E:' "$debs/log" || tail -n1 "$debs/log")" >&2
+                    rm -rf "$debs"
+                    exit 1
+                fi
+            fi
+        fi
+        dpkg-deb --fsys-tarfile "$debs"/"${pkg}"_*.deb | tar -xf - -C "$debs" ."$path"
+        if [ ! -f "$debs$path" ]; then echo "install-deps: $pkg holds no $path" >&2; rm -rf "$debs"; exit 1; fi
+        case $path in
+        *.gz) gzip -dc "$debs$path" >"$data_dir/$name.part" ;;
+        *) cp "$debs$path" "$data_dir/$name.part" ;;
+        esac
+        mv "$data_dir/$name.part" "$data_dir/$name"
+    done
+    [ -z "$debs" ] || rm -rf "$debs"
+}
+
 make_data() {
     repack_oa_maps
     unpack_cgal_meshes
+    unpack_deb_models
 }
 
 sudo=""

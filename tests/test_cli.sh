@@ -358,6 +358,20 @@ for mode in --stereo --scaling; do
     fi
 done
 "$OBSCURA" list | grep -q "ssao" && ok || bad "list"
+# scenes/views.json (the choose and check views): every view is a scene obscura lists with that
+# camera (a named scene whose model is missing lists none), in one set only.
+if "$OBSCURA" list --json >"$dir/list.json" 2>"$dir/stderr" && python3 - "$dir/list.json" "$(dirname "$0")/../scenes/views.json" <<'PY'
+import json, sys
+listed = {s["name"]: s["cameras"] for s in json.load(open(sys.argv[1]))["scenes"]}
+sets = json.load(open(sys.argv[2]))
+assert len(sets["choose"]) >= 16 and len(sets["check"]) >= 14, {k: len(v) for k, v in sets.items() if k != "about"}
+assert not set(sets["choose"]) & set(sets["check"]), set(sets["choose"]) & set(sets["check"])
+for view in sets["choose"] + sets["check"]:
+    scene, camera = view.rsplit(":", 1)
+    assert scene in listed, f"{view}: no scene {scene} in obscura list"
+    assert camera in listed[scene], f"{view}: {scene} has cameras {listed[scene]}"
+PY
+then ok; else bad "scenes/views.json names a view obscura does not list: $(cat "$dir/stderr")"; fi
 "$OBSCURA" render --help | grep -q -- "--ao-out" && ok || bad "render --help"
 "$OBSCURA" list --help | grep -q -- "--json" && ok || bad "list --help"
 

@@ -22,7 +22,7 @@
 #include "progress.h"
 #include "reference_cache.h"
 #include "settings_file.h"
-#include "view_sets.h"
+#include "graded_views.h"
 
 enum { MAX_VIEWS = 16, MAX_TUNE = 8, MAX_CANDIDATES = 64 };
 

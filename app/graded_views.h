@@ -1,8 +1,8 @@
 /* The project's views in two sets (scenes/views.json in the data directory): "choose" views, the
  * ones defaults and `tune --train` may be chosen on, and "check" views, never used for a choice
  * and reported beside them (docs/methods.md, "Choose and check views"). */
-#ifndef OB_APP_VIEW_SETS_H
-#define OB_APP_VIEW_SETS_H
+#ifndef OB_APP_GRADED_VIEWS_H
+#define OB_APP_GRADED_VIEWS_H
 
 #include <stdbool.h>
 

@@ -1,5 +1,5 @@
-/* scenes/views.json: the choose and check views (view_sets.h). */
-#include "view_sets.h"
+/* scenes/views.json: the choose and check views (graded_views.h). */
+#include "graded_views.h"
 
 #include <cjson/cJSON.h>
 #include <stdio.h>

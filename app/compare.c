@@ -24,6 +24,7 @@
 
 #include "cli_options.h"
 #include "flicker.h"
+#include "graded_views.h"
 #include "outputs.h"
 #include "progress.h"
 #include "reference_cache.h"
@@ -308,6 +309,7 @@ typedef struct view_result {
     /* --path / --orbit: the flicker metrics (flicker.h), one row per configuration */
     cli_flicker_row *flicker;
     cli_flicker_reference flicker_ref;
+    const char *set; /* "choose" or "check" when scenes/views.json lists SCENE:CAMERA, else NULL */
 } view_result;
 
 /* A --scene: loaded, with its camera, before anything is written. */
@@ -637,6 +639,22 @@ static int method_names(const view_result *vr, const char **names, int max)
     return n;
 }
 
+/* The report's views of one set of scenes/views.json: how many, and each row's mean RMSE over them
+ * into mean[0 .. rows) (every view has the same rows, in the same order). */
+static const char *const view_set_names[2] = {"choose", "check"};
+static int set_means(const view_result *views, int count, const char *set, double *mean, int rows)
+{
+    int n = 0;
+    for (int k = 0; k < rows; ++k) mean[k] = 0.0;
+    for (int v = 0; v < count; ++v) {
+        if (!views[v].set || strcmp(views[v].set, set) || views[v].method_count != rows) continue;
+        for (int k = 0; k < rows; ++k) mean[k] += views[v].methods[k].m.rmse;
+        ++n;
+    }
+    for (int k = 0; k < rows && n; ++k) mean[k] /= n;
+    return n;
+}
+
 static int write_json(const compare_opts *o, ob_context *ctx, const view_result *views, int count, outputs *out)
 {
     cJSON *root = cJSON_CreateObject();
@@ -653,6 +671,23 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
     char date[32];
     strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
     cJSON_AddStringToObject(root, "date", date);
+    /* Per set of scenes/views.json that this report has views of: their count and each row's mean
+     * RMSE over them (null when the report has none of the set's views). */
+    cJSON *jsets = cJSON_AddObjectToObject(root, "sets");
+    const int nrows = count > 0 ? views[0].method_count : 0;
+    double *mean = nrows ? calloc((size_t)nrows, sizeof *mean) : NULL;
+    for (int s = 0; s < 2; ++s) {
+        int n = mean ? set_means(views, count, view_set_names[s], mean, nrows) : 0;
+        if (!n) {
+            cJSON_AddNullToObject(jsets, view_set_names[s]);
+            continue;
+        }
+        cJSON *set = cJSON_AddObjectToObject(jsets, view_set_names[s]);
+        cJSON_AddNumberToObject(set, "views", n);
+        cJSON *means = cJSON_AddObjectToObject(set, "mean_rmse");
+        for (int k = 0; k < nrows; ++k) cJSON_AddNumberToObject(means, views[0].methods[k].label, mean[k]);
+    }
+    free(mean);
     cJSON *jv = cJSON_AddArrayToObject(root, "views");
     for (int v = 0; v < count; ++v) {
         const view_result *vr = &views[v];
@@ -660,6 +695,8 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
         cJSON_AddStringToObject(j, "scene", vr->scene);
         cJSON_AddStringToObject(j, "camera", vr->camera);
         cJSON_AddStringToObject(j, "dir", vr->dir);
+        if (vr->set) cJSON_AddStringToObject(j, "set", vr->set);
+        else cJSON_AddNullToObject(j, "set");
         cJSON_AddNumberToObject(j, "radius", vr->radius);
         cJSON *jr = cJSON_AddObjectToObject(j, "reference");
         cJSON_AddNumberToObject(jr, "seconds", vr->ref_seconds);
@@ -1078,18 +1115,49 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
           ".grid{display:flex;flex-wrap:wrap;gap:10px}.cell{font-size:12px}.cell img{display:block;border:1px solid #ccc}"
           ".note{color:#666}</style></head><body>\n<h1>Screen-space AO against the ray-traced ground truth</h1>\n<p class=\"note\">",
           f);
-    fprintf(f, "%dx%d, reference %d rays per pixel (cosine-weighted, AO<sub>R</sub> as in DESIGN.md), GPU: ",
+    fprintf(f, "%dx%d, reference %d rays per pixel (cosine-weighted, AO<sub>R</sub> as in docs/compare.md), GPU: ",
             o->common.width, o->common.height, o->spp);
     html_escape(f, ob_query_renderer(ctx));
     fputs(". Error maps: red = the method is brighter (misses occlusion), blue = darker; &plusmn;0.5 saturates. "
           "Click a column to sort.</p>\n",
           f);
+    /* The views' sets (scenes/views.json): the mean of each row over the choose views, the ones
+     * the defaults were chosen on, and over the check views, never chosen on. */
+    const int rows = count > 0 ? views[0].method_count : 0;
+    double *mean[2] = {NULL, NULL};
+    int in_set[2] = {0, 0};
+    for (int s = 0; s < 2 && rows; ++s) {
+        mean[s] = calloc((size_t)rows, sizeof(double));
+        if (mean[s]) in_set[s] = set_means(views, count, view_set_names[s], mean[s], rows);
+    }
+    if (in_set[0] || in_set[1]) {
+        fputs("<h2>Choose and check views</h2>\n<p class=\"note\">The project's views in two sets "
+              "(scenes/views.json, docs/methods.md): <em>choose</em> views, the ones the defaults were chosen on, "
+              "and <em>check</em> views, never used for a choice. Mean RMSE of each row over this report's views of "
+              "each set.</p>\n<table class=\"sortable\"><thead><tr><th>row</th>",
+              f);
+        for (int s = 0; s < 2; ++s)
+            if (in_set[s]) fprintf(f, "<th>%s (%d view%s)</th>", view_set_names[s], in_set[s], in_set[s] == 1 ? "" : "s");
+        fputs("</tr></thead><tbody>\n", f);
+        for (int k = 0; k < rows; ++k) {
+            fputs("<tr><td>", f);
+            html_escape(f, views[0].methods[k].label);
+            fputs("</td>", f);
+            for (int s = 0; s < 2; ++s)
+                if (in_set[s]) fprintf(f, "<td>%.4f</td>", mean[s][k]);
+            fputs("</tr>\n", f);
+        }
+        fputs("</tbody></table>\n", f);
+    }
+    free(mean[0]);
+    free(mean[1]);
     for (int v = 0; v < count; ++v) {
         const view_result *vr = &views[v];
         fputs("<section class=\"view\"><h2>", f);
         html_escape(f, vr->scene);
         fputs(" &mdash; ", f);
         html_escape(f, vr->camera);
+        if (vr->set) fprintf(f, " <span class=\"note\">(a %s view)</span>", vr->set);
         fprintf(f, "</h2>\n<p class=\"note\">R = %g; reference: %.1f s%s, mean standard error %.4f</p>\n",
                 (double)vr->radius, vr->ref_seconds, vr->ref_cached ? " (cached)" : "", vr->ref_stderr_mean);
         fputs("<table class=\"sortable\"><thead><tr><th>method</th><th>RMSE</th><th>bias</th><th>MAE</th><th>SSIM</th>"
@@ -1279,6 +1347,15 @@ static int compare_checked(const compare_opts *op)
         }
     }
     ob_progress_end(&bar);
+    /* Each view's set, if scenes/views.json names it (as SCENE:CAMERA): labels, never a failure
+     * when the file is missing; a malformed one is an error like any input. */
+    cli_view_sets sets;
+    if (code == EXIT_OK) code = cli_view_sets_load(&sets, false);
+    for (int v = 0; v < done && code == EXIT_OK; ++v) {
+        char spec[256];
+        snprintf(spec, sizeof spec, "%s:%s", views[v].scene, views[v].camera);
+        views[v].set = cli_view_set_of(&sets, spec);
+    }
     if (code == EXIT_OK) code = write_json(&o, ctx, views, done, &out);
     if (code == EXIT_OK) code = write_html(&o, ctx, views, done, &out);
 cleanup:

@@ -28,12 +28,13 @@ static int read_set(const cli_view_sets *s, const cJSON *root, const char *name,
     return EXIT_OK;
 }
 
-int cli_view_sets_load(cli_view_sets *out)
+int cli_view_sets_load(cli_view_sets *out, bool required)
 {
     memset(out, 0, sizeof *out);
     snprintf(out->path, sizeof out->path, "%s/scenes/views.json", ob_data_dir());
     char why[256] = "";
     char *text = cli_read_regular(out->path, 1u << 20, NULL, why, sizeof why);
+    if (!text && !required) return EXIT_OK;
     if (!text) return cli_fail(EXIT_INPUT, "%s: cannot read the project's view sets: %s", out->path, why);
     cJSON *root = cJSON_Parse(text);
     free(text);

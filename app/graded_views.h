@@ -16,9 +16,10 @@ typedef struct cli_view_sets {
 } cli_view_sets;
 
 /* Reads <data dir>/scenes/views.json. EXIT_OK, else an exit code after one line on stderr naming
- * the file and what is wrong with it (missing, not JSON, a set that is not an array of
- * "scene:camera" strings, a view in both sets, more than CLI_VIEW_SET_MAX). */
-int cli_view_sets_load(cli_view_sets *out);
+ * the file and what is wrong with it (missing when `required`, not JSON, a set that is not an
+ * array of "scene:camera" strings, a view in both sets, more than CLI_VIEW_SET_MAX). Not
+ * `required` (compare's labels), a file that cannot be read gives two empty sets. */
+int cli_view_sets_load(cli_view_sets *out, bool required);
 /* "choose" or "check" for a view given as SCENE:CAMERA (compared as written), else NULL. */
 const char *cli_view_set_of(const cli_view_sets *s, const char *view);
 

@@ -162,7 +162,7 @@ static int parse(int argc, char **argv, tune_opts *o, cli_outputs *outs)
             if (!strcmp(o->train[i], o->train[j])) return cli_fail(EXIT_USAGE, "--train %s is given twice", o->train[i]);
     /* The project's check views choose nothing: not even through a training set given by hand. */
     cli_view_sets sets;
-    int sets_code = cli_view_sets_load(&sets);
+    int sets_code = cli_view_sets_load(&sets, true);
     if (sets_code != EXIT_OK) return sets_code;
     for (int i = 0; i < o->train_count; ++i)
         if (cli_view_set_of(&sets, o->train[i]) && !strcmp(cli_view_set_of(&sets, o->train[i]), "check"))

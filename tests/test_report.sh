@@ -69,8 +69,16 @@ for v in r["views"]:
     none = next(m for m in v["methods"] if m["method"] == "none")
     # none reports 1 everywhere: its bias is 1 - mean(AO_R), the most a method can miss.
     assert none["bias"] >= 0, none
+# scenes/views.json's sets: corner:diagonal is a choose view, the hostile model in none; the choose
+# means are that one view's RMSEs, and there is no check view here.
+assert [v["set"] for v in r["views"]] == ["choose", None], [v["set"] for v in r["views"]]
+assert r["sets"]["check"] is None and r["sets"]["choose"]["views"] == 1, r["sets"]
+for m in r["views"][0]["methods"]:
+    assert abs(r["sets"]["choose"]["mean_rmse"][m["label"]] - m["rmse"]) < 1e-12, m["label"]
 PY
 then ok; else bad "results.json"; fi
+grep -q "<h2>Choose and check views</h2>" "$dir/report/index.html" && grep -q "diagonal <span class=\"note\">(a choose view)" "$dir/report/index.html" &&
+    ok || bad "the report does not show the views' sets"
 
 # Error where it matters: every view has the four metric masks (settings, pixel counts, an image
 # each), and every method its RMSE and bias inside each (null where the mask is empty).

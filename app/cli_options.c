@@ -491,9 +491,9 @@ void cli_common_usage(FILE *f, const cli_common *c)
     bool lists = takes(c, CLI_TAKES_LISTS);
     fputs("\ncommon options (one parser for render, sheet, compare, bench and view):\n", f);
     if (takes(c, CLI_TAKES_SCENE)) {
-        fputs("  --scene NAME|PATH     built-in (cornell, corner, sphere-on-plane, slab, bleed), a named\n"
-              "                        scene from scenes/ (bunny, fzk-haus, cornell-obj) or any model\n"
-              "                        Assimp reads\n",
+        fputs("  --scene NAME|PATH     built-in (cornell, corner, sphere-on-plane, slab, grille, bleed),\n"
+              "                        a named scene from scenes/ (bunny, fzk-haus, cornell-obj) or any\n"
+              "                        model Assimp reads\n",
               f);
         if (c->scene) fprintf(f, "                        (default %s)\n", c->scene);
         else fputs("                        (required)\n", f);

@@ -5,10 +5,12 @@
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
+layout(location = 3) in float in_part; /* the vertex's connected part, 1..2047 (scene/parts.c) */
 
 out vec3 v_view_pos;
 out vec3 v_view_normal;
 out vec2 v_uv;
+flat out float v_part;
 
 void main()
 {
@@ -16,5 +18,6 @@ void main()
     v_view_pos = vp.xyz;
     v_view_normal = mat3(gb.normal_matrix) * in_normal;
     v_uv = in_uv;
+    v_part = in_part;
     gl_Position = gb.proj * vp;
 }

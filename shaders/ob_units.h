@@ -50,6 +50,7 @@
 /* The G-buffer raster (gbuffer.frag.glsl) and the depth peel (peel.frag.glsl). */
 #define OB_UNIT_DIFFUSE_MAP 0 /* the material's sRGB texture */
 #define OB_UNIT_FIRST_LAYER 1 /* peel: the G-buffer's linear depth, the layer to peel behind */
+#define OB_UNIT_FIRST_FACING 2 /* peel: the G-buffer's normal, whose w is the first layer's part and facing */
 
 /* Lighting (lighting.glsl) and compose (compose.glsl), beside OB_UNIT_DEPTH and OB_UNIT_NORMAL. */
 #define OB_UNIT_ALBEDO 2

@@ -2,18 +2,33 @@
 /* The second depth layer (depth peeling, Everitt 2001; seed 000 §4.4, seed 003 §6.4): the same
  * scene drawn again with the G-buffer's vertex shader, keeping per pixel the nearest surface that
  * lies behind the first layer by more than a small separation. Back faces count (culling is off,
- * as in the G-buffer): behind a closed object's front the second layer is its back, so the two
- * bound the object's extent along the view ray. A method reads it as "a sample between the two
- * layers is inside an object, a sample behind the second is free". */
+ * as in the G-buffer). The layer is meant as the back of the solid whose front the first layer
+ * shows, so that the two bound it along the view ray: a method reads "a sample between the two
+ * layers is inside an object, a sample behind the second is free".
+ *
+ * That holds only where the surface behind belongs to the same connected part of the mesh as the
+ * first layer (scene/parts.c) and shows the other side of its triangles (by winding: a closed
+ * part's front faces one way, its back the other). Anything else and the two do not bound one
+ * solid: the front of another object behind a single sheet (a drilled brake disc, a wall of one
+ * polygon), the ground behind a part. Taking that for the sheet's back made the whole gap between
+ * them solid: the holes of the motorbike's brake disc read black, with the ground 0.9 m behind
+ * the disc taken as its back (docs/methods.md). The winding alone, without the part, still took
+ * the ground for the back of the parts wound the other way (that motorbike is wound either way,
+ * part by part); comparing the two sides, not requiring a front face first, keeps a part wound
+ * clockwise throughout right. Where they do not bound one solid the layer is 0, as where nothing
+ * lies behind: the method's own thickness, the single-layer answer.
+ */
 #include "gbuffer_params.h"
 
 in vec3 v_view_pos;
 in vec3 v_view_normal;
 in vec2 v_uv;
+flat in float v_part;
 
 layout(binding = OB_UNIT_FIRST_LAYER) uniform sampler2D first_layer; /* the G-buffer's R32F linear depth, 0 = sky */
+layout(binding = OB_UNIT_FIRST_FACING) uniform sampler2D first_normal; /* the G-buffer's normal: w = ±part, + front face */
 
-layout(location = 0) out float out_linear_depth;   /* R32F: the second layer's linear depth, 0 = none */
+layout(location = 0) out float out_linear_depth;   /* R32F: the second layer's linear depth, 0 = none or unknown */
 
 /* The separation, relative to the first layer's depth: it drops the first surface itself where a
  * second triangle coincides with it (duplicated or z-fighting faces), and nothing an occluder test
@@ -25,6 +40,16 @@ void main()
     float z = -v_view_pos.z;
     float first = texelFetch(first_layer, ivec2(gl_FragCoord.xy), 0).r;
     /* Behind the sky there is nothing (first = 0 only where no triangle covers the pixel). */
-    if (first <= 0.0 || z <= first * (1.0 + SEPARATION)) discard;
-    out_linear_depth = z;
+    if (first <= 0.0) discard;
+    float first_part = texelFetch(first_normal, ivec2(gl_FragCoord.xy), 0).w;
+    bool first_front = first_part > 0.0;
+    bool same_part = abs(first_part) == v_part;
+    bool closes = same_part ? gl_FrontFacing != first_front : first_front && !gl_FrontFacing;
+    /* A triangle of the same part on the first layer's plane, wound the other way, is that
+     * surface's back: a sheet drawn twice, once each way (the motorbike's brake discs), is a
+     * solid of no thickness, and behind it lies the other disc. Any other triangle there is
+     * the first layer itself or a copy of it. */
+    bool coincident = z <= first * (1.0 + SEPARATION);
+    if (coincident && !(same_part && closes)) discard;
+    out_linear_depth = closes ? max(z, first) : 0.0;
 }

@@ -27,7 +27,9 @@ camera=(--eye -110,50,-260 --target 0,10,0 --fov 45)
 scene=(--model "$model" --floor-size 1000)
 
 # ---- the library's own frame: render's AO (after the crease filter, as ob_host_ao's output) ----
-if ! "$obscura" render --scene armadillo "${camera[@]}" --size $size --out "$tmp/render.png" \
+# One depth layer: the host hands no second layer, and vbao then reads one (its default, two, needs
+# the layer that render's own G-buffer peels).
+if ! "$obscura" render --scene armadillo "${camera[@]}" --size $size --set vbao.layers=1 --out "$tmp/render.png" \
         --ao-out "$tmp/render_ao.pfm" --depth-out "$tmp/render_depth.pfm" >"$tmp/log" 2>&1; then
     cat "$tmp/log"; echo "example_host: obscura render failed"; exit 1
 fi

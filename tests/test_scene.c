@@ -154,13 +154,13 @@ static bool bounds_sane(const ob_scene_stats *st)
 
 static void test_builtins(void)
 {
-    CHECK(ob_builtin_scene_count() == 5, "5 built-in scenes, got %d", ob_builtin_scene_count());
+    CHECK(ob_builtin_scene_count() == 6, "6 built-in scenes, got %d", ob_builtin_scene_count());
     for (int i = 0; i < ob_builtin_scene_count(); ++i) {
         CHECK(ob_builtin_scene_name(i) && ob_builtin_scene_description(i) &&
                   ob_builtin_scene_description(i)[0],
               "built-in %d has a name and a description", i);
     }
-    CHECK(ob_builtin_scene_name(5) == NULL, "built-in name out of range is NULL");
+    CHECK(ob_builtin_scene_name(6) == NULL, "built-in name out of range is NULL");
 
     const struct {
         const char *name;
@@ -180,6 +180,9 @@ static void test_builtins(void)
         {"slab", 512u + 2u * 12u, {-4.0f, 0.0f, -4.0f}, {4.0f, 1.15f, 4.0f}, 0.5f, "front"},
         /* floor 8 x 8 quads, wall 4 x 8 */
         {"bleed", 128u + 64u, {0.0f, 0.0f, -2.0f}, {4.0f, 2.0f, 2.0f}, 0.5f, "side"},
+        /* floor 16 x 16 quads; 11 x 11 cells less 25 holes per face: the sheet's one face, the
+         * closed plate's top and bottom, 4 walls per hole and its 4-quad rim */
+        {"grille", 512u + 3u * 192u + 25u * 8u + 8u, {-4.0f, 0.0f, -4.0f}, {4.0f, 0.49f, 4.0f}, 0.5f, "front"},
     };
     for (size_t k = 0; k < sizeof expect / sizeof expect[0]; ++k) {
         ob_scene *s = load(expect[k].name, NULL, OB_UP_DEFAULT);
@@ -1166,6 +1169,47 @@ static void test_paths(void)
     unlink(json);
 }
 
+/* The connected parts the second depth layer tells solids apart by (scene/parts.c): the built-in
+ * slab's floor and two boxes, each box face its own four vertices (the corners shared only by
+ * position), are three parts; the grille's floor, sheet and closed plate three more; corners that
+ * differ in the last bits (x0 + i c + c against x0 + (i + 1) c) are one; labels count from `first`
+ * and fold into 1..OB_PART_LABELS. */
+static void test_parts(void)
+{
+    const char *names[] = {"slab", "grille"};
+    for (int k = 0; k < 2; ++k) {
+        ob_scene *s = load(names[k], NULL, OB_UP_DEFAULT);
+        CHECK(s != NULL && s->mesh_count == 1, "%s loads as one mesh", names[k]);
+        if (!s || s->mesh_count != 1) continue;
+        const ob_mesh *m = &s->meshes[0];
+        float *labels = malloc((size_t)m->vertex_count * sizeof(float));
+        int64_t parts = labels ? ob_mesh_part_labels(m, 0u, labels) : -1;
+        CHECK(parts == 3, "%s: %lld parts (floor and two solids or sheets), expected 3", names[k], (long long)parts);
+        /* Every triangle's corners share a label, and the floor (y = 0) has its own. */
+        int split = 0, floor_label = -1, floor_mixed = 0;
+        for (uint32_t t = 0; labels && t + 2u < m->index_count; t += 3u) {
+            float a = labels[m->indices[t]], b = labels[m->indices[t + 1u]], c = labels[m->indices[t + 2u]];
+            split += a != b || a != c;
+            bool on_floor = m->positions[3u * m->indices[t] + 1u] == 0.0f && m->positions[3u * m->indices[t + 1u] + 1u] == 0.0f;
+            if (on_floor && floor_label < 0) floor_label = (int)a;
+            floor_mixed += on_floor && (int)a != floor_label;
+        }
+        CHECK(split == 0 && floor_mixed == 0, "%s: %d triangles across parts, %d floor triangles off the floor's part",
+              names[k], split, floor_mixed);
+        int64_t again = labels ? ob_mesh_part_labels(m, OB_PART_LABELS - 1u, labels) : -1;
+        float lo = 1e9f, hi = 0.0f;
+        for (uint32_t v = 0; labels && v < m->vertex_count; ++v) {
+            lo = labels[v] < lo ? labels[v] : lo;
+            hi = labels[v] > hi ? labels[v] : hi;
+        }
+        /* From first = 2046 the three parts are 2047, then 1 and 2 (folded). */
+        CHECK(again == 3 && lo == 1.0f && hi == (float)OB_PART_LABELS, "%s: labels from 2046 fold into %g..%g", names[k],
+              (double)lo, (double)hi);
+        free(labels);
+        ob_destroy_scene(s);
+    }
+}
+
 int main(void)
 {
     snprintf(tmpdir, sizeof tmpdir, "%s", "/tmp/obscura_test_scene_XXXXXX");
@@ -1188,6 +1232,7 @@ int main(void)
     test_new_named_scenes();
     test_tessellate();
     test_paths();
+    test_parts();
     rmdir(tmpdir);
     return check_finish("scene");
 }

@@ -509,9 +509,12 @@ typedef enum ob_image_kind {
                                  it by the albedo), after filter and upsampling, 3 floats, bottom row first */
     OB_IMAGE_BENT_NORMAL_F32, /* the method's view-space bent normal (gtao with bent_normals on), after
                                  filter and upsampling (not renormalised), 3 floats; zeros otherwise */
-    OB_IMAGE_SECOND_DEPTH_F32, /* the second depth layer's linear depth (depth peeling: the nearest surface
-                                 behind the first, 0 = none), when the last frame's method read it
-                                 (layers = 2); zeros otherwise. 1 float per pixel, bottom row first */
+    OB_IMAGE_SECOND_DEPTH_F32, /* the second depth layer's linear depth: where the view ray leaves the
+                                 solid whose front the first layer shows (depth peeling: the nearest
+                                 surface behind the first, where it is that solid's back: the same
+                                 connected part wound the other way; docs/methods.md), 0 = none or not
+                                 that, when the last frame's method read it (layers = 2, vbao's and
+                                 vbgi's default); zeros otherwise. 1 float per pixel, bottom row first */
     OB_IMAGE_EXTRA_RADIANCE_F32, /* the extra view's direct light (ssdo with extra_view=on; zeros otherwise),
                                  linear RGB, 3 floats per pixel, bottom row first */
     OB_IMAGE_HISTORY_AGE_F32, /* temporal accumulation: frames in each pixel's history (1 = just reset by a
@@ -641,8 +644,11 @@ typedef struct ob_host_frame {
      *   linear depth: GL_R16F or GL_R32F, positive view-space depth in world units, 0 = sky.
      * Required. */
     uint32_t depth;
-    /* An optional second depth layer in the same format (the nearest surface behind the first, as
-     * depth peeling gives it; sky = none behind): read by methods with layers = 2. 0 = none. */
+    /* An optional second depth layer in the same format: where each pixel's view ray leaves the
+     * solid whose front depth shows (depth peeling's nearest surface behind the first, where that
+     * surface is the same object's back; sky = none or unknown: a single sheet, or another
+     * object's front). Read by methods with layers = 2 (vbao's and vbgi's default); 0 = none, and
+     * they fall back to one layer (their constant thickness). */
     uint32_t second_depth;
     /* Normals, GL_TEXTURE_2D of the input size, unit length, in normal_space:
      *   GL_RGBA16F, GL_RGBA32F: xyz as is;

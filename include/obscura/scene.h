@@ -281,7 +281,8 @@ typedef enum ob_view {
     OB_VIEW_BENT_NORMALS,
     OB_VIEW_LUMINANCE,
     OB_VIEW_SECOND_DEPTH, /* the second depth layer as the depth view shows the first (black where
-                             none, or when the frame's method did not read it: layers=2) */
+                             none or not the first layer's back, or when the frame's method did not
+                             read it: layers=2) */
     OB_VIEW_EXTRA,        /* the extra view's direct light as radiance shows the main one's (ssdo with
                              extra_view=on; black otherwise): the camera turned 90 degrees around the
                              target (seed 000 §4.4) */

@@ -61,9 +61,16 @@ static const ob_param_info vb_params[P_COUNT] = {
                     "move the jitters along an R2 sequence with the frame index (for temporal accumulation)", false},
     [P_DEPTH_MIPS] = {"depth_mips", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                       "far steps read the prefiltered depth MIP chain instead of full resolution", false},
-    /* 2: a sample's back is the second layer behind it (its true thickness); where there is none,
-     * the constant thickness above. */
-    [P_LAYERS] = OB_LAYERS_PARAM,
+    /* 2 (the default): a sample's back is the second layer behind it, the back of its own solid
+     * (shaders/peel.frag.glsl), never thinner than the steps' spacing; where the layer is not that
+     * solid's back (a single sheet, the front of another object) or there is none, and in a host's
+     * frame without one, the constant thickness above. Chosen by docs/methods.md "Which surface is
+     * the back": mean RMSE 0.0437 -> 0.0358 on the choose views, 0.0524 -> 0.0431 on the check
+     * views, for one more raster of the scene and 16-19 % of the AO pass on llvmpipe. */
+    [P_LAYERS] = {"layers", OB_PARAM_INT, 1.0f, 2.0f, 2.0f, "count",
+                  "depth layers: 2 = a sample's back is the second depth layer (depth peeling) where that is "
+                  "the back of its own solid, else the constant thickness; 1 = the constant thickness alone",
+                  false},
     [P_EMITTER_COSINE] = {"emitter_cosine", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                           "a sender's radiance times its cosine toward P (the paper's); off: its radiance where it "
                           "faces P (the solid-angle form of the one-bounce integral)",

@@ -80,7 +80,7 @@ static void release_scene(ob_gbuffer *g)
 {
     for (int i = 0; i < g->mesh_count; ++i) {
         glDeleteVertexArrays(1, &g->meshes[i].vao);
-        glDeleteBuffers(4, g->meshes[i].buffers);
+        glDeleteBuffers(5, g->meshes[i].buffers);
     }
     if (g->textures) {
         /* Materials that share an image share its texture: delete each name once. */
@@ -147,18 +147,33 @@ ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene)
         glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
         g->textures[i] = tex;
     }
+    uint32_t parts = 0; /* numbered across the meshes: a part never spans two */
     for (int i = 0; i < scene->mesh_count; ++i) {
         const ob_mesh *src = &scene->meshes[i];
+        float *labels = malloc((size_t)src->vertex_count * sizeof(float) + 1);
+        int64_t found = labels ? ob_mesh_part_labels(src, parts, labels) : -1;
+        if (found < 0) {
+            free(labels);
+            release_scene(g);
+            return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory uploading the scene");
+        }
+        parts += (uint32_t)(found % OB_PART_LABELS);
         ob_gpu_mesh *dst = &g->meshes[g->mesh_count++];
         dst->index_count = (GLsizei)src->index_count;
         dst->material = src->material;
         glCreateVertexArrays(1, &dst->vao);
-        glCreateBuffers(4, dst->buffers);
+        glCreateBuffers(5, dst->buffers);
         size_t vn = (size_t)src->vertex_count;
         glNamedBufferStorage(dst->buffers[0], (GLsizeiptr)(vn * 3 * sizeof(float)), src->positions, 0);
         glNamedBufferStorage(dst->buffers[1], (GLsizeiptr)(vn * 3 * sizeof(float)), src->normals, 0);
         if (src->uvs) glNamedBufferStorage(dst->buffers[2], (GLsizeiptr)(vn * 2 * sizeof(float)), src->uvs, 0);
         glNamedBufferStorage(dst->buffers[3], (GLsizeiptr)(src->index_count * sizeof(uint32_t)), src->indices, 0);
+        glNamedBufferStorage(dst->buffers[4], (GLsizeiptr)(vn * sizeof(float)), labels, 0);
+        free(labels);
+        glVertexArrayVertexBuffer(dst->vao, 3, dst->buffers[4], 0, sizeof(float));
+        glEnableVertexArrayAttrib(dst->vao, 3);
+        glVertexArrayAttribFormat(dst->vao, 3, 1, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(dst->vao, 3, 3);
         glVertexArrayVertexBuffer(dst->vao, 0, dst->buffers[0], 0, 3 * sizeof(float));
         glVertexArrayVertexBuffer(dst->vao, 1, dst->buffers[1], 0, 3 * sizeof(float));
         glVertexArrayElementBuffer(dst->vao, dst->buffers[3]);

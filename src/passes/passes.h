@@ -13,7 +13,7 @@
 
 /* ---- G-buffer (gbuffer.c, shaders/gbuffer.{vert,frag}.glsl): the one raster pass ------------ */
 typedef struct ob_gpu_mesh {
-    GLuint vao, buffers[4]; /* positions, normals, uvs, indices */
+    GLuint vao, buffers[5]; /* positions, normals, uvs, indices, part labels (scene/parts.c) */
     GLsizei index_count;
     int material;
 } ob_gpu_mesh;

@@ -72,6 +72,7 @@ ob_error ob_peel_run(ob_peel *p, const ob_gbuffer *g, const float *view, const f
     glUseProgram(p->program);
     glBindBufferBase(GL_UNIFORM_BUFFER, OB_BINDING_PASS, p->ubo);
     glBindTextureUnit(OB_UNIT_FIRST_LAYER, g->linear_depth);
+    glBindTextureUnit(OB_UNIT_FIRST_FACING, g->normal);
     for (int i = 0; i < g->mesh_count; ++i) {
         glBindVertexArray(g->meshes[i].vao);
         glDrawElements(GL_TRIANGLES, g->meshes[i].index_count, GL_UNSIGNED_INT, NULL);

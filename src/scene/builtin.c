@@ -1,7 +1,7 @@
 /* Built-in scenes that need no file: the Cornell box (published data, in metres), two analytic
  * AO test scenes whose ground truth can be reasoned about by hand, and two scenes that tell
- * methods apart where screen space loses information: floating slabs (thickness) and a red
- * wall on a white floor (colour bleeding). */
+ * methods apart where screen space loses information: floating slabs (thickness), drilled plates
+ * (through-holes) and a red wall on a white floor (colour bleeding). */
 #include "scene/scene.h"
 
 #include <math.h>
@@ -22,6 +22,8 @@ static const struct {
     {"sphere-on-plane", "unit sphere resting on a 10 m plane (contact occlusion)"},
     {"slab", "a 2 cm and a 1 m thick slab floating 15 cm above an 8 m floor (occluder thickness)"},
     {"bleed", "a red wall standing on a white floor, both lit (one-bounce colour bleeding)"},
+    {"grille", "two plates drilled with 25 square holes floating 45 cm above a floor: a single sheet and a "
+               "closed 4 cm plate (through-holes, second depth layer)"},
 };
 
 #define BUILTIN_COUNT ((int)(sizeof builtins / sizeof builtins[0]))
@@ -405,21 +407,38 @@ static bool build_sphere_on_plane(ob_scene *s)
 
 /* ---- slab ------------------------------------------------------------------------------------ */
 
+/* The four sides of the axis-aligned box lo..hi (x and z faces), every face outward. */
+static void geo_box_sides(geo *g, const float lo[3], const float hi[3])
+{
+    const float dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    const float ux[3] = {dx, 0.0f, 0.0f}, uy[3] = {0.0f, dy, 0.0f}, uz[3] = {0.0f, 0.0f, dz};
+    const float hx[3] = {hi[0], lo[1], lo[2]}, hz[3] = {lo[0], lo[1], hi[2]};
+    const float px[3] = {1.0f, 0.0f, 0.0f}, pz[3] = {0.0f, 0.0f, 1.0f};
+    const float mx[3] = {-1.0f, 0.0f, 0.0f}, mz[3] = {0.0f, 0.0f, -1.0f};
+    geo_grid(g, lo, uy, uz, 1, 1, mx);
+    geo_grid(g, hx, uy, uz, 1, 1, px);
+    geo_grid(g, lo, ux, uy, 1, 1, mz);
+    geo_grid(g, hz, ux, uy, 1, 1, pz);
+}
+
 /* A closed axis-aligned box lo..hi, every face outward and the bottom included: the reference
  * rays from the floor below hit it. */
 static void geo_box(geo *g, const float lo[3], const float hi[3])
 {
-    const float dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
-    const float ux[3] = {dx, 0.0f, 0.0f}, uy[3] = {0.0f, dy, 0.0f}, uz[3] = {0.0f, 0.0f, dz};
-    const float hx[3] = {hi[0], lo[1], lo[2]}, hy[3] = {lo[0], hi[1], lo[2]}, hz[3] = {lo[0], lo[1], hi[2]};
-    const float px[3] = {1.0f, 0.0f, 0.0f}, py[3] = {0.0f, 1.0f, 0.0f}, pz[3] = {0.0f, 0.0f, 1.0f};
-    const float mx[3] = {-1.0f, 0.0f, 0.0f}, my[3] = {0.0f, -1.0f, 0.0f}, mz[3] = {0.0f, 0.0f, -1.0f};
-    geo_grid(g, lo, uy, uz, 1, 1, mx);
-    geo_grid(g, hx, uy, uz, 1, 1, px);
+    const float ux[3] = {hi[0] - lo[0], 0.0f, 0.0f}, uz[3] = {0.0f, 0.0f, hi[2] - lo[2]};
+    const float hy[3] = {lo[0], hi[1], lo[2]};
+    const float py[3] = {0.0f, 1.0f, 0.0f}, my[3] = {0.0f, -1.0f, 0.0f};
+    geo_box_sides(g, lo, hi);
     geo_grid(g, lo, ux, uz, 1, 1, my);
     geo_grid(g, hy, ux, uz, 1, 1, py);
-    geo_grid(g, lo, ux, uy, 1, 1, mz);
-    geo_grid(g, hz, ux, uy, 1, 1, pz);
+}
+
+/* The 8 m floor of `slab` and `grille`, y = 0, 0.5 m cells: the bounds are exactly [-4, 4]. */
+static void geo_floor(geo *g)
+{
+    const float o[3] = {-4.0f, 0.0f, -4.0f};
+    const float ux[3] = {8.0f, 0.0f, 0.0f}, uz[3] = {0.0f, 0.0f, 8.0f}, up[3] = {0.0f, 1.0f, 0.0f};
+    geo_grid(g, o, ux, uz, 16, 16, up);
 }
 
 /* Two slabs of one 1.2 m square footprint whose bottoms float 0.15 m (0.3 R) above the floor:
@@ -432,10 +451,8 @@ static bool build_slab(ob_scene *s)
 {
     int white = ob_scene_add_material(s, "white", 0.8f, 0.8f, 0.8f);
     if (white < 0) return false;
-    const float o[3] = {-4.0f, 0.0f, -4.0f};
-    const float ux[3] = {8.0f, 0.0f, 0.0f}, uz[3] = {0.0f, 0.0f, 8.0f}, up[3] = {0.0f, 1.0f, 0.0f};
     geo g = {0};
-    geo_grid(&g, o, ux, uz, 16, 16, up); /* 0.5 m cells: the bounds are exactly [-4, 4] */
+    geo_floor(&g);
     const float thin_lo[3] = {-1.8f, 0.15f, -0.6f}, thin_hi[3] = {-0.6f, 0.17f, 0.6f};
     const float thick_lo[3] = {0.6f, 0.15f, -0.6f}, thick_hi[3] = {1.8f, 1.15f, 0.6f};
     geo_box(&g, thin_lo, thin_hi);
@@ -452,6 +469,80 @@ static bool build_slab(ob_scene *s)
      * beneath them show through the gap. */
     ob_camera low = make_camera("low", 0.0f, 0.1f, 1.8f, 0.0f, 0.05f, 0.0f, 75.0f);
     return ob_scene_add_camera(s, &front) && ob_scene_add_camera(s, &low);
+}
+
+/* ---- grille ---------------------------------------------------------------------------------- */
+
+/* The cells of a plate's top (or bottom) face: an 11 x 11 grid over [x0, x0 + 1.2] x [-0.6, 0.6]
+ * at height y, the cells with both indices odd left out (the 5 x 5 holes, 0.109 m square), facing
+ * n. The holes' walls, when `walls`, run from y down to y - depth. */
+#define GRILLE_CELLS 11
+#define GRILLE_SIZE 1.2f
+
+static void grille_face(geo *g, float x0, float y, const float n[3])
+{
+    const float c = GRILLE_SIZE / (float)GRILLE_CELLS;
+    const float u[3] = {c, 0.0f, 0.0f}, v[3] = {0.0f, 0.0f, c};
+    for (int j = 0; j < GRILLE_CELLS; ++j)
+        for (int i = 0; i < GRILLE_CELLS; ++i) {
+            if (i % 2 == 1 && j % 2 == 1) continue;
+            const float o[3] = {x0 + (float)i * c, y, -0.5f * GRILLE_SIZE + (float)j * c};
+            geo_grid(g, o, u, v, 1, 1, n);
+        }
+}
+
+static void grille_walls(geo *g, float x0, float y_lo, float depth)
+{
+    const float c = GRILLE_SIZE / (float)GRILLE_CELLS;
+    const float up[3] = {0.0f, depth, 0.0f}, ux[3] = {c, 0.0f, 0.0f}, uz[3] = {0.0f, 0.0f, c};
+    const float px[3] = {1.0f, 0.0f, 0.0f}, mx[3] = {-1.0f, 0.0f, 0.0f};
+    const float pz[3] = {0.0f, 0.0f, 1.0f}, mz[3] = {0.0f, 0.0f, -1.0f};
+    for (int j = 1; j < GRILLE_CELLS; j += 2)
+        for (int i = 1; i < GRILLE_CELLS; i += 2) {
+            float hx = x0 + (float)i * c, hz = -0.5f * GRILLE_SIZE + (float)j * c;
+            /* Each wall faces into the hole. */
+            const float a[3] = {hx, y_lo, hz}, b[3] = {hx + c, y_lo, hz}, d[3] = {hx, y_lo, hz + c};
+            geo_grid(g, a, up, uz, 1, 1, px);
+            geo_grid(g, b, up, uz, 1, 1, mx);
+            geo_grid(g, a, ux, up, 1, 1, pz);
+            geo_grid(g, d, ux, up, 1, 1, mz);
+        }
+}
+
+/* Two drilled plates of the slab scene's footprint, bottoms 0.45 m (0.9 R) above the floor, more
+ * than vbao's default thickness (0.75 R), so that a sample on a plate whose back is taken right
+ * is not solid down to the floor:
+ * on the left a single sheet (one polygon thick, as CAD and CFD exports often give thin parts: a
+ * brake disc, a grille), on the right a closed plate 4 cm thick with walls in its holes. A
+ * depth buffer shows the floor through the holes; behind the sheet the next surface is the
+ * floor, behind the closed plate's top its bottom, and the second depth layer has to tell the
+ * two apart (peel.frag.glsl; tests/test_vbao.c). AO_R is open through the holes where the floor
+ * lies beyond R of the plate, and each method's samples on the plate must not close them. */
+static bool build_grille(ob_scene *s)
+{
+    int white = ob_scene_add_material(s, "white", 0.8f, 0.8f, 0.8f);
+    if (white < 0) return false;
+    const float up[3] = {0.0f, 1.0f, 0.0f}, down[3] = {0.0f, -1.0f, 0.0f};
+    geo g = {0};
+    geo_floor(&g);
+    grille_face(&g, -1.8f, 0.45f, up); /* the sheet */
+    const float lo = 0.45f, hi = 0.49f, x0 = 0.6f;
+    grille_face(&g, x0, hi, up);
+    grille_face(&g, x0, lo, down);
+    grille_walls(&g, x0, lo, hi - lo);
+    /* The closed plate's rim. */
+    const float rim_lo[3] = {x0, lo, -0.5f * GRILLE_SIZE}, rim_hi[3] = {x0 + GRILLE_SIZE, hi, 0.5f * GRILLE_SIZE};
+    geo_box_sides(&g, rim_lo, rim_hi);
+    if (!geo_emit(&g, s, white)) return false;
+
+    s->ao_radius = 0.5f;
+    set_light(s, 0.5f, 1.0f, 0.7f);
+    ob_scene_finish(s);
+    /* From the front and above, both plates and the floor through their holes. */
+    ob_camera front = make_camera("front", 0.0f, 2.6f, 3.2f, 0.0f, 0.1f, 0.0f, 50.0f);
+    /* Steeply down on the sheet: the floor under every hole. */
+    ob_camera top = make_camera("top", -1.2f, 2.6f, 0.9f, -1.2f, 0.1f, 0.0f, 45.0f);
+    return ob_scene_add_camera(s, &front) && ob_scene_add_camera(s, &top);
 }
 
 /* ---- bleed ----------------------------------------------------------------------------------- */
@@ -496,6 +587,7 @@ ob_scene *ob_scene_builtin(const char *name)
     if (strcmp(name, "sphere-on-plane") == 0) build = build_sphere_on_plane;
     if (strcmp(name, "slab") == 0) build = build_slab;
     if (strcmp(name, "bleed") == 0) build = build_bleed;
+    if (strcmp(name, "grille") == 0) build = build_grille;
     if (!build) {
         ob_set_error(OB_ERR_UNKNOWN_SCENE, "unknown built-in scene '%s'", name);
         return NULL;

@@ -73,6 +73,12 @@ OB_EVAL_SHARED ob_scene *ob_scene_builtin(const char *name); /* NULL + OB_ERR_UN
  * outside the range float depth and lighting handle (scene.c says why). */
 OB_EVAL_SHARED bool ob_scene_check_bounds(const ob_scene *s, const char *source);
 
+/* The connected parts of mesh m (scene/parts.c): labels[v] (vertex_count floats) gets vertex v's
+ * part, numbered from `first` and folded into 1..OB_PART_LABELS. Returns the number of parts, or
+ * -1 (out of memory, error set). */
+#define OB_PART_LABELS 2047u
+int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels);
+
 /* The default framing camera for bounds, looking from the front-above-right. */
 ob_camera ob_camera_frame_bounds(const float bmin[3], const float bmax[3], float fov_y_deg);
 /* Near/far planes that enclose the bounds from the camera's eye. */

@@ -55,11 +55,31 @@ layout(binding = OB_IMAGE_UNIT_BOUNCE, rgba16f) uniform writeonly image2D bounce
 /* Bisections of the gap in which the surface leaves the sphere of radius R (ob_gap). */
 const int REFINE_STEPS = 2;
 
+/* A continuous surface between two steps turns at most this far from facing them: its points
+ * lie within CONTINUOUS_STRETCH x the steps' screen distance of each other (1 / cos 70.5 deg).
+ * Set before any measurement, as the slope beyond which a depth buffer's samples of one surface
+ * are too sparse to join; docs/methods.md "Steps joined along a surface" has the sweep that
+ * shows why it was not fitted. */
+const float CONTINUOUS_STRETCH = 3.0;
+
+/* The last step taken on one side of a slice, for joining the next to it (vb.connect): its offset
+ * from P, its distance from P in pixels and the rise of its front; `solid`: it occluded (within R,
+ * or its column entered the sphere). The march starts each side from P itself. */
+struct ob_prev_step {
+    vec3 w;
+    float px;
+    float rise;
+    bool solid;
+};
+
+ob_prev_step ob_prev_step_at_p() { return ob_prev_step(vec3(0.0), 0.0, 0.0, true); }
+
 /* One sample on one side of slice s (positive: along +dir), at AO-grid position `at`, dist_px
- * from P. `refine`: a bisection step of the gap, counting only while it is open. Updates the mask,
- * the highest front rise within R (for the gap), and vbgi's bounce. */
+ * from P. `refine`: a bisection step of the gap, counting only while it is open (it joins no
+ * step: it lands between steps already taken). Updates the mask, the highest front rise within R
+ * (for the gap), vbgi's bounce and the side's last step. */
 void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, bool refine, inout uint mask,
-                  inout float rise, inout ob_gap gap, inout vec3 bounce)
+                  inout float rise, inout ob_gap gap, inout vec3 bounce, inout ob_prev_step prev)
 {
     vec3 w;
     ivec2 texel;
@@ -103,7 +123,25 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     bool column = hit && !inside && ob_column_reach(dot(w, u), w2, vb.radius, thick, t_entry);
     float rise_front = ob_rise_angle_of(column ? front + t_entry * ray : front);
     float rise_back = ob_rise_angle_of(front + thick * ray);
-    uint bits = inside || column ? ob_sample_bits(rise_front, rise_back, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
+    bool solid = inside || column;
+    uint bits = solid ? ob_sample_bits(rise_front, rise_back, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
+    /* Steps joined along a surface. The march sees a surface only at its steps, and an interval
+     * covers only the directions from a step's front to its back: the directions between two
+     * steps on one surface stay open, though the surface between them blocks them. Most of all at
+     * a crease, where the first step lands well up the wall and the wall's foot, between P and
+     * that step, is never sampled: fewer steps read more open (docs/methods.md, "Sample count on
+     * the check views"). Where the previous step (P itself for the first) and this one both
+     * occlude and lie on one continuous surface (no depth jump: their fronts within
+     * CONTINUOUS_STRETCH x their screen distance, in world units at the deeper one), the sectors
+     * between their front rises are set too: the surface between two points of it subtends the
+     * angles between theirs. A silhouette over a floor jumps in depth and is not joined, so the
+     * gap under a floating slab stays open. */
+    float deeper = max(-(p.z + w.z), -(p.z + prev.w.z));
+    float px_world = ob_depth_scale(deeper) * vb.radius / (ob_depth_scale(-p.z) * max(s.radius_px, 1e-6));
+    bool continuous = length(w - prev.w) <= CONTINUOUS_STRETCH * (dist_px - prev.px) * px_world;
+    bool join = vb.connect != 0 && !refine && solid && prev.solid && continuous;
+    bits |= join ? ob_sample_bits(prev.rise, rise_front, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
+    prev = refine ? prev : ob_prev_step(w, dist_px, rise_front, solid);
 #ifdef OB_VBGI
     /* The sender's direct radiance through the directions it is the first to occlude, only where
      * it occludes a sector first: most samples set none (open surfaces, or sectors already set),
@@ -139,7 +177,7 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     mask |= bits;
     if (refine) ob_gap_halve(gap, inside);
     else ob_gap_note(gap, inside, hit && !inside && rise_front > rise, dist_px);
-    rise = inside || column ? max(rise, rise_front) : rise;
+    rise = solid ? max(rise, rise_front) : rise;
 }
 
 void main()
@@ -180,11 +218,12 @@ void main()
         vec2 rise = vec2(0.0);
         ob_gap gap_pos = ob_gap_none(), gap_neg = ob_gap_none();
         vec3 slice_bounce = vec3(0.0);
+        ob_prev_step prev_pos = ob_prev_step_at_p(), prev_neg = prev_pos;
         for (int j = 0; j < steps; ++j) {
             float dist_px = ob_slice_step_px(j, jit.y, steps, s.radius_px);
             vec2 off = s.dir * dist_px;
-            bitmask_step(s, centre + off, dist_px, p, true, false, mask, rise.x, gap_pos, slice_bounce);
-            bitmask_step(s, centre - off, dist_px, p, false, false, mask, rise.y, gap_neg, slice_bounce);
+            bitmask_step(s, centre + off, dist_px, p, true, false, mask, rise.x, gap_pos, slice_bounce, prev_pos);
+            bitmask_step(s, centre - off, dist_px, p, false, false, mask, rise.y, gap_neg, slice_bounce, prev_neg);
         }
         /* Each side with a gap gets REFINE_STEPS bisections, one step per pass of the loop
          * (ob_gap_next_side). The one branch of the march: most pixels (open surfaces) have no
@@ -196,7 +235,9 @@ void main()
             bool positive;
             ob_gap g = ob_gap_next_side(gap_pos, gap_neg, left, positive);
             float r = positive ? rise.x : rise.y, mid = ob_gap_mid(g);
-            bitmask_step(s, centre + (positive ? mid : -mid) * s.dir, mid, p, positive, true, mask, r, g, slice_bounce);
+            ob_prev_step unused = ob_prev_step_at_p();
+            bitmask_step(s, centre + (positive ? mid : -mid) * s.dir, mid, p, positive, true, mask, r, g, slice_bounce,
+                         unused);
             gap_pos = positive ? g : gap_pos;
             gap_neg = positive ? gap_neg : g;
             rise = positive ? vec2(r, rise.y) : vec2(rise.x, r);

@@ -30,7 +30,7 @@
 #include "reference_cache.h"
 #include "run_program.h"
 
-enum { MAX_VIEWS = 16, FRAMES = 5 };
+enum { MAX_VIEWS = 32, FRAMES = 5 }; /* 32 views: both sets of scenes/views.json fit one run each */
 
 typedef struct compare_opts {
     cli_common common;
@@ -73,8 +73,9 @@ static void compare_usage(FILE *f, const cli_common *defaults)
           "Each combination of --methods, --filters, --ao-scales and --quality is one row.\n"
           "\n"
           "  --scene S[:CAMERA]    a scene (see `obscura list`) and optionally a camera preset\n"
-          "                        (default --camera, else 'default'); repeatable, one report section\n"
-          "                        each; --sidecar, --up, --eye/--target/--fov apply to every scene\n"
+          "                        (default --camera, else 'default'); repeatable up to 32 times, one\n"
+          "                        report section each; --sidecar, --up, --eye/--target/--fov apply\n"
+          "                        to every scene\n"
           "  --report DIR          where the report goes: built beside it and put in place only when\n"
           "                        whole; an existing DIR is replaced as a whole only when empty or\n"
           "                        when everything in it is listed in its .obscura-report (what this\n"

@@ -98,9 +98,12 @@ unpack_cgal_meshes() {
 # The check set's models (scenes/views.json, "check"): files inside Debian packages that are
 # downloaded, not installed (openfoam-examples is 36 MB of case files around three models;
 # ippsample-data a printer test suite around one), each unpacked into data/ under its own name
-# (a .gz gunzipped): PACKAGE PATH-IN-PACKAGE NAME.
+# (a .gz gunzipped; a map NAME.pk3 from a .pk3 holding many: its maps/NAME.bsp repacked alone, as
+# repack_oa_maps does): PACKAGE PATH-IN-PACKAGE NAME. openarena-088-data's pak6-patch088.pk3 (72 MB)
+# holds 38 maps; oa_shouse is the inside of a house (roof trusses, beams, stairs under a ceiling).
 of_geom=/usr/share/doc/openfoam-examples/examples
 deb_models=(
+    "openarena-088-data /usr/share/games/openarena/baseoa/pak6-patch088.pk3 oa_shouse.pk3"
     "openfoam-examples $of_geom/resources/geometry/motorBike.obj.gz motorbike.obj"
     "openfoam-examples $of_geom/incompressible/simpleFoam/windAroundBuildings/constant/triSurface/buildings.obj.gz buildings.obj"
     "openfoam-examples $of_geom/resources/geometry/flange.stl.gz flange.stl"
@@ -129,6 +132,13 @@ unpack_deb_models() {
         if [ ! -f "$debs$path" ]; then echo "install-deps: $pkg holds no $path" >&2; rm -rf "$debs"; exit 1; fi
         case $path in
         *.gz) gzip -dc "$debs$path" >"$data_dir/$name.part" ;;
+        *.pk3)
+            python3 - "$debs$path" "$data_dir/$name.part" "maps/${name%.pk3}.bsp" <<'PY'
+import sys, zipfile
+with zipfile.ZipFile(sys.argv[1]) as z, zipfile.ZipFile(sys.argv[2], "w", zipfile.ZIP_DEFLATED) as o:
+    o.writestr(sys.argv[3], z.read(sys.argv[3]))
+PY
+            ;;
         *) cp "$debs$path" "$data_dir/$name.part" ;;
         esac
         mv "$data_dir/$name.part" "$data_dir/$name"

@@ -15,8 +15,11 @@
  * the disc taken as its back (docs/methods.md). The winding alone, without the part, still took
  * the ground for the back of the parts wound the other way (that motorbike is wound either way,
  * part by part); comparing the two sides, not requiring a front face first, keeps a part wound
- * clockwise throughout right. Where they do not bound one solid the layer is 0, as where nothing
- * lies behind: the method's own thickness, the single-layer answer.
+ * clockwise throughout right. Another part's back face behind a front face is not taken either:
+ * in a Quake map, whose brushes' faces are not joined into parts, it is as often the far side of
+ * a room as the back of a wall, and oa_shouse's beams and furniture read black bands so
+ * (docs/methods.md, "Which surface is the back"). Where the two do not bound one solid the layer
+ * is 0, as where nothing lies behind: the method's own thickness, the single-layer answer.
  */
 #include "gbuffer_params.h"
 
@@ -44,12 +47,12 @@ void main()
     float first_part = texelFetch(first_normal, ivec2(gl_FragCoord.xy), 0).w;
     bool first_front = first_part > 0.0;
     bool same_part = abs(first_part) == v_part;
-    bool closes = same_part ? gl_FrontFacing != first_front : first_front && !gl_FrontFacing;
+    bool closes = same_part && gl_FrontFacing != first_front;
     /* A triangle of the same part on the first layer's plane, wound the other way, is that
      * surface's back: a sheet drawn twice, once each way (the motorbike's brake discs), is a
      * solid of no thickness, and behind it lies the other disc. Any other triangle there is
      * the first layer itself or a copy of it. */
     bool coincident = z <= first * (1.0 + SEPARATION);
-    if (coincident && !(same_part && closes)) discard;
+    if (coincident && !closes) discard;
     out_linear_depth = closes ? max(z, first) : 0.0;
 }

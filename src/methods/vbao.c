@@ -66,16 +66,15 @@ static const ob_param_info vb_params[P_COUNT] = {
      * (shaders/peel.frag.glsl), never thinner than the steps' spacing; where the layer is not that
      * solid's back (a single sheet, the front of another object) or there is none, and in a host's
      * frame without one, the constant thickness above. Chosen by docs/methods.md "Which surface is
-     * the back": mean RMSE 0.0437 -> 0.0358 on the choose views, 0.0524 -> 0.0431 on the check
-     * views, for one more raster of the scene and 16-19 % of the AO pass on llvmpipe. */
+     * the back", for one more raster of the scene and 16-19 % of the AO pass on llvmpipe. */
     [P_LAYERS] = {"layers", OB_PARAM_INT, 1.0f, 2.0f, 2.0f, "count",
                   "depth layers: 2 = a sample's back is the second depth layer (depth peeling) where that is "
                   "the back of its own solid, else the constant thickness; 1 = the constant thickness alone",
                   false},
     /* On: the sectors between two consecutive steps on one continuous surface are set too
      * (shaders/visibility_bitmask.glsl, "Steps joined along a surface"): the directions a sparse
-     * march leaves open between the steps of a wall, most at a crease's foot. docs/methods.md:
-     * choose 0.0358 -> 0.0347, check 0.0431 -> 0.0410, and the presets drift less. */
+     * march leaves open between the steps of a wall, most at a crease's foot, and the presets
+     * drift less (docs/methods.md, "Steps joined along a surface"). */
     [P_CONNECT] = {"connect", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
                    "join consecutive steps on one continuous surface: the sectors between their fronts are set "
                    "(off: each step's own interval alone, the paper's)",

@@ -24,7 +24,7 @@
 #include "settings_file.h"
 #include "graded_views.h"
 
-enum { MAX_VIEWS = 16, MAX_TUNE = 8, MAX_CANDIDATES = 64 };
+enum { MAX_VIEWS = 32, MAX_TUNE = 8, MAX_CANDIDATES = 64 }; /* 32 views a list: every check view of scenes/views.json in one --check */
 
 typedef struct tune_param {
     char name[64];           /* without the method's prefix; "radius_scale" for every method's */

@@ -138,7 +138,10 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
      * gap under a floating slab stays open. */
     float deeper = max(-(p.z + w.z), -(p.z + prev.w.z));
     float px_world = ob_depth_scale(deeper) * vb.radius / (ob_depth_scale(-p.z) * max(s.radius_px, 1e-6));
-    bool continuous = length(w - prev.w) <= CONTINUOUS_STRETCH * (dist_px - prev.px) * px_world;
+    /* Squared: no square root per step in the march. */
+    vec3 jump = w - prev.w;
+    float reach = CONTINUOUS_STRETCH * (dist_px - prev.px) * px_world;
+    bool continuous = dot(jump, jump) <= reach * reach;
     bool join = vb.connect != 0 && !refine && solid && prev.solid && continuous;
     bits |= join ? ob_sample_bits(prev.rise, rise_front, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
     prev = refine ? prev : ob_prev_step(w, dist_px, rise_front, solid);

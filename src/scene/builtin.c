@@ -441,6 +441,17 @@ static void geo_floor(geo *g)
     geo_grid(g, o, ux, uz, 16, 16, up);
 }
 
+/* The end of `slab` and `grille`: their one mesh, R = 0.5 m and the key light from the front,
+ * above and right. False when the mesh could not be made (geo_emit set the error). */
+static bool finish_floor_scene(ob_scene *s, geo *g, int material)
+{
+    if (!geo_emit(g, s, material)) return false;
+    s->ao_radius = 0.5f;
+    set_light(s, 0.5f, 1.0f, 0.7f);
+    ob_scene_finish(s);
+    return true;
+}
+
 /* Two slabs of one 1.2 m square footprint whose bottoms float 0.15 m (0.3 R) above the floor:
  * 0.02 m thick on the left (x < 0), 1 m thick (twice R) on the right, 1.2 m (2.4 R) apart. A
  * depth buffer sees only their tops and the faces turned to the camera; the ray tracer also
@@ -457,11 +468,7 @@ static bool build_slab(ob_scene *s)
     const float thick_lo[3] = {0.6f, 0.15f, -0.6f}, thick_hi[3] = {1.8f, 1.15f, 0.6f};
     geo_box(&g, thin_lo, thin_hi);
     geo_box(&g, thick_lo, thick_hi);
-    if (!geo_emit(&g, s, white)) return false;
-
-    s->ao_radius = 0.5f;
-    set_light(s, 0.5f, 1.0f, 0.7f);
-    ob_scene_finish(s);
+    if (!finish_floor_scene(s, &g, white)) return false;
     /* From the front (+z) and above, between the slabs: the floor in front of each and beside
      * its inner side lies in view. */
     ob_camera front = make_camera("front", 0.0f, 2.6f, 3.6f, 0.0f, 0.2f, 0.2f, 50.0f);
@@ -533,11 +540,7 @@ static bool build_grille(ob_scene *s)
     /* The closed plate's rim. */
     const float rim_lo[3] = {x0, lo, -0.5f * GRILLE_SIZE}, rim_hi[3] = {x0 + GRILLE_SIZE, hi, 0.5f * GRILLE_SIZE};
     geo_box_sides(&g, rim_lo, rim_hi);
-    if (!geo_emit(&g, s, white)) return false;
-
-    s->ao_radius = 0.5f;
-    set_light(s, 0.5f, 1.0f, 0.7f);
-    ob_scene_finish(s);
+    if (!finish_floor_scene(s, &g, white)) return false;
     /* From the front and above, both plates and the floor through their holes. */
     ob_camera front = make_camera("front", 0.0f, 2.6f, 3.2f, 0.0f, 0.1f, 0.0f, 50.0f);
     /* Steeply down on the sheet: the floor under every hole. */

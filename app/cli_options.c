@@ -29,7 +29,7 @@ static bool takes(const cli_common *c, unsigned what) { return (c->takes & what)
 void cli_common_init(cli_common *c, const char *command, unsigned takes_mask)
 {
     *c = (cli_common){.command = command, .takes = takes_mask, .default_method = OB_DEFAULT_METHOD, .width = 640,
-                      .height = 480};
+                      .height = 480, .jitter = -1};
 }
 
 /* ---- comma lists ------------------------------------------------------------------------------ */
@@ -260,6 +260,7 @@ static const struct {
     {"--vsm-bits", 0},             {"--guard", 0},       {"--temporal", 0},
     {"--temporal-at", 0},          {"--temporal-frames", 0}, {"--temporal-detail", 0}, {"--upsample", 0},
     {"--path", CLI_TAKES_PATH},    {"--orbit", CLI_TAKES_PATH}, {"--path-frames", CLI_TAKES_PATH},
+    {"--jitter", CLI_TAKES_PATH},
     {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
 };
 
@@ -357,6 +358,13 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         c->path_frames = (int)n;
     } else if (!strcmp(a, "--temporal")) {
         if (!cli_parse_on_off(v, &c->temporal)) return cli_fail(EXIT_USAGE, "--temporal: expected on or off, got '%s'", v);
+    } else if (!strcmp(a, "--jitter")) {
+        char *end = NULL;
+        long n = !strcmp(v, "on") ? OB_JITTER_POSITIONS_DEFAULT : !strcmp(v, "off") ? 0 : strtol(v, &end, 10);
+        if ((end && (end == v || *end != '\0')) || n < 0 || n > OB_JITTER_POSITIONS_MAX)
+            return cli_fail(EXIT_USAGE, "--jitter: expected on, off or 0..%d sub-pixel positions, got '%s'",
+                            OB_JITTER_POSITIONS_MAX, v);
+        c->jitter = (int)n;
     } else if (!strcmp(a, "--upsample")) {
         int n = 0;
         while (n < OB_UPSAMPLE_PROGRAM_COUNT && strcmp(v, ob_upsample_program_name((ob_upsample_program)n))) ++n;
@@ -515,7 +523,12 @@ void cli_common_usage(FILE *f, const cli_common *c)
     if (takes(c, CLI_TAKES_PATH))
         fputs("  --path NAME           move the camera along the scene's sidecar path NAME (docs/temporal.md)\n"
               "  --orbit DEG           or turn it DEG about the vertical through its target\n"
-              "  --path-frames N       frames along the path or orbit, 2..10000 (default 32)\n",
+              "  --path-frames N       frames along the path or orbit, 2..10000 (default 32)\n"
+              "  --jitter J|on|off     sub-pixel jitter of the G-buffer over J Halton points (on = 8), as\n"
+              "                        TAA does: with --temporal on the history averages each pixel's\n"
+              "                        footprint (docs/temporal.md, \"Jitter\"); compare's path rows\n"
+              "                        are graded against AO_R averaged over the same points (default:\n"
+              "                        on for compare's path rows, off otherwise)\n",
               f);
     fprintf(f, "  --size WxH            image size (default %dx%d)\n", c->width, c->height);
     fputs("  --allow-empty         write a frame that covers no pixel (else: \"nothing visible from this\n"
@@ -692,6 +705,7 @@ int cli_common_apply(const cli_common *c, cli_config *cfg)
     s->temporal = c->temporal;
     s->temporal_at = c->temporal_at;
     s->upsample = c->upsample;
+    s->jitter = c->jitter > 0 ? c->jitter : 0;
     s->temporal_frames = c->temporal_frames;
     s->temporal_detail = c->temporal_detail;
     /* Every method adapts today; a new one that does not is named here rather than silently
@@ -1106,6 +1120,8 @@ int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *pr
 
 bool cli_common_moves(const cli_common *c) { return c->path || c->has_orbit; }
 
+int cli_common_path_jitter(const cli_common *c) { return c->jitter >= 0 ? c->jitter : OB_JITTER_POSITIONS_DEFAULT; }
+
 const char *cli_common_temporal_at(const cli_common *c)
 {
     return c->temporal_at == OB_TEMPORAL_AFTER_FILTER ? "after" : "before";
@@ -1122,6 +1138,7 @@ void cli_common_temporal_json(const cli_common *c, cJSON *root)
     cJSON_AddStringToObject(t, "at", cli_common_temporal_at(c));
     cJSON_AddNumberToObject(t, "frames", cli_common_temporal_frames(c));
     cJSON_AddNumberToObject(t, "detail", c->temporal_detail);
+    if (cli_common_moves(c)) cJSON_AddNumberToObject(t, "jitter_positions", cli_common_path_jitter(c));
 }
 
 int cli_common_path_camera(const cli_common *c, const ob_scene *scene, const ob_camera *base, int f, ob_camera *out)

@@ -128,6 +128,9 @@ typedef struct cli_common {
     int temporal_at;
     int temporal_frames;
     float temporal_detail;
+    /* --jitter J|on|off (ob_settings.jitter): -1 when not given (render and bench: off; compare's
+     * path rows: OB_JITTER_POSITIONS_DEFAULT, cli_common_path_jitter) */
+    int jitter;
     /* --upsample auto|plain|block (ob_settings.upsample) */
     int upsample;
     /* --path NAME (a sidecar path) or --orbit DEG (about the camera's target), over --path-frames
@@ -205,6 +208,9 @@ int cli_common_load_scene(const cli_common *c, const char *name, ob_scene **out)
 int cli_common_camera(const cli_common *c, const ob_scene *scene, const char *preset, ob_camera *cam);
 /* --path or --orbit given. */
 bool cli_common_moves(const cli_common *c);
+/* The jitter positions of compare's path rows (flicker.h): --jitter, else OB_JITTER_POSITIONS_DEFAULT. */
+int cli_common_path_jitter(const cli_common *c);
+
 /* --temporal-at's name ("before" or "after") and --temporal-frames with the default filled in. */
 const char *cli_common_temporal_at(const cli_common *c);
 int cli_common_temporal_frames(const cli_common *c);

@@ -502,6 +502,9 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
         snprintf(mr->stem, sizeof mr->stem, "%s", cfg->stem);
         mr->config = cfg;
         s = cfg->settings;
+        /* A still view is graded at the pixel centres, as its reference is traced: --jitter is for
+         * the path rows (flicker.h). */
+        s.jitter = 0;
         /* Every method at the reference's radius, unless a --set gave this one its own. */
         bool radius_given = false;
         for (int p = 0; p < mi->param_count; ++p)
@@ -779,6 +782,8 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
             /* Frames that see nothing (--allow-empty): in no mean; their rmse_frames are null. */
             cJSON_AddNumberToObject(fl, "path_frames_empty", vr->flicker_ref.frames_empty);
             cJSON_AddNumberToObject(fl, "still_frames", FLICKER_STILL_FRAMES);
+            /* Both variants' G-buffer jitter and the reference's footprint (0: pixel centres). */
+            cJSON_AddNumberToObject(fl, "jitter_positions", vr->flicker_ref.jitter);
             cJSON_AddNumberToObject(fl, "reference_warped_error", vr->flicker_ref.warped);
             cJSON *rows = cJSON_AddArrayToObject(fl, "rows");
             for (int k = 0; k < vr->method_count; ++k) {
@@ -1063,6 +1068,12 @@ static void write_flicker_table(FILE *f, const compare_opts *o, const view_resul
     } else {
         fprintf(f, "an orbit of %g&deg;", (double)c->orbit_deg);
     }
+    char jitter_note[200] = "Both variants sample the pixel centres, as does the reference (--jitter off).";
+    if (vr->flicker_ref.jitter > 0)
+        snprintf(jitter_note, sizeof jitter_note,
+                 "Both variants jitter the G-buffer over %d sub-pixel points, and each frame's reference is "
+                 "AO<sub>R</sub> averaged over the same %d points (--jitter).",
+                 vr->flicker_ref.jitter, vr->flicker_ref.jitter);
     fprintf(f, " (%d frames)</h3>\n<p class=\"note\">off: the spatial filter alone with the same noise moving every "
                "frame; on: temporal accumulation (%s the filter, history %d frames, detail %g). Static noise: camera "
                "still for %d frames, mean per-pixel std-dev; "
@@ -1071,9 +1082,9 @@ static void write_flicker_table(FILE *f, const compare_opts *o, const view_resul
                "surface point, so on a static scene the reference's change is its Monte Carlo noise and "
                "resampling); RMSE against the reference on the last and the worst frame, and its mean over the "
                "path's frames (a screen-space estimate depends on the view, and the accumulation averages the "
-               "last views: the last frame alone can land where the single frame's error dips).</p>\n",
+               "last views: the last frame alone can land where the single frame's error dips). %s</p>\n",
             vr->flicker_ref.frames, cli_common_temporal_at(c), cli_common_temporal_frames(c), (double)c->temporal_detail,
-            FLICKER_STILL_FRAMES, vr->flicker_ref.warped);
+            FLICKER_STILL_FRAMES, vr->flicker_ref.warped, jitter_note);
     fputs("<table class=\"sortable\"><thead><tr><th>method</th><th>static noise off</th><th>on</th><th>ratio</th>"
           "<th>warped error off</th><th>on</th><th>ratio</th><th>minus reference off</th><th>on</th><th>RMSE last off</th><th>on</th>"
           "<th>RMSE worst off (frame)</th><th>on (frame)</th><th>RMSE mean off</th><th>on</th><th>temporal ms</th>"

@@ -112,6 +112,47 @@ static double pass_ms(ob_renderer *r, const char *name)
     return 0.0;
 }
 
+/* Frame t's reference into ref: AO_R at the pixel centres of its G-buffer (frame), or with
+ * jitter J > 0 the mean of AO_R over the J jittered G-buffers the methods see (ob_jitter_offset's
+ * points), each traced with spp / J rays (rounded up, 2 at least): the same rays per pixel, spread over the
+ * footprint the accumulation averages (docs/temporal.md, "Jitter"). Sky stays 1 in each, as in
+ * the methods' images. Each position is cached as a view of its own. */
+static int path_reference(const cli_flicker_desc *d, const ob_camera *cam, const cli_view_frame *frame, int jitter,
+                          float *ref, float *scratch)
+{
+    const cli_common *c = d->common;
+    const int w = c->width, h = c->height;
+    const size_t px = (size_t)w * (size_t)h;
+    char key[900] = "";
+    cli_reference_info info;
+    if (jitter <= 0) {
+        cli_reference_key(c, d->scene_key, cam->name, key, sizeof key);
+        return cli_reference_ao(d->scene, frame, key, d->radius, d->spp, d->no_cache, c->verbose, ref, &info);
+    }
+    const int spp = (d->spp + jitter - 1) / jitter > 2 ? (d->spp + jitter - 1) / jitter : 2; /* the tracer's least */
+    memset(ref, 0, px * sizeof(float));
+    for (int k = 0; k < jitter; ++k) {
+        float o[2];
+        ob_jitter_offset(k, jitter, o);
+        /* The lens shift moves the frustum as ob_settings.jitter moves the projection: P20 +=
+         * 2 jx / width (ob_camera.shift is in half-widths). */
+        ob_camera jc = *cam;
+        jc.shift[0] += 2.0f * o[0] / (float)w;
+        jc.shift[1] += 2.0f * o[1] / (float)h;
+        snprintf(jc.name, sizeof jc.name, "%.48s j%d/%d", cam->name, k & 63, jitter & 127);
+        cli_view_frame jf;
+        int code = cli_view_frame_make(d->renderer, &jc, w, h, &jf);
+        if (code != EXIT_OK) return code;
+        jf.seed = (uint64_t)k + 1u; /* independent rays per position: one seed would repeat them */
+        cli_reference_key(c, d->scene_key, jc.name, key, sizeof key);
+        code = cli_reference_ao(d->scene, &jf, key, d->radius, spp, d->no_cache, c->verbose, scratch, &info);
+        cli_view_frame_free(&jf);
+        if (code != EXIT_OK) return code;
+        for (size_t i = 0; i < px; ++i) ref[i] += scratch[i] / (float)jitter;
+    }
+    return EXIT_OK;
+}
+
 /* One variant of one combination: the path, then the still camera. */
 static int run_variant(const cli_flicker_desc *d, const path_frame *frames, int count, const ob_settings *s,
                        cli_flicker_variant *out, float *cur, float *prev, double *mean, double *m2, double *ms)
@@ -200,6 +241,7 @@ int cli_flicker_run(const cli_flicker_desc *d, const cli_config *configs, int co
     const cli_common *c = d->common;
     const int w = c->width, h = c->height, n = c->path_frames;
     const size_t px = (size_t)w * (size_t)h;
+    const int jitter = cli_common_path_jitter(c);
     memset(rows, 0, (size_t)count * sizeof *rows);
     memset(ref, 0, sizeof *ref);
     path_frame *frames = calloc((size_t)n, sizeof *frames);
@@ -237,11 +279,7 @@ int cli_flicker_run(const cli_flicker_desc *d, const cli_config *configs, int co
             code = cli_fail(EXIT_RUNTIME, "out of memory");
             break;
         }
-        char key[900] = "";
-        cli_reference_key(c, d->scene_key, cam.name, key, sizeof key);
-        cli_reference_info info;
-        code = cli_reference_ao(d->scene, &frames[t].f, key, d->radius, d->spp, d->no_cache, c->verbose, frames[t].ref,
-                                &info);
+        code = path_reference(d, &cam, &frames[t].f, jitter, frames[t].ref, cur);
         if (code == EXIT_OK && t > 0) warped_add(&ref_warped, warped_change(&frames[t], &frames[t - 1], frames[t].ref, frames[t - 1].ref));
     }
     if (code == EXIT_OK && ref->frames_empty == n)
@@ -249,12 +287,14 @@ int cli_flicker_run(const cli_flicker_desc *d, const cli_config *configs, int co
                         c->path ? "--path" : "--orbit", n);
     if (code == EXIT_OK) {
         ref->frames = n;
+        ref->jitter = jitter;
         ref->warped = warped_result(&ref_warped);
     }
     for (int k = 0; k < count && code == EXIT_OK; ++k) {
         rows[k].config = &configs[k];
         ob_settings s = configs[k].settings;
         s.temporal = true;
+        s.jitter = jitter; /* both variants: the same jittered inputs, only the accumulation differs */
         if (s.temporal_frames <= 0) s.temporal_frames = OB_TEMPORAL_FRAMES_DEFAULT;
         code = run_variant(d, frames, n, &s, &rows[k].on, cur, prev, mean, m2, ms);
         /* Off: the same moving noise, a history of one frame (alpha = 1: nothing kept). */

@@ -10,6 +10,11 @@
  *     frame's, with their mean: a screen-space estimate depends on the view, so the accumulated
  *     image is an average over the last views, and the last frame alone can land where the
  *     single frame's error dips (docs/temporal.md, "An unseen view").
+ * With --jitter J (default OB_JITTER_POSITIONS_DEFAULT) both variants render the G-buffer jittered
+ * over J sub-pixel points, and every path frame's reference is AO_R averaged over the same J
+ * points (the pixel footprint the accumulation converges to); --jitter off grades the pixel
+ * centres. The still camera's static noise then includes the jitter's own change (aliasing),
+ * which accumulation is there to remove.
  * "Off" is the spatial filter alone with the same moving noise (a history of one frame: every
  * method's noise turns with the frame index as under --temporal on, nothing is kept), so both
  * variants have the same noise and only the accumulation differs. */
@@ -55,6 +60,8 @@ typedef struct cli_flicker_reference {
                                  * (over the pairs of frames that share pixels; NaN: none do) */
     int frames;
     int frames_empty;           /* frames that see nothing (only with --allow-empty) */
+    int jitter;                 /* the jitter positions both variants ran with and the reference is
+                                 * averaged over (0: the pixel centres) */
 } cli_flicker_reference;
 
 /* Every row of configs (count of them) off and on into rows (count). 0 or an exit code. */

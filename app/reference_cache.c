@@ -74,7 +74,7 @@ void cli_view_frame_free(cli_view_frame *f)
  *   sources model:SIZE:FNV,sidecar:SIZE:FNV     the scene's files, or "none (built in)"
  *   camera eye ... target ... up ... fov ... near ... far ... shift ...
  *   radius 0.25
- *   rays 512
+ *   rays 512 seed 0                             the rays' seed (ob_reference_desc.seed)
  *   size 320x240
  *   geometry triangles ... vertices ... meshes ... materials ... bounds ...
  *   payload float32le ao,stderr BYTES fnv1a64 HASH
@@ -324,14 +324,14 @@ static int identity(const ob_scene *scene, const cli_view_frame *f, const char *
                     "camera eye %.9g %.9g %.9g target %.9g %.9g %.9g up %.9g %.9g %.9g fov %.9g near %.9g far %.9g "
                     "shift %.9g %.9g\n"
                     "radius %.9g\n"
-                    "rays %d\n"
+                    "rays %d seed %llu\n"
                     "size %dx%d\n"
                     "geometry triangles %u vertices %u meshes %u materials %u bounds %.9g %.9g %.9g %.9g %.9g %.9g\n",
                     OB_VERSION_STRING, view, sources[0] ? sources : "none (built in)", (double)c->eye[0],
                     (double)c->eye[1], (double)c->eye[2], (double)c->target[0], (double)c->target[1],
                     (double)c->target[2], (double)c->up[0], (double)c->up[1], (double)c->up[2], (double)c->fov_y_deg,
                     (double)c->near_z, (double)c->far_z, (double)c->shift[0], (double)c->shift[1], (double)radius, spp,
-                    f->width, f->height, (unsigned)st.triangles, (unsigned)st.vertices, (unsigned)st.meshes,
+                    (unsigned long long)f->seed, f->width, f->height, (unsigned)st.triangles, (unsigned)st.vertices, (unsigned)st.meshes,
                     (unsigned)st.materials, (double)st.bounds_min[0], (double)st.bounds_min[1],
                     (double)st.bounds_min[2], (double)st.bounds_max[0], (double)st.bounds_max[1],
                     (double)st.bounds_max[2]);
@@ -715,7 +715,7 @@ int cli_reference_ao(const ob_scene *scene, const cli_view_frame *f, const char 
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     if (ob_reference_points(f->depth, f->normals, w, h, f->proj_info, f->inv_view, pos, nrm) != OB_OK ||
-        ob_reference_ao(scene, pos, nrm, px, &(ob_reference_desc){.spp = spp, .radius = radius, .progress = true}, ref,
+        ob_reference_ao(scene, pos, nrm, px, &(ob_reference_desc){.spp = spp, .radius = radius, .progress = true, .seed = f->seed}, ref,
                         se) != OB_OK) {
         code = cli_fail_from_library();
     }

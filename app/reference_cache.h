@@ -10,6 +10,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "cli_options.h"
 
@@ -21,6 +22,10 @@ typedef struct cli_view_frame {
     ob_camera cam;         /* the camera with the renderer's defaults filled in (fov, up) */
     float proj_info[4];    /* 1/P00, 1/P11, P20, P21 */
     float inv_view[16];
+    /* The reference's ray seed (ob_reference_desc.seed; 0 from cli_view_frame_make): the views
+     * whose references are averaged (a path frame's jitter positions) each take their own, so that
+     * their rays are independent. */
+    uint64_t seed;
 } cli_view_frame;
 
 /* Render a `none` frame of cam with r (its scene set) and read the G-buffer. 0 or an exit code

@@ -173,7 +173,7 @@ static void panel_method(viewer *v)
     }
     gui_checkbox("adaptive samples", &v->s.adaptive);
     gui_tooltip("an edge pre-pass gives edge pixels 2x or 3x the base count (ssao, crytek)");
-    gui_checkbox("temporal", &v->s.temporal);
+    if (gui_checkbox("temporal", &v->s.temporal) && !v->s.temporal) v->s.jitter = 0; /* no shaking image without it */
     gui_tooltip("accumulate the AO over frames: reprojected history, disocclusion by depth and normal, 4x4 clamp "
                 "(docs/temporal.md); turns every method's noise with the frame index. The history_age view shows it");
     if (cli_common_moves(&v->o.common)) {
@@ -188,6 +188,10 @@ static void panel_method(viewer *v)
         gui_slider_float("keep detail", &v->s.temporal_detail, 0.0f, 0.95f, "%.2f", false);
         gui_tooltip("the least share of one-pixel detail the history keeps while the camera moves:\n"
                     "sharper, with more flicker (--temporal-detail; 0 = off)");
+        gui_slider_int("jitter points", &v->s.jitter, 0, 16, false);
+        gui_tooltip("sub-pixel jitter of the G-buffer over this many Halton points (0 = off; --jitter): the\n"
+                    "history averages each pixel's footprint, and accumulates after the filter. The lit\n"
+                    "image moves by the jitter too (docs/temporal.md, \"Jitter\")");
     }
     panel_guard(v);
 }

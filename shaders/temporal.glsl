@@ -271,6 +271,44 @@ void main()
     vec2 taps_at = (vec2(base) + 1.0) * frame.ao_inv_size;
     vec4 tap_depth = textureGather(prev_depth, taps_at, 0).wzxy;
     uvec4 tap_normal = textureGather(prev_normal, taps_at, 0).wzxy;
+#ifdef OB_TEMPORAL_JITTER
+    /* Under a sub-pixel jitter the previous frame sampled each pixel at another point of its
+     * footprint, and at an edge that is another surface: a hole's rim is the sheet one frame and
+     * the floor behind it the next. Rejecting such a tap restarts the rim's history every frame
+     * and keeps it aliased, yet that history is the footprint's mean, which is what the jitter
+     * accumulates (Karis 2014 keeps it and leans on the clamp alone). So the tap nearest to where
+     * the point lands, when it lies within a quarter pixel of it (its footprint is then most of
+     * this pixel's: a still camera, or a move of whole pixels), also counts when the previous
+     * frame saw this point's surface in its 3x3 texels (one of them near it in 3D or on its
+     * tangent plane). Farther taps keep the strict test: under a move their footprints are other
+     * ones, and accepting another surface there dragged a silhouette's AO along an orbit
+     * (sphere-on-plane:contact, docs/temporal.md, "Jitter"). Four gathers of the previous depth
+     * (a 4x4 window from base - 1; gather i's x, y, z, w are its texels (0,1), (1,1), (1,0),
+     * (0,0)), one bit per texel that shows the surface. */
+    uint shows = 0u;
+    for (int i = 0; i < 4; ++i) {
+        ivec2 a = base - 1 + 2 * ivec2(i & 1, i >> 1);
+        vec4 g = textureGather(prev_depth, vec2(a + 1) * frame.ao_inv_size, 0);
+        const ivec2 texel[4] = ivec2[4](ivec2(0, 1), ivec2(1, 1), ivec2(1, 0), ivec2(0, 0));
+        for (int k = 0; k < 4; ++k) {
+            ivec2 q = a + texel[k];
+            vec3 qp = ob_view_position(vec2(q) + 0.5, g[k], frame.ao_inv_size, tp.prev_ao_proj_info);
+            bool on = dot(qp - pp, qp - pp) <= footprint * footprint || abs(dot(qp - pp, np)) <= tolerance;
+            bool hit = g[k] > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)) && on;
+            ivec2 wq = q - (base - 1); /* window texel, 0..3 */
+            shows |= hit ? 1u << uint(wq.y * 4 + wq.x) : 0u;
+        }
+    }
+    /* The nearest tap (window texel 1 + its offset) and its 3x3 (rows of three bits). */
+    ivec2 nearest = ivec2(greaterThan(w, vec2(0.5)));
+    vec2 off = abs(w - vec2(nearest));
+    uint rows3 = (shows >> uint(nearest.y * 4 + nearest.x)) & 0x7u;
+    rows3 |= (shows >> uint((nearest.y + 1) * 4 + nearest.x)) & 0x7u;
+    rows3 |= (shows >> uint((nearest.y + 2) * 4 + nearest.x)) & 0x7u;
+    int seen_tap = off.x <= 0.25 && off.y <= 0.25 && rows3 != 0u ? nearest.y * 2 + nearest.x : -1;
+#else
+    const int seen_tap = -1;
+#endif
     float tap_weight[4];
     for (int i = 0; i < 4; ++i) {
         ivec2 o = ivec2(i & 1, i >> 1);
@@ -284,7 +322,7 @@ void main()
         bool near = dot(qp - pp, qp - pp) <= footprint * footprint;
         vec3 m = unpack_normal(tap_normal[i]);
         bool same = abs(dot(qp - pp, np)) <= tolerance && dot(m, np) >= tp.normal_cos * length(m);
-        bool counts = any_history && inside && tap_depth[i] > 0.0 && (near || same);
+        bool counts = any_history && inside && tap_depth[i] > 0.0 && (near || same || i == seen_tap);
         tap_weight[i] = counts ? (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y) : 0.0;
     }
     float weight = tap_weight[0] + tap_weight[1] + tap_weight[2] + tap_weight[3];

@@ -60,6 +60,8 @@ expect 2 "path gives the camera" -- "${R[@]}" --path walk --camera front
 expect 2 "frames and --path/--orbit exclude" -- "${R[@]}" --orbit 30 --frames 4
 expect 2 "unknown camera path 'walk'.*no \"paths\"" -- "${R[@]}" --path walk
 expect 2 "temporal-at: expected before or after" -- "${R[@]}" --temporal-at middle
+expect 2 "jitter: expected on, off or 0..64 sub-pixel positions, got '65'" -- "${R[@]}" --jitter 65
+expect 2 "jitter: expected on, off or 0..64 sub-pixel positions, got 'some'" -- "${R[@]}" --jitter some
 expect 2 "temporal-frames: expected a history length" -- "${R[@]}" --temporal-frames 0
 expect 2 "temporal-frames: expected a history length" -- "${R[@]}" --temporal-frames 300
 expect 2 "temporal-detail: expected a share of one-pixel detail" -- "${R[@]}" --temporal-detail 1

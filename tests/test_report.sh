@@ -290,11 +290,11 @@ if "$OBSCURA" compare --scene corner:diagonal --size 48x36 --spp 16 --methods gt
 import json, os, sys
 report = sys.argv[1]
 results = json.load(open(os.path.join(report, "results.json")))
-assert results["temporal_settings"] == {"at": "before", "frames": 16, "detail": 0.25}, results["temporal_settings"]
+assert results["temporal_settings"] == {"at": "before", "frames": 16, "detail": 0.25, "jitter_positions": 8}, results["temporal_settings"]
 v = results["views"][0]
 fl = v["flicker"]
 assert fl["path"] == "orbit" and fl["orbit_degrees"] == 10 and fl["path_frames"] == 3 and fl["still_frames"] == 64, fl
-assert fl["reference_warped_error"] >= 0, fl
+assert fl["reference_warped_error"] >= 0 and fl["jitter_positions"] == 8, fl
 [row] = fl["rows"]
 off, on = row["temporal_off"], row["temporal_on"]
 assert off["static_noise"] > 2 * on["static_noise"] > 0, row
@@ -308,9 +308,26 @@ assert on["temporal_ms"] > 0 and off["temporal_ms"] == 0, row
 html = open(os.path.join(report, "index.html")).read()
 assert "Flicker along an orbit of 10" in html and "_temporal_worst.png" in html and "RMSE mean off" in html
 assert "before the filter, history 16 frames, detail 0.25" in html
+assert "jitter the G-buffer over 8 sub-pixel points" in html
 assert any(n.endswith("_temporal_worst.png") for n in os.listdir(os.path.join(report, v["dir"]))), v["dir"]
 PY
 then ok; else bad "compare --orbit: $(tail -2 "$dir/flicker.err")"; fi
+# The path rows' reference with the jitter is AO_R averaged over its 8 points, each traced with
+# its own rays: its frame-to-frame change (its Monte Carlo noise, on a static scene) is that of
+# the pixel centres' reference with as many rays, where one seed for all 8 made it 2.7x that.
+for j in on off; do
+    "$OBSCURA" compare --scene cornell --size 64x48 --spp 64 --methods vbao --orbit 10 --path-frames 3 --shadow none \
+        --jitter $j --report "$dir/flicker_$j" >"$dir/flicker.out" 2>"$dir/flicker.err" || break
+done
+if [ -f "$dir/flicker_off/results.json" ] && python3 - "$dir/flicker_on" "$dir/flicker_off" <<'PY'
+import json, os, sys
+jittered, centre = (json.load(open(os.path.join(d, "results.json")))["views"][0]["flicker"] for d in sys.argv[1:])
+assert jittered["jitter_positions"] == 8 and centre["jitter_positions"] == 0, (jittered, centre)
+a, b = jittered["reference_warped_error"], centre["reference_warped_error"]
+print(f"reference's frame-to-frame change: 8 jitter points {a:.4f}, pixel centres {b:.4f}")
+assert 0 < a < 1.5 * b, (a, b)
+PY
+then ok; else bad "compare --orbit --jitter off: $(tail -2 "$dir/flicker.err")"; fi
 "$OBSCURA" compare --scene corner:diagonal --size 48x36 --path nowhere --report "$dir/flicker_bad" 2>"$dir/flicker_bad.err"
 [ $? -ne 0 ] && [ "$(wc -l <"$dir/flicker_bad.err")" = 1 ] && grep -q "unknown camera path 'nowhere'" "$dir/flicker_bad.err" &&
     [ ! -e "$dir/flicker_bad" ] && ok || bad "compare --path nowhere: $(cat "$dir/flicker_bad.err")"

@@ -70,9 +70,9 @@ extern "C" {
  * an incompatible change unless the version, and with it the soname, moved. docs/changelog.md says
  * what changed for hosts in each version. CMake's project version is read from these lines. */
 #define OB_VERSION_MAJOR 0
-#define OB_VERSION_MINOR 3
+#define OB_VERSION_MINOR 4
 #define OB_VERSION_PATCH 0
-#define OB_VERSION_STRING "0.3.0"
+#define OB_VERSION_STRING "0.4.0"
 
 /* The library's version: its numbers (each pointer may be NULL) and "MAJOR.MINOR.PATCH". A host
  * built against this header works with a library of the same MAJOR (and, before 1.0, the same
@@ -361,7 +361,26 @@ typedef struct ob_settings {
     /* How the upsampler reads the AO grid at ao_divisor 2 or 4 (ob_upsample_program; the same
      * bits either way): "upsample=auto|plain|block" in ob_settings_set. */
     int upsample;
+    /* Sub-pixel jitter of ob_render_frame's G-buffer, as a TAA host jitters its raster: 0 = off
+     * (every pass samples the pixel centres), else the number of positions J
+     * (1..OB_JITTER_POSITIONS_MAX) it cycles through with the frame index, the Halton (2, 3)
+     * points ob_jitter_offset gives. Every pass reads the jittered G-buffer, and the temporal
+     * accumulation reprojects without the jitter (the history stays at the pixel centres), so a
+     * still camera's history averages the AO over J points of each pixel's footprint instead of
+     * its centre alone (docs/temporal.md, "Jitter"). The lit image moves by the jitter too: meant
+     * with temporal on. "jitter=J|on|off" in ob_settings_set (on = OB_JITTER_POSITIONS_DEFAULT).
+     * Not for ob_host_ao: the host jitters its own raster (ob_host_frame.jitter). */
+    int jitter;
 } ob_settings;
+
+#define OB_JITTER_POSITIONS_DEFAULT 8
+#define OB_JITTER_POSITIONS_MAX 64
+/* The sub-pixel offset of jitter position `index` (taken modulo `positions`), in pixels, each
+ * coordinate in (-0.5, 0.5): the Halton points of bases 2 and 3 from index 1, minus one half. The
+ * pixel's sample moves by +offset (its projection's P20 grows by 2 offset[0] / width, P21 by
+ * 2 offset[1] / height). ob_render_frame with ob_settings.jitter = J uses position
+ * (frame number mod J). positions < 1 or offset NULL: OB_ERR_INVALID_ARGUMENT. */
+ob_error ob_jitter_offset(int index, int positions, float offset[2]);
 
 /* The upsampler's program (ob_settings.upsample; docs/filters.md, "Subsampling"). */
 typedef enum ob_upsample_program {
@@ -390,7 +409,8 @@ typedef enum ob_temporal_at {
 #define OB_RADIUS_SCALE_MAX 4.0f
 
 /* The default method: the one closest to the ray-traced AO_R over the graded views (vbao: mean
- * RMSE 0.0437 against gtao's 0.0469 over 16 views of 7 scenes, docs/methods.md). */
+ * RMSE 0.0355 against gtao's 0.0469 over the 16 choose views its defaults were chosen on, 0.0398
+ * against 0.0517 over 17 check views never chosen on; docs/methods.md, "Choose and check views"). */
 #define OB_DEFAULT_METHOD "vbao"
 
 /* Defaults for a method (by name; NULL = OB_DEFAULT_METHOD): every field of *settings is
@@ -401,12 +421,13 @@ ob_error ob_settings_init(ob_settings *settings, const char *method);
  * current method) from text, validated against the table; "method.radius_scale=value" for every
  * method (ob_settings.radius_scale); "guard=PX" the guard band (ob_settings.guard, 0..OB_GUARD_MAX
  * pixels per side); "temporal=on|off", "temporal_at=before|after", "temporal_frames=N" and "temporal_detail=A"
- * the temporal accumulation (ob_settings.temporal*). Errors: OB_ERR_UNKNOWN_METHOD (an
+ * the temporal accumulation (ob_settings.temporal*); "jitter=J|on|off" the sub-pixel jitter
+ * (ob_settings.jitter, 0..OB_JITTER_POSITIONS_MAX positions). Errors: OB_ERR_UNKNOWN_METHOD (an
  * unknown prefix), OB_ERR_UNKNOWN_PARAM, OB_ERR_OUT_OF_RANGE, OB_ERR_INVALID_ARGUMENT
  * (NULL, settings not initialised, malformed, NaN, not an integer, a parameter of a method or
  * filter not in use); *settings is unchanged on error. */
 ob_error ob_settings_set(ob_settings *settings, const char *assignment);
-/* The value of a parameter of the current method by name ("radius_scale", "guard", "temporal" (0/1),
+/* The value of a parameter of the current method by name ("radius_scale", "guard", "jitter", "temporal" (0/1),
  * "temporal_at" (ob_temporal_at), "temporal_frames" and "temporal_detail" too), or NaN if unknown,
  * for NULL arguments or settings not initialised (no error recorded). */
 float ob_settings_get(const ob_settings *settings, const char *param);
@@ -521,7 +542,8 @@ typedef enum ob_image_kind {
                                  disocclusion, temporal_frames at most, 0 = sky), at the AO resolution as
                                  OB_IMAGE_AO_RAW_F32; zeros with temporal off. 1 float, bottom row first */
     OB_IMAGE_MOTION_F32,      /* temporal accumulation: where each AO pixel's point was in the previous
-                                 frame, minus where it is, in AO pixels (x, y; y up), at the AO resolution;
+                                 frame, minus where it is, in AO pixels (x, y; y up), at the AO resolution,
+                                 without the jitter's change (a still camera: 0 whatever the jitter);
                                  zeros with temporal off. 2 floats per pixel, bottom row first */
 } ob_image_kind;
 
@@ -672,8 +694,10 @@ typedef struct ob_host_frame {
      * `projection` plus 2 jitter[0] / width in P20 (element 8) and 2 jitter[1] / height in P21
      * (element 9), which moves the image by -jitter pixels; an orthographic one with `projection`
      * minus 2 jitter[0] / width in P30 (element 12) and 2 jitter[1] / height in P31 (element 13),
-     * the same move. The library does the same, so the AO lines up with the jittered depth and the
-     * temporal accumulation reprojects through the jittered cameras. */
+     * the same move. The library does the same, so the AO lines up with the jittered depth; the
+     * temporal accumulation reprojects through the last frame's camera with this frame's jitter,
+     * so the history stays at the pixel centres (a still camera reads it where it was written)
+     * and averages the jittered samples over each pixel's footprint, as TAA does. */
     float jitter[2];
     /* The depth buffer was written under glClipControl(..., GL_ZERO_TO_ONE): window depth = NDC z.
      * false: GL's default, window depth = NDC z * 0.5 + 0.5. */

@@ -30,6 +30,9 @@ ob_error ob_check_settings(const ob_settings *s)
         return ob_set_error(OB_ERR_OUT_OF_RANGE, "guard band %d px is outside 0..%d", s->guard, OB_GUARD_MAX);
     if (s->temporal_at != OB_TEMPORAL_BEFORE_FILTER && s->temporal_at != OB_TEMPORAL_AFTER_FILTER)
         return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_at %d is not before (0) or after (1) the filter", s->temporal_at);
+    if (s->jitter < 0 || s->jitter > OB_JITTER_POSITIONS_MAX)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "jitter %d is outside 0..%d (positions)", s->jitter,
+                            OB_JITTER_POSITIONS_MAX);
     if (s->temporal_frames < 0 || s->temporal_frames > OB_TEMPORAL_FRAMES_MAX)
         return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_frames %d is outside 1..%d", s->temporal_frames,
                             OB_TEMPORAL_FRAMES_MAX);
@@ -92,6 +95,26 @@ static ob_error run_filter(const ob_renderer *r, const ob_filter_impl *filter, v
     return filter->run(fstate, &fin, s->filter_params);
 }
 
+/* The frame's G-buffer is jittered (ob_settings.jitter, ob_host_frame.jitter): its projection is
+ * not the unjittered one. */
+static bool frame_jittered(const ob_renderer *r)
+{
+    return memcmp(r->frame_constants.ao_proj, r->ao_proj_unjittered, sizeof r->ao_proj_unjittered) != 0;
+}
+
+/* Where the accumulation runs: temporal_at, but after the filter while the G-buffer is jittered
+ * (this frame or the last accumulated one). The edge-aware filter weighs each pixel by this frame's
+ * sample in it, which under a jitter is another surface from frame to frame at every edge; a
+ * history that already holds the footprint's mean of both surfaces, filtered with one frame's
+ * weights, is pulled toward that frame's surface. On `grille` (test_temporal) a still jittered
+ * camera accumulated before the filter ends 0.035 RMS from the footprint's mean AO, after it
+ * 0.012 (docs/temporal.md, "Jitter"). */
+static int temporal_at(const ob_renderer *r, const ob_settings *s)
+{
+    const bool jittered = frame_jittered(r) || (r->history_valid && r->prev_jittered);
+    return jittered ? OB_TEMPORAL_AFTER_FILTER : s->temporal_at;
+}
+
 /* Temporal accumulation of the main chain (visibility or M) and the bounce: `*_in` this frame's
  * values, `*_out` where the accumulation goes (passes/temporal.c). The history is reused only when
  * the last frame accumulated under the same key; the pass also writes this frame's depth and
@@ -100,13 +123,22 @@ static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const ob_meth
                              const ob_chain_io *io, const GLuint guide[2], GLuint main_in, GLuint main_out,
                              GLuint bounce_in, GLuint bounce_out)
 {
-    const ob_history_key key = {.method = plan->index, .scale = r->last.scale, .at = s->temporal_at,
+    const ob_history_key key = {.method = plan->index, .scale = r->last.scale, .at = temporal_at(r, s),
                                 .width = r->inner_width, .height = r->inner_height,
                                 .orthographic = r->frame_constants.orthographic, .rgb = plan->rgb,
                                 .bounce = plan->bounce};
     const bool valid = r->history_valid && !memcmp(&key, &r->history_key, sizeof key);
+    /* The last frame's camera with this frame's jitter: a point seen now at pixel p is looked up
+     * where it lay in the last frame's unjittered raster, moved by this frame's jitter, which for
+     * a still camera is p itself. So the history is never resampled between pixels by the jitter
+     * alone, and a still camera's history averages each pixel's jittered samples: the AO over the
+     * pixel's footprint (the reprojection of TAA, Karis 2014). Only the jitter's elements differ. */
+    float prev_ao_proj[16];
+    for (int i = 0; i < 16; ++i)
+        prev_ao_proj[i] = r->prev_ao_proj[i] + (r->frame_constants.ao_proj[i] - r->ao_proj_unjittered[i]);
+    const bool jittered = frame_jittered(r);
     ob_temporal_constants c;
-    ob_temporal_fill(&c, r->prev_view, r->frame_constants.inv_view, r->prev_ao_proj, valid, r->last.temporal_frames,
+    ob_temporal_fill(&c, r->prev_view, r->frame_constants.inv_view, prev_ao_proj, valid, r->last.temporal_frames,
                      s->temporal_detail);
     ob_temporal_set_motion(&c, io->motion, io->motion_scale);
     const int h = t->history_index;
@@ -115,7 +147,8 @@ static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const ob_meth
                                .next_history = plan->rgb ? t->history_rgb[1 - h] : t->history[1 - h],
                                .age = plan->rgb ? 0 : t->history_age[h],
                                .next_age = plan->rgb ? 0 : t->history_age[1 - h],
-                               .host_motion = io->motion};
+                               .host_motion = io->motion,
+                               .jittered = jittered || (valid && r->prev_jittered)};
     if (plan->bounce) {
         chain.bounce_current = bounce_in;
         chain.bounce_result = bounce_out;
@@ -129,7 +162,8 @@ static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const ob_meth
     r->history_key = key;
     r->history_valid = true;
     memcpy(r->prev_view, r->frame_constants.view, sizeof r->prev_view);
-    memcpy(r->prev_ao_proj, r->frame_constants.ao_proj, sizeof r->prev_ao_proj);
+    memcpy(r->prev_ao_proj, r->ao_proj_unjittered, sizeof r->prev_ao_proj);
+    r->prev_jittered = jittered;
     return OB_OK;
 }
 
@@ -251,12 +285,13 @@ static ob_error run_filter_stage(chain_run *c)
     const GLuint filtered_main = c->main_out, filtered_bounce = c->bounce_out;
     ob_error err = OB_OK;
     r->last.temporal = s->temporal;
+    const int at = temporal_at(r, s); /* before the accumulation changes what it reads */
     if (s->temporal) {
         err = ob_renderer_temporal_targets(r, t);
         if (err != OB_OK) return err;
         r->last.temporal_frames = s->temporal_frames > 0 ? s->temporal_frames : OB_TEMPORAL_FRAMES_DEFAULT;
         const GLuint main_accum = plan->rgb ? t->accum_rgb : t->accum;
-        if (s->temporal_at == OB_TEMPORAL_BEFORE_FILTER) {
+        if (at == OB_TEMPORAL_BEFORE_FILTER) {
             ob_timer_begin(&r->timers, "temporal");
             /* Visibility: the filter reads the new history's value itself, no copy. */
             err = run_temporal(r, s, plan, t, c->io, c->guide, c->main_in, plan->rgb ? main_accum : 0, c->bounce_in,
@@ -299,7 +334,7 @@ static ob_error run_filter_stage(chain_run *c)
     }
     if (err != OB_OK) return err;
     glMemoryBarrier(BARRIER);
-    if (s->temporal && s->temporal_at == OB_TEMPORAL_AFTER_FILTER) {
+    if (s->temporal && at == OB_TEMPORAL_AFTER_FILTER) {
         ob_timer_begin(&r->timers, "temporal");
         err = run_temporal(r, s, plan, t, c->io, c->guide, c->main_out, filtered_main, c->bounce_out, filtered_bounce);
         if (err != OB_OK) return err;

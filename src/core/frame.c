@@ -80,6 +80,30 @@ static void grid_projection(const ob_ao_grid *g, const float *proj, float *out)
     out[9] = ay * proj[9] - by;
 }
 
+void ob_ao_grid_projection(const ob_ao_grid *g, const float *proj, float out[16]) { grid_projection(g, proj, out); }
+
+/* The radical inverse of i in base b: i's digits mirrored behind the point (Halton 1964). */
+static float radical_inverse(unsigned i, unsigned b)
+{
+    float inv = 1.0f / (float)b, f = inv, x = 0.0f;
+    for (; i > 0; i /= b, f *= inv) x += f * (float)(i % b);
+    return x;
+}
+
+ob_error ob_jitter_offset(int index, int positions, float offset[2])
+{
+    if (positions < 1 || !offset)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_jitter_offset: %s",
+                            !offset ? "NULL offset" : "positions below 1");
+    /* From index 1: Halton's point 0 is (0, 0), a pixel corner, and the first J points from 1 on
+     * cover the pixel evenly in both axes (bases 2 and 3 are coprime). */
+    int i = index % positions;
+    if (i < 0) i += positions;
+    offset[0] = radical_inverse((unsigned)i + 1u, 2u) - 0.5f;
+    offset[1] = radical_inverse((unsigned)i + 1u, 3u) - 0.5f;
+    return OB_OK;
+}
+
 static void put3(float *dst, const float *src)
 {
     dst[0] = src[0];
@@ -320,9 +344,20 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     err = ob_plan_method(r, s, r->scene_radius, &plan);
     if (err != OB_OK) return err;
 
-    mat4 view, proj;
+    mat4 view, proj, unjittered;
     ob_camera_view_proj(&cam, r->width, r->height, (float *)view, (float *)proj);
     ob_guard_projection((float *)proj, r->width, r->height, r->guard);
+    glm_mat4_copy(proj, unjittered);
+    if (s->jitter > 0) {
+        /* The frame's sample point in each pixel: P20 += 2 jx / width moves the image by -jx
+         * pixels, so pixel (x, y) samples the scene at (x + 1/2 + jx, y + 1/2 + jy) of the
+         * unjittered raster (ob_host_frame.jitter's convention); the enlarged buffer's width with
+         * a guard band, whose pixels are the visible ones. */
+        float j[2];
+        ob_jitter_offset((int)(r->frame % (uint32_t)s->jitter), s->jitter, j);
+        proj[2][0] += 2.0f * j[0] / (float)r->gbuffer.width;
+        proj[2][1] += 2.0f * j[1] / (float)r->gbuffer.height;
+    }
     if (plan.reads & OB_READS_EXTRA_VIEW) {
         /* The extra camera: an unshifted frustum of the same fov over the same (enlarged) buffer. */
         ob_camera extra;
@@ -349,6 +384,7 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
                                              .near_z = cam.near_z, .far_z = cam.far_z, .frame_index = r->frame++,
                                              .lights = lights, .light_count = light_count, .settings = s,
                                              .sh = (const float(*)[3])r->environment.sh});
+    grid_projection(&t->grid, (const float *)unjittered, r->ao_proj_unjittered);
 
     /* From here the targets are being overwritten: no whole frame to present until the end. */
     r->has_frame = false;

@@ -235,6 +235,7 @@ typedef struct host_plan {
     bool second_pass;           /* the second layer goes through it too */
     bool ao_direct;             /* the chain writes the host's ao texture itself */
     float view[16], proj[16];   /* world -> view; the jittered projection at the input size */
+    float unjittered_proj[16];  /* the same without the jitter (the accumulation's reprojection) */
 } host_plan;
 
 /* The settings and every argument, checked; fills the plan. `legacy`: ob_compute_ao's rules (the
@@ -296,6 +297,7 @@ static ob_error check_call(ob_renderer *r, const ob_host_frame *f, const ob_sett
                             (double)p[11], (double)p[15], (double)p[0], (double)p[5], (double)p[14]);
     }
     memcpy(hp->proj, p, sizeof hp->proj);
+    memcpy(hp->unjittered_proj, p, sizeof hp->unjittered_proj);
     if (hp->orthographic) {
         /* The same move of the image by -jitter pixels: ndc - 2 jitter / size, with w = 1. */
         hp->proj[12] -= 2.0f * f->jitter[0] / (float)w;
@@ -436,6 +438,7 @@ static ob_error run_call(ob_renderer *r, const ob_host_frame *f, const ob_settin
                                              .frame_index = r->frame++, .settings = s, .lights = s->lights,
                                              .light_count = s->light_count,
                                              .sh = (const float(*)[3])r->environment.sh});
+    ob_ao_grid_projection(&hp->targets->grid, hp->unjittered_proj, r->ao_proj_unjittered);
     ob_upload_frame(r);
     r->has_frame = false; /* the renderer's own frame is being overwritten */
     r->has_host_chain = false;

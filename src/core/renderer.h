@@ -126,7 +126,13 @@ struct ob_renderer {
     /* r->ao holds 1 everywhere, left by a `none` frame: the next `none` frame need not clear it. */
     bool ao_is_one;
     ob_history_key history_key;
+    /* The AO grid's projection without this frame's sub-pixel jitter (ob_settings.jitter, the
+     * host's ob_host_frame.jitter), and the last frame's: the accumulation reprojects through the
+     * last frame's camera with this frame's jitter, so a still camera reads its history where it
+     * was written (chain.c, run_temporal). */
+    float ao_proj_unjittered[16];
     float prev_view[16], prev_ao_proj[16];
+    bool prev_jittered; /* the last accumulated frame was jittered */
 };
 
 /* renderer.c: the targets for a visible size and a guard band (px per side, a multiple of 4), made
@@ -163,6 +169,8 @@ typedef struct ob_frame_desc {
     const float (*sh)[3];        /* 9 environment SH coefficients; NULL = zeros */
 } ob_frame_desc;
 void ob_frame_constants_fill(ob_frame_constants *f, const ob_frame_desc *d);
+/* The projection as the AO grid g sees it (P00, P20, P11, P21 or P30, P31 folded; frame.c). */
+void ob_ao_grid_projection(const ob_ao_grid *g, const float *proj, float out[16]);
 /* The extra view's camera (seed 000 §4.4): c's eye turned 90 degrees about its up axis (world +Y
  * when zero) around its target, the same target, up, fov and planes. */
 void ob_extra_view_camera(const ob_camera *c, ob_camera *out);

@@ -140,6 +140,26 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
         s->guard = (int)px;
         return OB_OK;
     }
+    if (key_len == strlen("jitter") && !strncmp(key, "jitter", key_len)) {
+        /* The frame's sub-pixel jitter, no prefix: J positions, on (the default count) or off. */
+        const char *v = eq + 1;
+        while (isspace((unsigned char)*v)) ++v;
+        if (!strcmp(v, "on")) s->jitter = OB_JITTER_POSITIONS_DEFAULT;
+        else if (!strcmp(v, "off")) s->jitter = 0;
+        else {
+            char *end = NULL;
+            errno = 0;
+            long n = strtol(v, &end, 10);
+            if (end == v || *end != '\0' || errno == ERANGE)
+                return ob_set_error(OB_ERR_INVALID_ARGUMENT, "jitter expects on, off or a number of positions, got '%s'",
+                                    eq + 1);
+            if (n < 0 || n > OB_JITTER_POSITIONS_MAX)
+                return ob_set_error(OB_ERR_OUT_OF_RANGE, "jitter = %s is out of range [0, %d] (positions)", eq + 1,
+                                    OB_JITTER_POSITIONS_MAX);
+            s->jitter = (int)n;
+        }
+        return OB_OK;
+    }
     if (key_len == strlen("upsample") && !strncmp(key, "upsample", key_len)) {
         /* The frame's upsampler program, no prefix: auto, plain or block (ob_upsample_program). */
         const char *v = eq + 1;
@@ -257,6 +277,7 @@ float ob_settings_get(const ob_settings *s, const char *param)
     if (!m || !param) return NAN;
     if (!strcmp(param, "radius_scale")) return s->radius_scale > 0.0f ? s->radius_scale : 1.0f;
     if (!strcmp(param, "guard")) return (float)s->guard;
+    if (!strcmp(param, "jitter")) return (float)s->jitter;
     if (!strcmp(param, "temporal")) return s->temporal ? 1.0f : 0.0f;
     if (!strcmp(param, "temporal_at")) return (float)s->temporal_at;
     if (!strcmp(param, "upsample")) return (float)s->upsample;

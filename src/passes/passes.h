@@ -113,7 +113,7 @@ void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLui
  * length N. The history's age: an R16F texture beside the R32F value, or RGBA16F (rgb, age). A
  * program per shape of the chains (made on first use): scalar with or without a result, RGB;
  * each with or without the bounce. */
-enum { OB_TEMPORAL_PROGRAMS = 12 }; /* 3 shapes x bounce or not x a host's motion vectors or not */
+enum { OB_TEMPORAL_PROGRAMS = 24 }; /* 3 shapes x bounce or not x a host's motion vectors or not x jittered or not */
 typedef struct ob_temporal_pass {
     ob_compute_pass programs[OB_TEMPORAL_PROGRAMS]; /* a slot whose .program is 0 is not made yet */
     ob_compute_pass motion_program;                 /* ob_temporal_motion's, made on first use */
@@ -138,6 +138,10 @@ typedef struct ob_temporal_chain {
     bool rgb;
     GLuint bounce_current, bounce_history, bounce_next_history, bounce_result;
     GLuint host_motion;   /* a host's motion vectors (RG16F/RG32F, full resolution), or 0: the camera's */
+    /* The G-buffer is jittered (this frame's or the last): the previous frame sampled each pixel at
+     * another point of its footprint, so a tap also counts where the previous frame saw this
+     * point's surface around it (temporal.glsl 2, OB_TEMPORAL_JITTER). */
+    bool jittered;
 } ob_temporal_chain;
 /* The host's motion vectors in the constants: on (motion != 0) with their scale to full-resolution
  * pixels (zeros = 1). */

@@ -74,11 +74,12 @@ ob_error ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, co
     const int shape = chain->rgb ? 2 : chain->result ? 0 : 1;
     const bool bounce = chain->bounce_current != 0;
     const bool motion = chain->host_motion != 0;
-    const int k = shape + (bounce ? 3 : 0) + (motion ? 6 : 0);
+    const int k = shape + (bounce ? 3 : 0) + (motion ? 6 : 0) + (chain->jittered ? 12 : 0);
     if (!p->programs[k].program) {
-        char defines[192];
-        snprintf(defines, sizeof defines, "%s%s%s", shapes[shape], bounce ? "#define OB_TEMPORAL_BOUNCE 1\n" : "",
-                 motion ? "#define OB_TEMPORAL_HOST_MOTION 1\n" : "");
+        char defines[256];
+        snprintf(defines, sizeof defines, "%s%s%s%s", shapes[shape], bounce ? "#define OB_TEMPORAL_BOUNCE 1\n" : "",
+                 motion ? "#define OB_TEMPORAL_HOST_MOTION 1\n" : "",
+                 chain->jittered ? "#define OB_TEMPORAL_JITTER 1\n" : "");
         if (ob_compute_pass_init(&p->programs[k], "temporal.glsl", defines, sizeof(ob_temporal_constants)) != OB_OK)
             return ob_peek_error(NULL);
     }

@@ -1,7 +1,7 @@
-/* obscura bench: GPU time per pass of every method over sample counts N and radii r (seed 000
+/* obscura bench: GPU time per pass of every method over sample counts N and radii r (Belonogov 2018
  * §5.1 tables), against a no-AO frame, optionally in stereo against the 90 Hz budget (§5.2), as
  * a scaling study over resolution and triangle count, or (--host) the host path ob_host_ao beside
- * ob_render_frame's AO chain (issue 45). DESIGN.md "Performance method": warm-up
+ * ob_render_frame's AO chain (issue 45). docs/architecture.md "Performance method": warm-up
  * frames first, then median/min/max over the measured frames, every ratio from the same run. */
 #include <cglm/cglm.h>
 #include <cjson/cJSON.h>
@@ -28,10 +28,10 @@ enum { MAX_PASSES = 20, MAX_LIST = CLI_MAX_LIST, MAX_CAMS = 32, MAX_SIZES = 16 }
 static const double VR_BUDGET_MS = 1000.0 / 90.0;
 
 /* What `obscura bench` with no options measures: every method once against none, on the first
- * camera preset, at N = 24 (seed 000's "medium") and r = 4 (the scene's suggested radius), 20
+ * camera preset, at N = 24 (Belonogov 2018's "medium") and r = 4 (the scene's suggested radius), 20
  * frames after 3, with the shadow maps rendered once (the scene and lights are static, as in the
  * viewer). On the 2-core llvmpipe machine an 800x600 Cornell frame took 0.5-0.9 s, 0.26 s of it
- * the point light's 2048^2 cube map: the old default, seed 000's table (both of Cornell's
+ * the point light's 2048^2 cube map: the old default, Belonogov 2018's table (both of Cornell's
  * identical presets x 4 N x 3 r x 10 methods x 55 frames, maps every frame), runs for hours
  * there; the quick run is 10 configurations of 23 frames. --full is the table. */
 enum { QUICK_SAMPLES = 24, QUICK_FRAMES = 20, QUICK_WARMUP = 3, FULL_FRAMES = 50, FULL_WARMUP = 5 };
@@ -96,12 +96,12 @@ static void bench_usage(FILE *f, const cli_common *defaults)
           "\n"
           "GPU time per pass (GL timestamp queries) of every AO method over sample counts N and\n"
           "radii r, after warm-up frames, as median/min/max over the measured frames, against a\n"
-          "no-AO ('none') frame of the same camera, filter and AO scale: the tables of seed 000 §5.1-5.2.\n"
+          "no-AO ('none') frame of the same camera, filter and AO scale: the tables of Belonogov 2018 §5.1-5.2.\n"
           "Each combination of --methods, --filters and --ao-scales is its own table.\n"
           "\n"
           "With no options it is a quick run (under 3 minutes on 2 cores with llvmpipe): every method\n"
           "once, first camera preset, N = 24, r = 4, 20 frames after 3, shadow maps rendered once.\n"
-          "  --full                seed 000's whole table: every camera preset (identical presets\n"
+          "  --full                Belonogov 2018's whole table: every camera preset (identical presets\n"
           "                        once), N = 12,24,36,64, r = 2,4,8, 50 frames after 5, shadow maps\n"
           "                        rendered every frame; the options below still override it\n"
           "  --cameras A,B         camera presets by name or index (default: the first; --full every one)\n"
@@ -109,7 +109,7 @@ static void bench_usage(FILE *f, const cli_common *defaults)
           "                        --quality low,high names them by preset instead (default 24)\n"
           "  --radius 2,4,8        r as a multiple of a quarter of the scene's suggested radius:\n"
           "                        radius = r x suggested / 4, so r = 4 is the suggested radius and\n"
-          "                        2/4/8 are half/1x/2x (seed 000's r are metres on one scene); N and r\n"
+          "                        2/4/8 are half/1x/2x (Belonogov 2018's r are metres on one scene); N and r\n"
           "                        are set after --set (default 4)\n"
           "  --frames N            measured frames per configuration (default 20; --full 50)\n"
           "  --warmup N            frames rendered first and not measured (default 3; --full 5)\n"
@@ -545,7 +545,7 @@ static int camera_list(const bench_opts *o, const ob_scene *scene, int *idx, int
     return EXIT_OK;
 }
 
-/* After a run without --full: how to run seed 000's whole table, and what it would cost at this
+/* After a run without --full: how to run Belonogov 2018's whole table, and what it would cost at this
  * run's pace per frame (a lower bound: the full table also renders the shadow maps every frame). */
 static void full_table_hint(const bench_opts *o, const ob_scene *scene, const bool *has_samples, const bool *has_radius,
                             int count, int base_count, int measured, double seconds)
@@ -562,7 +562,7 @@ static void full_table_hint(const bench_opts *o, const ob_scene *scene, const bo
     const double per_frame = measured > 0 ? seconds / ((double)measured * (o->frames + o->warmup)) : 0.0;
     const double minutes = per_frame * configs * (FULL_FRAMES + FULL_WARMUP) / 60.0;
     printf("\nThis was a quick run (%d configurations, %d frames each, shadow maps rendered once).\n"
-           "Seed 000's whole table: add --full (every camera preset, N = 12,24,36,64, r = 2,4,8, %d frames\n"
+           "Belonogov 2018's whole table: add --full (every camera preset, N = 12,24,36,64, r = 2,4,8, %d frames\n"
            "after %d, shadow maps every frame): %d configurations, over %.0f min at this run's pace.\n",
            measured, o->frames, FULL_FRAMES, FULL_WARMUP, configs, minutes);
 }

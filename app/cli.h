@@ -50,7 +50,7 @@ bool cli_parse_shadow(const char *text, ob_shadow_method *out); /* none, hard, p
 /* The median of n values (sorted in place, so v[0] and v[n-1] are then the min and max); NAN
  * for n = 0. */
 double cli_median(double *v, int n);
-/* The log-average luminance (seed 003 eq. 2.1) of the frame just rendered, over its composed
+/* The log-average luminance (SSDO thesis eq. 2.1) of the frame just rendered, over its composed
  * radiance before exposure (OB_IMAGE_HDR_F32), as the luminance pass measures it: the L_avg in the
  * tone map's scale exposure x key / L_avg. rgb is scratch for px x 3 floats. NAN if the radiance
  * cannot be read back. */

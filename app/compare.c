@@ -3,7 +3,7 @@
  *
  *   report/index.html                    per view: images, error maps, sortable table, chart
  *   report/results.json                  every number
- *   report/VIEW/reference_ao.png         AO_R from the Embree reference (DESIGN.md)
+ *   report/VIEW/reference_ao.png         AO_R from the Embree reference (docs/architecture.md)
  *   report/VIEW/METHOD_final.png, _ao.png, _error.png
  *   report/VIEW/mask_NAME.png            where each metric mask lies (ob_metric_masks)
  *   report/VIEW/chart.svg                quality (RMSE) against GPU time, made with gnuplot

@@ -178,7 +178,8 @@ static void print_cameras(const char *name, bool own_line)
 
 static int list_human(void)
 {
-    printf("methods (--method NAME, default %s; --set NAME.PARAM=VALUE):\n", OB_DEFAULT_METHOD);
+    printf("methods (--method NAME, default %s; --set NAME.PARAM=VALUE; the works in [brackets]:\n"
+           "docs/references.md):\n", OB_DEFAULT_METHOD);
     print_tables(ob_method_count(), ob_method_at);
     printf("\n  every method:\n    %-14s %-5s default %-8g range [%g, %g] %-9s %s\n", "radius_scale", "float", 1.0,
            (double)OB_RADIUS_SCALE_MIN, (double)OB_RADIUS_SCALE_MAX, "x radius",

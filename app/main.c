@@ -16,7 +16,7 @@ static void usage(FILE *f)
           "  list     list AO methods with their parameters, and the scenes (--json for JSON)\n"
           "  sheet    a labelled contact sheet: final image and AO map of each method, with timings\n"
           "  compare  every method against the ray-traced ground truth: HTML report + results.json\n"
-          "  bench    GPU time per pass of every method over samples and radius (seed 000 tables)\n"
+          "  bench    GPU time per pass of every method over samples and radius (Belonogov 2018 tables)\n"
           "  tune     one method's parameters against the ground truth on training views, checked on\n"
           "           validation views; writes a settings file for --settings\n"
           "  view     interactive viewer: camera, presets, live parameters, profiler, test mode\n"

@@ -1,8 +1,8 @@
 /* obscura render: one scene, one method, one camera -> PNG (+ AO as PFM/PNG).
  *
- * --stereo (seed 000 §5.2): the camera becomes the two eyes of a headset (ob_stereo_cameras), each
+ * --stereo (Belonogov 2018 §5.2): the camera becomes the two eyes of a headset (ob_stereo_cameras), each
  * with its own renderer (its own G-buffer and AO, as a headset renders them); "mirror" writes both
- * side by side (the seed's Mirror mode), "single" the left eye alone (its SinglePass mode). Both
+ * side by side (Belonogov 2018's Mirror mode), "single" the left eye alone (its SinglePass mode). Both
  * eyes are rendered in either mode, so that the frame time and the left/right AO consistency
  * (ob_metric_stereo_consistency) are the stereo frame's. */
 #include <math.h>
@@ -212,7 +212,7 @@ static int parse(int argc, char **argv, render_opts *o, cli_outputs *outs)
     if (o->headset && o->common.has_fov)
         return cli_fail(EXIT_USAGE, "--fov and --headset exclude each other (the headset fixes the field of view)");
     if (o->stereo && !o->common.has_size) {
-        /* The seed's headset: 1080x1200 per eye (seed 000 §5.2). */
+        /* Belonogov 2018's headset: 1080x1200 per eye (Belonogov 2018 §5.2). */
         ob_headset h = *ob_headset_at(0);
         if (o->headset) ob_find_headset(o->headset, &h);
         o->common.width = h.width;
@@ -571,7 +571,7 @@ static int render_checked(render_opts *op)
         }
     }
     if (code == EXIT_OK && o.stereo) {
-        /* The stereo frame against the headset's 90 Hz (seed 000 §5.2): medians of each eye's
+        /* The stereo frame against the headset's 90 Hz (Belonogov 2018 §5.2): medians of each eye's
          * per-frame sum of passes, and of both eyes' sum. */
         double *both = calloc((size_t)o.frames, sizeof(double));
         if (!both) code = cli_fail(EXIT_RUNTIME, "out of memory");

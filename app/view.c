@@ -1,4 +1,4 @@
-/* obscura view: the interactive viewer (seed 004 §2.7, §3.5; seed 000 §5.1's profiler).
+/* obscura view: the interactive viewer (Puri 2024 §2.7, §3.5; Belonogov 2018 §5.1's profiler).
  *
  * A GLFW window whose GL 4.5 context the library adopts (ob_context_desc.use_current), so every
  * frame goes through the very ob_render_frame the CLI and the tests use; ob_present blits the

@@ -16,12 +16,12 @@
 /* Fixed capacities: registry sizes, timed passes, scene presets and --cycles' upper bound. */
 enum { MAX_METHODS = 32, MAX_PASSES = 16, MAX_CAMERAS = 64, MAX_CYCLES = 100 };
 
-/* Stereo display (seed 000 §5.2): mono, both eyes side by side ("Mirror"), or the left eye alone
+/* Stereo display (Belonogov 2018 §5.2): mono, both eyes side by side ("Mirror"), or the left eye alone
  * in the whole window ("SinglePass"); both eyes are rendered in either stereo mode. */
 typedef enum view_stereo { VIEW_MONO = 0, VIEW_MIRROR, VIEW_SINGLE, VIEW_STEREO_COUNT } view_stereo;
 extern const char *const view_stereo_names[VIEW_STEREO_COUNT]; /* "mono", "mirror", "single" */
 
-/* The headset's frame budget: 90 Hz (seed 000 §5.2, the HTC Vive). */
+/* The headset's frame budget: 90 Hz (Belonogov 2018 §5.2, the HTC Vive). */
 #define VIEW_VR_BUDGET_MS (1000.0 / 90.0)
 
 /* ---- options (view_options.c) ---------------------------------------------------------------- */

@@ -21,15 +21,15 @@ static void view_usage(FILE *f, const cli_common *c)
           "  --gui on|off          show the panel at start (default on)\n"
           "  --shots DIR           where screenshots go (default screenshots/; test mode: beside --log)\n"
           "  --script FILE         replay timed input events (see below), then keep running\n"
-          "  --stereo MODE         both eyes of a headset (seed 000 §5.2), each its own renderer:\n"
+          "  --stereo MODE         both eyes of a headset (Belonogov 2018 §5.2), each its own renderer:\n"
           "                        mirror (side by side, each eye half the window) or single (the\n"
           "                        left eye in the whole window); the profiler shows both eyes'\n"
           "                        GPU time against the 11.1 ms (90 Hz) budget\n"
           "  --ipd D               --stereo: eye separation in world units (default 0.064)\n"
           "  --test-mode           cycle every camera preset x every method, then exit; a row per\n"
           "                        camera as it finishes (defaults: under a minute on 2 cores):\n"
-          "    --seconds S         time per camera x method (default 0.5; seed 004: 5)\n"
-          "    --cycles N          times through the whole set (default 1; seed 004: 3)\n"
+          "    --seconds S         time per camera x method (default 0.5; Puri 2024: 5)\n"
+          "    --cycles N          times through the whole set (default 1; Puri 2024: 3)\n"
           "                        --size defaults to 640x360 in test mode\n"
           "    --methods A,B,..    the methods to cycle (default all, none included)\n"
           "    --log FILE.csv      one row per camera x method: average FPS and ms per pass\n"
@@ -63,7 +63,7 @@ int parse_view_opts(int argc, char **argv, view_opts *o)
 {
     /* Test mode's defaults finish FZK-Haus's 4 cameras x 11 methods in under a minute on 2 cores
      * with llvmpipe (issue 20: 5 s x 3 cycles at 1280x720 ran 7 minutes with no output); the
-     * seed's 5 s x 3 cycles are an option away. */
+     * Puri 2024's 5 s x 3 cycles are an option away. */
     *o = (view_opts){.vsync = true, .gui = true, .cycles = 1, .seconds = 0.5f, .ipd = 0.064f};
     bool has_ipd = false;
     cli_common *c = &o->common;

@@ -49,7 +49,7 @@ static bool param_widget(const ob_param_info *p, float *value, float shown_defau
     return changed;
 }
 
-/* The method's sample kernel from above (seed 003 Fig. 4.1/4.2): each entry's xy in the tangent
+/* The method's sample kernel from above (SSDO thesis Fig. 4.1/4.2): each entry's xy in the tangent
  * plane, coloured by which period of the Halton bases 2 x 5 (10 entries) it falls in, so a count
  * that is not a multiple of 10 shows its unevenly covered last period. */
 static void panel_kernel(viewer *v)
@@ -78,10 +78,10 @@ static void panel_kernel(viewer *v)
         gui_text("%d Halton: %d x period 10 (2 x 5) + %d", n, n / 10, n % 10);
     else
         gui_text("%d random entries (seeded)", n);
-    gui_tooltip("seed 003 Fig. 4.1/4.2: from above, each colour one period of the Halton bases 2 x 5");
+    gui_tooltip("SSDO thesis Fig. 4.1/4.2: from above, each colour one period of the Halton bases 2 x 5");
 }
 
-/* The guard band (seed 000 §3.2.2, --guard): the checkbox switches it off and back to the last
+/* The guard band (Belonogov 2018 §3.2.2, --guard): the checkbox switches it off and back to the last
  * width, so the border's darkening can be compared in place; 10 % of the larger side at first. */
 static void panel_guard(viewer *v)
 {
@@ -94,7 +94,7 @@ static void panel_guard(viewer *v)
         profiler_reset(&v->prof);
     }
     gui_tooltip("render the G-buffer and the AO chain beyond each side of the window and crop at compose, so "
-                "occluders just outside the frame darken its border (seed 000 §3.2.2)");
+                "occluders just outside the frame darken its border (Belonogov 2018 §3.2.2)");
     int g = v->s.guard;
     if (gui_slider_int("guard (px per side)", &g, 0, 256, false)) {
         v->s.guard = g;
@@ -238,7 +238,7 @@ static void panel_lights(viewer *v)
         gui_slider_float("vsm blur (texels)", &v->s.shadow.vsm_blur, 0.0f, 16.0f, "%.2f", false);
         gui_slider_float("vsm bleed", &v->s.shadow.vsm_bleed, 0.0f, 0.99f, "%.2f", false);
         bool half = v->s.shadow.vsm_bits == 16;
-        if (gui_checkbox("16-bit vsm moments (seed 003 Fig. 6.5)", &half)) v->s.shadow.vsm_bits = half ? 16 : 32;
+        if (gui_checkbox("16-bit vsm moments (SSDO thesis Fig. 6.5)", &half)) v->s.shadow.vsm_bits = half ? 16 : 32;
     }
     static const char *const ambients[] = {"constant", "hemisphere", "environment"};
     int am = (int)v->s.ambient_mode;
@@ -295,7 +295,7 @@ static void panel_display(viewer *v)
         v->stereo = (view_stereo)st;
         profiler_reset(&v->prof);
     }
-    gui_tooltip("seed 000 §5.2: mono; mirror = both eyes side by side; single = the left eye alone (both are "
+    gui_tooltip("Belonogov 2018 §5.2: mono; mirror = both eyes side by side; single = the left eye alone (both are "
                 "rendered, each with its own G-buffer and AO)");
     if (v->stereo != VIEW_MONO)
         gui_slider_float("ipd", &v->o.ipd, 0.001f * v->scene_size, 0.2f * v->scene_size, "%.4g", true);
@@ -356,7 +356,7 @@ void build_gui(viewer *v)
     placed_h = v->fb_height;
     view_reference_labels(v);
     if (v->gui_visible) {
-        /* The overlay: what a screenshot should say about itself (seed 004 §2.7). */
+        /* The overlay: what a screenshot should say about itself (Puri 2024 §2.7). */
         if (gui_begin_overlay("##overlay", 10.0f, 10.0f)) {
             gui_text("%.1f FPS  %.1f ms   %dx%d", v->fps, v->last_frame_ms, v->fb_width, v->fb_height);
             gui_text("%s", ob_query_renderer(v->ctx));

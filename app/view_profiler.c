@@ -1,4 +1,4 @@
-/* obscura view's per-pass profiler (seed 000 Figure 5.1: current, average, minimum, maximum and
+/* obscura view's per-pass profiler (Belonogov 2018 Figure 5.1: current, average, minimum, maximum and
  * calls per pass): the renderer's GPU timings and the wall-clock frame time, gathered every frame
  * and shown as a table in the panel. */
 #include <math.h>
@@ -70,7 +70,7 @@ void profiler_add_eyes(profiler *p, const double eye_ms[2])
     ++p->stereo_frames;
 }
 
-/* The stereo frame (seed 000 §5.2): both eyes' GPU time against the headset's 11.1 ms at 90 Hz. */
+/* The stereo frame (Belonogov 2018 §5.2): both eyes' GPU time against the headset's 11.1 ms at 90 Hz. */
 static void panel_stereo(const viewer *v)
 {
     const profiler *p = &v->prof;
@@ -83,7 +83,7 @@ static void panel_stereo(const viewer *v)
     gui_text_colored(within ? 0.4f : 1.0f, within ? 1.0f : 0.4f, 0.4f, "  %s the %.1f ms budget (90 Hz): %.0f %% of it; "
                      "over in %ld frames", within ? "within" : "over", VIEW_VR_BUDGET_MS, 100.0 * both / VIEW_VR_BUDGET_MS,
                      p->over_budget);
-    gui_tooltip("seed 000 §5.2: the HTC Vive refreshes at 90 Hz, so both eyes must render in 11.1 ms; the pass rows "
+    gui_tooltip("Belonogov 2018 §5.2: the HTC Vive refreshes at 90 Hz, so both eyes must render in 11.1 ms; the pass rows "
                 "below are both eyes summed");
 }
 

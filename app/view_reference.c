@@ -1,5 +1,5 @@
 /* obscura view's reference view (G, issue 20): the ground truth beside the method. The Embree
- * AO_R (DESIGN.md: cosine-weighted rays from the very G-buffer points the method sees, ending at
+ * AO_R (docs/architecture.md: cosine-weighted rays from the very G-buffer points the method sees, ending at
  * R) of the current camera, the method's AO, their signed error and the current view, in four
  * panes of half the window each way, with the RMSE over the geometry pixels.
  *

@@ -1,4 +1,4 @@
-/* obscura view --test-mode (seed 004 §3.5): every camera preset x every method, each slot timed
+/* obscura view --test-mode (Puri 2024 §3.5): every camera preset x every method, each slot timed
  * for --seconds and repeated --cycles times: a table on stdout (a camera's row as soon as its last
  * cycle is measured), progress on stderr (base/progress.h), then a CSV log (one row
  * per camera x method, ms per pass in frame order) and one screenshot per slot. */
@@ -80,7 +80,7 @@ int test_finish(viewer *v)
     size_t n = 0;
     n += (size_t)snprintf(csv + n, cap - n, "scene,camera,method,width,height,cycles,frames,seconds,fps,fps_min,fps_max,frame_ms");
     for (int p = 0; p < PASS_ORDER_COUNT; ++p) n += (size_t)snprintf(csv + n, cap - n, ",%s_ms", pass_order[p]);
-    /* Stereo (seed 000 §5.2): the pass columns above are both eyes summed; these are each eye's
+    /* Stereo (Belonogov 2018 §5.2): the pass columns above are both eyes summed; these are each eye's
      * GPU sum, both, and whether both fit the 11.1 ms of 90 Hz (empty in mono). */
     n += (size_t)snprintf(csv + n, cap - n, ",stereo,left_gpu_ms,right_gpu_ms,stereo_gpu_ms,within_90hz\n");
     /* The table's rows went to stdout as each camera finished (print_row). */

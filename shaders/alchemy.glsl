@@ -1,8 +1,8 @@
 #version 450 core
-/* Alchemy screen-space ambient obscurance (McGuire, Osman, Bukowski, Hennessy 2011; seed 004
+/* Alchemy screen-space ambient obscurance (McGuire, Osman, Bukowski, Hennessy 2011; Puri 2024
  * §2.5 and §3.4). Samples lie on a spiral in a disk of world radius r around C, projected to the
  * screen (r_px = r * scale / z; r * scale for an orthographic camera); each gives v_i = P_i - C
- * and the final equation (seed 004 §2.5):
+ * and the final equation (Puri 2024 §2.5):
  *
  *   A = max(0, 1 - (2 sigma / s) * sum_i max(0, v_i . n - beta z_C) / (v_i . v_i + eps))^k
  *
@@ -11,7 +11,7 @@
  *   - v_i is measured in units of r: the sum has units 1/length, so in metres and millimetres the
  *     same sigma would differ 1000x; with r = 1 this is the paper's equation exactly.
  *   - z_C is the view-space z (negative in front of the camera, as in the paper), so the bias
- *     term subtracts beta * depth: seed 004 §3.4's code adds beta*z to the normal instead.
+ *     term subtracts beta * depth: Puri 2024 §3.4's code adds beta*z to the normal instead.
  * `deinterleave on` compiles OB_DEINTERLEAVED: far taps read the nearest pixel of their own 4x4 class;
  * `depth_mips on` OB_TAPS_DEPTH_MIPS: taps 20 px or more out read the depth MIP chain (taps.glsl). */
 #include "alchemy_params.h"
@@ -49,7 +49,7 @@ void main()
     float eps = alchemy.epsilon;
     float turns = alchemy.turns;
     float r_px = r * alchemy.px_per_unit / ob_depth_scale(d); /* no d for an orthographic camera */
-    /* Adaptive sample counts (seed 003 §4.1): a denser spiral at depth and normal edges. */
+    /* Adaptive sample counts (SSDO thesis §4.1): a denser spiral at depth and normal edges. */
     int s = alchemy.adaptive != 0 ? alchemy.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r)
                                   : alchemy.samples;
 

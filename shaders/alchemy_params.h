@@ -1,4 +1,4 @@
-/* Alchemy AO constants (McGuire et al. 2011; seed 004 §2.5, §3.4). Filled by src/methods/alchemy.c. */
+/* Alchemy AO constants (McGuire et al. 2011; Puri 2024 §2.5, §3.4). Filled by src/methods/alchemy.c. */
 #ifndef OB_ALCHEMY_PARAMS_H
 #define OB_ALCHEMY_PARAMS_H
 #include "frame_params.h"
@@ -18,7 +18,7 @@ OB_CONSTANTS_BEGIN(ob_alchemy_constants, OB_BINDING_PASS)
     OB_INT samples;         /* spiral samples s */
     OB_INT noise;           /* OB_NOISE_* rotation */
     OB_INT adaptive;        /* 1: per-pixel samples, adaptive_base x the multiplier (OB_UNIT_SAMPLE_MULTIPLIER) */
-    OB_INT adaptive_base;   /*   the samples at multiplier 1 (seed 003 §4.1) */
+    OB_INT adaptive_base;   /*   the samples at multiplier 1 (SSDO thesis §4.1) */
     OB_FLOAT pad0;
 OB_CONSTANTS_END(ob_alchemy_constants, alchemy)
 OB_CONSTANTS_SIZE(ob_alchemy_constants, 3 * 16);

@@ -1,5 +1,5 @@
 #version 450 core
-/* The full 2D bilateral filter (seed 000 §4.3.2, eq. 4.5) over a (2r+1)^2 window, with the range
+/* The full 2D bilateral filter (Belonogov 2018 §4.3.2, eq. 4.5) over a (2r+1)^2 window, with the range
  * term taken on depth instead of intensity, as the seed does for occlusion:
  *     B_p = 1/W_p sum_q G_s(||p - q||) G_d(|d_q - d_p| / d_p) AO_q.
  * The spatial 2D Gaussian is the product of the 1D weights (exp(-(x^2+y^2)/2s^2) factorises), so

@@ -1,5 +1,5 @@
 #version 450 core
-/* One direction of the separable bilateral filter (seed 000 §4.3.2, eq. 4.6 along x, then eq. 4.7
+/* One direction of the separable bilateral filter (Belonogov 2018 §4.3.2, eq. 4.6 along x, then eq. 4.7
  * along y on the result): the weights of `bilateral` (spatial Gaussian x depth Gaussian of
  * |d_q - d_p| / d_p) on a line of 2r+1 taps instead of the (2r+1)^2 window. Not exactly
  * separable (the seed says so too): a tap diagonal to p is reached through an intermediate pixel

@@ -1,11 +1,11 @@
 #version 450 core
-/* Bloom, seed 003 §5.5 steps 2-4. Two programs from this file:
+/* Bloom, SSDO thesis §5.5 steps 2-4. Two programs from this file:
  *   OB_BLOOM_BRIGHT: at 1/OB_BLOOM_FACTOR resolution, each bloom pixel is the mean over its full
  *     pixels of the colour's excess above the threshold. The threshold is in scaled luminance
  *     (eq. 2.2, after exposure and key), the units of L_white, so "threshold 1.5, L_white 3" means
  *     the halo starts halfway to white whatever the scene's absolute radiance. Each full pixel is
  *     thresholded before the box average, so a one-pixel highlight is not diluted below it.
- *   default: one direction of the separable Gaussian (seed 000 eq. 4.4, as shaders/gaussian.glsl),
+ *   default: one direction of the separable Gaussian (Belonogov 2018 eq. 4.4, as shaders/gaussian.glsl),
  *     run along x then y; taps past the border repeat the edge pixel. */
 #include "bloom_params.h"
 

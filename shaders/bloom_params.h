@@ -1,4 +1,4 @@
-/* Bloom (seed 003 §5.5 steps 2-4): bright pass at reduced resolution, then a separable Gaussian. */
+/* Bloom (SSDO thesis §5.5 steps 2-4): bright pass at reduced resolution, then a separable Gaussian. */
 #ifndef OB_BLOOM_PARAMS_H
 #define OB_BLOOM_PARAMS_H
 #include "hdr_shared.h"
@@ -18,7 +18,7 @@
 OB_CONSTANTS_BEGIN(ob_bloom_constants, OB_BINDING_PASS)
     OB_IVEC2 full_size;  /* the radiance, px: the bright pass skips full pixels past it */
     OB_IVEC2 bloom_size; /* the bloom targets, px: full_size / OB_BLOOM_FACTOR rounded up */
-    OB_INT axis_x;       /* the blur's direction, (1,0) then (0,1) (separable, seed 000 eq. 4.4) */
+    OB_INT axis_x;       /* the blur's direction, (1,0) then (0,1) (separable, Belonogov 2018 eq. 4.4) */
     OB_INT axis_y;
     OB_INT radius;       /* blur taps each side, always OB_BLOOM_RADIUS */
     OB_FLOAT threshold;  /* bright pass: scaled luminance (eq. 2.2 units, as L_white) where bloom starts */

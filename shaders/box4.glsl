@@ -1,5 +1,5 @@
 #version 450 core
-/* 4x4 box blur (offsets -2..1) of the raw AO, the seeds' classic (seed 004 §3.3): it spans
+/* 4x4 box blur (offsets -2..1) of the raw AO, the seeds' classic (Puri 2024 §3.3): it spans
  * exactly one tile of the 4x4 rotation noise, so the noise pattern averages out. Pixels without
  * geometry are left out of the average so the sky's AO = 1 does not brighten silhouettes. Kept as
  * the baseline the geometry-aware filters are measured against. */

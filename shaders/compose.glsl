@@ -1,9 +1,9 @@
 #version 450 core
-/* Compose (DESIGN.md "The frame"): direct radiance (lighting.glsl) + ambient x albedo x AO into
+/* Compose (docs/architecture.md "The frame"): direct radiance (lighting.glsl) + ambient x albedo x AO into
  * linear HDR radiance for the tone map; AO darkens the ambient term, or all light on request.
- * SSDO (cmp.directional): the RGB modulation factor M darkens direct and ambient light alike (seed 003
+ * SSDO (cmp.directional): the RGB modulation factor M darkens direct and ambient light alike (SSDO thesis
  * §4.2: M is the ratio of the direct term with and without visibility, eq. 4.2), and the bounce,
- * stored as what a white receiver reflects, is added times the albedo (cmp.add_bounce; seed 003 §3.3).
+ * stored as what a white receiver reflects, is added times the albedo (cmp.add_bounce; SSDO thesis §3.3).
  * vbgi: a scalar visibility for the ambient like any AO method, and its bounce added the same way.
  * Ambient: a constant, a sky/ground hemisphere by the world normal, or the environment map's
  * diffuse irradiance from 9 spherical harmonics (Ramamoorthi & Hanrahan 2001, eq. 13), so that a
@@ -59,7 +59,7 @@ vec3 ob_environment_radiance(vec3 dir)
 
 void main()
 {
-    /* The inputs carry the guard band (seed 000 §3.2.2) and frame.size is theirs; the output is the
+    /* The inputs carry the guard band (Belonogov 2018 §3.2.2) and frame.size is theirs; the output is the
      * visible frame at their centre, so everything after compose sees only what is shown. */
     ivec2 out_pix = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(out_pix, ivec2(frame.size) - 2 * cmp.guard))) return;

@@ -4,7 +4,7 @@
  *
  *   (1) spatial:  s(o) = b(o.x) b(o.y),  b(i) = 1 for |i| < r, 1/2 for |i| = r.
  *       With r = 2 that is [1/2 1 1 1 1/2] per axis: every residue mod 4 gets total weight 1, so
- *       a 4x4-periodic pattern (the rotation tile of noise.glsl, seed 004 §3.3) sums to its mean
+ *       a 4x4-periodic pattern (the rotation tile of noise.glsl, Puri 2024 §3.3) sums to its mean
  *       exactly, as box4 does, but centred on p (box4's -2..1 shifts the image by half a pixel).
  *   (2) plane:    x_q = |n_p . (P_q - P_p)| / d_p,  g_q = exp(-x_q^2 / 2 s_p^2)
  *       the distance of q's view position from p's tangent plane, relative to p's depth so the
@@ -19,7 +19,7 @@
  *       Each offset is weighed together with its mirror. Where the wall cuts the window off on
  *       one side, the other side loses the same taps, so the window's centroid stays at p and AO
  *       that varies linearly across it keeps its value at p. Near a crease AO does vary about
- *       linearly: AO_R(h) = 1 - (acos a - a sqrt(1 - a^2)) / pi, a = h/R (DESIGN.md
+ *       linearly: AO_R(h) = 1 - (acos a - a sqrt(1 - a^2)) / pi, a = h/R (docs/architecture.md
  *       "Conventions") has slope 2/(pi R) at the crease. A one-sided window (as geometry's 11x11
  *       Gaussian along the floor) averages p with floor farther from the wall, which is brighter:
  *       that was issue 13's +0.26 at the corner crease.

@@ -1,13 +1,13 @@
 #version 450 core
-/* Crytek SSAO (Mittring 2007, "Finding next gen: CryEngine 2"; seed 004 §2.2):
+/* Crytek SSAO (Mittring 2007, "Finding next gen: CryEngine 2"; Puri 2024 §2.2):
  *   - N points in a sphere of radius r around the pixel's view-space position, no normals;
  *   - rotated per pixel about the view axis by the 4x4 noise (or IGN);
  *   - a point is occluded when the depth buffer in front of it is closer than it by more than
  *     `bias`, faded by the range check smoothstep(0, 1, r / |z_P - z_scene|);
- *   - occlusion factor = occluded / N, AO = 1 - occlusion factor (seed 004 §2.2).
+ *   - occlusion factor = occluded / N, AO = 1 - occlusion factor (Puri 2024 §2.2).
  * Half of a sphere around a point on a plane lies inside the plane, so flat surfaces read about
  * 0.5: that is the method (its characteristic grey look), not a bug. The optional correction of
- * seed 003 §5.4 rescales AO' = min(1, 2 AO) so open planes read 1, wasting half the samples.
+ * SSDO thesis §5.4 rescales AO' = min(1, 2 AO) so open planes read 1, wasting half the samples.
  * `deinterleave on` compiles OB_DEINTERLEAVED: far taps read the nearest pixel of their own 4x4 class;
  * `depth_mips on` OB_TAPS_DEPTH_MIPS: taps 20 px or more out read the depth MIP chain (taps.glsl). */
 #include "crytek_params.h"
@@ -39,7 +39,7 @@ void main()
 
     float radius = crytek.radius;
     float bias = crytek.bias;
-    /* Adaptive (seed 003 §4.1): base x 1, 2 or 3 from the edge pass; the Halton kernel's prefixes
+    /* Adaptive (SSDO thesis §4.1): base x 1, 2 or 3 from the edge pass; the Halton kernel's prefixes
      * are kernels of their own. */
     int count = crytek.adaptive != 0 ? crytek.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r) : crytek.samples;
     /* The projection read once, into registers: read from the constant block inside the loop,

@@ -1,7 +1,7 @@
 #version 450 core
-/* Depth and normals at the AO resolution (seed 000 §4.7.1, seed 003 §4.4). Each AO pixel takes
+/* Depth and normals at the AO resolution (Belonogov 2018 §4.7.1, SSDO thesis §4.4). Each AO pixel takes
  * ONE representative full-resolution pixel, the same sub-pixel o of every k x k block: averaging
- * normals would bend them where surfaces meet and create false occlusion (seed 003 §6.3, the dark
+ * normals would bend them where surfaces meet and create false occlusion (SSDO thesis §6.3, the dark
  * window border of Figure 6.10), and averaging depths would invent surfaces between foreground
  * and background. The renderer shifts the projection so that view positions reconstructed at
  * the AO pixel centres are exactly the chosen pixels' (renderer.c, low_res_projection). */

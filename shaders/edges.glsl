@@ -1,9 +1,9 @@
 #version 450 core
-/* Adaptive sample counts, the pre-pass (seed 003 §4.1 "Preprocessing", Figure 4.3): an edge
+/* Adaptive sample counts, the pre-pass (SSDO thesis §4.1 "Preprocessing", Figure 4.3): an edge
  * detector over depth and normals at a low resolution, one value per OB_EDGE_BLOCK^2 AO pixels
  * (plus a one-pixel border, so both sides of an edge see it). The weight is the largest relative
  * depth step or normal turn between neighbours in the block, against thresholds; it becomes a
- * multiplier 1, 2 or 3 on the method's base sample count (the Halton period, seed 003 §4.1). */
+ * multiplier 1, 2 or 3 on the method's base sample count (the Halton period, SSDO thesis §4.1). */
 #include "resample_params.h"
 
 layout(local_size_x = OB_RESAMPLE_GROUP_X, local_size_y = OB_RESAMPLE_GROUP_Y) in;

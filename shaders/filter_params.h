@@ -5,7 +5,7 @@
 
 #define OB_FILTER_GROUP_X 8
 #define OB_FILTER_GROUP_Y 8
-/* Largest kernel radius (taps each side): 16 gives 33x33, beyond seed 003 §6.2's 11x11. */
+/* Largest kernel radius (taps each side): 16 gives 33x33, beyond SSDO thesis §6.2's 11x11. */
 #define OB_FILTER_MAX_RADIUS 16
 /* crease's tiled program holds a work group's window in shared memory up to this radius. */
 #define OB_CREASE_TILE_RADIUS 4
@@ -29,7 +29,7 @@
 
 OB_CONSTANTS_BEGIN(ob_filter_constants, OB_BINDING_PASS)
     OB_IVEC2 size;            /* the AO resolution, px: the filters run at it (ob_filter_inputs) */
-    OB_IVEC2 axis;            /* a separable pass's direction, (1,0) then (0,1) (seed 000 eq. 4.6-4.7) */
+    OB_IVEC2 axis;            /* a separable pass's direction, (1,0) then (0,1) (Belonogov 2018 eq. 4.6-4.7) */
     OB_INT radius;            /* taps each side of the centre, 0..OB_FILTER_MAX_RADIUS */
     /* The range Gaussians' exponents, derived on the CPU (ob_filter_constants_init) so a tap costs
      * one exp(): w = exp(x^2 * falloff) with falloff = -1/(2 sigma^2); 0 switches a term off. */
@@ -37,7 +37,7 @@ OB_CONSTANTS_BEGIN(ob_filter_constants, OB_BINDING_PASS)
                                  the same along n_p, |n_p . (P_q - P_p)| / d_p (crease.glsl eq. 2) */
     OB_FLOAT normal_falloff;  /* x = angle between the normals, radians (geometry, crease) */
     OB_FLOAT sky_value;       /* what the RGB variant writes at sky pixels: 1 for M, 0 for the bounce */
-    /* The spatial Gaussian (seed 000 eq. 4.4), normalised: w_i for tap offset i = 0..radius in .x;
+    /* The spatial Gaussian (Belonogov 2018 eq. 4.4), normalised: w_i for tap offset i = 0..radius in .x;
      * .yzw unused (std140 strides array elements by 16 bytes anyway). crease: its eq. 1 per axis
      * (1, ..., 1, 1/2 at the rim), unnormalised. */
     OB_VEC4 weights[OB_FILTER_MAX_RADIUS + 1];

@@ -1,5 +1,5 @@
 /* Constants of the floor kernel (src/passes/floor.c, shaders/floor.glsl): the bare N-tap compute
- * kernel that `obscura bench --floor` times beside every AO pass (DESIGN.md "Performance method"). */
+ * kernel that `obscura bench --floor` times beside every AO pass (docs/architecture.md "Performance method"). */
 #ifndef OB_FLOOR_PARAMS_H
 #define OB_FLOOR_PARAMS_H
 #include "ob_shared.h"

@@ -1,4 +1,4 @@
-/* The per-frame block (DESIGN.md "Conventions": one block at its own binding point that every
+/* The per-frame block (docs/architecture.md "Conventions": one block at its own binding point that every
  * pass reads; no pass copies another's data): the camera, the AO grid, the lights, the ambient
  * light and the frame index. Filled once per frame by src/core/frame.c (ob_frame_constants_fill,
  * a pure function) and bound at OB_BINDING_FRAME beside each pass's own block, so lighting,

@@ -1,5 +1,5 @@
 #version 450 core
-/* One direction of the separable Gaussian blur (seed 000 §4.3.1, eq. 4.4), run along x then y.
+/* One direction of the separable Gaussian blur (Belonogov 2018 §4.3.1, eq. 4.4), run along x then y.
  * No depth, no normals: every pixel, sky included, is averaged with its neighbours, so the AO of a
  * foreground object smears onto the background and the sky's 1 brightens silhouettes. That is the
  * point: it is the geometry-blind baseline. Taps past the image border repeat the edge pixel, so

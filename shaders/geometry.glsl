@@ -1,7 +1,7 @@
 #version 450 core
-/* One direction of the separable geometry-aware bilateral filter (seed 003 §3.5 "Geometry-aware
+/* One direction of the separable geometry-aware bilateral filter (SSDO thesis §3.5 "Geometry-aware
  * Filter", after Reinbothe et al.; separated into x and y passes as in §4.3): the domain is the
- * spatial Gaussian (seed 000 eq. 4.4), the range the product of a depth and a normal kernel,
+ * spatial Gaussian (Belonogov 2018 eq. 4.4), the range the product of a depth and a normal kernel,
  *     w_q = G_s(|p - q|) exp(-(|d_q - d_p| / d_p)^2 / 2 s_d^2) exp(-theta^2 / 2 s_n^2),
  *     theta = acos(clamp(n_p . n_q, -1, 1)),
  * so AO is not blurred between objects (depth) nor around creases and edges of one object

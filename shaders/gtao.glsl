@@ -1,7 +1,7 @@
 #version 450 core
 /* Ground-truth ambient occlusion (Jimenez, Wu, Pesce & Jarabo 2016, "Practical Realtime
  * Strategies for Accurate Indirect Occlusion", §4-5): the cosine-weighted visibility of
- * DESIGN.md's AO_R, integrated analytically between two horizons per slice.
+ * docs/architecture.md's AO_R, integrated analytically between two horizons per slice.
  *
  *   A(x) = 1/π ∫_0^π ∫_{h1(φ)}^{h2(φ)} cos(θ - n(φ))^+ |sin θ| dθ dφ                 (eq. 3, 5)
  *
@@ -59,7 +59,7 @@ vec3 slice_bent(float h0, float h1, float n, vec3 v, vec3 o)
  * a sample? The horizon-based integral takes everything below the highest sample as occluded,
  * each occluder infinitely thick behind its surface. The second layer bounds the object: on the
  * sample's view ray it occupies [z1, z2], and a sample between the layers is inside, one behind the
- * second free (seed 000 §4.4). Compiled in the OB_MARCH_LAYERS variant only (methods/method.h
+ * second free (Belonogov 2018 §4.4). Compiled in the OB_MARCH_LAYERS variant only (methods/method.h
  * OB_SLICE_LAYERS: llvmpipe would run the block for every sample with the layer off too). Apply that to the ray at the current horizon on this side: where it
  * crosses the sample's view ray (in the slice plane, which holds both) at depth z_h, z1 < z_h <= z2
  * means the ray runs into the object, so every direction between it and the sample is blocked and

@@ -26,7 +26,7 @@ OB_CONSTANTS_BEGIN(ob_gtao_constants, OB_BINDING_PASS)
     OB_INT max_mip;           /* the coarsest MIP level a step may read */
     OB_INT bent_normals;      /* 1: also write the bent normal (image 1) */
     OB_INT adaptive;          /* 1: per-pixel slices, adaptive_base x the multiplier (OB_UNIT_SLICE_MULTIPLIER) */
-    OB_INT adaptive_base;     /*   the slices at multiplier 1 (seed 003 §4.1) */
+    OB_INT adaptive_base;     /*   the slices at multiplier 1 (SSDO thesis §4.1) */
     OB_INT layers;            /* 1: the second layer (OB_UNIT_SECOND_DEPTH) bounds each sample's object */
     OB_FLOAT column;          /* world units: how far behind its front a sample beyond R is solid (its part
                                  inside R occludes: slice_march.glsl ob_column_entry); 0 = none */

@@ -1,17 +1,17 @@
 #version 450 core
 /* Horizon-based ambient occlusion (Bavoil & Sainz 2008, "Image-Space Horizon-Based Ambient
- * Occlusion"), as described in seed 000 §3.3 and seed 004 §2.4/§3.4:
+ * Occlusion"), as described in Belonogov 2018 §3.3 and Puri 2024 §2.4/§3.4:
  *
  *   A = 1 - 1/(2π) ∫_{θ=-π}^{π} ∫_{α=t(θ)}^{h(θ)} W(ω) cos(α) dα dθ                  (eq. 3.1)
  *     = 1 - 1/(2π) ∫ (sin h(θ) - sin t(θ)) W(θ) dθ,    W = max(0, 1 - r/R)            (eq. 3.2)
  *
  * θ is the azimuth around the view axis, α the elevation above the plane perpendicular to it,
  * t(θ) the elevation of the surface tangent and h(θ) the elevation of the horizon found by
- * marching the depth buffer (the neighbourhood is treated as a height field, seed 000 §3.3.1).
- * The θ integral is a sum over N_d screen directions 2πk/N_d, rotated per pixel (seed 004 §2.4:
- * NVIDIA's sample rotates its 4 directions randomly; seed 000 §3.3.1 blurs the noise away); each
+ * marching the depth buffer (the neighbourhood is treated as a height field, Belonogov 2018 §3.3.1).
+ * The θ integral is a sum over N_d screen directions 2πk/N_d, rotated per pixel (Puri 2024 §2.4:
+ * NVIDIA's sample rotates its 4 directions randomly; Belonogov 2018 §3.3.1 blurs the noise away); each
  * direction marches N_s texel-snapped steps out to the world radius R projected to pixels
- * (seed 004 §3.4: the radius scales with depth and is clamped).
+ * (Puri 2024 §3.4: the radius scales with depth and is clamped).
  *
  * AO is visibility: 1 = open. Sky (depth 0) writes 1.
  * `deinterleave on` compiles OB_DEINTERLEAVED: far steps read the nearest pixel of their own 4x4 class
@@ -39,7 +39,7 @@ const float ob_bayer4[16] = float[16](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0,
  * rotation, or each rotation would always march the same distances:
  *   - texture4: the 4x4 Bayer rank. The rotation texture is a shuffled 4x4 set (sampling.h), so
  *     the two are unrelated, and the 4x4 box blur averages all 16 jitters exactly, as it does the
- *     16 rotations (seed 004 §3.3);
+ *     16 rotations (Puri 2024 §3.3);
  *   - ign: interleaved gradient noise of the transposed pixel. IGN weights x and y very unequally
  *     (0.067 vs 0.0058), so IGN(y, x) is a different low-discrepancy pattern from the IGN(x, y)
  *     that gives the rotation. */
@@ -51,7 +51,7 @@ float hbao_jitter(ivec2 pix, int mode)
 }
 
 /* sin of the elevation t of the surface tangent in the slice of the view-space direction D
- * (D.z = 0) through P (seed 004 §2.4: t = atan(T.z / |T.xy|)). The pixels on a screen line
+ * (D.z = 0) through P (Puri 2024 §2.4: t = atan(T.z / |T.xy|)). The pixels on a screen line
  * through P see the plane through the eye, P and P + D, not the plane of D and the Z axis
  * through P; the tangent in that slice is the line where it meets P's tangent plane:
  *   T = (P x D) x n = D (P.n) - P (D.n),   oriented along D,
@@ -112,7 +112,7 @@ void main()
     int mode = hbao.noise;
     vec2 rot = ob_rotation(pix, mode, noise_tile);
     float jitter = hbao_jitter(pix, mode);
-    /* Adaptive sample counts (seed 003 §4.1): more directions at depth and normal edges. */
+    /* Adaptive sample counts (SSDO thesis §4.1): more directions at depth and normal edges. */
     int directions = hbao.adaptive != 0 ? hbao.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r)
                                         : hbao.directions;
     int steps = hbao.steps;

@@ -1,4 +1,4 @@
-/* Horizon-based AO constants (Bavoil & Sainz 2008; seed 000 §3.3 eq. 3.1-3.2, seed 004 §2.4 and
+/* Horizon-based AO constants (Bavoil & Sainz 2008; Belonogov 2018 §3.3 eq. 3.1-3.2, Puri 2024 §2.4 and
  * §3.4). Filled by src/methods/hbao.c. */
 #ifndef OB_HBAO_PARAMS_H
 #define OB_HBAO_PARAMS_H
@@ -23,7 +23,7 @@ OB_CONSTANTS_BEGIN(ob_hbao_constants, OB_BINDING_PASS)
     OB_INT steps;           /* N_s per direction */
     OB_INT noise;           /* OB_NOISE_* rotation and step jitter */
     OB_INT adaptive;        /* 1: per-pixel directions, adaptive_base x the multiplier (OB_UNIT_SAMPLE_MULTIPLIER) */
-    OB_INT adaptive_base;   /*   the directions at multiplier 1 (seed 003 §4.1) */
+    OB_INT adaptive_base;   /*   the directions at multiplier 1 (SSDO thesis §4.1) */
 OB_CONSTANTS_END(ob_hbao_constants, hbao)
 OB_CONSTANTS_SIZE(ob_hbao_constants, 3 * 16);
 

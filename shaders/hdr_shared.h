@@ -1,4 +1,4 @@
-/* What the three HDR passes share (seed 003 §2.2, §5.5, §6.5): the luminance weights, eq. 2.1's
+/* What the three HDR passes share (SSDO thesis §2.2, §5.5, §6.5): the luminance weights, eq. 2.1's
  * delta, the automatic key, and the small GPU buffer the luminance reduction writes and the bloom
  * and tone-map passes read, so no value makes a CPU round trip during a frame. */
 #ifndef OB_HDR_SHARED_H
@@ -43,7 +43,7 @@ vec3 ob_hdr_sanitize(vec3 c)
     return mix(clamp(c, 0.0, 65504.0), vec3(0.0), bvec3(isnan(c.r), isnan(c.g), isnan(c.b)));
 }
 
-/* The automatic key (seed 003 §6.5 gives no formula): Krawczyk, Myszkowski, Seidel 2005,
+/* The automatic key (SSDO thesis §6.5 gives no formula): Krawczyk, Myszkowski, Seidel 2005,
  * "Lightness perception in tone reproduction for high dynamic range images", eq. 11:
  * alpha = 1.03 - 2 / (2 + log10(L_avg + 1)). It rises with the log-average, as §6.5 describes
  * (0.22 for the darker view of Fig. 6.17, 0.6 for the brighter). Same as ob_hdr_auto_key(). */

@@ -1,5 +1,5 @@
 #version 450 core
-/* Direct light over the G-buffer (seed 000 §4.5, seed 003 §5.2): for every light, Lambert +
+/* Direct light over the G-buffer (Belonogov 2018 §4.5, SSDO thesis §5.2): for every light, Lambert +
  * Blinn-Phong, times its shadow-map visibility, into an RGBA16F radiance target. Directional
  * lights give intensity x colour at normal incidence; point and spot lights fall off as 1/d^2,
  * with a smooth window to zero at `range` ((1 - (d/range)^4)^2, as in UE4 and Filament), and spot

@@ -1,4 +1,4 @@
-/* Direct lighting constants (seed 000 §4.5; seed 003 §4.2, §5.2): the specular lobe and the shadow
+/* Direct lighting constants (Belonogov 2018 §4.5; SSDO thesis §4.2, §5.2): the specular lobe and the shadow
  * maps. The lights themselves, the camera and the size are the frame's (frame_params.h).
  * Filled by src/passes/lighting.c (specular) and src/passes/shadow.c (the shadow members,
  * ob_shadows_fill). World space. */

@@ -1,5 +1,5 @@
 #version 450 core
-/* Log-average luminance, seed 003 eq. 2.1: L_avg = exp(1/N sum ln(delta + L(x,y))) over every
+/* Log-average luminance, SSDO thesis eq. 2.1: L_avg = exp(1/N sum ln(delta + L(x,y))) over every
  * pixel, the background included (the sky has radiance too). Two dispatches of this file:
  *   partial (default): each work group sums ln(delta + L) over its 64x64 pixels into partial[];
  *   OB_LUMINANCE_FINAL: one work group sums the partials, takes the exp and picks the key

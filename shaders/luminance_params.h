@@ -1,4 +1,4 @@
-/* Log-average luminance (seed 003 eq. 2.1) by a two-dispatch reduction (seed 003 §5.5 step 5 does
+/* Log-average luminance (SSDO thesis eq. 2.1) by a two-dispatch reduction (SSDO thesis §5.5 step 5 does
  * it with mipmaps; a compute reduction sums every pixel instead of the centre of a 3x3 image). */
 #ifndef OB_LUMINANCE_PARAMS_H
 #define OB_LUMINANCE_PARAMS_H

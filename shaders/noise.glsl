@@ -1,4 +1,4 @@
-/* Per-pixel rotation of a sample pattern: either the 4x4 tiled texture of the seeds (seed 004
+/* Per-pixel rotation of a sample pattern: either the 4x4 tiled texture of the seeds (Puri 2024
  * §3.3: 16 rotations, removed again by a 4x4 blur) or interleaved gradient noise (Jimenez 2014,
  * "Next Generation Post Processing in Call of Duty: Advanced Warfare"), which needs no texture
  * and spreads rotations over more pixels but leaves structure a 4x4 box does not cancel. */

@@ -51,7 +51,7 @@ typedef float ob_gl_mat4[16];
                    #type " must be " #bytes " bytes in whole 16-byte rows (see shaders/ob_shared.h)")
 #endif
 
-/* The adaptive-sampling edge pass works on blocks of this many AO pixels per side (seed 003
+/* The adaptive-sampling edge pass works on blocks of this many AO pixels per side (SSDO thesis
  * §4.1: computed "in much lower resolutions" to get wider areas around discontinuities); the
  * methods read their block's sample multiplier at pixel / OB_EDGE_BLOCK. */
 #define OB_EDGE_BLOCK 4

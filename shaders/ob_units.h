@@ -41,7 +41,7 @@
 #define OB_UNIT_SECOND_DEPTH 6
 #define OB_UNIT_PACKED_SAMPLES 10
 
-/* ssdo's extra view (seed 000 §4.4): its linear depth, normal (its own view space) and direct
+/* ssdo's extra view (Belonogov 2018 §4.4): its linear depth, normal (its own view space) and direct
  * radiance; this frame's own where there is none. */
 #define OB_UNIT_EXTRA_DEPTH 7
 #define OB_UNIT_EXTRA_NORMAL 8

@@ -1,5 +1,5 @@
 #version 450 core
-/* The second depth layer (depth peeling, Everitt 2001; seed 000 §4.4, seed 003 §6.4): the same
+/* The second depth layer (depth peeling, Everitt 2001; Belonogov 2018 §4.4, SSDO thesis §6.4): the same
  * scene drawn again with the G-buffer's vertex shader, keeping per pixel the nearest surface that
  * lies behind the first layer by more than a small separation. Back faces count (culling is off,
  * as in the G-buffer). The layer is meant as the back of the solid whose front the first layer

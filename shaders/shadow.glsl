@@ -1,4 +1,4 @@
-/* Shadow-map lookups (seed 003 §2.1, §5.1, §6.1) for the direct-lighting pass: #include it after
+/* Shadow-map lookups (SSDO thesis §2.1, §5.1, §6.1) for the direct-lighting pass: #include it after
  * lighting_params.h (which brings frame_params.h: the lights), then
  *     float ob_shadow(int light, vec3 world_pos, vec3 world_normal)
  * is the visibility in [0,1] of light `light` from a world point (1 = lit). The maps come from
@@ -15,16 +15,16 @@
  * Methods (lit.shadow_method):
  *   HARD: one comparison against the nearest texel (the texture's filter is GL_NEAREST).
  *   PCF:  (2r+1)^2 bilinear hardware comparisons one texel apart, r = lit.pcf_radius
- *         (seed 003 §5.1: "a small kernel ... I also enabled bilinear filtering"): each tap is
+ *         (SSDO thesis §5.1: "a small kernel ... I also enabled bilinear filtering"): each tap is
  *         itself a 2x2 percentage-closer filter, so 3x3 taps weigh a 4x4 texel footprint.
- *   VSM:  Chebyshev's one-tailed bound p_max = s^2 / (s^2 + (t - mu)^2) for t > mu (seed 003 §2.1,
+ *   VSM:  Chebyshev's one-tailed bound p_max = s^2 / (s^2 + (t - mu)^2) for t > mu (SSDO thesis §2.1,
  *         footnote 2) on the blurred moments, with variance at least lit.vsm_min_variance and light
- *         bleeding reduced by linstep(lit.vsm_bleed, 1, p_max) (seed 003 §6.1 names the bleeding
+ *         bleeding reduced by linstep(lit.vsm_bleed, 1, p_max) (SSDO thesis §6.1 names the bleeding
  *         and leaves the fix to [1]: the tail of p_max below `amount` is cut to black).
  *         Point lights fall back to PCF with radius lit.pcf_radius: blurring moments across
  *         six cube faces needs seam-aware filtering, and the cube's distance comparison already
  *         gives a soft edge with bilinear PCF.
- * Bias (seed 003 §2.1, "Bias"): a texel is a patch of size p facing the light, half of it above
+ * Bias (SSDO thesis §2.1, "Bias"): a texel is a patch of size p facing the light, half of it above
  * the surface, so the reference must move back by b = p/2 tan(alpha). The slope term is
  * slope_bias x tan(alpha) x the filter's footprint in texels (1 for hard and VSM, 2r+2 for PCF,
  * whose farthest bilinear tap reads texels r+1 away), plus the constant bias, all in texels of the
@@ -47,7 +47,7 @@ float ob_shadow_bias(vec4 params, float cos_alpha, float footprint, float scale)
     return (params.x + params.y * footprint * tan_alpha) * scale;
 }
 
-/* Chebyshev's upper bound (seed 003 §2.1) with the variance floor and light-bleeding reduction. */
+/* Chebyshev's upper bound (SSDO thesis §2.1) with the variance floor and light-bleeding reduction. */
 float ob_shadow_chebyshev(vec2 moments, float t)
 {
     if (t <= moments.x) return 1.0;

@@ -1,5 +1,5 @@
 #version 450 core
-/* Shadow maps, first step: depth only (seed 003 §5.1: "a framebuffer object with a depth texture
+/* Shadow maps, first step: depth only (SSDO thesis §5.1: "a framebuffer object with a depth texture
  * attached"). Directional maps keep the hardware depth, which an orthographic projection already
  * makes linear in the distance along the light. Spot and point maps (OB_SHADOW_DISTANCE) store the
  * linear distance to the light / far instead of the perspective's hyperbolic depth: the same value

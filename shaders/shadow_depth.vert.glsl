@@ -1,5 +1,5 @@
 #version 450 core
-/* Shadow maps, first step (seed 003 §2.1, §5.1): the scene from the light. The one raster pass
+/* Shadow maps, first step (SSDO thesis §2.1, §5.1): the scene from the light. The one raster pass
  * besides the G-buffer: a shadow map is not screen-space, it needs the triangles seen from
  * somewhere else. Reuses the G-buffer's vertex arrays (attribute 0 = world position). */
 #define OB_SHADOW_DEPTH_PASS 1

@@ -1,4 +1,4 @@
-/* Shadow maps (seed 003 §2.1, §5.1, §6.1): the limits the C side clamps to, and the constant
+/* Shadow maps (SSDO thesis §2.1, §5.1, §6.1): the limits the C side clamps to, and the constant
  * blocks of the two passes that make the maps (the depth raster pass and the VSM moments + blur
  * compute pass). Shared by src/passes/shadow.c and shaders/shadow*.glsl. The texture units the
  * maps are sampled at are OB_UNIT_SHADOW_* in ob_units.h; the lighting constants' shadow_*
@@ -31,7 +31,7 @@ OB_CONSTANTS_END(ob_shadow_depth_constants, shd)
 OB_CONSTANTS_SIZE(ob_shadow_depth_constants, 64 + 16);
 #endif
 
-/* One direction of the VSM blur (seed 003 §5.1: "first vertically, then horizontally"; the order
+/* One direction of the VSM blur (SSDO thesis §5.1: "first vertically, then horizontally"; the order
  * does not change a separable Gaussian). The x pass turns depth into moments as it reads. */
 #if !defined(OB_GLSL) || defined(OB_SHADOW_VSM_PASS)
 OB_CONSTANTS_BEGIN(ob_shadow_vsm_constants, OB_BINDING_PASS)

@@ -1,12 +1,12 @@
 #version 450 core
-/* Variance shadow maps (seed 003 §2.1 "Variance Shadow Mapping", §5.1): the moments (z, z^2) of
+/* Variance shadow maps (SSDO thesis §2.1 "Variance Shadow Mapping", §5.1): the moments (z, z^2) of
  * the light's depth map, blurred with a separable Gaussian (sigma = vsm_blur texels). Unlike a
  * depth map, moments may be prefiltered: the blurred pair is the local mean E[z] and E[z^2] of
  * the depths, from which the lookup takes the variance (eq. 5.1) for Chebyshev's bound.
  *   OB_SHADOW_VSM_MOMENTS: the x pass, depth layer -> moments, blurred along x -> scratch
  *   otherwise:             the y pass, scratch -> blurred along y -> the moments layer
  * Reading the depth once in the x pass saves a full-size dispatch and a texture's worth of
- * traffic against a separate "depth -> moments" pass. Stored as RG32F by default: seed 003 §6.1
+ * traffic against a separate "depth -> moments" pass. Stored as RG32F by default: SSDO thesis §6.1
  * found 16-bit floats too imprecise (light leaks near contacts, speckles from tiny variances);
  * OB_SHADOW_VSM_FORMAT rg16f stores them in 16 bits to measure that (docs/lighting.md). Taps past
  * the border repeat the edge texel, so the normalised weights always sum to 1. */

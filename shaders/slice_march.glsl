@@ -23,7 +23,7 @@ const float ob_slice_bayer4[16] = float[16](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0
 /* Per-pixel jitters in [0, 1) of the slice angles (x) and of the step distances (y).
  *   texture4: the slice jitter is the angle of the 4x4 rotation tile (16 shuffled angles) and the
  *     step jitter the 4x4 Bayer rank; the two are unrelated, and a 4x4 window averages all 16 of
- *     each exactly (seed 004 §3.3);
+ *     each exactly (Puri 2024 §3.3);
  *   ign: interleaved gradient noise of the pixel and of the transposed pixel (see hbao.glsl).
  * `offsets` moves both along an R2 sequence with the frame index when temporal noise is on. */
 vec2 ob_slice_jitters(ivec2 pix, int noise, sampler2D noise_tile, vec2 offsets)
@@ -55,7 +55,7 @@ float ob_fast_atan2(float y, float x)
     return y < 0.0 ? -r : r;
 }
 
-/* Adaptive sample counts (seed 003 §4.1): the slices of a pixel, base x its OB_EDGE_BLOCK^2 block's
+/* Adaptive sample counts (SSDO thesis §4.1): the slices of a pixel, base x its OB_EDGE_BLOCK^2 block's
  * multiplier (1, 2 or 3, more at depth and normal edges) when adaptive, else the fixed count. */
 int ob_slice_count(ivec2 pix, int fixed_slices, int adaptive, int base, sampler2D multiplier)
 {

@@ -1,12 +1,12 @@
 #version 450 core
-/* Normal-oriented hemisphere SSAO (StarCraft II; Filion & McNaughton 2008), as in seed 004 §2.3
- * and §3.3 and seed 000 §3.2:
+/* Normal-oriented hemisphere SSAO (StarCraft II; Filion & McNaughton 2008), as in Puri 2024 §2.3
+ * and §3.3 and Belonogov 2018 §3.2:
  *   - a kernel of N points in the unit hemisphere around +Z, denser toward the centre;
  *   - rotated per pixel by a 4x4 tiled noise vector through a Gram-Schmidt TBN basis;
  *   - each point P + r * TBN * k is projected; it is occluded when the depth buffer there is in
  *     front of it by more than `bias`;
  *   - a range check smoothstep(0, 1, r / |z_P - z_scene|) fades occluders far outside the radius
- *     so silhouettes in front do not darken the background (seed 004 §3.3);
+ *     so silhouettes in front do not darken the background (Puri 2024 §3.3);
  *   - one addition: the occluder must lie above P's tangent plane (see the loop), which removes
  *     the grazing-angle self-occlusion that the bias alone only hides;
  *   - AO = (1 - occluded / N) ^ intensity: visibility in [0,1].
@@ -49,7 +49,7 @@ void main()
 
     float radius = ssao.radius;
     float bias = ssao.bias;
-    /* Adaptive (seed 003 §4.1): base x 1, 2 or 3 from the edge pass; the Halton kernel's prefixes
+    /* Adaptive (SSDO thesis §4.1): base x 1, 2 or 3 from the edge pass; the Halton kernel's prefixes
      * are kernels of their own. */
     int count = ssao.adaptive != 0 ? ssao.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r) : ssao.samples;
     /* The projection read once, into registers: read from the constant block inside the loop,

@@ -1,4 +1,4 @@
-/* Hemisphere SSAO constants (seed 004 §2.3/§3.3, seed 000 §3.2). Filled by src/methods/ssao.c. */
+/* Hemisphere SSAO constants (Puri 2024 §2.3/§3.3, Belonogov 2018 §3.2). Filled by src/methods/ssao.c. */
 #ifndef OB_SSAO_PARAMS_H
 #define OB_SSAO_PARAMS_H
 #include "frame_params.h"
@@ -15,7 +15,7 @@ OB_CONSTANTS_BEGIN(ob_ssao_constants, OB_BINDING_PASS)
     OB_FLOAT intensity;     /* AO = visibility^intensity */
     OB_INT samples;         /* kernel entries in use */
     OB_INT noise;           /* OB_NOISE_* rotation */
-    OB_INT adaptive;        /* 1: take adaptive_base x the edge pass's multiplier samples (seed 003 §4.1) */
+    OB_INT adaptive;        /* 1: take adaptive_base x the edge pass's multiplier samples (SSDO thesis §4.1) */
     OB_INT adaptive_base;   /* the base count the multiplier (1..3) scales */
     OB_FLOAT pad0;
     OB_VEC4 kernel[OB_SSAO_MAX_SAMPLES]; /* tangent-space hemisphere offsets (z along the normal), w unused */

@@ -1,6 +1,6 @@
 #version 450 core
 /* Screen-space directional occlusion with one indirect bounce (Ritschel, Grosch & Seidel 2009,
- * as described in seed 003 §3.3 and §4.2; seed 000 §4.1-4.2). One program, four stages
+ * as described in SSDO thesis §3.3 and §4.2; Belonogov 2018 §4.1-4.2). One program, four stages
  * (ssdo.stage), so `ssdo`'s two passes, its fused one (both outputs from one dispatch, the
  * default) and `ssdo_merged` take exactly the same samples. The second depth layer
  * (OB_SSDO_LAYERS) and the extra view (OB_SSDO_EXTRA_VIEW) are program variants, so the default
@@ -8,9 +8,9 @@
  * llvmpipe):
  *
  *   - samples P + r_i w_i in the normal hemisphere in 3D (w_i from a Halton 2,5 kernel, r_i from
- *     base 3, seed 003 §5.3), rotated per pixel, back-projected; a sample behind the depth buffer
+ *     base 3, SSDO thesis §5.3), rotated per pixel, back-projected; a sample behind the depth buffer
  *     whose occluder rises above P's tangent plane within range is an occluder (V = 0);
- *   - the modulation factor per channel (seed 003 eq. 4.4)
+ *   - the modulation factor per channel (SSDO thesis eq. 4.4)
  *         M = sum L_in(w_i) V(w_i) cos(theta_i) / sum L_in(w_i) cos(theta_i),
  *     the ratio of the direct term of eq. 3.3 with and without visibility (eq. 4.2-4.3), so the
  *     constant rho / pi and the sample's solid angle 2 pi / N cancel. With cosine-weighted
@@ -20,7 +20,7 @@
  *     direct radiance L_s to P:  sum L_s A_s cos(theta_s) cos(theta_r) / d^2, back-facing
  *     senders (cos theta_s <= 0) dropped. Stored as the radiance a white receiver reflects
  *     (x 1/pi, without the receiver's albedo, which compose applies at full resolution so the
- *     filters never blur texture detail into it). `ssdo_merged` darkens it by M (seed 003 §4.2).
+ *     filters never blur texture detail into it). `ssdo_merged` darkens it by M (SSDO thesis §4.2).
  *
  * L_in(w): the ambient (constant, sky/ground hemisphere, or the environment's SH irradiance / pi
  * as a smooth stand-in for its radiance) plus every light spread into a normalised cosine lobe
@@ -114,7 +114,7 @@ vec3 incoming(vec3 w, vec3 up, mat3 to_world)
 }
 
 #ifdef OB_SSDO_EXTRA_VIEW
-/* Seed 000 §4.4's extra view, for a sample s that this view says is occluded (behind its depth
+/* Belonogov 2018 §4.4's extra view, for a sample s that this view says is occluded (behind its depth
  * buffer): the extra camera, turned 90 degrees around the target, sees it too. In front of the
  * extra view's surface at its pixel (or over its sky), s lies on a ray that camera sees through,
  * in free space: no occluder. Behind that surface too, it stays occluded, and the sender of its
@@ -179,7 +179,7 @@ void main()
 
     float radius = ssdo.radius;
     float bias = ssdo.bias;
-    /* Adaptive sample counts (seed 003 §4.1 proposes them for SSDO): the first base x 1, 2 or 3
+    /* Adaptive sample counts (SSDO thesis §4.1 proposes them for SSDO): the first base x 1, 2 or 3
      * Halton directions, evenly spread at every prefix; M is a ratio of sums and needs no
      * rescaling, the bounce's patch area A_s = pi r^2 / N takes this pixel's N. */
     int count = ssdo.adaptive != 0 ? ssdo.adaptive_base * int(texelFetch(multiplier, pix / OB_EDGE_BLOCK, 0).r)
@@ -234,10 +234,10 @@ void main()
                     scene_p = ob_view_position(vec2(q) + 0.5, scene_d, frame.ao_inv_size, frame.ao_proj_info);
                     /* As ssao.glsl: an occluder rises above P's tangent plane (no self-occlusion
                      * of flat surfaces read at pixel centres), and fades out beyond the radius
-                     * (seed 004 §3.3's range check) so foreground silhouettes do not occlude. */
+                     * (Puri 2024 §3.3's range check) so foreground silhouettes do not occlude. */
                     bool above = dot(scene_p - p, n) > bias;
                     float range = smoothstep(0.0, 1.0, radius / abs(d - scene_d));
-                    /* Seed 000 around Fig. 4.6: with a second layer a sample behind the first
+                    /* Belonogov 2018 around Fig. 4.6: with a second layer a sample behind the first
                      * surface is inside the object only up to the second; behind that it is free
                      * (0 = nothing behind the first: the single-layer test). */
                     bool inside = true;

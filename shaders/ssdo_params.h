@@ -1,5 +1,5 @@
-/* Screen-space directional occlusion constants (Ritschel et al. 2009 as described in seed 003
- * §3.3; seed 003 §4.2's merged one-pass variant; seed 000 §4.1-4.2). Filled by src/methods/ssdo.c.
+/* Screen-space directional occlusion constants (Ritschel et al. 2009 as described in SSDO thesis
+ * §3.3; SSDO thesis §4.2's merged one-pass variant; Belonogov 2018 §4.1-4.2). Filled by src/methods/ssdo.c.
  * The camera, the AO grid, the lights and the ambient light are the frame's (frame_params.h). */
 #ifndef OB_SSDO_PARAMS_H
 #define OB_SSDO_PARAMS_H

@@ -1,5 +1,5 @@
 #version 450 core
-/* Tone mapping, seed 003 §5.5 steps 6-8 (§2.2): L = exposure alpha / L_avg L_w (eq. 2.2) plus the
+/* Tone mapping, SSDO thesis §5.5 steps 6-8 (§2.2): L = exposure alpha / L_avg L_w (eq. 2.2) plus the
  * blurred bright pass, then Reinhard's operator on the luminance (eq. 2.4 with L_white, eq. 2.3
  * without), the colour scaled by L_d / L so hue and saturation are kept, then sRGB. With HDR
  * off: exposure x radiance clamped to [0,1], then sRGB. */

@@ -1,4 +1,4 @@
-/* Tone mapping (seed 003 §5.5 steps 6-8): add the bloom, scale by the key (eq. 2.2), Reinhard
+/* Tone mapping (SSDO thesis §5.5 steps 6-8): add the bloom, scale by the key (eq. 2.2), Reinhard
  * with L_white (eq. 2.4), sRGB. */
 #ifndef OB_TONEMAP_PARAMS_H
 #define OB_TONEMAP_PARAMS_H

@@ -1,5 +1,5 @@
 #version 450 core
-/* Joint bilateral upsampling (Kopf et al. 2007; seed 003 §3.5 eq. 3.12, §5.3):
+/* Joint bilateral upsampling (Kopf et al. 2007; SSDO thesis §3.5 eq. 3.12, §5.3):
  *
  *   S_p = 1/k_p sum_{q in 3x3 around p's AO position} S_q c(|p_lo - q|) g(I_p, I_q)
  *

@@ -26,7 +26,7 @@ OB_CONSTANTS_BEGIN(ob_vb_constants, OB_BINDING_PASS)
     OB_INT emitter_cosine;    /* vbgi: 1 = a sender's radiance x its cosine toward P (the paper's),
                                  0 = the radiance itself where the sender faces P */
     OB_INT adaptive;          /* 1: per-pixel slices, adaptive_base x the multiplier (OB_UNIT_SLICE_MULTIPLIER) */
-    OB_INT adaptive_base;     /*   the slices at multiplier 1 (seed 003 §4.1) */
+    OB_INT adaptive_base;     /*   the slices at multiplier 1 (SSDO thesis §4.1) */
     OB_INT layers;            /* 1: a sample's back is the second depth layer behind it (OB_UNIT_SECOND_DEPTH) */
 OB_CONSTANTS_END(ob_vb_constants, vb)
 OB_CONSTANTS_SIZE(ob_vb_constants, 4 * 16);

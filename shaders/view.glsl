@@ -12,7 +12,7 @@ layout(binding = OB_UNIT_VIEW_SOURCE) uniform sampler2D source;     /* the view'
 layout(binding = OB_UNIT_VIEW_MULTIPLIER) uniform sampler2D multiplier; /* samples under adaptive sampling: per block */
 layout(binding = OB_IMAGE_UNIT_OUT, rgba8) uniform writeonly image2D display;
 
-/* The luminance view's ramp (seed 003 Fig. 6.16c): t in [0, 1] through dark blue, blue, cyan,
+/* The luminance view's ramp (SSDO thesis Fig. 6.16c): t in [0, 1] through dark blue, blue, cyan,
  * green, yellow and red, evenly; tests/test_present.c has the same ramp in C. */
 vec3 luminance_ramp(float t)
 {

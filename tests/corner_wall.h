@@ -1,6 +1,6 @@
 /* The analytic crease of `corner`, shared by test_gtao.c and test_bitmask.c: one frame of a method
  * looking down at the floor beside the wall x = 0 (away from the wall z = 0), read back with world
- * points, and AO_R's closed form beside one wall (DESIGN.md): a floor point at h from the wall
+ * points, and AO_R's closed form beside one wall (docs/architecture.md): a floor point at h from the wall
  * has AO_R = 1 - (acos a - a sqrt(1 - a^2)) / π, a = h / R. */
 #ifndef OB_TEST_CORNER_WALL_H
 #define OB_TEST_CORNER_WALL_H

@@ -93,7 +93,7 @@ expect 2 "out of range" -- "${R[@]}" --set geometry.radius=99
 expect 2 "but the filter is geometry" -- "${R[@]}" --set gaussian.sigma=1
 expect 2 "no parameter 'nosuch'" -- "${R[@]}" --filter bilateral --set bilateral.nosuch=1
 expect 2 "unknown command" -- frobnicate
-# Stereo (seed 000 §5.2): bad modes and values, options that need --stereo or exclude each other.
+# Stereo (Belonogov 2018 §5.2): bad modes and values, options that need --stereo or exclude each other.
 expect 2 "stereo: expected mirror or single" -- "${R[@]}" --stereo both
 expect 2 "ipd: expected a positive number" -- "${R[@]}" --stereo mirror --ipd -0.1
 expect 2 "ipd: expected a positive number" -- "${R[@]}" --stereo mirror --ipd abc

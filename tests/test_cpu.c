@@ -69,7 +69,7 @@ static void test_registry_and_settings(void)
         }
     }
 
-    /* Quality presets: seed 000's 12/24/36/64, applied through each method's mapping. */
+    /* Quality presets: Belonogov 2018's 12/24/36/64, applied through each method's mapping. */
     CHECK(ob_quality_samples("low") == 12 && ob_quality_samples("medium") == 24 && ob_quality_samples("high") == 36 &&
               ob_quality_samples("ultra") == 64 && ob_quality_samples("extreme") == -1,
           "quality presets");
@@ -143,7 +143,7 @@ static void test_kernel(void)
         CHECK(len <= 1.0f + 1e-5f && len >= 0.099f, "sample %d length %g outside [0.1, 1]", i, (double)len);
         if (i < N / 2) inner += len; else outer += len;
     }
-    /* Seed 004 §3.3: the accelerating scale puts the first half of the kernel nearer the centre. */
+    /* Puri 2024 §3.3: the accelerating scale puts the first half of the kernel nearer the centre. */
     CHECK(inner < outer * 0.6f, "first half mean length %g vs second half %g", (double)(inner / 32), (double)(outer / 32));
     float k2[N * 4];
     ob_hemisphere_kernel(k2, N, OB_SAMPLING_RANDOM, OB_DIRECTIONS_UNIFORM, 7);
@@ -164,21 +164,21 @@ static void test_kernel(void)
 
 static void test_halton(void)
 {
-    /* Seed 003 Table 3.1: Phi_2 and Phi_3 of 1..6, exactly. */
+    /* SSDO thesis Table 3.1: Phi_2 and Phi_3 of 1..6, exactly. */
     const double phi2[6] = {0.5, 0.25, 0.75, 0.125, 0.625, 0.375};
     const double phi3[6] = {1.0 / 3.0, 2.0 / 3.0, 1.0 / 9.0, 4.0 / 9.0, 7.0 / 9.0, 2.0 / 9.0};
     for (uint32_t i = 1; i <= 6; ++i) {
         CHECK(ob_radical_inverse(i, 2) == phi2[i - 1], "Phi_2(%u) = %.17g", i, ob_radical_inverse(i, 2));
         CHECK(fabs(ob_radical_inverse(i, 3) - phi3[i - 1]) < 1e-15, "Phi_3(%u) = %.17g", i, ob_radical_inverse(i, 3));
     }
-    /* Seed 003 §3.4's periodicity example, exactly. */
+    /* SSDO thesis §3.4's periodicity example, exactly. */
     CHECK(ob_radical_inverse(50, 2) == 0.296875, "Phi_2(50)");
     CHECK(ob_radical_inverse(66, 2) == 0.2578125, "Phi_2(66)");
     CHECK(ob_radical_inverse(82, 2) == 0.2890625, "Phi_2(82)");
     CHECK(ob_radical_inverse(114, 2) == 0.3046875, "Phi_2(114)");
     CHECK(ob_radical_inverse(0, 7) == 0.0 && ob_radical_inverse(1, 7) == 1.0 / 7.0, "base 7");
 
-    /* Period 10 of bases 2 x 5 (seed 003 §4.1): points 1..10 fall in 10 different cells of
+    /* Period 10 of bases 2 x 5 (SSDO thesis §4.1): points 1..10 fall in 10 different cells of
      * (halves of Phi_2) x (fifths of Phi_5), i.e. they split the hemisphere evenly. */
     int cells = 0;
     for (uint32_t i = 1; i <= 10; ++i)

@@ -1,4 +1,4 @@
-/* SSDO's extra view (seed 000 §4.4, ssdo.extra_view): a second camera turned 90 degrees about the
+/* SSDO's extra view (Belonogov 2018 §4.4, ssdo.extra_view): a second camera turned 90 degrees about the
  * up axis around the main camera's target, whose G-buffer and direct light the method reads.
  *   - ob_extra_view_camera: the eye turned by 90 degrees about the up axis through the target, at
  *     the same distance and height, the rest of the camera unchanged (pure);

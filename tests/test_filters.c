@@ -570,7 +570,7 @@ static void test_scenes(ob_context *ctx)
         ob_settings s;
         ob_settings_init(&s, "ssao");
 
-        /* bilateral_sep against the full 2D bilateral (seed 000 eq. 4.6-4.7 vs 4.5). */
+        /* bilateral_sep against the full 2D bilateral (Belonogov 2018 eq. 4.6-4.7 vs 4.5). */
         ob_settings_set_filter(&s, "bilateral");
         ob_render_frame(r, &cam, &s);
         ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, n * sizeof(float));
@@ -603,7 +603,7 @@ static void test_scenes(ob_context *ctx)
         ob_settings_set_ao_scale(&s, 1.0f);
 
         /* Adaptive: edge pixels take more samples than plane pixels, and fewer in total than the
-         * fixed count at the same quality (seed 003 §4.1). */
+         * fixed count at the same quality (SSDO thesis §4.1). */
         ob_settings_set_samples(&s, 30);
         s.adaptive = true;
         CHECK(ob_render_frame(r, &cam, &s) == OB_OK, "adaptive frame");

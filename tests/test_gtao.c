@@ -1,5 +1,5 @@
 /* gtao (shaders/gtao.glsl) against what it estimates:
- *   - the closed-form AO_R next to one wall (DESIGN.md): a floor point at h from the wall has
+ *   - the closed-form AO_R next to one wall (docs/architecture.md): a floor point at h from the wall has
  *     AO_R = 1 - (acos a - a sqrt(1 - a^2)) / π, a = h / R; open floor reads exactly 1;
  *   - one test body, two implementations: a CPU port of the same slice integral on a synthetic
  *     depth buffer (a box on a floor, ray cast here) agrees with the GPU pass. */

@@ -1,4 +1,4 @@
-/* The guard band (seed 000 §3.2.2, ob_settings.guard):
+/* The guard band (Belonogov 2018 §3.2.2, ob_settings.guard):
  *   - the widened projection is exact: depth, normals, albedo and direct light read back with a
  *     band equal those without it, and AO pixels farther than the search from the border too (the
  *     band rounds to a multiple of 4 k, so the 4x4 rotation tile falls on the same pixels), also at

@@ -1,4 +1,4 @@
-/* GPU tests of the HDR passes (seed 003 §2.2, §5.5, §6.5) on llvmpipe or a GPU: the reduction's
+/* GPU tests of the HDR passes (SSDO thesis §2.2, §5.5, §6.5) on llvmpipe or a GPU: the reduction's
  * log-average (eq. 2.1) against the CPU formula on the very values the GPU stored, Reinhard's
  * L_white (eq. 2.4) mapping to 255, the automatic key rising with brightness, HDR off as a clamp,
  * and bloom spreading a single bright pixel. `test_hdr --bench` prints the passes' median times. */

@@ -83,7 +83,7 @@ static void test_corner_with(ob_renderer *r, const char *m, const char *extra)
     bool crytek = !strcmp(m, "crytek");
     float *ao = render(r, &corner_cam, &s, OB_IMAGE_AO_F32);
 
-    /* Open floor, two radii from both walls. Crytek's sphere is half inside any plane: seed 004
+    /* Open floor, two radii from both walls. Crytek's sphere is half inside any plane: Puri 2024
      * §2.2 puts flat surfaces at about one half. */
     float open = at(ao, &corner_cam, 3.3f, 0.0f, 3.3f);
     if (crytek)
@@ -115,7 +115,7 @@ static void test_corner_with(ob_renderer *r, const char *m, const char *extra)
         CHECK(ob_settings_set(&c, "crytek.correction=on") == OB_OK, "correction on");
         ao = render(r, &corner_cam, &c, OB_IMAGE_AO_F32);
         float corrected = at(ao, &corner_cam, 3.3f, 0.0f, 3.3f);
-        CHECK(corrected > 0.85f, "crytek with seed 003's correction: open plane %g", (double)corrected);
+        CHECK(corrected > 0.85f, "crytek with SSDO thesis's correction: open plane %g", (double)corrected);
         free(ao);
     }
 }

@@ -1,4 +1,4 @@
-/* GPU tests of the shadow maps (seed 003 §2.1, §5.1, §6.1) on the real GLSL (llvmpipe in CI):
+/* GPU tests of the shadow maps (SSDO thesis §2.1, §5.1, §6.1) on the real GLSL (llvmpipe in CI):
  * a unit box on a 20x20 floor, maps from ob_shadows_render, and ob_shadow() of shaders/shadow.glsl
  * evaluated at chosen world points by shaders/shadow_probe.glsl, without the lighting pass.
  *   (a) a directional light from +x and above shadows the floor on the box's -x side, and only

@@ -89,7 +89,7 @@ static void test_bleeding(ob_renderer *r, const char *m)
     free(b);
 }
 
-/* M follows the lights (seed 003 eq. 4.4), plain AO does not. */
+/* M follows the lights (SSDO thesis eq. 4.4), plain AO does not. */
 static void test_light_moves(ob_renderer *r, const ob_scene *scene)
 {
     ob_settings s;
@@ -122,7 +122,7 @@ static void test_light_moves(ob_renderer *r, const ob_scene *scene)
 
 /* The merged one-pass variant against the original two passes, over geometry pixels: the two
  * estimate the same M (eq. 4.4) with cosine- and uniform-distributed Halton directions, and the
- * merged bounce is the original's darkened by M (seed 003 §4.2). */
+ * merged bounce is the original's darkened by M (SSDO thesis §4.2). */
 static void test_agreement(ob_renderer *r)
 {
     ob_settings s;

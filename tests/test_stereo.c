@@ -1,4 +1,4 @@
-/* Stereo (seed 000 §5.2): the eyes ob_stereo_cameras makes (parallel axes, off-axis frusta that
+/* Stereo (Belonogov 2018 §5.2): the eyes ob_stereo_cameras makes (parallel axes, off-axis frusta that
  * meet on the convergence plane, the Vive preset) and ob_metric_stereo_consistency on two CPU
  * views of a plane whose AO is a known function of the surface point. */
 #include <cglm/cglm.h>

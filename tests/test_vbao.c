@@ -26,7 +26,7 @@ static const float radius = 0.5f; /* both scenes' ao_radius */
 #define M_PI 3.14159265358979323846
 #endif
 
-/* DESIGN.md: AO_R of a floor point at h from one infinite wall, a = h / R. */
+/* docs/architecture.md: AO_R of a floor point at h from one infinite wall, a = h / R. */
 static double ao_r_one_wall(double h, double r)
 {
     double a = h / r;
@@ -276,7 +276,7 @@ static bool bleed_profile(ob_context *ctx, const char *method, const char **sets
         memcpy(&pos[3 * m], &f.pos[3 * i], 3 * sizeof(float));
         memcpy(&wn[3 * m], &f.wn[3 * i], 3 * sizeof(float));
         albedo[3 * m] = albedo[3 * m + 1] = albedo[3 * m + 2] = floor_albedo;
-        /* Seen from the floor, the wall within R is the one infinite wall of DESIGN.md (the
+        /* Seen from the floor, the wall within R is the one infinite wall of docs/architecture.md (the
          * bins stay R from its ends): its red radiance times the cosine share it covers. */
         out->analytic_red[b] += wall_red_radiance(scene) * (1.0 - ao_r_one_wall(f.pos[3 * i], radius));
         bin[m++] = b;

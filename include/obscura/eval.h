@@ -89,7 +89,7 @@ ob_error ob_write_text(const char *path, const char *text);
 ob_error ob_read_pfm(const char *path, int *width, int *height, int *channels, float **px);
 
 /* ---- ground truth: ray-traced AO and one bounce (Embree on the CPU) at G-buffer points -------
- * AO_R(x) = 1/pi * integral over the hemisphere of V_R(x, w) cos(theta) dw (seed 000 eq. 2.6-2.7,
+ * AO_R(x) = 1/pi * integral over the hemisphere of V_R(x, w) cos(theta) dw (Belonogov 2018 eq. 2.6-2.7,
  * t = 1), with V_R = 0 when a ray from x hits geometry within R, estimated from cosine-weighted
  * rays (pdf cos(theta)/pi, so the estimate is the plain mean of the visibility) cast from the very
  * G-buffer points the screen-space methods see. Every point's random numbers come from the seed
@@ -257,7 +257,7 @@ typedef struct ob_stereo_consistency {
 } ob_stereo_consistency;
 
 /* How well the AO of two views of the same scene agree (AO_R is a property of the surface point,
- * not of the view: seed 000 eq. 2.6-2.7). Every right-eye geometry pixel is taken to the world by
+ * not of the view: Belonogov 2018 eq. 2.6-2.7). Every right-eye geometry pixel is taken to the world by
  * its depth, into the left eye, and the left eye's AO is read there (bilinear); the pixel counts
  * only when it is seen by both eyes: the left position lies inside the left image, its four taps
  * are geometry, and the left depth there (bilinear) matches the point's left-eye depth within

@@ -20,7 +20,7 @@
  *   - View space is OpenGL's: the camera looks down -Z; linear depth is the positive distance
  *     along -Z. Radii are in world units.
  *   - Desc structs: zero means "default" (sokol style), resolved in one place per object.
- *   - "seed N §x" cites one of the three theses the methods come from (seed 000, 003, 004), as
+ *   - "seed N §x" cites one of the three theses the methods come from (Belonogov 2018, SSDO thesis, Puri 2024), as
  *     the top of README.md lists them; docs/methods.md gives each method's sources.
  *
  * Errors
@@ -218,7 +218,7 @@ typedef struct ob_light {
 
 typedef enum ob_shadow_method { OB_SHADOW_NONE = 0, OB_SHADOW_HARD, OB_SHADOW_PCF, OB_SHADOW_VSM } ob_shadow_method;
 
-/* Shadow maps (seed 003 §2.1, §5.1, §6.1) for every light up to 4: directional and spot lights
+/* Shadow maps (SSDO thesis §2.1, §5.1, §6.1) for every light up to 4: directional and spot lights
  * through one 2D map each, point lights through a cube map. */
 typedef struct ob_shadow_settings {
     ob_shadow_method method;
@@ -228,7 +228,7 @@ typedef struct ob_shadow_settings {
     int pcf_radius;       /* PCF: taps each side of the kernel (1 = 3x3 bilinear comparisons) */
     float vsm_blur;       /* VSM: Gaussian sigma of the moment blur, in map texels */
     float vsm_bleed;      /* VSM: light-bleeding reduction threshold in [0, 1) */
-    int vsm_bits;         /* VSM: bits per stored moment, 16 (RG16F) or 32 (RG32F; 0 = 32): seed 003
+    int vsm_bits;         /* VSM: bits per stored moment, 16 (RG16F) or 32 (RG32F; 0 = 32): SSDO thesis
                              §6.1 / Fig. 6.5's precision comparison, docs/lighting.md */
     /* Keep the maps from the last frame while the lights, these settings and the scene are
      * unchanged: the scene is static, so the maps do not depend on the camera (the viewer sets
@@ -284,7 +284,7 @@ const ob_filter_info *ob_filter_at(int index);
 /* Index of the filter, or -1 for an unknown name or NULL (no error recorded). */
 int ob_find_filter(const char *name);
 
-/* ---- HDR settings: exposure, tone mapping, bloom (seed 003 §2.2, §5.5, §6.5) ------------------ */
+/* ---- HDR settings: exposure, tone mapping, bloom (SSDO thesis §2.2, §5.5, §6.5) ------------------ */
 typedef struct ob_hdr_settings {
     bool enabled;          /* false (--hdr off): radiance clamped to [0,1] before sRGB */
     float exposure;        /* linear scale applied to the radiance first (default 1) */
@@ -311,8 +311,8 @@ typedef struct ob_settings {
     float filter_params[OB_MAX_PARAMS];
     uint32_t filter_params_set;   /* bit i: filter_params[i] was set explicitly */
     int ao_divisor;               /* 1, 2 or 4 (0 = 1): the AO runs at 1/ao_divisor of the size on the
-                                     grid of full pixels k i + o (seed 000 §4.7.1, seed 003 §4.4) */
-    bool adaptive;                /* per-pixel sample counts from an edge pre-pass (seed 003 §4.1) */
+                                     grid of full pixels k i + o (Belonogov 2018 §4.7.1, SSDO thesis §4.4) */
+    bool adaptive;                /* per-pixel sample counts from an edge pre-pass (SSDO thesis §4.1) */
     ob_hdr_settings hdr;
     ob_light lights[OB_MAX_LIGHTS];
     int light_count;              /* 0 = the scene's lights */
@@ -326,11 +326,11 @@ typedef struct ob_settings {
      * a, b, c linear in the albedo, so light bouncing between nearby bright surfaces lifts the
      * occlusion (white walls lose about half of their darkening, black ones none). */
     bool multibounce;
-    /* Draw every material in its diffuse colour alone, its texture ignored (seed 004 §3.6, §4.1:
+    /* Draw every material in its diffuse colour alone, its texture ignored (Puri 2024 §3.6, §4.1:
      * the AO is easier to judge on untextured surfaces). false = textures on. */
     bool textures_off;
     float background[3];          /* linear RGB of pixels with no geometry */
-    /* Guard band (seed 000 §3.2.2), px per side, 0 = off: the G-buffer, the direct light, the AO
+    /* Guard band (Belonogov 2018 §3.2.2), px per side, 0 = off: the G-buffer, the direct light, the AO
      * method, its filter and the upsampler run on (W + 2g) x (H + 2g) with the projection widened
      * so that the visible W x H frame is exactly its centre, and compose crops; occluders up to g
      * pixels beyond the frame's edge then darken its border. Rounded up to a multiple of 4 x
@@ -438,14 +438,14 @@ ob_error ob_settings_set_filter(ob_settings *settings, const char *filter);
 /* The value of a parameter of the current filter, or NaN if unknown or for NULL arguments (no
  * error recorded). */
 float ob_settings_get_filter(const ob_settings *settings, const char *param);
-/* The AO resolution as a divisor of the size: 1, 2 or 4 (seed 000 §4.7.1, seed 003 §4.4).
+/* The AO resolution as a divisor of the size: 1, 2 or 4 (Belonogov 2018 §4.7.1, SSDO thesis §4.4).
  * Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_OUT_OF_RANGE. */
 ob_error ob_settings_set_ao_divisor(ob_settings *settings, int divisor);
 /* The same as a fraction, as the CLI's --ao-scale takes it: exactly 1, 0.5 or 0.25 (divisor 1, 2,
  * 4). Errors: OB_ERR_INVALID_ARGUMENT (NULL), OB_ERR_OUT_OF_RANGE. */
 ob_error ob_settings_set_ao_scale(ob_settings *settings, float scale);
 
-/* Quality presets (seed 000 §3.2.3, §5.1): "low" 12, "medium" 24, "high" 36, "ultra" 64 samples
+/* Quality presets (Belonogov 2018 §3.2.3, §5.1): "low" 12, "medium" 24, "high" 36, "ultra" 64 samples
  * per pixel. Returns the count, or -1 for an unknown name or NULL (no error recorded). */
 int ob_quality_samples(const char *name);
 /* Give the current method `samples` samples per pixel: the `samples` parameter, or what the
@@ -460,7 +460,7 @@ ob_error ob_settings_set_samples(ob_settings *settings, int samples);
  * entries written: 0 for a method without a kernel (the slice and horizon methods march instead)
  * or max 0, -1 with OB_ERR_INVALID_ARGUMENT recorded for NULL arguments, max < 0 or settings not
  * initialised. Halton kernels repeat their pattern every 10 entries (bases 2 x 5; 30 with
- * the length's base 3): the viewer's kernel view shows it (seed 003 Fig. 4.1/4.2). */
+ * the length's base 3): the viewer's kernel view shows it (SSDO thesis Fig. 4.1/4.2). */
 int ob_method_kernel(const ob_settings *settings, float *xyzw, int max);
 
 /* ---- renderer ------------------------------------------------------------------------------- */

@@ -124,7 +124,7 @@ int ob_builtin_scene_count(void);
 const char *ob_builtin_scene_name(int index);
 const char *ob_builtin_scene_description(int index);
 
-/* ---- stereo: the two eyes of a headset (seed 000 §5.2) -------------------------------------- */
+/* ---- stereo: the two eyes of a headset (Belonogov 2018 §5.2) -------------------------------------- */
 typedef struct ob_headset {
     const char *name;        /* "vive" */
     const char *description;
@@ -192,7 +192,7 @@ ob_error ob_check_light(const ob_light *light);
  * or key, a bad value, what ob_check_light refuses); *out is untouched on error. */
 ob_error ob_parse_light(const char *text, ob_light *out);
 
-/* ---- HDR on the CPU (seed 003 §2.2, §5.5, §6.5; the settings are in obscura/obscura.h) --------- */
+/* ---- HDR on the CPU (SSDO thesis §2.2, §5.5, §6.5; the settings are in obscura/obscura.h) --------- */
 /* The HDR math on the CPU, the same formulas the shaders use (for tests and tools):
  * log-average luminance (eq. 2.1) of n values, Reinhard with L_white (eq. 2.4, eq. 2.3 when
  * l_white <= 0) and the automatic key for a log-average. Pure CPU, thread-safe; never fail
@@ -265,7 +265,7 @@ ob_error ob_render_floor(ob_renderer *r, const ob_settings *settings, ob_floor_i
  *             count instead), grey; 0 for sky
  *   bounce    the one-bounce light of methods that write one (SSDO, vbgi), clamped and sRGB-encoded; black otherwise
  *   bent_normals  the method's bent normal (renormalised) as b * 0.5 + 0.5; black when it wrote none
- *   luminance the composed HDR radiance's luminance before tone mapping in false colour (seed 003
+ *   luminance the composed HDR radiance's luminance before tone mapping in false colour (SSDO thesis
  *             Fig. 6.16c): log2 over [OB_LUMINANCE_LOG2_LO, OB_LUMINANCE_LOG2_HI] through dark blue,
  *             blue, cyan, green, yellow and red, white above the top, black at 0; the scale itself
  *             along the bottom edge with a tick per stop (taller at 1) */
@@ -285,7 +285,7 @@ typedef enum ob_view {
                              read it: layers=2) */
     OB_VIEW_EXTRA,        /* the extra view's direct light as radiance shows the main one's (ssdo with
                              extra_view=on; black otherwise): the camera turned 90 degrees around the
-                             target (seed 000 §4.4) */
+                             target (Belonogov 2018 §4.4) */
     OB_VIEW_HISTORY_AGE,  /* temporal accumulation: frames in each pixel's history / temporal_frames,
                              grey (black at a disocclusion, on the sky, or with temporal off) */
     OB_VIEW_COUNT

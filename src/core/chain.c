@@ -1,4 +1,4 @@
-/* The AO chain, the one code both front doors run (DESIGN.md "The frame"): ob_render_frame on the
+/* The AO chain, the one code both front doors run (docs/architecture.md "The frame"): ob_render_frame on the
  * renderer's own G-buffer and ob_host_ao on an engine's textures.
  *   [downsample to the AO grid] -> [edges] -> [depth MIPs] -> method -> [temporal accumulation,
  *   before or after the filter] -> filter -> [joint bilateral upsample]
@@ -312,7 +312,7 @@ static ob_error run_filter_stage(chain_run *c)
     void *fstate = ob_renderer_filter_state(r, s->filter, plan->rgb, &err);
     if (err != OB_OK) return err;
     const ob_filter_impl *filter = ob_filter_impl_at(s->filter);
-    /* M and the bounce through the same filter (seed 003 §5.3 smooths them separately); the sky is
+    /* M and the bounce through the same filter (SSDO thesis §5.3 smooths them separately); the sky is
      * 1 in M and 0 in the bounce. The barriers order the shared scratch targets. */
     err = run_filter(r, filter, fstate, t, c->guide, c->main_in, c->main_out, plan->rgb ? t->scratch_rgb : t->scratch,
                      plan->rgb, 1.0f, s);

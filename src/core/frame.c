@@ -1,4 +1,4 @@
-/* The frame (DESIGN.md "The frame"), each pass timed:
+/* The frame (docs/architecture.md "The frame"), each pass timed:
  *   [shadow maps] -> gbuffer -> lighting (direct light, shadowed) -> [downsample to the AO
  *   resolution] -> [edges, for adaptive sample counts] -> method -> filter (at the AO
  *   resolution) -> [joint bilateral upsample] -> compose (HDR radiance) -> luminance, bloom,
@@ -35,7 +35,7 @@ void ob_proj_info(const float *proj, float out[4])
 
 void ob_guard_projection(float proj[16], int width, int height, int guard)
 {
-    /* Seed 000 §3.2.2: the enlarged image must hold the visible one at its centre, pixel for pixel.
+    /* Belonogov 2018 §3.2.2: the enlarged image must hold the visible one at its centre, pixel for pixel.
      * ndc' = 2 (x + g + 1/2) / (W + 2g) - 1 = (2 (x + 1/2) / W - 1) W / (W + 2g), so ndc scales
      * about the centre by W / (W + 2g); ndc = (P00 X + P20 Z + P30) / w scales with P00, P20 and
      * P30 (an orthographic camera's offset; 0 in a perspective one, which stays 0). */
@@ -265,7 +265,7 @@ static ob_error run_scene_passes(ob_renderer *r, const ob_settings *s, const ob_
     glMemoryBarrier(barrier);
     if (!plan->impl->shader) return OB_OK;
     if (plan->reads & OB_READS_EXTRA_VIEW) {
-        /* Seed 000 §4.4: the extra camera's G-buffer and direct light, with its own per-frame
+        /* Belonogov 2018 §4.4: the extra camera's G-buffer and direct light, with its own per-frame
          * block (the same lights and shadow maps), then the main block bound again. */
         ob_timer_begin(&r->timers, "extra_view");
         err = run_extra_view(r, s, lights, light_count);

@@ -1,4 +1,4 @@
-/* The renderer's lifecycle (DESIGN.md "The frame"): its targets, the passes it owns, the scene and
+/* The renderer's lifecycle (docs/architecture.md "The frame"): its targets, the passes it owns, the scene and
  * the environment it was given, and the method and filter states made on first use. The frame
  * itself is frame.c; read-back readback.c; the debug views present.c. */
 #include <stdio.h>

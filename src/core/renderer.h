@@ -67,7 +67,7 @@ enum { OB_AO_SCALES = 3 }; /* k = 1, 2, 4 */
 struct ob_renderer {
     ob_context *ctx;
     int width, height;         /* the visible frame: radiance, final, the HDR passes, every read-back */
-    /* The guard band (seed 000 §3.2.2), px per side, and the size every pass before compose works
+    /* The guard band (Belonogov 2018 §3.2.2), px per side, and the size every pass before compose works
      * on, width + 2 guard by height + 2 guard: the G-buffer, ao, direct, the AO chains and their
      * scales. Visible pixel (x, y) is internal pixel (x + guard, y + guard); compose crops. */
     int guard;
@@ -112,7 +112,7 @@ struct ob_renderer {
     ob_depth_mips depth_mips;  /* for methods that read OB_READS_DEPTH_MIPS, made on first use */
     ob_floor floor;            /* ob_render_floor, made on first use */
     ob_peel peel;              /* the second depth layer, for methods that read OB_READS_SECOND_LAYER */
-    /* The extra view (seed 000 §4.4), for methods that read OB_READS_EXTRA_VIEW, made on first use
+    /* The extra view (Belonogov 2018 §4.4), for methods that read OB_READS_EXTRA_VIEW, made on first use
      * at the G-buffer's size: its own G-buffer (drawing the main one's meshes), direct light and
      * per-frame block; the matrices between the two views of the current frame. */
     ob_gbuffer extra_gbuffer;
@@ -171,7 +171,7 @@ typedef struct ob_frame_desc {
 void ob_frame_constants_fill(ob_frame_constants *f, const ob_frame_desc *d);
 /* The projection as the AO grid g sees it (P00, P20, P11, P21 or P30, P31 folded; frame.c). */
 void ob_ao_grid_projection(const ob_ao_grid *g, const float *proj, float out[16]);
-/* The extra view's camera (seed 000 §4.4): c's eye turned 90 degrees about its up axis (world +Y
+/* The extra view's camera (Belonogov 2018 §4.4): c's eye turned 90 degrees about its up axis (world +Y
  * when zero) around its target, the same target, up, fov and planes. */
 void ob_extra_view_camera(const ob_camera *c, ob_camera *out);
 

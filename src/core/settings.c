@@ -31,7 +31,7 @@ ob_error ob_settings_init(ob_settings *s, const char *method)
     for (int i = 0; i < m->param_count && i < OB_MAX_PARAMS; ++i) s->params[i] = m->params[i].def;
     /* `crease`: the edge-aware 5x5 that cancels the 4x4 rotation noise without averaging a crease
      * with the open floor beside it (docs/filters.md: on the four graded views it lowers every
-     * method's error against unfiltered; seed 003's `geometry` brightened the corner crease by up
+     * method's error against unfiltered; SSDO thesis's `geometry` brightened the corner crease by up
      * to 0.25 and raised most methods' error). */
     s->filter = -1;
     s->ao_divisor = 1;

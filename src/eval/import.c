@@ -28,7 +28,7 @@
 #define OB_PI_F 3.14159265358979f
 
 /* Crease angle for aiProcess_GenSmoothNormals. Assimp's default (175 degrees) smooths across
- * the corners of walls and bends their normals, which darkens flat walls under AO (DESIGN.md:
+ * the corners of walls and bends their normals, which darkens flat walls under AO (docs/architecture.md:
  * FZK-Haus mean ray-traced AO 0.78 instead of 0.90). Not 45 exactly: FZK-Haus joins its walls
  * with 45-degree mitre faces, and Assimp's test (cos >= cos limit) blends a 45-degree pair, which
  * tilts the inner face of every outer wall by up to 22.5 degrees across its whole width. 40

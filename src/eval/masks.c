@@ -15,7 +15,7 @@
 #include "base/error.h"
 #include "obscura/eval.h"
 
-/* Reference AO_R below 0.75 is occluded: a floor point at 0.6 R from one wall (DESIGN.md's analytic
+/* Reference AO_R below 0.75 is occluded: a floor point at 0.6 R from one wall (docs/architecture.md's analytic
  * case) is there, an open plane (1) and a gentle slope are not. */
 #define DEFAULT_OCCLUDED_BELOW 0.75f
 /* A neighbour 10 % nearer or farther is across a silhouette: a plane seen head-on changes depth by

@@ -1,8 +1,8 @@
-/* Ray-traced ground truth (Embree 3): AO_R (seed 000 eq. 2.6-2.7, t = 1) and a one-bounce diffuse
+/* Ray-traced ground truth (Embree 3): AO_R (Belonogov 2018 eq. 2.6-2.7, t = 1) and a one-bounce diffuse
  * reference, both from the very G-buffer points the screen-space methods see, so error maps
- * compare like with like (DESIGN.md "Conventions").
+ * compare like with like (docs/architecture.md "Conventions").
  *
- * Estimator: cosine-weighted directions (seed 003 eq. 5.2, p = cos(theta)/pi) make
+ * Estimator: cosine-weighted directions (SSDO thesis eq. 5.2, p = cos(theta)/pi) make
  * AO_R = 1/pi * integral V cos = E[V], the plain mean of the ray visibilities; its standard error
  * is that of a Bernoulli mean, sqrt(p (1 - p) / (n - 1)). Independent random numbers (not
  * stratified) on purpose: then that standard error is honest, and the tests can hold the estimate

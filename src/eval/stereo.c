@@ -1,6 +1,6 @@
-/* Left/right AO consistency of a stereo pair (seed 000 §5.2: each eye has its own G-buffer and AO).
+/* Left/right AO consistency of a stereo pair (Belonogov 2018 §5.2: each eye has its own G-buffer and AO).
  *
- * AO_R (seed 000 eq. 2.6-2.7) belongs to the surface point, not to the view, so a perfect method
+ * AO_R (Belonogov 2018 eq. 2.6-2.7) belongs to the surface point, not to the view, so a perfect method
  * gives the same value to a point in both eyes. A screen-space method sees a different depth
  * buffer from each eye (other silhouettes, other hidden parts, other noise), so the two disagree;
  * in a headset that disagreement flickers between the eyes ("binocular rivalry"). The measure:

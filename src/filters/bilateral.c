@@ -1,4 +1,4 @@
-/* `bilateral`: the full 2D bilateral filter of seed 000 §4.3.2 (eq. 4.5) with the range term on
+/* `bilateral`: the full 2D bilateral filter of Belonogov 2018 §4.3.2 (eq. 4.5) with the range term on
  * relative depth, one dispatch over a (2r+1)^2 window. O(r^2) taps: slow on purpose, it is the
  * quality reference that `bilateral_sep` (eq. 4.6-4.7) approximates; the two share parameters,
  * defaults and weights (kernel.c) so their difference is the separable approximation alone.
@@ -37,7 +37,7 @@ static ob_error bilateral_run(void *state, const ob_filter_inputs *in, const flo
 const ob_filter_impl ob_filter_bilateral = {
     .info = {.name = "bilateral",
              .description = "full 2D depth bilateral over (2r+1)^2 taps: slow, the quality reference",
-             .reference = "seed 000 §4.3.2, eq. 4.5",
+             .reference = "Belonogov 2018 §4.3.2, eq. 4.5",
              .param_count = P_COUNT,
              .params = bilateral_params},
     .init = bilateral_init,

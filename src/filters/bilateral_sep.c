@@ -1,4 +1,4 @@
-/* `bilateral_sep`: the separable approximation of the depth bilateral (seed 000 §4.3.2,
+/* `bilateral_sep`: the separable approximation of the depth bilateral (Belonogov 2018 §4.3.2,
  * eq. 4.6 along x into scratch, eq. 4.7 along y into dst): O(r) taps per pass instead of
  * O(r^2). Parameters, defaults and weights are those of `bilateral` (kernel.c), so the RMSE
  * between the two measures the approximation alone. Shader: shaders/bilateral_sep.glsl. */
@@ -32,7 +32,7 @@ static ob_error bilateral_sep_run(void *state, const ob_filter_inputs *in, const
 const ob_filter_impl ob_filter_bilateral_sep = {
     .info = {.name = "bilateral_sep",
              .description = "separable depth bilateral (x then y): the fast approximation of `bilateral`",
-             .reference = "seed 000 §4.3.2, eq. 4.6-4.7",
+             .reference = "Belonogov 2018 §4.3.2, eq. 4.6-4.7",
              .param_count = P_COUNT,
              .params = bilateral_sep_params},
     .init = bilateral_sep_init,

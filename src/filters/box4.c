@@ -1,4 +1,4 @@
-/* `box4`: the classic 4x4 box blur after SSAO (seed 004 §3.3). Shader: shaders/box4.glsl. */
+/* `box4`: the classic 4x4 box blur after SSAO (Puri 2024 §3.3). Shader: shaders/box4.glsl. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -23,7 +23,7 @@ static ob_error box4_run(void *state, const ob_filter_inputs *in, const float *p
 
 const ob_filter_impl ob_filter_box4 = {
     .info = {.name = "box4", .description = "the classic 4x4 box blur (one noise tile), the baseline",
-             .reference = "seed 004 §3.3", .param_count = 0, .params = NULL},
+             .reference = "Puri 2024 §3.3", .param_count = 0, .params = NULL},
     .init = box4_init,
     .run = box4_run,
     .destroy = ob_filter_destroy_pass,

@@ -159,7 +159,7 @@ static ob_error crease_run(void *state, const ob_filter_inputs *in, const float 
 const ob_filter_impl ob_filter_crease = {
     .info = {.name = "crease",
              .description = "5x5 plane + normal weighted, mirror-paired: removes the 4x4 noise, keeps creases",
-             .reference = "issue 13; seed 004 §3.3 (the 4x4 tile); seed 003 §3.5 (range weights)",
+             .reference = "issue 13; Puri 2024 §3.3 (the 4x4 tile); SSDO thesis §3.5 (range weights)",
              .param_count = P_COUNT,
              .params = crease_params},
     .init = crease_init,

@@ -1,5 +1,5 @@
 /* The internal side of the filter registry: denoising passes that run after any AO method, at
- * the AO's resolution (seed 000 §4.3; seed 003 §3.5, §4.3). Adding a filter is one .c (defining
+ * the AO's resolution (Belonogov 2018 §4.3; SSDO thesis §3.5, §4.3). Adding a filter is one .c (defining
  * an ob_filter_impl), one shader and one line in registry.c. */
 #ifndef OB_FILTER_H
 #define OB_FILTER_H
@@ -47,7 +47,7 @@ const ob_filter_impl *ob_filter_impl_at(int index);
 
 /* ---- shared by the Gaussian-family filters (kernel.c) ------------------------------------- */
 /* Fill size, radius (clamped to 0..OB_FILTER_MAX_RADIUS), the range falloffs, sky_value and the
- * spatial weights: seed 000 eq. 4.4 sampled at the integer taps 0..radius and normalised so that
+ * spatial weights: Belonogov 2018 eq. 4.4 sampled at the integer taps 0..radius and normalised so that
  * the 1D kernel (w0 + 2 sum w_i) sums to 1. sigma_depth / sigma_normal (radians) <= 0 leave that
  * range term off. axis is left (0,0): ob_filter_run_separable sets it per pass. Pure: no GL. */
 void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in, int radius, float sigma_px,
@@ -57,7 +57,7 @@ void ob_filter_constants_init(ob_filter_constants *c, const ob_filter_inputs *in
  * depth_falloff taken by the plane distance |n_p . (P_q - P_p)| / d_p. Pure: no GL. */
 void ob_crease_constants_init(ob_filter_constants *c, const ob_filter_inputs *in, int radius, float sigma_plane,
                               float sigma_normal);
-/* The two dispatches of a separable filter (seed 000 eq. 4.6-4.7): along x from in->src into
+/* The two dispatches of a separable filter (Belonogov 2018 eq. 4.6-4.7): along x from in->src into
  * in->scratch, a barrier, then along y into in->dst. Binds AO at OB_UNIT_FILTER_IN, linear depth
  * at OB_UNIT_FILTER_DEPTH, view normals at OB_UNIT_FILTER_NORMAL and the output at OB_IMAGE_UNIT_OUT. */
 void ob_filter_run_separable(ob_compute_pass *pass, ob_filter_constants *c, const ob_filter_inputs *in);

@@ -1,6 +1,6 @@
-/* `gaussian`: the separable Gaussian blur of seed 000 §4.3.1 (eq. 4.4): x then y with the same
+/* `gaussian`: the separable Gaussian blur of Belonogov 2018 §4.3.1 (eq. 4.4): x then y with the same
  * 1D weights. It ignores geometry on purpose, so AO bleeds across silhouettes and onto the sky:
- * the baseline the edge-aware filters (seed 000 §4.3.2; seed 003 §3.5) are measured against.
+ * the baseline the edge-aware filters (Belonogov 2018 §4.3.2; SSDO thesis §3.5) are measured against.
  * Shader: shaders/gaussian.glsl; kernel and dispatches: kernel.c. */
 #include <stdlib.h>
 
@@ -11,7 +11,7 @@ enum { P_RADIUS, P_SIGMA, P_COUNT };
 
 static const ob_param_info gaussian_params[P_COUNT] = {
     /* 4 taps each side = 2 sigma: the 9-tap window spans two tiles of the 4x4 rotation noise
-     * (seed 004 §3.3), so the tile pattern averages out in both directions. */
+     * (Puri 2024 §3.3), so the tile pattern averages out in both directions. */
     [P_RADIUS] = {"radius", OB_PARAM_INT, 1.0f, (float)OB_FILTER_MAX_RADIUS, 4.0f, "px",
                   "kernel half-width in taps (2r+1 per direction)", false},
     /* radius = 2 sigma keeps 95% of the Gaussian's mass inside the window; the weights are
@@ -33,7 +33,7 @@ static ob_error gaussian_run(void *state, const ob_filter_inputs *in, const floa
 const ob_filter_impl ob_filter_gaussian = {
     .info = {.name = "gaussian",
              .description = "separable Gaussian blur that ignores geometry (bleeds across edges), the baseline",
-             .reference = "seed 000 §4.3.1, eq. 4.4",
+             .reference = "Belonogov 2018 §4.3.1, eq. 4.4",
              .param_count = P_COUNT,
              .params = gaussian_params},
     .init = gaussian_init,

@@ -1,7 +1,7 @@
-/* `geometry`: the separable geometry-aware bilateral filter of seed 003 §3.5 (after Reinbothe et
- * al.): spatial Gaussian domain (seed 000 eq. 4.4) x range kernels on relative depth and on the
- * angle between normals, run as an x then a y pass as seed 003 §4.3 does to afford it; 11x11 by
- * default as in seed 003 §6.2 (fig. 6.9). The default filter: it removes the 4x4 noise while
+/* `geometry`: the separable geometry-aware bilateral filter of SSDO thesis §3.5 (after Reinbothe et
+ * al.): spatial Gaussian domain (Belonogov 2018 eq. 4.4) x range kernels on relative depth and on the
+ * angle between normals, run as an x then a y pass as SSDO thesis §4.3 does to afford it; 11x11 by
+ * default as in SSDO thesis §6.2 (fig. 6.9). The default filter: it removes the 4x4 noise while
  * keeping both silhouettes (depth) and creases (normals) crisp. Shader: shaders/geometry.glsl. */
 #include <stdlib.h>
 
@@ -13,7 +13,7 @@ enum { P_RADIUS, P_SIGMA, P_SIGMA_DEPTH, P_SIGMA_NORMAL, P_COUNT };
 #define OB_DEG_TO_RAD 0.017453292519943295f
 
 static const ob_param_info geometry_params[P_COUNT] = {
-    /* 5 taps each side = the 11x11 kernel of seed 003 §6.2. */
+    /* 5 taps each side = the 11x11 kernel of SSDO thesis §6.2. */
     [P_RADIUS] = {"radius", OB_PARAM_INT, 1.0f, (float)OB_FILTER_MAX_RADIUS, 5.0f, "px",
                   "kernel half-width in taps (2r+1 per pass; 5 = 11x11)", false},
     /* Wider than `gaussian`'s 2: the range terms guard the edges, so the spatial kernel can use
@@ -44,7 +44,7 @@ static ob_error geometry_run(void *state, const ob_filter_inputs *in, const floa
 const ob_filter_impl ob_filter_geometry = {
     .info = {.name = "geometry",
              .description = "separable depth + normal bilateral (geometry-aware), 11x11 (brightens creases: see crease)",
-             .reference = "seed 003 §3.5, §4.3, §6.2; seed 000 eq. 4.6-4.7",
+             .reference = "SSDO thesis §3.5, §4.3, §6.2; Belonogov 2018 eq. 4.6-4.7",
              .param_count = P_COUNT,
              .params = geometry_params},
     .init = geometry_init,

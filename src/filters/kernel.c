@@ -1,6 +1,6 @@
 /* What the Gaussian-family filters share (gaussian, bilateral, bilateral_sep, geometry): the
- * spatial kernel of seed 000 eq. 4.4, the range falloffs of eq. 4.5-4.7 / seed 003 §3.5, and the
- * two-dispatch driver of a separable pass (seed 000 eq. 4.6-4.7; seed 003 §4.3). Keeping them in
+ * spatial kernel of Belonogov 2018 eq. 4.4, the range falloffs of eq. 4.5-4.7 / SSDO thesis §3.5, and the
+ * two-dispatch driver of a separable pass (Belonogov 2018 eq. 4.6-4.7; SSDO thesis §4.3). Keeping them in
  * one place means bilateral and bilateral_sep weigh taps identically, so their RMSE difference
  * measures the separable approximation and nothing else. */
 #include <math.h>

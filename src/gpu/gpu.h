@@ -53,7 +53,7 @@ void ob_compute_pass_destroy(ob_compute_pass *p);
 
 /* ---- textures (pass.c) ------------------------------------------------------------------- */
 GLuint ob_make_texture_2d(GLenum internal_format, int w, int h);
-/* The 4x4 RG32F rotation texture of shaders/noise.glsl (seed 004 §3.3), the same fixed seed for
+/* The 4x4 RG32F rotation texture of shaders/noise.glsl (Puri 2024 §3.3), the same fixed seed for
  * every method, so they all show the same noise tile and the same command gives the same bytes. */
 GLuint ob_make_rotation_noise_texture(void);
 

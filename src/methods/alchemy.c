@@ -1,4 +1,4 @@
-/* `alchemy`: Alchemy AO (McGuire et al. 2011; seed 004 §2.5, §3.4): spiral disk samples and an
+/* `alchemy`: Alchemy AO (McGuire et al. 2011; Puri 2024 §2.5, §3.4): spiral disk samples and an
  * obscurance estimator with artist controls sigma (intensity), k (contrast), beta (depth-scaled
  * bias) and epsilon. Shader: shaders/alchemy.glsl. */
 #include <stdlib.h>
@@ -17,10 +17,10 @@ enum { P_RADIUS, P_SAMPLES, P_SIGMA, P_K, P_BETA, P_EPSILON, P_TURNS, P_NOISE, P
 static const ob_param_info alchemy_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
                   "world-space disk radius; default: the scene's suggested radius", true},
-    [P_SAMPLES] = {"samples", OB_PARAM_INT, 1.0f, 256.0f, 16.0f, "count", "spiral samples per pixel (seed 004: 16)", false},
-    [P_SIGMA] = {"sigma", OB_PARAM_FLOAT, 0.0f, 10.0f, 1.7f, "", "intensity scale sigma (seed 004: 1.7)", false},
-    [P_K] = {"k", OB_PARAM_FLOAT, 0.1f, 8.0f, 1.0f, "exponent", "contrast k (seed 004: 1)", false},
-    /* Seed 004's 0.5 belongs to its code, which adds beta*z to the normal; in the paper's
+    [P_SAMPLES] = {"samples", OB_PARAM_INT, 1.0f, 256.0f, 16.0f, "count", "spiral samples per pixel (Puri 2024: 16)", false},
+    [P_SIGMA] = {"sigma", OB_PARAM_FLOAT, 0.0f, 10.0f, 1.7f, "", "intensity scale sigma (Puri 2024: 1.7)", false},
+    [P_K] = {"k", OB_PARAM_FLOAT, 0.1f, 8.0f, 1.0f, "exponent", "contrast k (Puri 2024: 1)", false},
+    /* Puri 2024's 0.5 belongs to its code, which adds beta*z to the normal; in the paper's
      * equation it would subtract half the depth from v.n and erase all occlusion (measured: see
      * docs/methods.md). 0.005 frees the bunny's smooth-normal self-occlusion (open pixels 46% -> 74%)
      * and keeps the corner crease black (1st percentile 0.07); measured in docs/methods.md. */
@@ -28,7 +28,7 @@ static const ob_param_info alchemy_params[P_COUNT] = {
                 "bias distance beta, scaled by the depth z_C", false},
     [P_EPSILON] = {"epsilon", OB_PARAM_FLOAT, 1e-6f, 1.0f, 0.001f, "radius^2",
                    "keeps the division finite; McGuire et al. saw no change within 100x of 1e-4", false},
-    [P_TURNS] = {"turns", OB_PARAM_FLOAT, 1.0f, 64.0f, 10.0f, "turns", "spiral turns over the samples (seed 004: 10)", false},
+    [P_TURNS] = {"turns", OB_PARAM_FLOAT, 1.0f, 64.0f, 10.0f, "turns", "spiral turns over the samples (Puri 2024: 10)", false},
     [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "per-pixel spiral rotation: 4x4 texture or interleaved gradient noise",
                  false, ob_noise_options},
     [P_DEINTERLEAVE] = OB_DEINTERLEAVE_PARAM,
@@ -74,7 +74,7 @@ static uint32_t alchemy_active_reads(const float *params) { return ob_taps_reads
 const ob_method_impl ob_method_alchemy = {
     .info = {.name = "alchemy",
              .description = "Alchemy AO: spiral disk samples, obscurance with sigma, k, beta, epsilon",
-             .reference = "seed 004 §2.5, §3.4; McGuire et al. 2011",
+             .reference = "Puri 2024 §2.5, §3.4; McGuire et al. 2011",
              .param_count = P_COUNT,
              .params = alchemy_params},
     .shader = "alchemy.glsl",

@@ -1,6 +1,6 @@
-/* `crytek`: Crytek SSAO (Mittring 2007; seed 004 §2.2), the first SSAO: a sphere of samples and
+/* `crytek`: Crytek SSAO (Mittring 2007; Puri 2024 §2.2), the first SSAO: a sphere of samples and
  * a depth-only test. Flat surfaces self-occlude to about 0.5 by design; `correction` applies
- * seed 003 §5.4's factor (off by default). Shader: shaders/crytek.glsl. */
+ * SSDO thesis §5.4's factor (off by default). Shader: shaders/crytek.glsl. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -27,7 +27,7 @@ static const ob_param_info crytek_params[P_COUNT] = {
     [P_SAMPLES] = {"samples", OB_PARAM_INT, 1.0f, (float)OB_CRYTEK_MAX_SAMPLES, 16.0f, "count",
                    "sphere points per pixel", false},
     [P_CORRECTION] = {"correction", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
-                      "seed 003 §5.4: AO' = min(1, 2 AO), so open planes read 1 instead of ~0.5", false},
+                      "SSDO thesis §5.4: AO' = min(1, 2 AO), so open planes read 1 instead of ~0.5", false},
     [P_SAMPLING] = {"sampling", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "kernel numbers: seeded random or Halton 2,5,3",
                     false, ob_sampling_options},
     [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "per-pixel rotation: 4x4 texture or interleaved gradient noise",
@@ -95,7 +95,7 @@ static int crytek_kernel(const float *params, float *xyzw, int max)
 const ob_method_impl ob_method_crytek = {
     .info = {.name = "crytek",
              .description = "Crytek SSAO: sphere samples, depth-only test (flat surfaces read ~0.5 by design)",
-             .reference = "seed 004 §2.2; seed 003 §5.4 (correction); Mittring 2007",
+             .reference = "Puri 2024 §2.2; SSDO thesis §5.4 (correction); Mittring 2007",
              .param_count = P_COUNT,
              .params = crytek_params},
     .shader = "crytek.glsl",

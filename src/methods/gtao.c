@@ -36,7 +36,7 @@ static const ob_param_info gtao_params[P_COUNT] = {
                      "how far behind its surface a sample beyond R is solid: the part of it inside R occludes "
                      "(0 = only samples within R count)",
                      false},
-    /* 3 slices x 6 steps x 2 sides = 36 taps, seed 000's "high": on the training views
+    /* 3 slices x 6 steps x 2 sides = 36 taps, Belonogov 2018's "high": on the training views
      * (cornell:front, fzk-haus:stair at 320x240) the fewest steps whose bias stays within 0.015
      * (the horizon's maximum over sparse steps only errs toward open: 4 steps +0.019 and +0.012,
      * 6 steps +0.013 and +0.010 there); slices add noise, not bias, and the filter removes
@@ -141,7 +141,7 @@ static void gtao_destroy(void *p)
 static int gtao_count_samples(const float *params) { return 2 * (int)params[P_SLICES] * (int)params[P_STEPS]; }
 static int gtao_count_rays(const float *params) { return 2 * (int)params[P_SLICES]; }
 
-/* Seed 000's quality levels as slices x steps: ob_slice_set_samples. */
+/* Belonogov 2018's quality levels as slices x steps: ob_slice_set_samples. */
 static ob_error gtao_set_samples(float *params, uint32_t *params_set, int samples)
 {
     return ob_slice_set_samples("gtao", params, params_set, samples, P_SLICES, P_STEPS, OB_GTAO_MAX_SLICES,

@@ -1,7 +1,7 @@
-/* `hbao`: horizon-based ambient occlusion (Bavoil & Sainz 2008), seed 000 §3.3 (eq. 3.1-3.2,
- * W = max(0, 1 - r/R)) and seed 004 §2.4 (tangent and horizon angles) and §3.4 (an OpenGL
+/* `hbao`: horizon-based ambient occlusion (Bavoil & Sainz 2008), Belonogov 2018 §3.3 (eq. 3.1-3.2,
+ * W = max(0, 1 - r/R)) and Puri 2024 §2.4 (tangent and horizon angles) and §3.4 (an OpenGL
  * implementation: radius projected with depth and clamped, directions rotated per pixel).
- * N_d screen directions x N_s depth-buffer steps; the quality presets of seed 000 map onto them
+ * N_d screen directions x N_s depth-buffer steps; the quality presets of Belonogov 2018 map onto them
  * (hbao_set_samples). Shader: shaders/hbao.glsl. */
 #include <math.h>
 #include <stdlib.h>
@@ -22,7 +22,7 @@ enum {
 static const ob_param_info hbao_params[P_COUNT] = {
     [P_RADIUS] = {"radius", OB_PARAM_FLOAT, 1e-4f, 1e4f, 0.5f, "world",
                   "horizon search radius R (W = 1 - r/R); default: the scene's suggested radius", true},
-    /* 6 x 4 = 24 samples: seed 000's "medium" level. */
+    /* 6 x 4 = 24 samples: Belonogov 2018's "medium" level. */
     [P_DIRECTIONS] = {"directions", OB_PARAM_INT, 1.0f, (float)OB_HBAO_MAX_DIRECTIONS, 6.0f, "count",
                       "screen directions N_d (azimuths 2πk/N_d, rotated per pixel)", false},
     [P_STEPS] = {"steps", OB_PARAM_INT, 1.0f, (float)OB_HBAO_MAX_STEPS, 4.0f, "count",
@@ -90,7 +90,7 @@ static uint32_t hbao_active_reads(const float *params) { return ob_taps_reads(pa
 
 static int clamp_int(long v, int lo, int hi) { return v < lo ? lo : v > hi ? hi : (int)v; }
 
-/* N samples per pixel -> directions x steps. Seed 000's quality levels (§3.2.3: 12/24/36/64)
+/* N samples per pixel -> directions x steps. Belonogov 2018's quality levels (§3.2.3: 12/24/36/64)
  * get hand-picked splits: few directions leave star-shaped streaks that the 4x4 blur cannot
  * remove, few steps miss thin occluders, so both grow together. Other counts split near
  * sqrt(N) x sqrt(N). */
@@ -124,7 +124,7 @@ static ob_error hbao_set_samples(float *params, uint32_t *params_set, int sample
 const ob_method_impl ob_method_hbao = {
     .info = {.name = "hbao",
              .description = "horizon-based AO: directions x steps through the depth buffer (NVIDIA)",
-             .reference = "seed 000 §3.3 eq. 3.1-3.2; seed 004 §2.4, §3.4",
+             .reference = "Belonogov 2018 §3.3 eq. 3.1-3.2; Puri 2024 §2.4, §3.4",
              .param_count = P_COUNT,
              .params = hbao_params},
     .shader = "hbao.glsl",

@@ -21,7 +21,7 @@ enum {
     OB_READS_DEPTH_MIPS = 1u << 4,   /* reserved: a prefiltered depth MIP chain */
     OB_READS_SECOND_LAYER = 1u << 5, /* a second depth layer (depth peeling, passes/peel.c) */
     OB_READS_HISTORY = 1u << 6,      /* reserved: the previous frame's output, reprojected */
-    OB_READS_EXTRA_VIEW = 1u << 7,   /* an extra view's G-buffer and direct light (seed 000 §4.4) */
+    OB_READS_EXTRA_VIEW = 1u << 7,   /* an extra view's G-buffer and direct light (Belonogov 2018 §4.4) */
 };
 
 /* What a method writes (ob_method_impl.writes); the renderer makes, filters and upsamples each. */
@@ -66,7 +66,7 @@ typedef struct ob_ao_inputs {
     GLuint linear_depth;      /* R32F, positive view depth at the AO resolution, 0 = no geometry */
     GLuint view_normal;       /* RGBA16F, view-space unit normal at the AO resolution */
     int width, height;        /* the AO resolution (frame->ao_size) */
-    /* Adaptive sample counts (seed 003 §4.1): when set, a method with a sample count takes
+    /* Adaptive sample counts (SSDO thesis §4.1): when set, a method with a sample count takes
      * samples/3 (at least 1) x the multiplier (1, 2 or 3) of its OB_EDGE_BLOCK^2 block of this
      * R32F texture; methods without one ignore it. */
     GLuint sample_multiplier; /* 0 = off */
@@ -82,7 +82,7 @@ typedef struct ob_ao_inputs {
      * pixel the AO grid's depth came from. */
     GLuint second_depth;
     /* OB_READS_EXTRA_VIEW: a second camera's G-buffer, turned 90 degrees about the up axis around
-     * the main camera's target (seed 000 §4.4), at the G-buffer's size: its linear depth, view
+     * the main camera's target (Belonogov 2018 §4.4), at the G-buffer's size: its linear depth, view
      * normal (in ITS view space) and direct radiance; 0 where the frame has none (ob_compute_ao).
      * extra_from_view takes this frame's view space to the extra camera's, extra_to_view back,
      * extra_proj is its projection (column-major 4x4 each). */
@@ -171,7 +171,7 @@ void ob_method_destroy_state(const ob_method_impl *m, void *state);
 void ob_method_kit_use(ob_method_kit *kit, const void *constants, size_t size, const ob_ao_inputs *in,
                        const ob_ao_outputs *out, GLenum format);
 
-/* Adaptive sample counts (seed 003 §4.1) for a method with a kernel of `samples` entries: how many
+/* Adaptive sample counts (SSDO thesis §4.1) for a method with a kernel of `samples` entries: how many
  * entries to build and the base count the edge pass's multiplier (1..3) scales. Under adaptive
  * sampling (in->sample_multiplier) the kernel holds 3 x base entries (at most `max`, a multiple of
  * 3) from Halton numbers, whose prefixes are evenly spread where random ones are not; otherwise
@@ -211,7 +211,7 @@ extern const char *const ob_noise_options[];     /* texture4, ign */
 /* ---- the slice methods (slices.c): gtao, vbao and vbgi march the same slices ----------------
  * (shaders/slice_march.glsl); what their C sides share. */
 /* N taps per pixel -> slices x steps x 2 sides, written to params[p_slices] and params[p_steps]
- * (the bits of both set in *params_set). Seed 000's quality levels (§3.2.3) get fixed splits:
+ * (the bits of both set in *params_set). Belonogov 2018's quality levels (§3.2.3) get fixed splits:
  * 12 = 2 x 3, 24 = 2 x 6, 36 = 3 x 6, 64 = 4 x 8. Steps come first: too few steps bias the
  * horizon toward open (24 taps on cornell:front: 2 x 6 bias +0.014, 3 x 4 +0.019), while too few
  * slices only add noise that the 4x4 filter window averages. Other counts split N / 2 near
@@ -227,7 +227,7 @@ typedef struct ob_slice_frame {
     int max_mip;
 } ob_slice_frame;
 ob_slice_frame ob_slice_frame_make(const ob_ao_inputs *in);
-/* Adaptive slices (seed 003 §4.1): *adaptive and the slices at multiplier 1, (slices + 1) / 3 as
+/* Adaptive slices (SSDO thesis §4.1): *adaptive and the slices at multiplier 1, (slices + 1) / 3 as
  * ob_adaptive_base rounds taps, at least 1. Fill them into the constants before ob_slice_use. */
 void ob_slice_adaptive(const ob_ao_inputs *in, int slices, int *adaptive, int *base);
 /* A slice method's optional features, each compiled into its own program variant rather than

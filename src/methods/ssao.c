@@ -1,4 +1,4 @@
-/* `ssao`: normal-oriented hemisphere SSAO (seed 004 §2.3 and §3.3; seed 000 §3.2).
+/* `ssao`: normal-oriented hemisphere SSAO (Puri 2024 §2.3 and §3.3; Belonogov 2018 §3.2).
  * The reference the other methods are compared with. Shader: shaders/ssao.glsl. */
 #include <stdlib.h>
 #include <string.h>
@@ -31,7 +31,7 @@ static const ob_param_info ssao_params[P_COUNT] = {
     [P_SAMPLING] = {"sampling", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "kernel numbers: seeded random (seed) or Halton 2,5,3",
                     false, ob_sampling_options},
     /* Uniform in solid angle, as the seed's kernel; cosine-weighted makes each sample count as
-     * much as the cosine-weighted AO integral asks (seed 003 eq. 5.2). */
+     * much as the cosine-weighted AO integral asks (SSDO thesis eq. 5.2). */
     [P_DIRECTIONS] = {"directions", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "kernel directions: uniform (eq. 5.3) or cosine (eq. 5.2)",
                       false, ob_direction_options},
     [P_NOISE] = {"noise", OB_PARAM_ENUM, 0.0f, 1.0f, 0.0f, "", "per-pixel rotation: 4x4 texture or interleaved gradient noise",
@@ -96,7 +96,7 @@ static int ssao_kernel(const float *params, float *xyzw, int max)
 const ob_method_impl ob_method_ssao = {
     .info = {.name = "ssao",
              .description = "normal-oriented hemisphere SSAO with range check (StarCraft II)",
-             .reference = "seed 004 §2.3, §3.3; seed 000 §3.2",
+             .reference = "Puri 2024 §2.3, §3.3; Belonogov 2018 §3.2",
              .param_count = P_COUNT,
              .params = ssao_params},
     .shader = "ssao.glsl",

@@ -1,12 +1,12 @@
 /* `ssdo` and `ssdo_merged`: screen-space directional occlusion with one indirect bounce
- * (Ritschel, Grosch & Seidel 2009, described in seed 003 §3.3; seed 003 §4.2 and §5.3; seed 000
- * §4.1-4.2). Both write a per-channel modulation factor M (seed 003 eq. 4.2-4.4: the direct light
+ * (Ritschel, Grosch & Seidel 2009, described in SSDO thesis §3.3; SSDO thesis §4.2 and §5.3; Belonogov 2018
+ * §4.1-4.2). Both write a per-channel modulation factor M (SSDO thesis eq. 4.2-4.4: the direct light
  * with visibility over the same without, 1 = open) and an RGB bounce; compose gives
  * direct x M + ambient x albedo x M + bounce x albedo.
  *   - `ssdo`: the original two passes. Pass 1 takes uniform solid-angle directions (eq. 5.3) and
  *     weighs incoming radiance by cos(theta); pass 2 revisits the same samples and turns every
  *     occluder pixel into a patch of area pi r^2 / N sending its direct radiance (eq. 3.4).
- *   - `ssdo_merged`: seed 003's one-pass variant: cosine-weighted directions (eq. 5.2), M and the
+ *   - `ssdo_merged`: SSDO thesis's one-pass variant: cosine-weighted directions (eq. 5.2), M and the
  *     bounce in one loop, the bounce darkened by M.
  * Shader: shaders/ssdo.glsl (one program, the stage in a constant). */
 #include <math.h>
@@ -34,22 +34,22 @@ static const ob_param_info ssdo_params[P_COUNT] = {
     [P_BIAS] = {"bias", OB_PARAM_FLOAT, 0.0f, 0.5f, 0.02f, "x radius",
                 "depth bias against self-occlusion, as a fraction of the radius", false},
     /* 16: the 4x4 noise x 16 Halton points gives 256 directions per tile; multiples of 10 (the
-     * period of bases 2 x 5, seed 003 §4.1) split the hemisphere evenly too. */
+     * period of bases 2 x 5, SSDO thesis §4.1) split the hemisphere evenly too. */
     [P_SAMPLES] = {"samples", OB_PARAM_INT, 1.0f, (float)OB_SSDO_MAX_SAMPLES, 16.0f, "count",
                    "hemisphere samples per pixel (Halton 2,5 directions, 3 for the step)", false},
     [P_BOUNCE] = {"bounce", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
                   "one indirect bounce from occluder pixels (eq. 3.4); off writes a black bounce", false},
-    /* 1 = the physical patch area A_s = pi r^2 / N of eq. 3.4; seed 003 §5.3 leaves it to the user. */
+    /* 1 = the physical patch area A_s = pi r^2 / N of eq. 3.4; SSDO thesis §5.3 leaves it to the user. */
     [P_BOUNCE_STRENGTH] = {"bounce_strength", OB_PARAM_FLOAT, 0.0f, 16.0f, 1.0f, "x A_s",
                            "multiplies the sender patch area pi r^2 / N", false},
     /* 8: a lobe of ~30 degrees half-width at half maximum, wide enough that 16 samples hit it,
      * narrow enough that M still says from which side the light comes. */
     [P_LOBE] = {"lobe", OB_PARAM_FLOAT, 1.0f, 256.0f, DEFAULT_LOBE, "exponent",
                 "lights become cosine lobes max(0, w.l)^k around their direction: k", false},
-    /* 2: seed 000's test around Fig. 4.6: a sample behind the first layer occludes only while it
+    /* 2: Belonogov 2018's test around Fig. 4.6: a sample behind the first layer occludes only while it
      * is in front of the second (inside the object); behind it the sample is free. */
     [P_LAYERS] = OB_LAYERS_PARAM,
-    /* Seed 000 §4.4: a sample hidden in this view but seen in front of the extra view's surface
+    /* Belonogov 2018 §4.4: a sample hidden in this view but seen in front of the extra view's surface
      * is free, and a bounce comes from whichever view's surface lies nearer the sample. */
     [P_EXTRA_VIEW] = {"extra_view", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                       "also a camera turned 90 degrees around the target: its G-buffer frees samples it sees and "
@@ -120,7 +120,7 @@ static ob_error ssdo_merged_init(void *p)
 }
 
 
-/* Halton 2,5 directions and base 3 steps (seed 003 §5.3), as unit direction + length. */
+/* Halton 2,5 directions and base 3 steps (SSDO thesis §5.3), as unit direction + length. */
 static void build_kernel(ssdo_state *s, int count, ob_direction_pdf pdf)
 {
     ob_ssdo_constants *c = &s->constants;
@@ -287,7 +287,7 @@ static int ssdo_merged_kernel(const float *params, float *xyzw, int max)
 const ob_method_impl ob_method_ssdo = {
     .info = {.name = "ssdo",
              .description = "screen-space directional occlusion + one bounce, the original two passes",
-             .reference = "seed 003 §3.3 eq. 3.2-3.4, §5.3 eq. 5.3; seed 000 §4.1-4.2",
+             .reference = "SSDO thesis §3.3 eq. 3.2-3.4, §5.3 eq. 5.3; Belonogov 2018 §4.1-4.2",
              .param_count = P_COUNT,
              .params = ssdo_params},
     .shader = "ssdo.glsl",
@@ -309,7 +309,7 @@ const ob_method_impl ob_method_ssdo = {
 const ob_method_impl ob_method_ssdo_merged = {
     .info = {.name = "ssdo_merged",
              .description = "one-pass SSDO: modulation factor M and bounce (darkened by M) in one loop",
-             .reference = "seed 003 §4.2 eq. 4.1-4.4, §5.3 eq. 5.2",
+             .reference = "SSDO thesis §4.2 eq. 4.1-4.4, §5.3 eq. 5.2",
              .param_count = P_COUNT,
              .params = ssdo_params},
     .shader = "ssdo.glsl",

@@ -1,6 +1,6 @@
-/* Bloom, seed 003 §5.5 steps 2-4: the bright pass keeps each pixel's excess over a threshold in
+/* Bloom, SSDO thesis §5.5 steps 2-4: the bright pass keeps each pixel's excess over a threshold in
  * scaled luminance (eq. 2.2 units, the units of L_white) at 1/OB_BLOOM_FACTOR resolution, then a
- * separable Gaussian (seed 000 eq. 4.4, x then y) spreads it. The tone-map pass adds it back.
+ * separable Gaussian (Belonogov 2018 eq. 4.4, x then y) spreads it. The tone-map pass adds it back.
  * Shader: shaders/bloom.glsl (two programs: the bright pass and one blur direction). */
 #include <math.h>
 #include <string.h>

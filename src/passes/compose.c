@@ -1,4 +1,4 @@
-/* Compose: direct light + ambient x AO (or SSDO's direct x M + bounce) into HDR radiance (DESIGN.md "The frame"). Shader:
+/* Compose: direct light + ambient x AO (or SSDO's direct x M + bounce) into HDR radiance (docs/architecture.md "The frame"). Shader:
  * shaders/compose.glsl. */
 #include <stdio.h>
 #include <string.h>

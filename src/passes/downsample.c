@@ -1,4 +1,4 @@
-/* Depth and normals at the AO resolution (seed 000 §4.7.1, seed 003 §4.4, §6.3). Shader:
+/* Depth and normals at the AO resolution (Belonogov 2018 §4.7.1, SSDO thesis §4.4, §6.3). Shader:
  * shaders/downsample.glsl. */
 #include <string.h>
 

@@ -1,4 +1,4 @@
-/* Adaptive sample counts: the edge pre-pass of seed 003 §4.1. Shader: shaders/edges.glsl. */
+/* Adaptive sample counts: the edge pre-pass of SSDO thesis §4.1. Shader: shaders/edges.glsl. */
 #include "passes/passes.h"
 #include "resample_params.h"
 

@@ -1,4 +1,4 @@
-/* The floor (issue 18, DESIGN.md "Performance method"): a bare N-tap compute kernel that bench
+/* The floor (issue 18, docs/architecture.md "Performance method"): a bare N-tap compute kernel that bench
  * times beside each AO pass, so that "AO pass / floor" says how far a method is from the least any
  * method at N taps must cost on the machine at hand. shaders/floor.glsl says what the kernel does
  * and does not do; this file builds its tap table and dispatches it. */

@@ -1,4 +1,4 @@
-/* HDR tone mapping, seed 003 §2.2 and §5.5, with the automatic key of §6.5: drives the luminance,
+/* HDR tone mapping, SSDO thesis §2.2 and §5.5, with the automatic key of §6.5: drives the luminance,
  * bloom and tone-map passes (no shader of its own), and holds the CPU versions of their formulas
  * (obscura.h) that the tests hold the shaders to.
  *
@@ -44,7 +44,7 @@ float ob_hdr_reinhard(float scaled_luminance, float l_white)
 
 float ob_hdr_auto_key(float log_average)
 {
-    /* Krawczyk, Myszkowski, Seidel 2005, eq. 11 (seed 003 §6.5 gives no formula), with radiance
+    /* Krawczyk, Myszkowski, Seidel 2005, eq. 11 (SSDO thesis §6.5 gives no formula), with radiance
      * 1 taken as 100 cd/m^2 (shaders/hdr_shared.h): rises from 0.03 for black through 0.53 at
      * L_avg = 1. */
     float l = log_average > 0.0f ? log_average * (float)OB_HDR_NITS_PER_UNIT : 0.0f;

@@ -1,4 +1,4 @@
-/* Direct light over the G-buffer into RGBA16F radiance (seed 000 §4.5; seed 003 §5.2), with the
+/* Direct light over the G-buffer into RGBA16F radiance (Belonogov 2018 §4.5; SSDO thesis §5.2), with the
  * shadow maps of src/passes/shadow.c. Shader: shaders/lighting.glsl. */
 #include <math.h>
 #include <stdio.h>

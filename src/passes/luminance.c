@@ -1,4 +1,4 @@
-/* Log-average luminance (seed 003 eq. 2.1, §5.5 step 5) and the key (eq. 2.2, §6.5), computed and
+/* Log-average luminance (SSDO thesis eq. 2.1, §5.5 step 5) and the key (eq. 2.2, §6.5), computed and
  * kept on the GPU: shaders/luminance.glsl sums ln(delta + L) per 64x64 block, then one work group
  * reduces the blocks and writes (L_avg, key, scale) to a buffer the bloom and tone-map passes
  * read, so a frame never waits on a read-back. */

@@ -83,7 +83,7 @@ ob_error ob_downsample_init(ob_compute_pass *p);
 void ob_downsample_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint full_depth, GLuint full_normal, GLuint low_depth,
                        GLuint low_normal);
 
-/* Joint bilateral upsampling of the AO to full resolution (seed 003 eq. 3.12): R32F, or RGBA16F
+/* Joint bilateral upsampling of the AO to full resolution (SSDO thesis eq. 3.12): R32F, or RGBA16F
  * for SSDO's M (`rgb`). Programs (shaders/upsample.glsl), [pair][plain, block k = 2, block k = 4],
  * made on first use but the plain single one: `pair` also upsamples a second RGBA16F value (the
  * bounce or the bent normals) with the same weights in the same dispatch. */
@@ -103,7 +103,7 @@ ob_error ob_upsample_run(ob_upsample *u, int program, const ob_ao_grid *g, GLuin
                          GLuint second_out);
 void ob_upsample_destroy(ob_upsample *u);
 
-/* Adaptive sample counts: a multiplier 1/2/3 per OB_EDGE_BLOCK^2 AO pixels (seed 003 §4.1). */
+/* Adaptive sample counts: a multiplier 1/2/3 per OB_EDGE_BLOCK^2 AO pixels (SSDO thesis §4.1). */
 ob_error ob_edges_init(ob_compute_pass *p);
 void ob_edges_run(ob_compute_pass *p, const ob_ao_grid *g, GLuint ao_depth, GLuint ao_normal, GLuint multiplier);
 
@@ -301,7 +301,7 @@ ob_error ob_compose_init(ob_compose_pass *c);
 ob_error ob_compose_run(ob_compose_pass *c, const ob_compose_inputs *in, GLuint hdr_out);
 void ob_compose_destroy(ob_compose_pass *c);
 
-/* ---- HDR (seed 003 §2.2, §5.5, §6.5): luminance.c, bloom.c, tonemap.c, driven by hdr.c ------
+/* ---- HDR (SSDO thesis §2.2, §5.5, §6.5): luminance.c, bloom.c, tonemap.c, driven by hdr.c ------
  * radiance (RGBA16F, linear) -> luminance: log-average (eq. 2.1) + key -> a small GPU buffer
  *                            -> bloom: bright pass at 1/4 resolution + separable Gaussian
  *                            -> tonemap: scale (eq. 2.2) + bloom, Reinhard (eq. 2.4), sRGB RGBA8 */
@@ -366,7 +366,7 @@ void ob_hdr_run(ob_hdr_pass *h, GLuint radiance, const ob_hdr_settings *s, GLuin
 void ob_hdr_query(ob_hdr_pass *h, float *log_average, float *key);
 void ob_hdr_destroy(ob_hdr_pass *h);
 
-/* ---- shadow maps (seed 003 §2.1, §5.1, §6.1): shadow.c, shaders/shadow_depth.{vert,frag}.glsl,
+/* ---- shadow maps (SSDO thesis §2.1, §5.1, §6.1): shadow.c, shaders/shadow_depth.{vert,frag}.glsl,
  * shaders/shadow_vsm.glsl; looked up by shaders/shadow.glsl (OB_UNIT_SHADOW_*, ob_units.h) ----
  * Directional lights: an orthographic map along the light, fitted to the scene bounds. Spot lights:
  * a perspective map (fov = 2 x outer half-angle + 2 degrees, at most 160), storing distance/far.

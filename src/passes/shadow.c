@@ -1,4 +1,4 @@
-/* Shadow maps (seed 003 §2.1, §5.1, §6.1): hard, percentage-closer filtered and variance shadow
+/* Shadow maps (SSDO thesis §2.1, §5.1, §6.1): hard, percentage-closer filtered and variance shadow
  * maps for directional, spot and point lights. "In the first step of the rendering the
  * application creates the shadow maps for every light. The shadow maps are then used to compute
  * shadows in the direct illumination step" (§5.1): ob_shadows_render is that first step,
@@ -153,7 +153,7 @@ static GLuint make_moments(GLenum target, int size, int layers, int bits)
         glTextureStorage3D(tex, 1, moment_format(bits), size, size, layers);
     else
         glTextureStorage2D(tex, 1, moment_format(bits), size, size);
-    /* Bilinear: the lookup filters the moments once more for free (seed 003 §2.1: VSM may be
+    /* Bilinear: the lookup filters the moments once more for free (SSDO thesis §2.1: VSM may be
      * filtered "with arbitrary size kernel"). The border (1, 1) is a lit depth with no variance. */
     const float border[4] = {1.0f, 1.0f, 0.0f, 0.0f};
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);

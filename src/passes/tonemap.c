@@ -1,4 +1,4 @@
-/* Tone mapping, seed 003 §5.5 steps 6-8: radiance scaled by exposure alpha / L_avg (eq. 2.2, the
+/* Tone mapping, SSDO thesis §5.5 steps 6-8: radiance scaled by exposure alpha / L_avg (eq. 2.2, the
  * factor the luminance pass left on the GPU) plus the bloom, Reinhard on the luminance (eq. 2.4,
  * or 2.3 without L_white), sRGB into RGBA8. With HDR off, exposure x radiance clamped to [0,1].
  * Shader: shaders/tonemap.glsl. */

@@ -1,4 +1,4 @@
-/* Joint bilateral upsampling of the AO (seed 003 §3.5 eq. 3.12, §5.3). Shader:
+/* Joint bilateral upsampling of the AO (SSDO thesis §3.5 eq. 3.12, §5.3). Shader:
  * shaders/upsample.glsl: the plain program and the block programs (one invocation per k x k
  * pixels), the same bits (tests/test_filters.c). */
 #include <stdio.h>

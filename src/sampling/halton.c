@@ -1,4 +1,4 @@
-/* Halton sequences and the direction mappings of seed 003 §3.4, §5.3. */
+/* Halton sequences and the direction mappings of SSDO thesis §3.4, §5.3. */
 #include <math.h>
 
 #include "sampling/sampling.h"

@@ -31,7 +31,7 @@ static void kernel_numbers(ob_sampling sampling, ob_rng *rng, int i, double r[3]
 {
     if (sampling == OB_SAMPLING_HALTON) {
         /* Index from 1: Phi(0) = 0 in every base would put the first point on the pole at the
-         * centre. r1 (azimuth) from base 5, r2 (elevation) from base 2, as in seed 003 §5.3. */
+         * centre. r1 (azimuth) from base 5, r2 (elevation) from base 2, as in SSDO thesis §5.3. */
         uint32_t k = (uint32_t)i + 1u;
         r[0] = ob_radical_inverse(k, 5);
         r[1] = ob_radical_inverse(k, 2);
@@ -46,7 +46,7 @@ static void kernel_numbers(ob_sampling sampling, ob_rng *rng, int i, double r[3]
 /* Random (the seed's kernel): lerp(0.1, 1, (i/count)^2) x r3, kept at least 0.1 so the innermost
  * points still probe. Halton: lerp(0.1, 1, r3^2), which concentrates toward the centre as much
  * without depending on the count, so every prefix of 10, 20, 30 points (the Halton period,
- * seed 003 §4.1) is itself a well-spread kernel: what adaptive sample counts need. */
+ * SSDO thesis §4.1) is itself a well-spread kernel: what adaptive sample counts need. */
 static float kernel_length(ob_sampling sampling, int i, int count, double r3)
 {
     if (sampling == OB_SAMPLING_HALTON) return 0.1f + 0.9f * (float)(r3 * r3);

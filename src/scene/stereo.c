@@ -1,4 +1,4 @@
-/* The two eyes of a headset (seed 000 §5.2: the HTC Vive, 1080x1200 per eye, in "Mirror" and
+/* The two eyes of a headset (Belonogov 2018 §5.2: the HTC Vive, 1080x1200 per eye, in "Mirror" and
  * "SinglePass" modes).
  *
  * Parallel-axis asymmetric-frustum stereo (P. Bourke, "Calculating stereo pairs", 1999; the
@@ -22,7 +22,7 @@
 #include "base/error.h"
 #include "obscura/scene.h"
 
-/* HTC Vive (the seed's headset): 1080x1200 pixels per eye (seed 000 §5.2), 64 mm ipd (the
+/* HTC Vive (the seed's headset): 1080x1200 pixels per eye (Belonogov 2018 §5.2), 64 mm ipd (the
  * population mean the seed's setup assumes). The per-eye frustum is OpenVR's GetProjectionRaw of a
  * Vive, left eye, as tangents of the half-angles (gamedev.net, "Projection matrix model of the HTC
  * Vive", 2016): left 1.39811385, right 1.24539280, up 1.45936251, down 1.47835493 (OpenVR calls

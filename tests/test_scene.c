@@ -25,6 +25,8 @@
 #define CAMERAS_GLTF "/usr/share/assimp/models/glTF2/cameras/Cameras.gltf"
 #define BOX_GLTF "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf"
 #define BOX_GLB "/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb"
+/* glTF 1.0 as collada2gltf wrote it: asset.version the number 1, buffers keyed by id. */
+#define TRUCK_GLTF1 "/usr/share/assimp/models/glTF/CesiumMilkTruck/CesiumMilkTruck.gltf"
 
 /* Counts observed with Assimp 5.2.5 on Debian 12 (see the printed lines). */
 #define BUNNY_TRIANGLES 69666u
@@ -502,6 +504,25 @@ static void test_fzk_haus(void)
         CHECK(ob_query_camera_count(s) >= 4, "fzk-haus: exterior and two interior presets");
         ob_destroy_scene(s);
     }
+}
+
+/* A glTF 1.0 file Assimp reads is read: the pre-check takes a version of 1 (a number, as
+ * collada2gltf wrote it) or buffers keyed by id as glTF 1 and checks it as such, where it took the
+ * number for glTF 2 and refused "bufferView 0 lies outside its buffer". */
+static void test_gltf1(void)
+{
+    if (!file_exists(TRUCK_GLTF1)) {
+        printf("skip: %s not installed\n", TRUCK_GLTF1);
+        return;
+    }
+    ob_scene *s = load(TRUCK_GLTF1, NULL, OB_UP_DEFAULT);
+    CHECK(s != NULL, "CesiumMilkTruck.gltf (glTF 1.0, version 1) loads: %s", last_message());
+    if (!s) return;
+    ob_scene_stats st = ob_query_scene_stats(s);
+    printf("CesiumMilkTruck.gltf: %u triangles, %u meshes, %u materials\n", (unsigned)st.triangles, (unsigned)st.meshes,
+           (unsigned)st.materials);
+    CHECK(st.triangles > 1000 && st.meshes >= 1, "the truck has its triangles (%u)", (unsigned)st.triangles);
+    ob_destroy_scene(s);
 }
 
 static void test_gltf_cameras(void)
@@ -1224,6 +1245,7 @@ int main(void)
     test_gltf_lights();
     test_cornell_obj();
     test_gltf_cameras();
+    test_gltf1();
     test_textures();
     test_bunny();
     test_fzk_haus();

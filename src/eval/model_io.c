@@ -808,7 +808,14 @@ static bool check_gltf_json(ob_model_fs *fs, const cJSON *root, uint64_t bin_byt
 {
     const cJSON *asset = cJSON_GetObjectItemCaseSensitive(root, "asset");
     const cJSON *version = asset ? cJSON_GetObjectItemCaseSensitive(asset, "version") : NULL;
-    if (cJSON_IsString(version) && version->valuestring[0] == '1') {
+    /* glTF 1 says "1.0", but writers of its day also wrote the number 1 (collada2gltf: assimp's
+     * CesiumMilkTruck) or left the version out; its buffers and bufferViews are objects keyed by
+     * id, where glTF 2's are arrays. */
+    const bool gltf1 = cJSON_IsString(version)   ? version->valuestring[0] == '1'
+                       : cJSON_IsNumber(version) ? version->valuedouble >= 1.0 && version->valuedouble < 2.0
+                                                 : cJSON_IsObject(cJSON_GetObjectItemCaseSensitive(root, "buffers")) ||
+                                                       cJSON_IsObject(cJSON_GetObjectItemCaseSensitive(root, "bufferViews"));
+    if (gltf1) {
         /* glTF 1: Assimp's older importer, with its own layout; the generic estimate only. */
         *estimate = size * OB_BYTES_PER_FILE_BYTE;
         return true;

@@ -230,7 +230,7 @@ static int parse(int argc, char **argv, bench_opts *o)
                                    "--host-rmse"};
         bool known = false;
         for (size_t k = 0; k < sizeof own / sizeof own[0]; ++k) known = known || !strcmp(a, own[k]);
-        if (!known) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura bench --help)", a);
+        if (!known) return cli_unknown_option("bench", a, bench_usage, c);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura bench --help)", a);
         const char *v = argv[++i];
         if (!strcmp(a, "--cameras")) o->cameras = v;

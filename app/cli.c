@@ -1,6 +1,7 @@
 /* The shared helpers of the obscura subcommands (declared in cli.h): one-line failures with the
  * exit codes of README.md, the small value parsers every command shares, the GL context and the
  * output checks. The common scene/method/lighting options are in cli_options.c. */
+#include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
@@ -14,6 +15,41 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "suggest.h"
+
+int cli_unknown_option(const char *command, const char *arg, void (*usage)(FILE *, const struct cli_common *),
+                       const struct cli_common *c)
+{
+    char *text = NULL;
+    size_t size = 0;
+    FILE *f = usage ? open_memstream(&text, &size) : NULL;
+    if (f) {
+        usage(f, c);
+        fclose(f);
+    }
+    /* Every "--word" of the help, once each. */
+    enum { MOST = 160 };
+    char words[MOST][32];
+    const char *names[MOST];
+    int n = 0;
+    for (const char *p = text; p && (p = strstr(p, "--")) != NULL && n < MOST;) {
+        size_t len = 2;
+        while (p[len] && (isalnum((unsigned char)p[len]) || p[len] == '-')) ++len;
+        bool seen = len <= 2 || len >= sizeof words[0];
+        for (int k = 0; k < n && !seen; ++k) seen = strlen(words[k]) == len && !strncmp(words[k], p, len);
+        if (!seen) {
+            memcpy(words[n], p, len);
+            words[n][len] = '\0';
+            names[n] = words[n];
+            ++n;
+        }
+        p += len;
+    }
+    char hint[96];
+    ob_suggest_text(arg, strlen(arg), names, n, hint, sizeof hint);
+    free(text);
+    return cli_fail(EXIT_USAGE, "unknown option '%s'%s (see obscura %s --help)", arg, hint, command);
+}
 
 int cli_fail(int code, const char *fmt, ...)
 {

@@ -4,6 +4,7 @@
 #define OB_CLI_H
 
 #include <stdbool.h>
+#include <stdio.h>
 
 #include "obscura/eval.h"
 
@@ -28,6 +29,12 @@ int cli_fail_from_library_in(const char *where);
 int cli_fail_library_as(int code);
 /* Print "obscura: MESSAGE" and return code. */
 int cli_fail(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* "unknown option 'ARG'; did you mean '--NEAR'? (see obscura COMMAND --help)", exit EXIT_USAGE: the
+ * options to suggest are the ones the command's own --help text names (usage writes it), so the
+ * suggestion never names one the command does not take. */
+struct cli_common;
+int cli_unknown_option(const char *command, const char *arg, void (*usage)(FILE *, const struct cli_common *),
+                       const struct cli_common *c);
 
 bool cli_parse_size(const char *text, int *w, int *h);
 bool cli_parse_vec3(const char *text, float out[3]);

@@ -30,6 +30,9 @@
 #include "reference_cache.h"
 #include "run_program.h"
 
+/* compare without --report writes here (in the current directory). */
+#define CLI_DEFAULT_REPORT "obscura-report"
+
 enum { MAX_VIEWS = 32, FRAMES = 5 }; /* 32 views: both sets of scenes/views.json fit one run each */
 
 typedef struct compare_opts {
@@ -66,7 +69,7 @@ typedef struct method_result {
 
 static void compare_usage(FILE *f, const cli_common *defaults)
 {
-    fputs("usage: obscura compare --scene S[:CAMERA] [--scene ...] --report DIR [options]\n"
+    fputs("usage: obscura compare --scene S[:CAMERA] [--scene ...] [--report DIR] [options]\n"
           "\n"
           "Renders every method on the same inputs, ray-traces the ground truth AO_R from the very\n"
           "G-buffer points (Embree), and writes DIR/index.html, DIR/results.json and the images.\n"
@@ -79,7 +82,8 @@ static void compare_usage(FILE *f, const cli_common *defaults)
           "  --report DIR          where the report goes: built beside it and put in place only when\n"
           "                        whole; an existing DIR is replaced as a whole only when empty or\n"
           "                        when everything in it is listed in its .obscura-report (what this\n"
-          "                        tool wrote); anything else in it is refused with exit 4\n"
+          "                        tool wrote); anything else in it is refused with exit 4 (default\n"
+          "                        " CLI_DEFAULT_REPORT " in the current directory)\n"
           "  --spp N               reference rays per pixel (default 512: mean standard error < 0.01)\n"
           "  --radius R            AO radius R in world units for every method and the reference\n"
           "                        (default: each scene's suggested radius; a --set M.radius=... wins\n"
@@ -118,7 +122,7 @@ static int parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
         if (taken != CLI_NOT_MINE) return taken;
         if (strcmp(a, "--scene") && strcmp(a, "--report") && strcmp(a, "--spp") && strcmp(a, "--radius") &&
             strcmp(a, "--budget-ms"))
-            return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura compare --help)", a);
+            return cli_unknown_option("compare", a, compare_usage, &o->common);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura compare --help)", a);
         const char *v = argv[++i];
         if (!strcmp(a, "--scene")) {
@@ -152,7 +156,12 @@ static int parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
         k = 0;
         if (c->ao_count == 0 && (code = cli_common_option(c, 2, s_argv, &k)) != CLI_TAKEN) return code;
     }
-    if (!o->report) return cli_fail(EXIT_USAGE, "--report DIR is required (see obscura compare --help)");
+    if (!o->report) {
+        /* No --report: a folder of the current directory, replaced next time as --report would
+         * replace it (only what this tool wrote there), and named before anything runs. */
+        o->report = CLI_DEFAULT_REPORT;
+        printf("compare: no --report: the report goes to %s/ (--report DIR to choose)\n", o->report);
+    }
     if (o->view_count == 0) return cli_fail(EXIT_USAGE, "--scene is required (see obscura compare --help)");
     if (!*o->report) return cli_fail(EXIT_USAGE, "--report: expected a directory, got ''");
     int code = cli_common_finish(&o->common);

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "suggest.h"
 #include "outputs.h"
 
 static const char *type_name(ob_param_type t)
@@ -212,7 +213,10 @@ int cmd_list(int argc, char **argv)
                  "camera presets (a named scene whose model is missing says why).");
             return EXIT_OK;
         } else {
-            return cli_fail(EXIT_USAGE, "list: unknown option '%s'", argv[i]);
+            static const char *const options[] = {"--json", "--help"};
+            char hint[96];
+            return cli_fail(EXIT_USAGE, "list: unknown option '%s'%s (see obscura list --help)", argv[i],
+                            ob_suggest_text(argv[i], strlen(argv[i]), options, 2, hint, sizeof hint));
         }
     }
     return json ? list_json() : list_human();

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "suggest.h"
 
 static void usage(FILE *f)
 {
@@ -53,6 +54,9 @@ int main(int argc, char **argv)
         return cmd_view(argc - 1, argv + 1);
     }
     if (!strcmp(cmd, "tune")) return cmd_tune(argc - 1, argv + 1);
-    fprintf(stderr, "obscura: unknown command '%s' (commands: render, list, sheet, compare, bench, view, tune; see obscura --help)\n", cmd);
+    static const char *const commands[] = {"render", "list", "sheet", "compare", "bench", "view", "tune"};
+    char hint[96];
+    fprintf(stderr, "obscura: unknown command '%s'%s (commands: render, list, sheet, compare, bench, view, tune; see obscura --help)\n",
+            cmd, ob_suggest_text(cmd, strlen(cmd), commands, 7, hint, sizeof hint));
     return EXIT_USAGE;
 }

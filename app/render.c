@@ -148,7 +148,7 @@ static int parse(int argc, char **argv, render_opts *o, cli_outputs *outs)
                                    "--headset", "--reference-spp", "--warmup"};
         bool known = false;
         for (size_t k = 0; k < sizeof own / sizeof own[0]; ++k) known = known || !strcmp(a, own[k]);
-        if (!known) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura render --help)", a);
+        if (!known) return cli_unknown_option("render", a, render_usage, &o->common);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura render --help)", a);
         const char *v = argv[++i];
         if (!strcmp(a, "--out")) o->out = v;

@@ -77,7 +77,7 @@ static int parse(int argc, char **argv, sheet_opts *o, cli_outputs *outs)
         int taken = cli_common_option(&o->common, argc, argv, &i);
         if (taken == CLI_TAKEN) continue;
         if (taken != CLI_NOT_MINE) return taken;
-        if (strcmp(a, "--out") != 0) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura sheet --help)", a);
+        if (strcmp(a, "--out") != 0) return cli_unknown_option("sheet", a, sheet_usage, &o->common);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura sheet --help)", a);
         o->out = argv[++i];
     }

@@ -127,7 +127,7 @@ static int parse(int argc, char **argv, tune_opts *o, cli_outputs *outs)
                                           "--spp"};
         bool known = false;
         for (size_t k = 0; k < sizeof own / sizeof own[0]; ++k) known = known || !strcmp(a, own[k]);
-        if (!known) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura tune --help)", a);
+        if (!known) return cli_unknown_option("tune", a, tune_usage, &o->common);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura tune --help)", a);
         char *v = argv[++i];
         int code = EXIT_OK;

@@ -88,7 +88,7 @@ int parse_view_opts(int argc, char **argv, view_opts *o)
                                                  "--gui",   "--seconds", "--cycles", "--stereo", "--ipd"};
         bool known = false;
         for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; ++k) known = known || !strcmp(a, with_value[k]);
-        if (!known) return cli_fail(EXIT_USAGE, "unknown option '%s' (see obscura view --help)", a);
+        if (!known) return cli_unknown_option("view", a, view_usage, c);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura view --help)", a);
         const char *v = argv[++i];
         if (!strcmp(a, "--shots")) o->shots = v;

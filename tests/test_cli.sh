@@ -93,6 +93,17 @@ expect 2 "out of range" -- "${R[@]}" --set geometry.radius=99
 expect 2 "but the filter is geometry" -- "${R[@]}" --set gaussian.sigma=1
 expect 2 "no parameter 'nosuch'" -- "${R[@]}" --filter bilateral --set bilateral.nosuch=1
 expect 2 "unknown command" -- frobnicate
+# "Did you mean ...?" for a slip of the keyboard: commands, options (from the command's own help),
+# methods, filters, parameters, scenes (which lists every scene), cameras; none for a stranger.
+expect 2 "unknown command 'rendr'; did you mean 'render'\\?" -- rendr
+expect 2 "unknown option '--sise'; did you mean '--size'\\?" -- "${R[@]}" --sise 32x24
+expect 2 "unknown option '--metods'; did you mean '--methods'\\?" -- compare --metods ssao
+expect 2 "unknown method 'vboa'; did you mean 'vbao'\\?" -- "${R[@]}" --method vboa
+expect 2 "unknown filter 'creese'; did you mean 'crease'\\?" -- "${R[@]}" --filter creese
+expect 2 "no parameter 'radus'; did you mean 'radius'\\?" -- "${R[@]}" --method vbao --set vbao.radus=1
+expect 2 "unknown scene 'bunyn'; did you mean 'bunny'\\? \\(built in: cornell, .*named: .*bunny" -- "${R[@]}" --scene bunyn
+expect 2 "unknown camera 'fornt' in scene 'sphere-on-plane'; did you mean 'front'\\?" -- "${R[@]}" --scene sphere-on-plane --camera fornt
+expect 2 "unknown option '--zzzzzz' \\(see" -- "${R[@]}" --zzzzzz
 # Stereo (Belonogov 2018 §5.2): bad modes and values, options that need --stereo or exclude each other.
 expect 2 "stereo: expected mirror or single" -- "${R[@]}" --stereo both
 expect 2 "ipd: expected a positive number" -- "${R[@]}" --stereo mirror --ipd -0.1

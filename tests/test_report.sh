@@ -281,6 +281,14 @@ then ok; else bad "compare --budget-ms: $(tail -2 "$dir/shoot.err")"; fi
 "$OBSCURA" compare --scene corner:diagonal --size 64x48 --budget-ms -3 --report "$dir/shoot_bad" 2>"$dir/shoot.err"
 [ $? -eq 2 ] && grep -q "budget-ms" "$dir/shoot.err" && [ ! -e "$dir/shoot_bad" ] && ok || bad "--budget-ms -3: $(cat "$dir/shoot.err")"
 
+# compare without --report: the report goes to obscura-report/ in the current directory, said
+# before the run and after it.
+if (cd "$dir" && "$OBSCURA" compare --scene corner:diagonal --size 32x24 --spp 8 --methods ssao >"$dir/default.out" \
+    2>"$dir/default.err") && [ -f "$dir/obscura-report/index.html" ] && [ -f "$dir/obscura-report/results.json" ] &&
+    grep -q "no --report: the report goes to obscura-report/" "$dir/default.out" &&
+    grep -q "^report: obscura-report/index.html" "$dir/default.out"; then ok
+else bad "compare without --report: $(cat "$dir/default.out" "$dir/default.err" | tail -3)"; fi
+
 # compare --orbit: the flicker table (issue 17) in results.json and the HTML, with temporal
 # accumulation cutting the still camera's noise, each row's worst frame written, and the
 # accumulation's settings recorded; an unknown path is one line and no report.

@@ -8,6 +8,7 @@
 #include <strings.h>
 
 #include "base/error.h"
+#include "base/suggest.h"
 #include "filters/filter.h"
 #include "methods/method.h"
 #include "obscura/scene.h"
@@ -23,7 +24,13 @@ ob_error ob_settings_init(ob_settings *s, const char *method)
             size_t n = strlen(list);
             snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "", ob_method_at(i)->name);
         }
-        return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown method '%s' (known: %s)", name, list);
+        const char *names[64] = {0};
+        for (int i = 0; i < ob_method_count() && i < 64; ++i) names[i] = ob_method_at(i)->name;
+        char hint[96];
+        return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown method '%s'%s (known: %s)", name,
+                            ob_suggest_text(name, strlen(name), names, ob_method_count() < 64 ? ob_method_count() : 64,
+                                            hint, sizeof hint),
+                            list);
     }
     memset(s, 0, sizeof *s);
     s->method = index;
@@ -260,8 +267,12 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
             size_t n = strlen(list);
             snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "", m->params[i].name);
         }
-        return ob_set_error(OB_ERR_UNKNOWN_PARAM, "%s has no parameter '%.*s' (it has: %s)", m->name,
-                            (int)key_len, key, m->param_count ? list : "none");
+        const char *names[OB_MAX_PARAMS] = {0};
+        for (int i = 0; i < m->param_count && i < OB_MAX_PARAMS; ++i) names[i] = m->params[i].name;
+        char hint[96];
+        return ob_set_error(OB_ERR_UNKNOWN_PARAM, "%s has no parameter '%.*s'%s (it has: %s)", m->name, (int)key_len,
+                            key, ob_suggest_text(key, key_len, names, m->param_count, hint, sizeof hint),
+                            m->param_count ? list : "none");
     }
     float value = 0.0f;
     ob_error err = parse_value(m, &m->params[pi], eq + 1, &value);
@@ -321,7 +332,13 @@ ob_error ob_settings_set_filter(ob_settings *s, const char *name)
             size_t n = strlen(list);
             snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "", ob_filter_at(i)->name);
         }
-        return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown filter '%s' (known: %s)", name, list);
+        const char *names[64] = {0};
+        for (int i = 0; i < ob_filter_count() && i < 64; ++i) names[i] = ob_filter_at(i)->name;
+        char hint[96];
+        return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown filter '%s'%s (known: %s)", name,
+                            ob_suggest_text(name, strlen(name), names, ob_filter_count() < 64 ? ob_filter_count() : 64,
+                                            hint, sizeof hint),
+                            list);
     }
     const ob_filter_info *f = ob_filter_at(index);
     s->filter = index;

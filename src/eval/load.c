@@ -11,9 +11,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 #include <sys/stat.h>
 
 #include "base/error.h"
+#include "base/suggest.h"
 #include "eval/model_io.h"
 #include "eval/sidecar.h"
 #include "io/file.h"
@@ -27,6 +29,43 @@ static bool is_regular_file(const char *path)
 {
     struct stat st = {0};
     return path && stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+static int compare_names(const void *a, const void *b) { return strcmp(*(const char *const *)a, *(const char *const *)b); }
+
+/* An unknown bare name: the built-in and named scenes it could have meant, the nearest first when
+ * one is a slip of the keyboard (`--scene bunyn`). */
+static void unknown_scene(const char *name)
+{
+    enum { MOST = 128 };
+    char stems[MOST][64];
+    const char *names[MOST];
+    int n = 0;
+    char builtin[512] = "", named[2048] = "";
+    for (int i = 0; i < ob_builtin_scene_count() && n < MOST; ++i) {
+        names[n++] = ob_builtin_scene_name(i);
+        snprintf(builtin + strlen(builtin), sizeof builtin - strlen(builtin), "%s%s", i ? ", " : "",
+                 ob_builtin_scene_name(i));
+    }
+    char dir[OB_PATH_MAX];
+    DIR *d = snprintf(dir, sizeof dir, "%s/scenes", ob_data_dir()) < (int)sizeof dir ? opendir(dir) : NULL;
+    const char *suffix = ".obscura.json";
+    const int first_named = n;
+    for (struct dirent *e; d && (e = readdir(d)) != NULL && n < MOST;) {
+        size_t len = strlen(e->d_name), sl = strlen(suffix);
+        if (len <= sl || len - sl >= sizeof stems[0] || strcmp(e->d_name + len - sl, suffix) != 0) continue;
+        memcpy(stems[n], e->d_name, len - sl);
+        stems[n][len - sl] = '\0';
+        names[n] = stems[n];
+        ++n;
+    }
+    if (d) closedir(d);
+    qsort(names + first_named, (size_t)(n - first_named), sizeof names[0], compare_names);
+    for (int i = first_named; i < n; ++i)
+        snprintf(named + strlen(named), sizeof named - strlen(named), "%s%s", named[0] ? ", " : "", names[i]);
+    char hint[96];
+    ob_set_error(OB_ERR_UNKNOWN_SCENE, "unknown scene '%s'%s (built in: %s; named: %s; or a model file)", name,
+                 ob_suggest_text(name, strlen(name), names, n, hint, sizeof hint), builtin, named[0] ? named : "none");
 }
 
 static bool is_builtin(const char *name)
@@ -173,8 +212,7 @@ ob_scene *ob_load_scene(const ob_scene_desc *desc)
         if (strchr(name, '/') || strchr(name, '.'))
             ob_set_error(OB_ERR_IO, "cannot read model '%s': no such file", name);
         else
-            ob_set_error(OB_ERR_UNKNOWN_SCENE,
-                         "unknown scene '%s' (not built in, not in scenes/, no such file)", name);
+            unknown_scene(name);
         return NULL;
     }
     char stem[OB_PATH_MAX] = "";

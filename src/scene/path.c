@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "base/suggest.h"
 #include "scene/scene.h"
 
 int ob_query_path_count(const ob_scene *scene) { return scene ? scene->path_count : 0; }
@@ -46,7 +47,11 @@ ob_error ob_camera_on_path(const ob_scene *scene, const char *name, float u, ob_
         char names[512] = "";
         for (int i = 0; i < scene->path_count; ++i)
             snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", i ? ", " : "", scene->paths[i].name);
-        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "unknown camera path '%s' in scene '%s' (%s%s)", name, scene->name,
+        const char *known[OB_MAX_PATHS] = {0};
+        for (int i = 0; i < scene->path_count && i < OB_MAX_PATHS; ++i) known[i] = scene->paths[i].name;
+        char hint[96];
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "unknown camera path '%s' in scene '%s'%s (%s%s)", name, scene->name,
+                            ob_suggest_text(name, strlen(name), known, scene->path_count, hint, sizeof hint),
                             scene->path_count ? "paths: " : "it has no \"paths\" in its sidecar", names);
     }
     if (!(u >= 0.0f)) u = 0.0f; /* NaN too */

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "base/suggest.h"
 
 /* ---- allocation helpers ---------------------------------------------------------------------- */
 
@@ -363,7 +364,14 @@ ob_error ob_find_camera(const ob_scene *scene, const char *name_or_index, ob_cam
         if (len < 0 || (size_t)len >= sizeof names - used) break;
         used += (size_t)len;
     }
+    const char *known[OB_MAX_CAMERAS] = {0};
+    for (int i = 0; i < scene->camera_count && i < OB_MAX_CAMERAS; ++i) known[i] = scene->cameras[i].name;
+    char hint[96];
     return ob_set_error(OB_ERR_UNKNOWN_CAMERA,
-                        "unknown camera '%s' in scene '%s' (available: %s; or an index 0-%d)",
-                        name_or_index, scene->name, names, scene->camera_count - 1);
+                        "unknown camera '%s' in scene '%s'%s (available: %s; or an index 0-%d)", name_or_index,
+                        scene->name,
+                        ob_suggest_text(name_or_index, strlen(name_or_index), known,
+                                        scene->camera_count < OB_MAX_CAMERAS ? scene->camera_count : OB_MAX_CAMERAS,
+                                        hint, sizeof hint),
+                        names, scene->camera_count - 1);
 }

@@ -587,23 +587,6 @@ static void cpu_model(char *out, size_t n)
     fclose(f);
 }
 
-static void git_commit(char *out, size_t n)
-{
-    snprintf(out, n, "unknown");
-    const char *dir = ob_data_dir();
-    if (!dir) return;
-    /* git gets the directory as one argument, with no shell (run_program.h): any name works, quotes
-     * included, and none runs a command. No git, no repository: "unknown". */
-    const char *argv[] = {"git", "-C", dir, "rev-parse", "--short", "HEAD", NULL};
-    cli_spawn_output line = {.limit = 127};
-    int status = -1;
-    if (cli_spawn(argv, -1, &line, NULL, &status) == 0 && status == 0 && line.data && !line.truncated) {
-        line.data[strcspn(line.data, "\r\n")] = '\0';
-        if (line.data[0]) snprintf(out, n, "%s", line.data);
-    }
-    cli_spawn_output_free(&line);
-}
-
 /* ---- output ---------------------------------------------------------------------------------- */
 
 static const char *method_name(int m) { return ob_method_at(m)->name; }
@@ -1914,7 +1897,7 @@ static int bench_run(int argc, char **argv)
     if (code == EXIT_OK && o.json) {
         char cpu[256], commit[64], date[64];
         cpu_model(cpu, sizeof cpu);
-        git_commit(commit, sizeof commit);
+        cli_git_commit(commit, sizeof commit);
         time_t t = time(NULL);
         struct tm tm_utc;
         gmtime_r(&t, &tm_utc);

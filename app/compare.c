@@ -49,6 +49,8 @@ typedef struct compare_opts {
     const char *final_report;
     cli_outputs *outs;
     int report_index;
+    int argc;                     /* the command line as given: results.json records it */
+    char **argv;
 } compare_opts;
 
 /* One row of a view's table: one combination of the lists. */
@@ -102,7 +104,7 @@ static void compare_usage(FILE *f, const cli_common *defaults)
 
 static int parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
 {
-    *o = (compare_opts){.spp = 512, .outs = outs, .report_index = -1};
+    *o = (compare_opts){.spp = 512, .outs = outs, .report_index = -1, .argc = argc, .argv = argv};
     cli_common_init(&o->common, "compare", CLI_TAKES_CAMERA | CLI_TAKES_LISTS | CLI_TAKES_GPU | CLI_TAKES_PATH);
     o->common.default_method = NULL; /* every method */
     o->common.width = 320;
@@ -668,9 +670,73 @@ static int set_means(const view_result *views, int count, const char *set, doubl
     return n;
 }
 
+/* The answer to "which method, at what cost?" across the report's views, one entry per row: mean
+ * RMSE and bias, mean rank by RMSE (1 = the closest), wins (views where no row is closer), median
+ * AO-pass ms, and whether the row is on the front (no other row is both as fast and closer, or
+ * faster and as close). Every view has the same rows in the same order. */
+typedef struct row_summary {
+    double rmse, bias, rank, ao_ms;
+    int wins;
+    bool front;
+} row_summary;
+
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static row_summary *summarise(const view_result *views, int count, int rows)
+{
+    row_summary *r = rows > 0 ? calloc((size_t)rows, sizeof *r) : NULL;
+    double *ms = count > 0 ? calloc((size_t)count, sizeof *ms) : NULL;
+    if (!r || !ms) {
+        free(r);
+        free(ms);
+        return NULL;
+    }
+    int used = 0;
+    for (int v = 0; v < count; ++v) {
+        if (views[v].method_count != rows) continue;
+        ++used;
+        const method_result *m = views[v].methods;
+        for (int k = 0; k < rows; ++k) {
+            int better = 0;
+            for (int j = 0; j < rows; ++j) better += m[j].m.rmse < m[k].m.rmse;
+            r[k].rmse += m[k].m.rmse;
+            r[k].bias += m[k].m.bias;
+            r[k].rank += 1.0 + better;
+            r[k].wins += better == 0;
+        }
+    }
+    for (int k = 0; k < rows; ++k) {
+        int n = 0;
+        for (int v = 0; v < count; ++v)
+            if (views[v].method_count == rows) ms[n++] = views[v].methods[k].ao_ms;
+        qsort(ms, (size_t)n, sizeof *ms, compare_doubles);
+        r[k].ao_ms = n ? (n & 1 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2])) : 0.0;
+        if (used) r[k].rmse /= used, r[k].bias /= used, r[k].rank /= used;
+    }
+    for (int k = 0; k < rows; ++k) {
+        r[k].front = true;
+        for (int j = 0; j < rows && r[k].front; ++j)
+            r[k].front = !(j != k && r[j].rmse <= r[k].rmse && r[j].ao_ms <= r[k].ao_ms &&
+                           (r[j].rmse < r[k].rmse || r[j].ao_ms < r[k].ao_ms));
+    }
+    free(ms);
+    return r;
+}
+
 static int write_json(const compare_opts *o, ob_context *ctx, const view_result *views, int count, outputs *out)
 {
     cJSON *root = cJSON_CreateObject();
+    /* What made the numbers: the tool, its commit, and the command line as given. */
+    cJSON_AddStringToObject(root, "version", OB_VERSION_STRING);
+    char commit[64];
+    cli_git_commit(commit, sizeof commit);
+    cJSON_AddStringToObject(root, "commit", commit);
+    cJSON *cmd = cJSON_AddArrayToObject(root, "command_line");
+    for (int i = 0; i < o->argc; ++i) cJSON_AddItemToArray(cmd, cJSON_CreateString(o->argv[i]));
     cJSON_AddStringToObject(root, "renderer", ob_query_renderer(ctx));
     cJSON_AddStringToObject(root, "gl_version", ob_query_gl_version(ctx));
     cJSON_AddNumberToObject(root, "width", o->common.width);
@@ -701,6 +767,21 @@ static int write_json(const compare_opts *o, ob_context *ctx, const view_result 
         for (int k = 0; k < nrows; ++k) cJSON_AddNumberToObject(means, views[0].methods[k].label, mean[k]);
     }
     free(mean);
+    row_summary *sum = summarise(views, count, nrows);
+    cJSON *jsum = cJSON_AddArrayToObject(root, "summary");
+    for (int k = 0; sum && k < nrows; ++k) {
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddStringToObject(e, "label", views[0].methods[k].label);
+        cJSON_AddStringToObject(e, "method", views[0].methods[k].name);
+        cJSON_AddNumberToObject(e, "mean_rmse", sum[k].rmse);
+        cJSON_AddNumberToObject(e, "mean_bias", sum[k].bias);
+        cJSON_AddNumberToObject(e, "mean_rank", sum[k].rank);
+        cJSON_AddNumberToObject(e, "wins", sum[k].wins);
+        cJSON_AddNumberToObject(e, "median_ao_ms", sum[k].ao_ms);
+        cJSON_AddBoolToObject(e, "front", sum[k].front);
+        cJSON_AddItemToArray(jsum, e);
+    }
+    free(sum);
     cJSON *jv = cJSON_AddArrayToObject(root, "views");
     for (int v = 0; v < count; ++v) {
         const view_result *vr = &views[v];
@@ -1142,9 +1223,29 @@ static int write_html(const compare_opts *o, ob_context *ctx, const view_result 
     fputs(". Error maps: red = the method is brighter (misses occlusion), blue = darker; &plusmn;0.5 saturates. "
           "Click a column to sort.</p>\n",
           f);
+    const int rows = count > 0 ? views[0].method_count : 0;
+    /* Which method, at what cost: the summary across every view of the report. */
+    row_summary *sum = summarise(views, count, rows);
+    if (sum) {
+        fprintf(f, "<h2>Summary over %d view%s</h2>\n<p class=\"note\">Mean RMSE and signed bias against "
+                   "AO<sub>R</sub>, mean rank by RMSE (1 = the closest row of a view), wins (views no row is "
+                   "closer on), median GPU time of the AO pass, and the front: rows no other row beats on both "
+                   "error and time.</p>\n",
+                count, count == 1 ? "" : "s");
+        fputs("<table class=\"sortable\"><thead><tr><th>row</th><th>mean RMSE</th><th>mean bias</th>"
+              "<th>mean rank</th><th>wins</th><th>AO ms (median)</th><th>front</th></tr></thead><tbody>\n",
+              f);
+        for (int k = 0; k < rows; ++k) {
+            fputs("<tr><td>", f);
+            html_escape(f, views[0].methods[k].label);
+            fprintf(f, "</td><td>%.4f</td><td>%+.4f</td><td>%.2f</td><td>%d</td><td>%.3f</td><td>%s</td></tr>\n",
+                    sum[k].rmse, sum[k].bias, sum[k].rank, sum[k].wins, sum[k].ao_ms, sum[k].front ? "yes" : "");
+        }
+        fputs("</tbody></table>\n", f);
+        free(sum);
+    }
     /* The views' sets (scenes/views.json): the mean of each row over the choose views, the ones
      * the defaults were chosen on, and over the check views, never chosen on. */
-    const int rows = count > 0 ? views[0].method_count : 0;
     double *mean[2] = {NULL, NULL};
     int in_set[2] = {0, 0};
     for (int s = 0; s < 2 && rows; ++s) {

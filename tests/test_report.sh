@@ -283,10 +283,32 @@ then ok; else bad "compare --budget-ms: $(tail -2 "$dir/shoot.err")"; fi
 
 # compare without --report: the report goes to obscura-report/ in the current directory, said
 # before the run and after it.
-if (cd "$dir" && "$OBSCURA" compare --scene corner:diagonal --size 32x24 --spp 8 --methods ssao >"$dir/default.out" \
-    2>"$dir/default.err") && [ -f "$dir/obscura-report/index.html" ] && [ -f "$dir/obscura-report/results.json" ] &&
+# Its results.json records the tool's version, its commit and the command line, and opens with the
+# summary across views (mean RMSE and bias, mean rank, wins, median AO ms, the front), as does the
+# HTML.
+if (cd "$dir" && "$OBSCURA" compare --scene corner:diagonal --scene sphere-on-plane:contact --size 32x24 --spp 8 \
+    --methods ssao,vbao >"$dir/default.out" 2>"$dir/default.err") && [ -f "$dir/obscura-report/index.html" ] &&
     grep -q "no --report: the report goes to obscura-report/" "$dir/default.out" &&
-    grep -q "^report: obscura-report/index.html" "$dir/default.out"; then ok
+    grep -q "^report: obscura-report/index.html" "$dir/default.out" &&
+    python3 - "$dir/obscura-report" "$("$OBSCURA" --version)" <<'PY'
+import json, os, sys
+report, version = sys.argv[1], sys.argv[2]
+r = json.load(open(os.path.join(report, "results.json")))
+assert "obscura " + r["version"] == version and r["commit"], (r["version"], r["commit"], version)
+assert r["command_line"][:3] == ["compare", "--scene", "corner:diagonal"], r["command_line"]
+rows = [m["label"] for m in r["views"][0]["methods"]]
+s = r["summary"]
+assert [e["label"] for e in s] == rows == ["ssao", "vbao"], (s, rows)
+for e in s:
+    views = [next(m for m in v["methods"] if m["label"] == e["label"]) for v in r["views"]]
+    assert abs(e["mean_rmse"] - sum(m["rmse"] for m in views) / 2) < 1e-9, e
+    assert abs(e["mean_bias"] - sum(m["bias"] for m in views) / 2) < 1e-9, e
+    assert 1 <= e["mean_rank"] <= 2 and e["median_ao_ms"] > 0, e
+assert sum(e["wins"] for e in s) >= 2 and any(e["front"] for e in s), s
+html = open(os.path.join(report, "index.html")).read()
+assert "Summary over 2 views" in html and "mean rank" in html, "no summary in the HTML"
+PY
+then ok
 else bad "compare without --report: $(cat "$dir/default.out" "$dir/default.err" | tail -3)"; fi
 
 # compare --orbit: the flicker table (issue 17) in results.json and the HTML, with temporal

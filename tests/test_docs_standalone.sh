@@ -7,6 +7,7 @@
 #     old names may appear (to resolve them in raw benchmark output, which keeps them);
 #   - the keys of the three theses are defined there, and docs/architecture.md exists;
 #   - every relative link in README.md and docs/*.md points at a file that exists;
+#   - docs/scenes.md names every key the sidecar parser takes;
 #   - `obscura --help`, every command's --help and `obscura list` say none of the above.
 # usage: test_docs_standalone.sh OBSCURA SOURCE_DIR
 set -uo pipefail
@@ -44,6 +45,20 @@ if broken:
     sys.exit(1)
 PY
 then ok; else bad "relative links in README.md and docs/"; fi
+
+# docs/scenes.md documents every key the sidecar parser takes (its unknown_key lists).
+if python3 - "$src" <<'PY'
+import os, re, sys
+src = sys.argv[1]
+code = open(os.path.join(src, "src/eval/sidecar.c")).read()
+doc = open(os.path.join(src, "docs/scenes.md")).read()
+keys = {k for group in re.findall(r"keys\[\] = \{([^}]*)\}", code) for k in re.findall(r'"([a-z_]+)"', group)}
+missing = sorted(k for k in keys if f"`{k}`" not in doc)
+if len(keys) < 20 or missing:
+    print("docs/scenes.md lacks sidecar keys:", missing, "of", len(keys))
+    sys.exit(1)
+PY
+then ok; else bad "docs/scenes.md against the sidecar parser"; fi
 
 out=$("$OBSCURA" --help 2>&1; for c in render compare bench tune sheet view list; do "$OBSCURA" $c --help 2>&1; done; "$OBSCURA" list 2>&1)
 [ -n "$out" ] && ! echo "$out" | grep -qE "$pattern" && ok || bad "help or list: $(echo "$out" | grep -E "$pattern" | head -3)"

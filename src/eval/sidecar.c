@@ -1,5 +1,6 @@
 /* Scene sidecar: a small JSON file that gives a model what its file format cannot carry
- * (camera presets, the key light, a sensible AO radius, the up axis).
+ * (camera presets, the key light, a sensible AO radius, the up axis). docs/scenes.md is its
+ * user's documentation (test docs_standalone holds it to the keys parsed here).
  *
  * Format (every key optional unless noted; coordinates are in the scene's final Y-up frame,
  * in the model's units):
@@ -71,6 +72,7 @@
 #include <cjson/cJSON.h>
 
 #include "base/error.h"
+#include "base/suggest.h"
 #include "io/file.h"
 #include "eval/import.h"
 
@@ -105,6 +107,16 @@ static ob_error fail(const char *path, const char *fmt, ...)
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     return ob_set_error(OB_ERR_SIDECAR, "%s: %s", path, msg);
+}
+
+/* "path: field: unknown key; did you mean 'NEAR'? (expected a, b, c)": keys[] are the valid ones. */
+static ob_error unknown_key(const char *path, const char *field, const char *key, const char *const *keys, int n,
+                            const char *also)
+{
+    char list[256] = "", hint[96];
+    for (int i = 0; i < n; ++i) snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", keys[i]);
+    return fail(path, "%s: unknown key%s (expected %s%s)", field, ob_suggest_text(key, strlen(key), keys, n, hint, sizeof hint),
+                list, also);
 }
 
 /* The failed ob_check_camera/ob_check_light's message, named by the sidecar and the entry. Copied
@@ -232,7 +244,8 @@ static ob_error parse_camera(const char *path, int index, const cJSON *obj, ob_c
                             (double)cam->fov_y_deg);
             }
         } else {
-            return fail(path, "%s: unknown key (expected name, eye, target, up, fov)", field);
+            static const char *const keys[] = {"name", "eye", "target", "up", "fov"};
+            return unknown_key(path, field, key, keys, 5, "");
         }
         if (err != OB_OK) return err;
     }
@@ -280,7 +293,8 @@ static ob_error parse_key(const char *path, const char *where, const cJSON *obj,
             if (err == OB_OK && !(p->fov[k] > 1.0f && p->fov[k] < 179.0f))
                 return fail(path, "%s: %g degrees is outside (1, 179)", field, (double)p->fov[k]);
         } else {
-            return fail(path, "%s: unknown key (expected time, eye, target, fov)", field);
+            static const char *const keys[] = {"time", "eye", "target", "fov"};
+            return unknown_key(path, field, key, keys, 4, "");
         }
         if (err != OB_OK) return err;
     }
@@ -337,7 +351,8 @@ static ob_error parse_path(const char *path, int index, const cJSON *obj, ob_cam
             p->key_count = n;
             has_keys = true;
         } else {
-            return fail(path, "%s: unknown key (expected name, keys)", field);
+            static const char *const keys[] = {"name", "keys"};
+            return unknown_key(path, field, key, keys, 2, "");
         }
     }
     if (!has_name) return fail(path, "%s: missing \"name\"", where);
@@ -395,8 +410,8 @@ static ob_error parse_light(const char *path, int index, const cJSON *obj, ob_li
                 return fail(path, "%s: intensity must be >= 0", field);
             }
         } else {
-            return fail(path, "%s: unknown key (expected type, direction, position, color, intensity, range, cone)",
-                        field);
+            static const char *const keys[] = {"type", "direction", "position", "color", "intensity", "range", "cone"};
+            return unknown_key(path, field, key, keys, 7, "");
         }
         if (err != OB_OK) return err;
     }
@@ -438,7 +453,8 @@ static ob_error parse_ground(const char *path, const cJSON *obj, sidecar *sc)
                 }
             }
         } else {
-            return fail(path, "%s: unknown key (expected y, size, color)", field);
+            static const char *const keys[] = {"y", "size", "color"};
+            return unknown_key(path, field, key, keys, 3, "");
         }
         if (err != OB_OK) return err;
     }
@@ -621,8 +637,8 @@ static ob_error parse_file(const char *path, sidecar *sc)
         } else if (strcmp(key, "ground") == 0) {
             err = parse_ground(path, it, sc);
         } else {
-            err = fail(path, "%s: unknown key (expected model, up, ao_radius, cameras, paths, lights, "
-                             "ground, or _comment)", key);
+            static const char *const keys[] = {"model", "up", "ao_radius", "cameras", "paths", "lights", "ground"};
+            err = unknown_key(path, key, key, keys, 7, ", or _comment");
         }
     }
     cJSON_Delete(root);

@@ -1072,8 +1072,16 @@ int cli_common_load_scene(const cli_common *c, const char *name, ob_scene **out)
     *out = ob_load_scene(&(ob_scene_desc){.name = name ? name : c->scene, .sidecar = c->sidecar, .up = c->up,
                                           .allow_external_files = c->allow_external_files,
                                           .max_memory = c->max_memory, .reserved_memory = c->run_memory,
-                                          .reserved_what = c->run_memory_what});
+                                          .reserved_what = c->run_memory_what, .automatic_ground = true});
     if (!*out) return cli_fail_from_library();
+    /* A model without a sidecar stands on a ground the loader added: say so, once per load. */
+    for (int i = ob_query_scene_material_count(*out) - 1; i >= 0; --i)
+        if (!strcmp(ob_query_scene_material(*out, i).name, OB_AUTOMATIC_GROUND_MATERIAL)) {
+            printf("note: %s has no sidecar: it stands on a ground added under it (a sidecar MODEL.obscura.json "
+                   "chooses; docs/scenes.md)\n",
+                   ob_query_scene_name(*out));
+            break;
+        }
     int lights = 0;
     const uint64_t extra = scene_light_memory(c, *out, &lights);
     const uint64_t limit = c->max_memory ? c->max_memory : ob_default_max_memory();

@@ -194,6 +194,19 @@ read -r w h c lo hi mean < <("$IMGCHECK" "$dir/guard.pfm")
 [ "$w $h $c" = "48 32 1" ] && ok || bad "--guard 10%: AO PFM is '$w $h $c' ($(cat "$dir/stderr"))"
 rm -f "$dir/guard.pfm" "$dir/guard.png"
 
+# A model without a sidecar stands on a ground the loader added, and the command says so; with a
+# sidecar beside it (no "ground") it stands alone and nothing is said.
+mkdir -p "$dir/lone"
+printf 'v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 1 -1\nv 1 1 -1\nv 1 1 1\nv -1 1 1\nf 1 2 3 4\nf 8 7 6 5\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n' >"$dir/lone/box.obj"
+if "$OBSCURA" render --scene "$dir/lone/box.obj" --size 32x24 --method ssao --out "$dir/lone/a.png" >"$dir/stdout" 2>"$dir/stderr" &&
+    grep -q "^note: box has no sidecar: it stands on a ground added under it" "$dir/stdout"; then ok
+else bad "a model without a sidecar: $(cat "$dir/stdout" "$dir/stderr")"; fi
+echo '{"ao_radius": 0.5}' >"$dir/lone/box.obscura.json"
+if "$OBSCURA" render --scene "$dir/lone/box.obj" --size 32x24 --method ssao --out "$dir/lone/b.png" >"$dir/stdout" 2>"$dir/stderr" &&
+    ! grep -q "no sidecar" "$dir/stdout"; then ok
+else bad "a model with a sidecar: $(cat "$dir/stdout" "$dir/stderr")"; fi
+rm -rf "$dir/lone"
+
 # --orbit: numbered frames, one per path frame, the camera turning (frames differ), nothing else.
 rm -f "$dir"/orbit-*.png
 "$OBSCURA" render --scene corner --size 32x24 --method ssao --temporal on --orbit 40 --path-frames 3 \

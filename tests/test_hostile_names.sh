@@ -6,8 +6,9 @@
 # so a shell that ever parses one leaves a trace even outside this directory. Each command either
 # works (every output under its exact name) or fails at once: exit 2, 3 or 4 with one stderr line
 # "obscura: ...". Honest names ("Bob's report") must work. The programs the CLI runs (gnuplot for
-# the report's chart, git for bench's commit) are wrappers that count their calls: one per report
-# and one per bench --json, none anywhere else.
+# the report's chart, git for the commit bench --json and results.json record) are wrappers that
+# count their calls: gnuplot once per report, git once per bench --json and once per report, none
+# anywhere else.
 # usage: test_hostile_names.sh OBSCURA
 set -u
 OBSCURA=$(realpath "$1")
@@ -180,7 +181,7 @@ else
 fi
 
 # Nothing ran: no PWNED anywhere below the test's directories, touch never called, and the CLI
-# ran gnuplot once per report and git once per bench --json.
+# ran gnuplot once per report and git once per bench --json and once per report.
 if [ -n "$(find "$top" -name 'PWNED*' -print -quit)" ] || grep -q touch "$log"; then
     bad "a name ran a command: $(find "$top" -name 'PWNED*') $(grep -c touch "$log") touch call(s)"
 else
@@ -188,8 +189,8 @@ else
 fi
 [ "$(grep -c '^gnuplot$' "$log")" -eq "$reports" ] && ok ||
     bad "gnuplot ran $(grep -c '^gnuplot$' "$log") times for $reports reports"
-[ -z "$real_git" ] || [ "$(grep -c '^git$' "$log")" -eq "$benches" ] && ok ||
-    bad "git ran $(grep -c '^git$' "$log") times for $benches benches"
+[ -z "$real_git" ] || [ "$(grep -c '^git$' "$log")" -eq $((benches + reports)) ] && ok ||
+    bad "git ran $(grep -c '^git$' "$log") times for $benches benches and $reports reports"
 # Honest names work end to end, whatever the others do.
 [ -e "Bob's report.report/index.html" ] && [ -e "Zoë's \"best\" (v2) & more.report/index.html" ] && ok ||
     bad "an honest --report name did not make its report"

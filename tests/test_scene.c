@@ -525,6 +525,54 @@ static void test_gltf1(void)
     ob_destroy_scene(s);
 }
 
+/* A model with no sidecar (glmark2's horse) gets a ground under it only when asked
+ * (ob_scene_desc.automatic_ground): two triangles at its lowest point in a material named
+ * OB_AUTOMATIC_GROUND_MATERIAL, 4 x its width, the AO radius and the default camera its own. A
+ * model with a sidecar (the bunny, scenes/bunny.obscura.json) gets none. */
+#define HORSE_3DS "/usr/share/glmark2/models/horse.3ds"
+static void test_automatic_ground(void)
+{
+    if (!file_exists(HORSE_3DS)) {
+        printf("skip: %s not installed\n", HORSE_3DS);
+        return;
+    }
+    ob_scene *plain = ob_load_scene(&(ob_scene_desc){.name = HORSE_3DS});
+    ob_scene *ground = ob_load_scene(&(ob_scene_desc){.name = HORSE_3DS, .automatic_ground = true});
+    ob_scene *bunny = ob_load_scene(&(ob_scene_desc){.name = BUNNY_OBJ, .automatic_ground = true});
+    CHECK(plain && ground, "the horse loads: %s", last_message());
+    if (plain && ground) {
+        ob_scene_stats a = ob_query_scene_stats(plain), b = ob_query_scene_stats(ground);
+        const int n = ob_query_scene_material_count(ground);
+        ob_material_info last = ob_query_scene_material(ground, n - 1);
+        float wa = fmaxf(a.bounds_max[0] - a.bounds_min[0], a.bounds_max[2] - a.bounds_min[2]);
+        float wb = fminf(b.bounds_max[0] - b.bounds_min[0], b.bounds_max[2] - b.bounds_min[2]);
+        printf("horse: %u triangles, ground %u more; width %g, ground's %g; AO radius %g and %g\n", a.triangles,
+               b.triangles - a.triangles, (double)wa, (double)wb, (double)ob_query_scene_ao_radius(plain),
+               (double)ob_query_scene_ao_radius(ground));
+        CHECK(b.triangles == a.triangles + 2 && n == ob_query_scene_material_count(plain) + 1 &&
+                  !strcmp(last.name, OB_AUTOMATIC_GROUND_MATERIAL),
+              "the automatic ground: two triangles in the material '%s' (got %u more, '%s')", OB_AUTOMATIC_GROUND_MATERIAL,
+              b.triangles - a.triangles, last.name);
+        CHECK(b.bounds_min[1] == a.bounds_min[1] && fabsf(wb - 4.0f * wa) <= 1e-3f * wa,
+              "it lies at the model's lowest point, 4 x its width (%g against %g)", (double)wb, (double)wa);
+        CHECK(ob_query_scene_ao_radius(ground) == ob_query_scene_ao_radius(plain),
+              "the AO radius follows the model alone");
+        bool none = true;
+        for (int i = 0; i < ob_query_scene_material_count(plain); ++i)
+            none = none && strcmp(ob_query_scene_material(plain, i).name, OB_AUTOMATIC_GROUND_MATERIAL) != 0;
+        CHECK(none, "no ground unless asked");
+    }
+    if (bunny) {
+        bool none = true;
+        for (int i = 0; i < ob_query_scene_material_count(bunny); ++i)
+            none = none && strcmp(ob_query_scene_material(bunny, i).name, OB_AUTOMATIC_GROUND_MATERIAL) != 0;
+        CHECK(none, "a model with a sidecar gets no automatic ground");
+    }
+    ob_destroy_scene(plain);
+    ob_destroy_scene(ground);
+    ob_destroy_scene(bunny);
+}
+
 static void test_gltf_cameras(void)
 {
     if (!file_exists(CAMERAS_GLTF)) {
@@ -1246,6 +1294,7 @@ int main(void)
     test_cornell_obj();
     test_gltf_cameras();
     test_gltf1();
+    test_automatic_ground();
     test_textures();
     test_bunny();
     test_fzk_haus();

@@ -46,7 +46,14 @@ typedef struct ob_scene_desc {
      * (--size 640x480)" (NULL: "the rest of the run"). 0 = nothing besides the scene. */
     uint64_t reserved_memory;
     const char *reserved_what;
+    /* A model path with no sidecar (none given, none beside it, none in scenes/) gets a ground
+     * under it, as a sidecar's "ground": {} would add (docs/scenes.md): a lone object has nothing
+     * else to be occluded by. Its material is named OB_AUTOMATIC_GROUND_MATERIAL, so that a caller
+     * can say so. The suggested AO radius and the default camera still follow the model alone. */
+    bool automatic_ground;
 } ob_scene_desc;
+
+#define OB_AUTOMATIC_GROUND_MATERIAL "automatic ground"
 
 /* The scene `desc->name` names: a built-in, else the data directory's scenes/NAME.obscura.json
  * (ob_data_dir), else a model path. desc and its strings are read during the call only. The scene

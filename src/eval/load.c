@@ -137,6 +137,10 @@ static ob_scene *import_with_sidecars(const ob_scene_desc *desc, const char *mod
             return NULL;
         }
     }
+    if (!sidecar_a && !sidecar_b && desc->automatic_ground && ob_scene_add_automatic_ground(s, model) != OB_OK) {
+        ob_destroy_scene(s);
+        return NULL;
+    }
     if (scene_name) snprintf(s->name, sizeof s->name, "%s", scene_name);
     return s;
 }

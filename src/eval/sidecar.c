@@ -463,7 +463,7 @@ static ob_error parse_ground(const char *path, const cJSON *obj, sidecar *sc)
 
 /* The sidecar's ground: one quad (two triangles, counter-clockwise seen from +Y) in its own
  * material, and the bounds grown to hold it. The default camera is left framing the model. */
-static ob_error add_ground(ob_scene *s, const sidecar *sc, const char *path)
+static ob_error add_ground(ob_scene *s, const sidecar *sc, const char *path, const char *material)
 {
     float ex = s->bounds_max[0] - s->bounds_min[0], ez = s->bounds_max[2] - s->bounds_min[2];
     float size = sc->ground_size > 0.0f ? sc->ground_size : 4.0f * (ex > ez ? ex : ez);
@@ -474,8 +474,7 @@ static ob_error add_ground(ob_scene *s, const sidecar *sc, const char *path)
     float cx = 0.5f * (s->bounds_min[0] + s->bounds_max[0]);
     float cz = 0.5f * (s->bounds_min[2] + s->bounds_max[2]);
     float h = 0.5f * size;
-    int mat = ob_scene_add_material(s, "ground", sc->ground_color[0], sc->ground_color[1],
-                                    sc->ground_color[2]);
+    int mat = ob_scene_add_material(s, material, sc->ground_color[0], sc->ground_color[1], sc->ground_color[2]);
     if (mat < 0) return OB_ERR_OUT_OF_MEMORY;
     ob_mesh *m = ob_scene_add_mesh(s, 4u, 6u, false);
     if (!m) {
@@ -689,7 +688,7 @@ ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path)
         return err;
     }
     if (sc->ground) {
-        err = add_ground(s, sc, json_path);
+        err = add_ground(s, sc, json_path, "ground");
         if (err != OB_OK) {
             free(sc);
             return err;
@@ -726,4 +725,11 @@ ob_error ob_scene_apply_sidecar(ob_scene *s, const char *json_path)
     }
     free(sc);
     return OB_OK;
+}
+
+ob_error ob_scene_add_automatic_ground(ob_scene *s, const char *model)
+{
+    /* A sidecar's "ground": {}: the defaults of parse_ground. */
+    sidecar sc = {.ground = true, .ground_color = {0.8f, 0.8f, 0.8f}};
+    return add_ground(s, &sc, model, OB_AUTOMATIC_GROUND_MATERIAL);
 }

@@ -12,4 +12,9 @@
  * typo fails before a 100k-triangle import, not after. Errors: OB_ERR_IO, OB_ERR_SIDECAR. */
 ob_error ob_sidecar_peek(const char *path, char *model_out, size_t model_len, ob_up_axis *up_out);
 
+/* The ground a sidecar's "ground": {} adds, under a model that has no sidecar
+ * (ob_scene_desc.automatic_ground), its material named OB_AUTOMATIC_GROUND_MATERIAL. Errors:
+ * OB_ERR_SIDECAR naming `model` (no horizontal extent), OB_ERR_OUT_OF_MEMORY. */
+ob_error ob_scene_add_automatic_ground(ob_scene *s, const char *model);
+
 #endif

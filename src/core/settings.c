@@ -119,6 +119,24 @@ static ob_error parse_value(const ob_method_info *m, const ob_param_info *p, con
     return OB_OK;
 }
 
+/* A frame setting's whole number: `v` (leading blanks skipped) of the assignment's value `raw`,
+ * within [lo, hi]; the errors name the key, what it expects and the unit of its range. */
+static ob_error whole_number(const char *key, const char *raw, const char *expects, long lo, long hi, const char *unit,
+                             int *out)
+{
+    const char *v = raw;
+    while (isspace((unsigned char)*v)) ++v;
+    char *end = NULL;
+    errno = 0;
+    long n = strtol(v, &end, 10);
+    if (end == v || *end != '\0' || errno == ERANGE)
+        return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s expects %s, got '%s'", key, expects, raw);
+    if (n < lo || n > hi)
+        return ob_set_error(OB_ERR_OUT_OF_RANGE, "%s = %s is out of range [%ld, %ld] (%s)", key, raw, lo, hi, unit);
+    *out = (int)n;
+    return OB_OK;
+}
+
 ob_error ob_settings_set(ob_settings *s, const char *assignment)
 {
     if (!s || !assignment) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_settings_set: NULL argument");
@@ -132,39 +150,17 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "expected METHOD.PARAM=VALUE, got '%s'", assignment);
     const char *key = assignment;
     size_t key_len = (size_t)(eq - assignment);
-    if (key_len == strlen("guard") && !strncmp(key, "guard", key_len)) {
+    if (key_len == strlen("guard") && !strncmp(key, "guard", key_len))
         /* The frame's, not a method's: no prefix. Whole pixels per side. */
-        const char *v = eq + 1;
-        while (isspace((unsigned char)*v)) ++v;
-        char *end = NULL;
-        errno = 0;
-        long px = strtol(v, &end, 10);
-        if (end == v || *end != '\0' || errno == ERANGE)
-            return ob_set_error(OB_ERR_INVALID_ARGUMENT, "guard expects whole pixels per side, got '%s'", eq + 1);
-        if (px < 0 || px > OB_GUARD_MAX)
-            return ob_set_error(OB_ERR_OUT_OF_RANGE, "guard = %s is out of range [0, %d] (px per side)", eq + 1,
-                                OB_GUARD_MAX);
-        s->guard = (int)px;
-        return OB_OK;
-    }
+        return whole_number("guard", eq + 1, "whole pixels per side", 0, OB_GUARD_MAX, "px per side", &s->guard);
     if (key_len == strlen("jitter") && !strncmp(key, "jitter", key_len)) {
         /* The frame's sub-pixel jitter, no prefix: J positions, on (the default count) or off. */
         const char *v = eq + 1;
         while (isspace((unsigned char)*v)) ++v;
         if (!strcmp(v, "on")) s->jitter = OB_JITTER_POSITIONS_DEFAULT;
         else if (!strcmp(v, "off")) s->jitter = 0;
-        else {
-            char *end = NULL;
-            errno = 0;
-            long n = strtol(v, &end, 10);
-            if (end == v || *end != '\0' || errno == ERANGE)
-                return ob_set_error(OB_ERR_INVALID_ARGUMENT, "jitter expects on, off or a number of positions, got '%s'",
-                                    eq + 1);
-            if (n < 0 || n > OB_JITTER_POSITIONS_MAX)
-                return ob_set_error(OB_ERR_OUT_OF_RANGE, "jitter = %s is out of range [0, %d] (positions)", eq + 1,
-                                    OB_JITTER_POSITIONS_MAX);
-            s->jitter = (int)n;
-        }
+        else return whole_number("jitter", eq + 1, "on, off or a number of positions", 0, OB_JITTER_POSITIONS_MAX, "positions",
+                                 &s->jitter);
         return OB_OK;
     }
     if (key_len == strlen("upsample") && !strncmp(key, "upsample", key_len)) {
@@ -189,19 +185,9 @@ ob_error ob_settings_set(ob_settings *s, const char *assignment)
             else return ob_set_error(OB_ERR_INVALID_ARGUMENT, "temporal_at expects before or after, got '%s'", eq + 1);
             return OB_OK;
         }
-        if (key_len == strlen("temporal_frames") && !strncmp(key, "temporal_frames", key_len)) {
-            char *end = NULL;
-            errno = 0;
-            long n = strtol(v, &end, 10);
-            if (end == v || *end != '\0' || errno == ERANGE)
-                return ob_set_error(OB_ERR_INVALID_ARGUMENT, "temporal_frames expects a whole number of frames, got '%s'",
-                                    eq + 1);
-            if (n < 1 || n > OB_TEMPORAL_FRAMES_MAX)
-                return ob_set_error(OB_ERR_OUT_OF_RANGE, "temporal_frames = %s is out of range [1, %d] (frames)", eq + 1,
-                                    OB_TEMPORAL_FRAMES_MAX);
-            s->temporal_frames = (int)n;
-            return OB_OK;
-        }
+        if (key_len == strlen("temporal_frames") && !strncmp(key, "temporal_frames", key_len))
+            return whole_number("temporal_frames", eq + 1, "a whole number of frames", 1, OB_TEMPORAL_FRAMES_MAX, "frames",
+                                &s->temporal_frames);
         if (key_len == strlen("temporal_detail") && !strncmp(key, "temporal_detail", key_len)) {
             char *end = NULL;
             errno = 0;

@@ -66,6 +66,7 @@ static int parse(int argc, char **argv, sheet_opts *o, cli_outputs *outs)
     *o = (sheet_opts){.out = NULL, .outs = outs, .out_index = -1};
     cli_common_init(&o->common, "sheet", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_LISTS | CLI_TAKES_GPU);
     o->common.default_method = NULL; /* every method */
+    o->common.scene = "cornell";      /* every command's default scene */
     o->common.width = 320;
     o->common.height = 240;
     for (int i = 1; i < argc; ++i) {
@@ -81,7 +82,6 @@ static int parse(int argc, char **argv, sheet_opts *o, cli_outputs *outs)
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura sheet --help)", a);
         o->out = argv[++i];
     }
-    if (!o->common.scene) return cli_fail(EXIT_USAGE, "--scene NAME is required (see obscura sheet --help)");
     if (!o->out) return cli_fail(EXIT_USAGE, "--out FILE is required (see obscura sheet --help)");
     int code = cli_common_finish(&o->common);
     if (code != EXIT_OK) return code;

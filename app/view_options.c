@@ -68,7 +68,7 @@ int parse_view_opts(int argc, char **argv, view_opts *o)
     bool has_ipd = false;
     cli_common *c = &o->common;
     cli_common_init(c, "view", CLI_TAKES_SCENE | CLI_TAKES_CAMERA | CLI_TAKES_PATH);
-    c->scene = "fzk-haus";
+    c->scene = "cornell"; /* every command's default: built in, always there */
     c->width = 1280;
     c->height = 720;
     for (int i = 1; i < argc; ++i) {

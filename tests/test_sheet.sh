@@ -46,7 +46,9 @@ expect 2 "out of range" -- "${S[@]}" --methods ssao --set ssao.radius=-1
 expect 2 "listed twice" -- "${S[@]}" --methods ssao,ssao
 expect 2 "WIDTHxHEIGHT" -- "${S[@]}" --size 0x4
 expect 2 "unknown camera" -- "${S[@]}" --camera nosuch
-expect 2 "scene NAME is required" -- sheet --out "$dir/out.png"
+# No --scene: the default scene of every command, cornell (its help says so).
+"$OBSCURA" sheet --help | grep -q "(default cornell)" && ok || bad "sheet --help: no default scene"
+expect 2 "unknown scene 'nosuch'" -- sheet --scene nosuch --out "$dir/out.png"
 expect 4 "cannot write" -- sheet --scene corner --size ${TW}x${TH} --out /nonexistent-dir/sheet.png
 expect 2 "unknown filter 'nosuch'" -- "${S[@]}" --filter nosuch
 expect 2 "empty element in 'none,,geometry'" -- "${S[@]}" --filters none,,geometry

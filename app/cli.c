@@ -15,7 +15,6 @@
 #include <unistd.h>
 
 #include "cli.h"
-#include "run_program.h"
 #include "suggest.h"
 
 int cli_unknown_option(const char *command, const char *arg, void (*usage)(FILE *, const struct cli_common *),
@@ -454,21 +453,4 @@ int cli_check_visible(ob_renderer *r, int w, int h, const char *scene, const cha
     if (covered) return EXIT_OK;
     return cli_fail(code, "nothing visible from this camera (%s:%s): the frame covers no pixel; check the camera "
                     "(or --allow-empty to write it anyway)", scene, camera);
-}
-
-void cli_git_commit(char *out, size_t n)
-{
-    snprintf(out, n, "unknown");
-    const char *dir = ob_data_dir();
-    if (!dir) return;
-    /* git gets the directory as one argument, with no shell (run_program.h): any name works, quotes
-     * included, and none runs a command. No git, no repository: "unknown". */
-    const char *argv[] = {"git", "-C", dir, "rev-parse", "--short", "HEAD", NULL};
-    cli_spawn_output line = {.limit = 127};
-    int status = -1;
-    if (cli_spawn(argv, -1, &line, NULL, &status) == 0 && status == 0 && line.data && !line.truncated) {
-        line.data[strcspn(line.data, "\r\n")] = '\0';
-        if (line.data[0]) snprintf(out, n, "%s", line.data);
-    }
-    cli_spawn_output_free(&line);
 }

@@ -32,9 +32,6 @@ int cli_fail(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)
 /* "unknown option 'ARG'; did you mean '--NEAR'? (see obscura COMMAND --help)", exit EXIT_USAGE: the
  * options to suggest are the ones the command's own --help text names (usage writes it), so the
  * suggestion never names one the command does not take. */
-/* The source tree's commit (`git rev-parse --short HEAD` in the data directory, run without a
- * shell), or "unknown" without git or a repository: what results.json and bench --json record. */
-void cli_git_commit(char *out, size_t n);
 struct cli_common;
 int cli_unknown_option(const char *command, const char *arg, void (*usage)(FILE *, const struct cli_common *),
                        const struct cli_common *c);

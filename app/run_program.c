@@ -5,11 +5,14 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <spawn.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include "obscura/eval.h" /* ob_data_dir */
 
 extern char **environ;
 
@@ -130,4 +133,21 @@ void cli_spawn_last_line(const cli_spawn_output *o, char *buf, size_t n)
         buf[k++] = ch < ' ' || ch == 0x7f ? ' ' : (char)ch;
     }
     buf[k] = '\0';
+}
+
+void cli_git_commit(char *out, size_t n)
+{
+    snprintf(out, n, "unknown");
+    const char *dir = ob_data_dir();
+    if (!dir) return;
+    /* git gets the directory as one argument, with no shell (run_program.h): any name works, quotes
+     * included, and none runs a command. No git, no repository: "unknown". */
+    const char *argv[] = {"git", "-C", dir, "rev-parse", "--short", "HEAD", NULL};
+    cli_spawn_output line = {.limit = 127};
+    int status = -1;
+    if (cli_spawn(argv, -1, &line, NULL, &status) == 0 && status == 0 && line.data && !line.truncated) {
+        line.data[strcspn(line.data, "\r\n")] = '\0';
+        if (line.data[0]) snprintf(out, n, "%s", line.data);
+    }
+    cli_spawn_output_free(&line);
 }

@@ -36,4 +36,8 @@ void cli_spawn_output_free(cli_spawn_output *o);
  * ("" when none). Control bytes become spaces: the line goes into one of our stderr lines. */
 void cli_spawn_last_line(const cli_spawn_output *o, char *buf, size_t n);
 
+/* The source tree's commit (`git rev-parse --short HEAD` in the data directory, run without a
+ * shell), or "unknown" without git or a repository: what results.json and bench --json record. */
+void cli_git_commit(char *out, size_t n);
+
 #endif

@@ -1912,6 +1912,9 @@ static int bench_run(int argc, char **argv)
         cJSON_AddStringToObject(root, "tool", "obscura bench " OB_VERSION_STRING);
         cJSON_AddStringToObject(root, "date", date);
         cJSON_AddStringToObject(root, "commit", commit);
+        /* Every option that shaped the run (--set, --settings, --shadow, --hdr included), as given. */
+        cJSON *cmd = cJSON_AddArrayToObject(root, "command_line");
+        for (int i = 0; i < argc; ++i) cJSON_AddItemToArray(cmd, cJSON_CreateString(argv[i]));
         cJSON_AddStringToObject(root, "renderer", ob_query_renderer(ctx));
         cJSON_AddStringToObject(root, "gl_version", ob_query_gl_version(ctx));
         cJSON_AddStringToObject(root, "device", ob_query_device(ctx));

@@ -61,6 +61,9 @@ def pos(x, what):
 for k in ("renderer", "gl_version", "date", "commit", "cpu", "scene"):
     assert isinstance(d.get(k), str) and d[k], f"missing {k}"
 assert d["mode"] == mode, d["mode"]
+# The command line as given: every option that shaped the run, --json among them.
+cl = d["command_line"]
+assert cl[0] == "bench" and "--json" in cl and sys.argv[1] in cl, cl
 cfgs = d["configurations"]
 assert cfgs, "no configurations"
 methods = set()

@@ -51,6 +51,7 @@ typedef struct compare_opts {
     int report_index;
     int argc;                     /* the command line as given: results.json records it */
     char **argv;
+    ob_progress *bar;             /* the run's bar: one step per method of a view (and per flicker row) */
 } compare_opts;
 
 /* One row of a view's table: one combination of the lists. */
@@ -583,9 +584,16 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
             code = cli_fail_library_as(EXIT_OUTPUT);
             goto done;
         }
-        if (c->verbose)
+        if (c->verbose) {
+            if (o->bar) ob_progress_break(o->bar);
             fprintf(stderr, "obscura: %s/%s %-12s RMSE %.4f bias %+.4f SSIM %.3f ao %.2f ms\n", vr->scene, vr->camera,
                     mr->label, mr->m.rmse, mr->m.bias, mr->m.ssim, mr->ao_ms);
+        }
+        if (o->bar) {
+            char what[200];
+            snprintf(what, sizeof what, "%.60s:%.40s %.60s (%d/%d)", vr->scene, vr->camera, mr->label, k + 1, count);
+            ob_progress_advance(o->bar, 1, what);
+        }
     }
 done:
     free(depth);
@@ -1452,21 +1460,26 @@ static int compare_checked(const compare_opts *op)
         code = EXIT_OUTPUT;
         goto cleanup;
     }
-    /* One unit per view (the reference inside reports its own rays); the bar is wiped while a view
-     * runs so that the reference's bar and -v's lines start at column 0. */
-    ob_progress_begin(&bar, "compare", o.view_count);
+    /* One step per method of each view, and per flicker row along a path (the reference inside
+     * reports its own rays): the bar names the view and the method, and moves at every method, so
+     * a run of ten methods never looks hung; in a log each step is a line. It is wiped before a
+     * view's reference so that the reference's bar and -v's lines start at column 0. */
+    const int per_view = count * (cli_common_moves(c) ? 2 : 1);
+    ob_progress_begin(&bar, "compare", (long long)o.view_count * per_view);
+    bar.each = true;
+    o.bar = &bar;
     for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) {
         ob_progress_break(&bar);
         code = run_view(&o, r, &inputs[v], configs, count, &out, &views[v]);
-        if (code == EXIT_OK && cli_common_moves(c)) code = run_flicker(&o, r, &inputs[v], configs, count, &out, &views[v]);
+        if (code == EXIT_OK && cli_common_moves(c)) {
+            code = run_flicker(&o, r, &inputs[v], configs, count, &out, &views[v]);
+            char what[160];
+            snprintf(what, sizeof what, "%.60s:%.40s flicker, %d rows", views[v].scene, views[v].camera, count);
+            if (code == EXIT_OK) ob_progress_advance(&bar, count, what);
+        }
         if (code == EXIT_OK) mark_pareto(&views[v]);
         if (code == EXIT_OK) code = write_chart(&o, &views[v], &out);
         if (code == EXIT_OK) ++done;
-        if (code == EXIT_OK) {
-            char what[160];
-            snprintf(what, sizeof what, "%.90s/%.60s", views[v].scene, views[v].camera); /* a label: cut, not fail */
-            ob_progress_advance(&bar, 1, what);
-        }
     }
     ob_progress_end(&bar);
     /* Each view's set, if scenes/views.json names it (as SCENE:CAMERA): labels, never a failure

@@ -53,8 +53,12 @@ if "$OBSCURA" compare --scene corner:diagonal --scene cornell:front --methods ss
 else bad "compare failed: $(cat "$dir/compare.err")"; fi
 if check_log "$dir/compare.out" "$dir/compare.err" "compare" "reference AO" "reference bounce"; then ok
 else bad "compare's log: $(cat "$dir/compare.err")"; fi
-# Two views: compare itself at 0, 50 and 100 %, each reference once per view.
-[ "$(grep -c '^compare: ' "$dir/compare.err")" -eq 3 ] && ok || bad "compare stage lines: $(grep '^compare' "$dir/compare.err")"
+# Two views of two methods: compare's 0 %, then a line per method naming the view and the method
+# (it moves at every method, so ten methods a view never look hung); each reference once per view.
+[ "$(grep -c '^compare: ' "$dir/compare.err")" -eq 5 ] &&
+    grep -q '^compare: 50 % (2/4) corner:diagonal ssdo (2/2)' "$dir/compare.err" &&
+    grep -q '^compare: 75 % (3/4) cornell:front ssao (1/2)' "$dir/compare.err" && ok ||
+    bad "compare's step lines: $(grep '^compare' "$dir/compare.err")"
 [ "$(grep -c '^reference AO .*: 0 %' "$dir/compare.err")" -eq 2 ] && ok || bad "reference AO runs: $(cat "$dir/compare.err")"
 grep -qx "report: $dir/report/index.html" "$dir/compare.out" && ok || bad "report line: $(cat "$dir/compare.out")"
 

@@ -39,7 +39,7 @@ static void show(ob_progress *p, const char *what)
     clock_text(eta, left, sizeof left);
     const char *sep = what && *what ? " " : "";
     if (p->tty) {
-        if (pct <= p->shown && !(p->done == p->total && p->open)) return;
+        if (!p->each && pct <= p->shown && !(p->done == p->total && p->open)) return;
         char bar[BAR_WIDTH + 1];
         const int fill = pct * BAR_WIDTH / 100;
         for (int i = 0; i < BAR_WIDTH; ++i) bar[i] = i < fill ? '#' : '.';
@@ -55,7 +55,7 @@ static void show(ob_progress *p, const char *what)
         }
     } else {
         const int quarter = pct / 25;
-        if (quarter <= p->shown) return;
+        if (!p->each && quarter <= p->shown) return;
         fprintf(stderr, "%s: %d %% (%lld/%lld)%s%.60s, elapsed %s, ETA %s\n", p->label, pct, p->done, p->total, sep,
                 what ? what : "", elapsed, left);
         p->shown = quarter;

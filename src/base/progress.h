@@ -25,6 +25,8 @@ typedef struct ob_progress {
     bool tty;       /* stderr is a terminal */
     bool open;      /* terminal: a bar is drawn and its line not yet ended */
     bool begun;     /* between begin and end */
+    bool each;      /* set after begin: show every advance (a log gets one line per step, a terminal
+                     * redraws with each step's name) instead of whole percents and quarters */
     double start;   /* CLOCK_MONOTONIC seconds at begin */
     pthread_mutex_t lock;
 } ob_progress;

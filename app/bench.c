@@ -660,6 +660,34 @@ static void print_tables(const bench_opts *o, const ob_scene *scene, const bench
             printf("%s: frame %.3f ms (%.1f FPS)%s\n", none->cfg->label, none->frame_med, 1000.0 / none->frame_med,
                    o->stereo ? (none->frame_med <= VR_BUDGET_MS ? ", within 11.1 ms" : ", over 11.1 ms") : "");
         }
+        /* One sample count and one radius for every method (the default run): one table with a row
+         * per method, not a one-cell table each. */
+        bool one_cell = !o->floor && !o->stereo;
+        for (int k = 0; k < config_count && one_cell; ++k) {
+            int rows = 0;
+            for (int i = 0; i < st->count; ++i) rows += st->rows[i].camera == cams[c] && st->rows[i].cfg == &configs[k];
+            one_cell = rows == 1;
+        }
+        if (one_cell) {
+            int width = 6;
+            for (int k = 0; k < config_count; ++k) width = (int)strlen(configs[k].label) > width ? (int)strlen(configs[k].label) : width;
+            printf("\n%-*s %6s %8s %22s %14s\n", width, "method", "N", "r", "AO-pass ms / frame ms", "frame / none");
+            for (int k = 0; k < config_count; ++k)
+                for (int i = 0; i < st->count; ++i) {
+                    const bench_row *r = &st->rows[i];
+                    if (r->camera != cams[c] || r->cfg != &configs[k]) continue;
+                    const bench_row *none = r->baseline >= 0 ? &st->rows[r->baseline] : NULL;
+                    char cell[48], ratio[16] = "-";
+                    snprintf(cell, sizeof cell, "%.3f / %.3f", r->ao_ms, r->frame_med);
+                    if (none && none->frame_med > 0.0) snprintf(ratio, sizeof ratio, "%.2fx", r->frame_med / none->frame_med);
+                    printf("%-*s %6d %8g %22s %14s\n", width, configs[k].label, r->samples, (double)r->r, cell, ratio);
+                    for (int p = 0; p < r->pass_count; ++p)
+                        if (!strcmp(r->pass[p], "temporal") && r->ao_ms > 0.0)
+                            printf("%-*s temporal accumulation %.3f ms = %.1f %% of the AO pass\n", width, "", r->med[p],
+                                   100.0 * r->med[p] / r->ao_ms);
+                }
+            continue;
+        }
         for (int k = 0; k < config_count; ++k) {
             const cli_config *cfg = &configs[k];
             printf("\n%s: AO-pass ms / frame ms", cfg->label);

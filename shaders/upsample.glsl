@@ -4,8 +4,8 @@
  *   S_p = 1/k_p sum_{q in 3x3 around p's AO position} S_q c(|p_lo - q|) g(I_p, I_q)
  *
  * with the full-resolution depth and normal as the guide I: g = exp(-(dd/(d sigma_d))^2) x
- * max(0, n_p . n_q)^8, and c a tent over the AO grid. A 3x3 kernel, not separated, as seed
- * 003 §5.3 does to keep edges sharp. AO sample q sits at full-resolution pixel k q + o.
+ * max(0, n_p . n_q)^8, and c a tent over the AO grid. A 3x3 kernel, not separated, as SSDO
+ * thesis §5.3 does to keep edges sharp. AO sample q sits at full-resolution pixel k q + o.
  *
  * Two programs with the same arithmetic in the same order (tests/test_filters.c: the same bits):
  *   - plain: one invocation per full-resolution pixel, 3 fetches per AO sample of its 3x3 (27 a

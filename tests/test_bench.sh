@@ -113,7 +113,13 @@ if head -1 "$dir/b.csv" | grep -q '^scene,camera,method,samples,r,radius_world,.
 else
     bad "bench CSV: $(head -3 "$dir/b.csv")"
 fi
-if grep -q "AO-pass ms / frame ms" "$dir/stdout" && grep -q "N = 12" "$dir/stdout" && grep -q "r = 4" "$dir/stdout"; then ok; else bad "bench table: $(cat "$dir/stdout")"; fi
+# One sample count and one radius: one table, a row per method (N, r, the cell, frame / none).
+if grep -qE "^method +N +r +AO-pass ms / frame ms +frame / none" "$dir/stdout" &&
+    grep -qE "^ssao +12 +4 +[0-9.]+ / [0-9.]+ +[0-9.]+x" "$dir/stdout"; then ok; else bad "bench table: $(cat "$dir/stdout")"; fi
+# Two sample counts: a table per method, rows N, columns r.
+if "$OBSCURA" "${B[@]}" --methods ssao --samples 12,24 --radius 4 >"$dir/stdout" 2>"$dir/stderr" &&
+    grep -q "^ssao: AO-pass ms / frame ms" "$dir/stdout" && grep -q "N = 12" "$dir/stdout" && grep -q "N = 24" "$dir/stdout" &&
+    grep -q "r = 4" "$dir/stdout"; then ok; else bad "bench sweep table: $(cat "$dir/stdout" "$dir/stderr")"; fi
 
 # --ao-scale and --adaptive take effect: the AO runs at half size (downsample and upsample passes)
 # in every configuration with an AO pass, and the edge pre-pass only for the method that takes
@@ -151,7 +157,7 @@ assert {r["label"] for r in rows} == set(want), {r["label"] for r in rows}
 assert {(r["filter"], float(r["ao_scale"])) for r in rows} == set(combos)
 PY
 then ok; else bad "bench lists: $(cat "$dir/stderr")"; fi
-grep -q "^ssao · filter none · ao 0.5: AO-pass ms / frame ms" "$dir/stdout" && ok || bad "bench lists table: $(cat "$dir/stdout")"
+grep -qE "^ssao · filter none · ao 0.5 +12 +4 " "$dir/stdout" && ok || bad "bench lists table: $(cat "$dir/stdout")"
 
 # Stereo (two renderers) and scaling (sizes and tessellation), tiny.
 if "$OBSCURA" "${B[@]}" --methods ssao --samples 12 --radius 4 --stereo --cameras default >"$dir/stdout" 2>"$dir/stderr" &&

@@ -21,6 +21,10 @@ pattern='\.\./shared|DESIGN\.md|[Ss]eeds? 00[0-9]'
 hits=$(cd "$src" && grep -rnE "$pattern" README.md docs include app src shaders examples scripts tests bench/README.md \
     bench/results/*.md CMakeLists.txt Makefile 2>/dev/null | grep -v '^docs/references.md:' | grep -v '^tests/test_docs_standalone.sh:')
 [ -z "$hits" ] && ok || bad "outside references: $(echo "$hits" | head -5)"
+# ... and none broken over two lines ("seed" at the end of one, "000" at the start of the next).
+hits=$(cd "$src" && grep -rlPz '[Ss]eeds?[ \t]*\n[ \t/*#]*00[0-9]' README.md docs include app src shaders examples scripts tests \
+    bench/README.md bench/results/*.md 2>/dev/null | grep -v '^docs/references.md$' | grep -v '^tests/test_docs_standalone.sh$')
+[ -z "$hits" ] && ok || bad "a seed name over two lines in: $hits"
 
 for key in "Belonogov 2018" "SSDO thesis" "Puri 2024"; do
     grep -q "^| \*\*$key\*\* |" "$src/docs/references.md" && ok || bad "docs/references.md does not define '$key'"

@@ -27,8 +27,8 @@
 #include "shadow_params.h"
 
 /* VSM's variance floor (shadow_options.z), in squared normalised depth. Catastrophic
- * cancellation in E[z^2] - E[z]^2 of 32-bit floats leaves errors around 1e-7 for z near 1 (seed
- * 003 §6.1: too small a floor shows as speckles, and 16-bit moments needed a "higher threshold");
+ * cancellation in E[z^2] - E[z]^2 of 32-bit floats leaves errors around 1e-7 for z near 1 (SSDO
+ * thesis §6.1: too small a floor shows as speckles, and 16-bit moments needed a "higher threshold");
  * 1e-5 is a hundred times that and still darkens an occluder 1% of the depth range in front of
  * the receiver to p_max = 0.09, under the light-bleeding cut. */
 #define VSM_MIN_VARIANCE 1e-5f

@@ -13,24 +13,26 @@
 #include "methods/method.h"
 #include "obscura/scene.h"
 
+/* "unknown WHAT 'NAME'; did you mean 'NEAR'? (known: a, b, c)", OB_ERR_UNKNOWN_METHOD (a method or
+ * a filter). */
+static ob_error unknown_name(const char *what, const char *name, const char *const *names, int n)
+{
+    char list[512] = "", hint[96];
+    for (int i = 0; i < n; ++i) snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", names[i]);
+    return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown %s '%s'%s (known: %s)", what, name,
+                        ob_suggest_text(name, strlen(name), names, n, hint, sizeof hint), list);
+}
+
 ob_error ob_settings_init(ob_settings *s, const char *method)
 {
     if (!s) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_settings_init: settings is NULL");
     const char *name = method ? method : OB_DEFAULT_METHOD;
     int index = ob_find_method(name);
     if (index < 0) {
-        char list[512] = "";
-        for (int i = 0; i < ob_method_count(); ++i) {
-            size_t n = strlen(list);
-            snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "", ob_method_at(i)->name);
-        }
         const char *names[64] = {0};
-        for (int i = 0; i < ob_method_count() && i < 64; ++i) names[i] = ob_method_at(i)->name;
-        char hint[96];
-        return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown method '%s'%s (known: %s)", name,
-                            ob_suggest_text(name, strlen(name), names, ob_method_count() < 64 ? ob_method_count() : 64,
-                                            hint, sizeof hint),
-                            list);
+        int n = 0;
+        for (; n < ob_method_count() && n < 64; ++n) names[n] = ob_method_at(n)->name;
+        return unknown_name("method", name, names, n);
     }
     memset(s, 0, sizeof *s);
     s->method = index;
@@ -313,18 +315,10 @@ ob_error ob_settings_set_filter(ob_settings *s, const char *name)
     if (!s || !name) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_settings_set_filter: NULL argument");
     int index = ob_find_filter(name);
     if (index < 0) {
-        char list[512] = "";
-        for (int i = 0; i < ob_filter_count(); ++i) {
-            size_t n = strlen(list);
-            snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "", ob_filter_at(i)->name);
-        }
         const char *names[64] = {0};
-        for (int i = 0; i < ob_filter_count() && i < 64; ++i) names[i] = ob_filter_at(i)->name;
-        char hint[96];
-        return ob_set_error(OB_ERR_UNKNOWN_METHOD, "unknown filter '%s'%s (known: %s)", name,
-                            ob_suggest_text(name, strlen(name), names, ob_filter_count() < 64 ? ob_filter_count() : 64,
-                                            hint, sizeof hint),
-                            list);
+        int n = 0;
+        for (; n < ob_filter_count() && n < 64; ++n) names[n] = ob_filter_at(n)->name;
+        return unknown_name("filter", name, names, n);
     }
     const ob_filter_info *f = ob_filter_at(index);
     s->filter = index;

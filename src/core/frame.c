@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "sampling/sampling.h"
 #include "core/renderer.h"
 
 bool ob_projection_is_orthographic(const float *proj)
@@ -82,25 +83,17 @@ static void grid_projection(const ob_ao_grid *g, const float *proj, float *out)
 
 void ob_ao_grid_projection(const ob_ao_grid *g, const float *proj, float out[16]) { grid_projection(g, proj, out); }
 
-/* The radical inverse of i in base b: i's digits mirrored behind the point (Halton 1964). */
-static float radical_inverse(unsigned i, unsigned b)
-{
-    float inv = 1.0f / (float)b, f = inv, x = 0.0f;
-    for (; i > 0; i /= b, f *= inv) x += f * (float)(i % b);
-    return x;
-}
-
 ob_error ob_jitter_offset(int index, int positions, float offset[2])
 {
     if (positions < 1 || !offset)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_jitter_offset: %s",
                             !offset ? "NULL offset" : "positions below 1");
-    /* From index 1: Halton's point 0 is (0, 0), a pixel corner, and the first J points from 1 on
-     * cover the pixel evenly in both axes (bases 2 and 3 are coprime). */
+    /* Halton (1964) from index 1: point 0 is (0, 0), a pixel corner, and the first J points from 1
+     * on cover the pixel evenly in both axes (bases 2 and 3 are coprime). */
     int i = index % positions;
     if (i < 0) i += positions;
-    offset[0] = radical_inverse((unsigned)i + 1u, 2u) - 0.5f;
-    offset[1] = radical_inverse((unsigned)i + 1u, 3u) - 0.5f;
+    offset[0] = (float)ob_radical_inverse((uint32_t)i + 1u, 2u) - 0.5f;
+    offset[1] = (float)ob_radical_inverse((uint32_t)i + 1u, 3u) - 0.5f;
     return OB_OK;
 }
 

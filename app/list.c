@@ -2,7 +2,6 @@
  * every scene with its camera presets. README.md's lists are checked against the JSON
  * (tests/test_readme.sh), so what this prints is what the docs may say. */
 #include <cjson/cJSON.h>
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,26 +13,6 @@
 static const char *type_name(ob_param_type t)
 {
     return t == OB_PARAM_INT ? "int" : t == OB_PARAM_BOOL ? "bool" : t == OB_PARAM_ENUM ? "enum" : "float";
-}
-
-/* Named scenes: scenes/NAME.obscura.json under the data directory. */
-static int named_scenes(char names[][64], int max)
-{
-    char dir[4096];
-    snprintf(dir, sizeof dir, "%s/scenes", ob_data_dir());
-    DIR *d = opendir(dir);
-    if (!d) return 0;
-    int n = 0;
-    const char *suffix = ".obscura.json";
-    for (struct dirent *e; (e = readdir(d)) != NULL && n < max;) {
-        size_t len = strlen(e->d_name), sl = strlen(suffix);
-        if (len <= sl || strcmp(e->d_name + len - sl, suffix) != 0 || len - sl >= 64) continue;
-        snprintf(names[n], 64, "%.*s", (int)(len - sl), e->d_name);
-        ++n;
-    }
-    closedir(d);
-    qsort(names, (size_t)n, 64, (int (*)(const void *, const void *))strcmp);
-    return n;
 }
 
 /* One registry (methods or filters) as a JSON array of tables. */
@@ -119,7 +98,7 @@ static int list_json(void)
         cJSON_AddItemToArray(builtin, js);
     }
     char names[64][64];
-    int n = named_scenes(names, 64);
+    int n = ob_named_scenes(names, 64);
     cJSON *named = cJSON_AddArrayToObject(root, "named_scenes");
     for (int i = 0; i < n; ++i) cJSON_AddItemToArray(named, cJSON_CreateString(names[i]));
     /* Every scene with its cameras; builtin_scenes and named_scenes above keep their old shape. */
@@ -195,7 +174,7 @@ static int list_human(void)
         print_cameras(ob_builtin_scene_name(i), true);
     }
     char names[64][64];
-    int n = named_scenes(names, 64);
+    int n = ob_named_scenes(names, 64);
     printf("\nnamed scenes (scenes/NAME.obscura.json, --camera NAME):\n");
     for (int i = 0; i < n; ++i) print_cameras(names[i], false);
     printf("\nor --scene PATH to any model Assimp reads (OBJ, glTF/GLB, PLY, 3DS, IFC, ...)\n");

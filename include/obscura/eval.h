@@ -64,6 +64,10 @@ typedef struct ob_scene_desc {
  * import failed, a reference outside the model's tree, over max_memory), OB_ERR_SIDECAR,
  * OB_ERR_OUT_OF_MEMORY. */
 ob_scene *ob_load_scene(const ob_scene_desc *desc);
+/* The named scenes of the data directory (ob_data_dir): NAME of every scenes/NAME.obscura.json,
+ * sorted, at most `max` (names shorter than 64 bytes; longer ones are skipped). Returns how many
+ * were written; 0 without the directory. CPU-only, any thread. Never fails. */
+int ob_named_scenes(char names[][64], int max);
 
 /* ---- environment maps from files --------------------------------------------------------------- */
 /* The environment map (equirectangular Radiance .hdr) for OB_AMBIENT_ENVIRONMENT and SSDO, read

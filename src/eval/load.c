@@ -31,15 +31,33 @@ static bool is_regular_file(const char *path)
     return path && stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
-static int compare_names(const void *a, const void *b) { return strcmp(*(const char *const *)a, *(const char *const *)b); }
+int ob_named_scenes(char names[][64], int max)
+{
+    char dir[OB_PATH_MAX];
+    if (!names || max <= 0 || snprintf(dir, sizeof dir, "%s/scenes", ob_data_dir()) >= (int)sizeof dir) return 0;
+    DIR *d = opendir(dir);
+    if (!d) return 0;
+    int n = 0;
+    const char *suffix = ".obscura.json";
+    const size_t sl = strlen(suffix);
+    for (struct dirent *e; (e = readdir(d)) != NULL && n < max;) {
+        size_t len = strlen(e->d_name);
+        if (len <= sl || strcmp(e->d_name + len - sl, suffix) != 0 || len - sl >= 64) continue;
+        snprintf(names[n], 64, "%.*s", (int)(len - sl), e->d_name);
+        ++n;
+    }
+    closedir(d);
+    qsort(names, (size_t)n, 64, (int (*)(const void *, const void *))strcmp);
+    return n;
+}
 
 /* An unknown bare name: the built-in and named scenes it could have meant, the nearest first when
  * one is a slip of the keyboard (`--scene bunyn`). */
 static void unknown_scene(const char *name)
 {
     enum { MOST = 128 };
-    char stems[MOST][64];
-    const char *names[MOST];
+    char stems[MOST][64]; /* 8 KiB of stack, on the error path only */
+    const char *names[2 * MOST]; /* the built-in ones, then the named */
     int n = 0;
     char builtin[512] = "", named[2048] = "";
     for (int i = 0; i < ob_builtin_scene_count() && n < MOST; ++i) {
@@ -47,22 +65,11 @@ static void unknown_scene(const char *name)
         snprintf(builtin + strlen(builtin), sizeof builtin - strlen(builtin), "%s%s", i ? ", " : "",
                  ob_builtin_scene_name(i));
     }
-    char dir[OB_PATH_MAX];
-    DIR *d = snprintf(dir, sizeof dir, "%s/scenes", ob_data_dir()) < (int)sizeof dir ? opendir(dir) : NULL;
-    const char *suffix = ".obscura.json";
-    const int first_named = n;
-    for (struct dirent *e; d && (e = readdir(d)) != NULL && n < MOST;) {
-        size_t len = strlen(e->d_name), sl = strlen(suffix);
-        if (len <= sl || len - sl >= sizeof stems[0] || strcmp(e->d_name + len - sl, suffix) != 0) continue;
-        memcpy(stems[n], e->d_name, len - sl);
-        stems[n][len - sl] = '\0';
-        names[n] = stems[n];
-        ++n;
+    const int count = ob_named_scenes(stems, MOST);
+    for (int i = 0; i < count; ++i) {
+        names[n++] = stems[i];
+        snprintf(named + strlen(named), sizeof named - strlen(named), "%s%s", i ? ", " : "", stems[i]);
     }
-    if (d) closedir(d);
-    qsort(names + first_named, (size_t)(n - first_named), sizeof names[0], compare_names);
-    for (int i = first_named; i < n; ++i)
-        snprintf(named + strlen(named), sizeof named - strlen(named), "%s%s", named[0] ? ", " : "", names[i]);
     char hint[96];
     ob_set_error(OB_ERR_UNKNOWN_SCENE, "unknown scene '%s'%s (built in: %s; named: %s; or a model file)", name,
                  ob_suggest_text(name, strlen(name), names, n, hint, sizeof hint), builtin, named[0] ? named : "none");

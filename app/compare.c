@@ -1462,16 +1462,22 @@ static int compare_checked(const compare_opts *op)
     }
     /* One step per method of each view, and per flicker row along a path (the reference inside
      * reports its own rays): the bar names the view and the method, and moves at every method, so
-     * a run of ten methods never looks hung; in a log each step is a line. It is wiped before a
-     * view's reference so that the reference's bar and -v's lines start at column 0. */
+     * a run of ten methods never looks hung; in a log each step is a line. On a terminal it is held
+     * (its line ended) before a view's references so that their bars draw on the lines below. */
     const int per_view = count * (cli_common_moves(c) ? 2 : 1);
     ob_progress_begin(&bar, "compare", (long long)o.view_count * per_view);
     bar.each = true;
     o.bar = &bar;
     for (int v = 0; v < o.view_count && code == EXIT_OK; ++v) {
-        ob_progress_break(&bar);
+        /* On a terminal the bar keeps its own line above the reference's bar (issue 48). */
+        char step[320];
+        snprintf(step, sizeof step, "%.60s:%.40s reference (view %d/%d)", inputs[v].name, inputs[v].cam.name, v + 1,
+                 o.view_count);
+        ob_progress_hold(&bar, step);
         code = run_view(&o, r, &inputs[v], configs, count, &out, &views[v]);
         if (code == EXIT_OK && cli_common_moves(c)) {
+            snprintf(step, sizeof step, "%.60s:%.40s the path's references", inputs[v].name, inputs[v].cam.name);
+            ob_progress_hold(&bar, step);
             code = run_flicker(&o, r, &inputs[v], configs, count, &out, &views[v]);
             char what[160];
             snprintf(what, sizeof what, "%.60s:%.40s flicker, %d rows", views[v].scene, views[v].camera, count);

@@ -62,6 +62,42 @@ else bad "compare's log: $(cat "$dir/compare.err")"; fi
 [ "$(grep -c '^reference AO .*: 0 %' "$dir/compare.err")" -eq 2 ] && ok || bad "reference AO runs: $(cat "$dir/compare.err")"
 grep -qx "report: $dir/report/index.html" "$dir/compare.out" && ok || bad "report line: $(cat "$dir/compare.out")"
 
+# On a terminal (a pseudo-terminal 100 columns wide): compare's bar keeps a line of its own. It
+# is held, naming the view, on the line above each view's reference bars (not wiped by them), it
+# ends at 100 % on its own line, and no redraw is wider than the terminal (a wrapped line would
+# leave its upper rows behind at every '\r').
+if python3 - "$OBSCURA" "$dir/tty" <<'PY'
+import fcntl, os, pty, re, struct, subprocess, sys, termios
+obscura, report = sys.argv[1], sys.argv[2]
+m, s = pty.openpty()
+fcntl.ioctl(s, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 100, 0, 0))
+p = subprocess.Popen([obscura, "compare", "--scene", "corner:diagonal", "--scene", "cornell:front", "--methods",
+                      "ssao,ssdo", "--size", "80x60", "--spp", "32", "--no-cache", "--report", report],
+                     stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=s)
+os.close(s)
+data = b""
+while True:
+    try:
+        chunk = os.read(m, 65536)
+    except OSError:
+        break
+    if not chunk:
+        break
+    data += chunk
+assert p.wait() == 0, data.decode(errors="replace")
+# The terminal turns "\n" into "\r\n"; what a line finally shows is what follows its last '\r'.
+lines = [l.split(b"\r")[-1].replace(b"\x1b[K", b"").decode() for l in data.replace(b"\r\n", b"\n").split(b"\n")]
+for l in data.replace(b"\r\n", b"\n").split(b"\n"):
+    for seg in l.split(b"\r"):
+        assert len(seg.replace(b"\x1b[K", b"")) < 100, f"wider than the terminal: {seg!r}"
+for k, view in enumerate(("corner:diagonal", "cornell:front")):
+    held = [i for i, l in enumerate(lines) if l.startswith("compare [") and f"{view} reference (view {k + 1}/2)" in l]
+    assert held, f"no held compare line for {view}: {lines}"
+    assert lines[held[0] + 1].startswith("reference AO"), f"the reference bar is not below it: {lines}"
+assert re.match(r"compare \[#+\] 100 % 4/4 cornell:front ssdo \(2/2\)", lines[-2]), lines
+PY
+then ok; else bad "compare on a terminal"; fi
+
 if "$OBSCURA" bench --scene corner --methods ssao,gtao --size 48x36 --frames 2 --warmup 1 \
     >"$dir/bench.out" 2>"$dir/bench.err"; then ok; else bad "bench failed: $(cat "$dir/bench.err")"; fi
 check_log "$dir/bench.out" "$dir/bench.err" "bench" && ok || bad "bench's log: $(cat "$dir/bench.err")"

@@ -3,6 +3,7 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -26,29 +27,51 @@ static void clock_text(double s, char *out, size_t n)
     snprintf(out, n, "%dm%02ds", t / 60, t % 60);
 }
 
-/* Called with the lock held. */
-static void show(ob_progress *p, const char *what)
+/* A terminal's bar, redrawn in place over the line the cursor is on. Called with the lock held. */
+static void draw_bar(ob_progress *p, const char *what, int pct, const char *elapsed, const char *left)
 {
-    const int pct = (int)(p->done * 100 / p->total);
+    char bar[BAR_WIDTH + 1];
+    const int fill = pct * BAR_WIDTH / 100;
+    for (int i = 0; i < BAR_WIDTH; ++i) bar[i] = i < fill ? '#' : '.';
+    bar[BAR_WIDTH] = '\0';
+    const char *sep = what && *what ? " " : "";
+    char line[400];
+    snprintf(line, sizeof line, "%s [%s] %3d %% %lld/%lld%s%.100s elapsed %s ETA %s", p->label, bar, pct, p->done,
+             p->total, sep, what ? what : "", elapsed, left);
+    /* A line wider than the terminal wraps, and '\r' then redraws only its last row: the rows
+     * above pile up. Cut it to the width (at a UTF-8 boundary): the ETA goes first, then the step. */
+    struct winsize ws;
+    if (ioctl(STDERR_FILENO, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 20 && ws.ws_col < sizeof line) {
+        size_t cut = ws.ws_col - 1;
+        while (cut > 0 && ((unsigned char)line[cut] & 0xC0) == 0x80) --cut;
+        if (cut < strlen(line)) line[cut] = '\0';
+    }
+    /* \x1b[K clears what a longer earlier line left to the right. */
+    fprintf(stderr, "\r%s\x1b[K", line);
+    p->shown = pct;
+    p->open = true;
+}
+
+/* The percentage, and the elapsed time and ETA as text. Called with the lock held. */
+static int measure(const ob_progress *p, char *elapsed, char *left, size_t n)
+{
     const double el = now_s() - p->start;
     /* The ETA from the mean rate so far: units may differ in cost (bench's methods do), so it is a
      * guide, but it never makes the percentage itself move backwards. */
     const double eta = p->done > 0 ? el / (double)p->done * (double)(p->total - p->done) : -1.0;
+    clock_text(el, elapsed, n);
+    clock_text(eta, left, n);
+    return (int)(p->done * 100 / p->total);
+}
+
+/* Called with the lock held. */
+static void show(ob_progress *p, const char *what)
+{
     char elapsed[16], left[16];
-    clock_text(el, elapsed, sizeof elapsed);
-    clock_text(eta, left, sizeof left);
-    const char *sep = what && *what ? " " : "";
+    const int pct = measure(p, elapsed, left, sizeof elapsed);
     if (p->tty) {
         if (!p->each && pct <= p->shown && !(p->done == p->total && p->open)) return;
-        char bar[BAR_WIDTH + 1];
-        const int fill = pct * BAR_WIDTH / 100;
-        for (int i = 0; i < BAR_WIDTH; ++i) bar[i] = i < fill ? '#' : '.';
-        bar[BAR_WIDTH] = '\0';
-        /* \x1b[K clears what a longer earlier line left to the right. */
-        fprintf(stderr, "\r%s [%s] %3d %% %lld/%lld%s%.40s elapsed %s ETA %s\x1b[K", p->label, bar, pct, p->done,
-                p->total, sep, what ? what : "", elapsed, left);
-        p->shown = pct;
-        p->open = true;
+        draw_bar(p, what, pct, elapsed, left);
         if (p->done == p->total) {
             fputc('\n', stderr);
             p->open = false;
@@ -56,6 +79,7 @@ static void show(ob_progress *p, const char *what)
     } else {
         const int quarter = pct / 25;
         if (!p->each && quarter <= p->shown) return;
+        const char *sep = what && *what ? " " : "";
         fprintf(stderr, "%s: %d %% (%lld/%lld)%s%.60s, elapsed %s, ETA %s\n", p->label, pct, p->done, p->total, sep,
                 what ? what : "", elapsed, left);
         p->shown = quarter;
@@ -95,6 +119,22 @@ void ob_progress_break(ob_progress *p)
         fputs("\r\x1b[K", stderr);
         p->open = false;
         /* Redraw at the next advance even if the percentage has not moved. */
+        p->shown = -1;
+        fflush(stderr);
+    }
+    pthread_mutex_unlock(&p->lock);
+}
+
+void ob_progress_hold(ob_progress *p, const char *what)
+{
+    pthread_mutex_lock(&p->lock);
+    if (p->tty) {
+        char elapsed[16], left[16];
+        const int pct = measure(p, elapsed, left, sizeof elapsed);
+        draw_bar(p, what, pct, elapsed, left);
+        fputc('\n', stderr);
+        p->open = false;
+        /* The next advance draws a fresh line below the nested job's, even at the same percent. */
         p->shown = -1;
         fflush(stderr);
     }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# make demo: render the built-in scenes, the bunny and FZK-Haus with and without AO into out/,
-# side by side with the AO map, and measure how much of the AO reaches the final image.
+# make demo: render the built-in scenes, the bunny (in a corner) and FZK-Haus with and without AO
+# into out/, side by side with the AO map, measure how much of the AO reaches the final image, and
+# write out/index.html with the shot whose AO shows most first.
 # usage: scripts/demo.sh OBSCURA_BINARY OUT_DIR
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -17,8 +18,8 @@ shots=(
     "corner diagonal"
     "sphere-on-plane contact"
     "cornell-obj front"
-    "bunny front"
-    "bunny side"
+    "bunny-corner front"
+    "bunny-corner side"
     "fzk-haus exterior"
     "fzk-haus bedroom"
     "fzk-haus stair"
@@ -51,7 +52,7 @@ for shot in "${shots[@]}"; do
     echo >>"$timings"
 done
 # Contact sheets: every method side by side (final image and AO map), with its AO pass time.
-for shot in "cornell front" "bunny front" "fzk-haus stair"; do
+for shot in "cornell front" "bunny-corner front" "fzk-haus stair"; do
     read -r scene camera <<<"$shot"
     printf 'demo: %-26s' "sheet_$scene"
     t0=$(date +%s.%N)
@@ -62,14 +63,14 @@ done
 # compare's stage lines (stderr) go under their own label, indented, not onto the label's line.
 echo "demo: report (every method against the ground truth)"
 t0=$(date +%s.%N)
-"$bin" compare --scene cornell:front --scene bunny:front --scene fzk-haus:stair --size 320x240 \
+"$bin" compare --scene cornell:front --scene bunny-corner:front --scene fzk-haus:stair --size 320x240 \
     --report "$out/report" 2>&1 >/dev/null | sed 's/^/demo:   /'
 awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "demo: %-26s %5.1f s\n", "report", b - a }'
 # How much of the AO the final image shows (issue 20), on the report's views, where the reference
 # AO_R is known: the default method against none, both composed with the same lights and tone
 # mapped at the default method's frame's exposure (the report's own none_final has its own, which
 # hides part of the AO and shifts the open areas instead).
-for view in cornell_front bunny_front fzk-haus_stair; do
+for view in cornell_front bunny-corner_front fzk-haus_stair; do
     v="$out/report/$view"
     scene=${view%_*}
     camera=${view##*_}
@@ -85,8 +86,18 @@ for view in cornell_front bunny_front fzk-haus_stair; do
         "$out/visibility_${view}_noao.png" "$v/reference_ao.png"
 done
 rm -f "$out/.render.log"
+# The front page: every shot, the one whose AO changes its image most first (measured above's way,
+# on this run's images).
+names=()
+for shot in "${shots[@]}"; do
+    read -r scene camera <<<"$shot"
+    names+=("${scene}_${camera}")
+done
+ranked=$(python3 "$here/demo_index.py" "$out" "${names[@]}")
+printf '%s\n' "$ranked" | sed -n '1,3s/^/demo: strongest: /p'
 echo "demo: $(ls "$out"/*.png | wc -l) images in $out/ in $(( $(date +%s) - start )) s; GPU time per pass in $timings"
 echo "demo: *_sidebyside.png: without AO | with AO | AO map, both frames at the with-AO frame's exposure;"
 echo "demo:   visibility_*.png: the same at the report's size"
 echo "demo:   and the reference AO_R beside them"
-echo "demo: open $out/report/index.html (every method against the ground truth)"
+echo "demo: open $out/index.html first (every shot, the clearest AO first), then"
+echo "demo:   $out/report/index.html (every method against the ground truth)"

@@ -986,6 +986,62 @@ static void test_sidecar_ground(void)
         if (k == 3) printf("  %s -> %s\n", bad[k], last_message());
         ob_destroy_scene(s);
     }
+
+    /* "walls": a wall at x = 3 (right of the model's centre x = 1: it faces -x) and one at z = -1
+     * (behind z = 0.5: it faces +z), as wide as the 8-unit ground, 1.5 x the model's height (1)
+     * by default or as given; each faces the model and its triangles turn counter-clockwise seen
+     * from that side (the rasteriser's front faces). */
+    write_text(json, "{\"ground\": {\"walls\": [{\"x\": 3}, {\"z\": -1, \"height\": 4, \"_c\": \"\"}]}}");
+    s = load(obj, json, OB_UP_DEFAULT);
+    CHECK(s != NULL, "ground with walls: %s", last_message());
+    if (s) {
+        CHECK(s->mesh_count == bare->mesh_count + 3, "a ground and two walls: %d meshes, %d without", s->mesh_count,
+              bare->mesh_count);
+        const float facing[2][3] = {{-1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f}}, top[2] = {2.5f, 5.0f};
+        for (int w = 0; w < 2 && s->mesh_count == bare->mesh_count + 3; ++w) {
+            const ob_mesh *m = &s->meshes[s->mesh_count - 2 + w];
+            const float *p = m->positions;
+            float e1[3], e2[3];
+            for (int i = 0; i < 3; ++i) {
+                e1[i] = p[3u * m->indices[1] + (uint32_t)i] - p[3u * m->indices[0] + (uint32_t)i];
+                e2[i] = p[3u * m->indices[2] + (uint32_t)i] - p[3u * m->indices[0] + (uint32_t)i];
+            }
+            const float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+            float hi = -1e9f, along_lo = 1e9f, along_hi = -1e9f;
+            for (uint32_t v = 0; v < 4u; ++v) {
+                CHECK(near(m->normals[3u * v], facing[w][0], 0.0f) && near(m->normals[3u * v + 2u], facing[w][2], 0.0f),
+                      "wall %d: normal toward the model", w);
+                hi = fmaxf(hi, p[3u * v + 1u]);
+                along_lo = fminf(along_lo, p[3u * v + (w == 0 ? 2u : 0u)]);
+                along_hi = fmaxf(along_hi, p[3u * v + (w == 0 ? 2u : 0u)]);
+            }
+            CHECK(n[0] * facing[w][0] + n[2] * facing[w][2] > 0.0f, "wall %d: counter-clockwise from the model's side", w);
+            CHECK(near(hi, top[w], 1e-6f), "wall %d: top at %g, expected %g", w, (double)hi, (double)top[w]);
+            CHECK(near(along_hi - along_lo, 8.0f, 1e-6f), "wall %d: %g wide, the ground's 8", w,
+                  (double)(along_hi - along_lo));
+        }
+        CHECK(ob_query_scene_stats(s).bounds_max[1] == 5.0f, "the bounds hold the walls");
+        check_mesh_sanity(s);
+        ob_destroy_scene(s);
+    }
+    const char *bad_walls[] = {
+        "{\"ground\": {\"walls\": {\"x\": 1}}}",
+        "{\"ground\": {\"walls\": [{\"x\": 1, \"z\": 1}]}}",
+        "{\"ground\": {\"walls\": [{\"height\": 1}]}}",
+        "{\"ground\": {\"walls\": [{\"x\": 1, \"height\": 0}]}}",
+        "{\"ground\": {\"walls\": [{\"y\": 1}]}}",
+        "{\"ground\": {\"walls\": [{\"x\": 1}, {\"x\": 2}, {\"x\": 3}, {\"z\": 1}, {\"z\": 2}]}}",
+    };
+    const char *why[] = {"expected an array", "not both", "missing \"x\" or \"z\"", "must be > 0", "unknown key",
+                         "at most 4"};
+    for (size_t k = 0; k < sizeof bad_walls / sizeof bad_walls[0]; ++k) {
+        write_text(json, bad_walls[k]);
+        s = load(obj, json, OB_UP_DEFAULT);
+        CHECK(!s && ob_get_error(NULL) == OB_ERR_SIDECAR && strstr(last_message(), why[k]) &&
+                  strstr(last_message(), "ground.walls"),
+              "bad walls %s: %s (want '%s')", bad_walls[k], last_message(), why[k]);
+        ob_destroy_scene(s);
+    }
     ob_destroy_scene(bare);
     unlink(json);
     unlink(obj);

@@ -22,14 +22,14 @@ m=$("$OBSCURA" list --json | python3 -c 'import json, sys; print(json.load(sys.s
 # The demo's lights (the scenes' own, the default constant ambient) and its report views, at 128x96:
 # the reference AO_R from compare; the default method and none from render, the none frame at the
 # former's exposure.
-if "$OBSCURA" compare --scene cornell:front --scene bunny:front --scene fzk-haus:stair --methods "$m",none \
+if "$OBSCURA" compare --scene cornell:front --scene bunny-corner:front --scene fzk-haus:stair --methods "$m",none \
     --size 128x96 --spp 64 --report "$dir/report" >"$dir/stdout" 2>"$dir/stderr"; then ok
 else bad "compare failed: $(tail -2 "$dir/stderr")"; fi
 
 # At least 20 % of the pixels with AO_R < 0.75 change by more than 8 levels, and they change more
 # on average than the open ones (AO_R > 0.95), which change by less than a level: the pair shares
 # one exposure (each at its own, Cornell's open pixels moved 3.9 levels at 320x240).
-for view in cornell_front bunny_front fzk-haus_stair; do
+for view in cornell_front bunny-corner_front fzk-haus_stair; do
     v="$dir/report/$view"
     pair=(--scene "${view%_*}" --camera "${view##*_}" --size 128x96)
     if ! "$OBSCURA" render "${pair[@]}" --method "$m" -v --out "$dir/${view}_$m.png" 2>"$dir/${view}.log" ||
@@ -106,6 +106,32 @@ for y in (0, 47, 95):
 PY
     then ok; else bad "side-by-side strip layout"; fi
 else bad "side_by_side.py failed"; fi
+
+# make demo's front page (scripts/demo_index.py): the bunny in its corner shows clearly more AO
+# than the bunny alone on its floor (0.39 against 1.28/255 at 320x240, issue 48: "give the bunny
+# something to be occluded by"), the page lists the stronger shot first, and a missing image is
+# one line, exit 2, no page.
+mkdir -p "$dir/demo"
+for view in bunny_front bunny-corner_front; do
+    pair=(--scene "${view%_*}" --camera "${view##*_}" --size 128x96)
+    "$OBSCURA" render "${pair[@]}" --method "$m" -v --out "$dir/demo/$view.png" 2>"$dir/demo/$view.log" &&
+        "$SCRIPTS/noao_frame.sh" "$OBSCURA" "$dir/demo/$view.log" "$dir/demo/${view}_noao.png" "${pair[@]}" ||
+        bad "$view: the demo pair failed: $(tail -2 "$dir/demo/$view.log")"
+done
+if ranked=$(python3 "$SCRIPTS/demo_index.py" "$dir/demo" bunny_front bunny-corner_front 2>&1); then
+    echo "$ranked" | sed 's/^/  demo: /'
+    python3 - "$dir/demo/index.html" "$ranked" <<'PY' && ok || bad "demo_index: $ranked"
+import re, sys
+page, ranked = open(sys.argv[1]).read(), sys.argv[2].splitlines()
+means = {l.split(":")[0]: float(re.search(r"([0-9.]+)/255", l).group(1)) for l in ranked}
+assert ranked[0].startswith("bunny-corner_front:"), ranked
+assert means["bunny-corner_front"] > 2 * means["bunny_front"], means
+assert page.index("bunny-corner_front_sidebyside.png") < page.index("bunny_front_sidebyside.png")
+PY
+else bad "demo_index.py failed: $ranked"; fi
+rm -f "$dir/demo/index.html" "$dir/demo/bunny_front_noao.png"
+expect2 "bunny_front_noao.png: cannot read" python3 "$SCRIPTS/demo_index.py" "$dir/demo" bunny_front bunny-corner_front
+[ -e "$dir/demo/index.html" ] && bad "demo_index.py left index.html after an error" || ok
 
 echo "visibility: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

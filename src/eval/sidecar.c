@@ -53,7 +53,11 @@
  *                                model stands on it
  *       "size": 10,              side of the square, > 0, centred under the model's bounds;
  *                                default 4 x the model's larger horizontal extent
- *       "color": [r, g, b]       linear RGB albedo in [0, 1], default [0.8, 0.8, 0.8]
+ *       "color": [r, g, b],      linear RGB albedo in [0, 1], default [0.8, 0.8, 0.8]
+ *       "walls": [               at most 4 walls standing on the ground, as wide as it, in its
+ *         {"x": 1.0,             colour, facing the model: the plane x = 1 (or "z": z = ...);
+ *          "height": 2}          > 0, default 1.5 x the model's height
+ *       ]
  *     }
  *   }
  *
@@ -80,6 +84,8 @@
 #define SIDECAR_MAX_BYTES (4u << 20)
 #define SIDECAR_MODEL_MAX 4096
 
+enum { MAX_WALLS = 4 }; /* a box open at the top and the front needs three; four close it */
+
 typedef struct sidecar {
     char model[SIDECAR_MODEL_MAX];
     ob_up_axis up;
@@ -95,6 +101,13 @@ typedef struct sidecar {
     float ground_y;
     float ground_size;    /* 0 = 4 x the larger horizontal extent */
     float ground_color[3];
+    /* "ground.walls": vertical quads standing on the ground along x = at (axis 0) or z = at
+     * (axis 2), facing the model; height 0 = 1.5 x the model's height. */
+    struct {
+        int axis;
+        float at, height;
+    } walls[MAX_WALLS];
+    int wall_count;
 } sidecar;
 
 /* Record "path: message" as OB_ERR_SIDECAR. */
@@ -423,6 +436,49 @@ static ob_error parse_light(const char *path, int index, const cJSON *obj, ob_li
     return OB_OK;
 }
 
+/* "ground.walls": [{"x": 1.05}, {"z": -0.8, "height": 2}]: each wall names exactly one of x or z,
+ * the plane it stands in, and optionally its height (> 0). */
+static ob_error parse_walls(const char *path, const cJSON *arr, sidecar *sc)
+{
+    if (!cJSON_IsArray(arr)) return fail(path, "ground.walls: expected an array, got %s", json_type_name(arr));
+    const int n = cJSON_GetArraySize(arr);
+    if (n > MAX_WALLS) return fail(path, "ground.walls: %d walls, at most %d", n, MAX_WALLS);
+    for (int w = 0; w < n; ++w) {
+        const cJSON *obj = cJSON_GetArrayItem(arr, w);
+        char where[64];
+        snprintf(where, sizeof where, "ground.walls[%d]", w);
+        if (!cJSON_IsObject(obj)) return fail(path, "%s: expected an object, got %s", where, json_type_name(obj));
+        int axis = -1;
+        float at = 0.0f, height = 0.0f;
+        for (const cJSON *it = obj->child; it; it = it->next) {
+            const char *key = it->string;
+            char field[128];
+            snprintf(field, sizeof field, "%s.%s", where, key);
+            if (is_comment_key(key)) continue;
+            if (seen_before(obj, it)) return fail(path, "%s: duplicate key", field);
+            ob_error err = OB_OK;
+            if (strcmp(key, "x") == 0 || strcmp(key, "z") == 0) {
+                if (axis >= 0) return fail(path, "%s: a wall stands in x = or z =, not both", where);
+                axis = key[0] == 'x' ? 0 : 2;
+                err = read_number(path, field, it, &at);
+            } else if (strcmp(key, "height") == 0) {
+                err = read_number(path, field, it, &height);
+                if (err == OB_OK && !(height > 0.0f)) return fail(path, "%s: must be > 0, got %g", field, (double)height);
+            } else {
+                static const char *const keys[] = {"x", "z", "height"};
+                return unknown_key(path, field, key, keys, 3, "");
+            }
+            if (err != OB_OK) return err;
+        }
+        if (axis < 0) return fail(path, "%s: missing \"x\" or \"z\" (the plane the wall stands in)", where);
+        sc->walls[w].axis = axis;
+        sc->walls[w].at = at;
+        sc->walls[w].height = height;
+    }
+    sc->wall_count = n;
+    return OB_OK;
+}
+
 static ob_error parse_ground(const char *path, const cJSON *obj, sidecar *sc)
 {
     if (!cJSON_IsObject(obj)) {
@@ -452,11 +508,53 @@ static ob_error parse_ground(const char *path, const cJSON *obj, sidecar *sc)
                     return fail(path, "%s: an albedo is in [0, 1]", field);
                 }
             }
+        } else if (strcmp(key, "walls") == 0) {
+            err = parse_walls(path, it, sc);
         } else {
-            static const char *const keys[] = {"y", "size", "color"};
-            return unknown_key(path, field, key, keys, 3, "");
+            static const char *const keys[] = {"y", "size", "color", "walls"};
+            return unknown_key(path, field, key, keys, 4, "");
         }
         if (err != OB_OK) return err;
+    }
+    return OB_OK;
+}
+
+/* Wall w of the ground: a quad in the plane x = at (or z = at) across the ground's whole side,
+ * from the ground up, in the ground's material, its normal toward the model's centre (a wall is
+ * seen from the model's side; from behind it is a back face like any other). */
+static ob_error add_wall(ob_scene *s, const sidecar *sc, const char *path, int w, int mat, const float centre[3], float h,
+                         float model_height)
+{
+    const int axis = sc->walls[w].axis, other = 2 - axis;
+    const float at = sc->walls[w].at;
+    const float height = sc->walls[w].height > 0.0f ? sc->walls[w].height : 1.5f * model_height;
+    if (!(height > 0.0f) || !isfinite(height)) {
+        return fail(path, "ground.walls[%d]: the model has no height; give a \"height\"", w);
+    }
+    ob_mesh *m = ob_scene_add_mesh(s, 4u, 6u, false);
+    if (!m) return OB_ERR_OUT_OF_MEMORY;
+    const float facing = centre[axis] >= at ? 1.0f : -1.0f;
+    const float along[4] = {centre[other] - h, centre[other] + h, centre[other] + h, centre[other] - h};
+    const float up[4] = {centre[1], centre[1], centre[1] + height, centre[1] + height};
+    for (uint32_t v = 0; v < 4u; ++v) {
+        m->positions[3u * v + (uint32_t)axis] = at;
+        m->positions[3u * v + (uint32_t)other] = along[v];
+        m->positions[3u * v + 1u] = up[v];
+        m->normals[3u * v + (uint32_t)axis] = facing;
+    }
+    /* Vertices 0, 1, 2 in this order turn counter-clockwise about -x for an x wall (their edges'
+     * cross product is (-2h·height, 0, 0)) and about +z for a z wall (0, 0, 2h·height): kept where
+     * that is the facing, reversed elsewhere. */
+    const bool keep = axis == 0 ? facing < 0.0f : facing > 0.0f;
+    const uint32_t ccw[6] = {0u, 1u, 2u, 0u, 2u, 3u}, cw[6] = {0u, 2u, 1u, 0u, 3u, 2u};
+    memcpy(m->indices, keep ? ccw : cw, sizeof ccw);
+    m->material = mat;
+    for (uint32_t v = 0; v < 4u; ++v) {
+        for (int i = 0; i < 3; ++i) {
+            const float p = m->positions[3u * v + (uint32_t)i];
+            if (p < s->bounds_min[i]) s->bounds_min[i] = p;
+            if (p > s->bounds_max[i]) s->bounds_max[i] = p;
+        }
     }
     return OB_OK;
 }
@@ -492,10 +590,15 @@ static ob_error add_ground(ob_scene *s, const sidecar *sc, const char *path, con
     const uint32_t idx[6] = {0u, 3u, 2u, 0u, 2u, 1u};
     memcpy(m->indices, idx, sizeof idx);
     m->material = mat;
+    const float model_height = s->bounds_max[1] - s->bounds_min[1];
     const float lo[3] = {cx - h, y, cz - h}, hi[3] = {cx + h, y, cz + h};
     for (int i = 0; i < 3; ++i) {
         if (lo[i] < s->bounds_min[i]) s->bounds_min[i] = lo[i];
         if (hi[i] > s->bounds_max[i]) s->bounds_max[i] = hi[i];
+    }
+    for (int w = 0; w < sc->wall_count; ++w) {
+        ob_error err = add_wall(s, sc, path, w, mat, (float[3]){cx, y, cz}, h, model_height);
+        if (err != OB_OK) return err;
     }
     return OB_OK;
 }

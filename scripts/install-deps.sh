@@ -38,10 +38,11 @@ data_dir="$(cd "$(dirname "$0")/.." && pwd)/data"
 
 # Assimp's Q3BSP importer reads only the first map of a .pk3, and pak1-maps.pk3 holds 50 maps:
 # copy each map's BSP alone into data/MAP.pk3 for scenes/MAP.obscura.json (oa_dm1, an indoor
-# gothic level; oa_shine, an angular tech level of stairs and floating platforms). Only the BSP:
+# gothic level; oa_shine, an angular tech level of stairs and floating platforms; czest1dm, a castle
+# courtyard with an arcade of arches, the project's stand-in for the Sponza atrium). Only the BSP:
 # the package has no textures, and the maps' lightmaps are inside the BSP.
 oa_pk3_src=/usr/share/games/openarena/baseoa/pak1-maps.pk3
-oa_maps=(oa_dm1 oa_shine)
+oa_maps=(oa_dm1 oa_shine czest1dm)
 repack_oa_maps() {
     local want=()
     for m in "${oa_maps[@]}"; do [ -f "$data_dir/$m.pk3" ] || want+=("$m"); done

@@ -1061,6 +1061,9 @@ static void test_new_named_scenes(void)
         {"armadillo", "data/armadillo.off", 10.0f, {"front", "feet", "back"}, true},
         {"engine", "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", 20.0f,
          {"overview", "fins", "contact"}, true},
+        {"czest1dm", "data/czest1dm.pk3", 16.0f, {"detail", "across", "upper"}, false},
+        /* The demo's bunny: the last mesh is its second wall, in the ground's material, from the floor up. */
+        {"bunny-corner", "/usr/share/glmark2/models/bunny.obj", 0.3f, {"front", "side", "default"}, true},
     };
     for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; ++k) {
         char model[4096] = "";

@@ -113,6 +113,7 @@ typedef struct ob_timer_set {
     double ms[OB_MAX_TIMED_PASSES];
     int count;
     long long frame;         /* its number (0 = the first frame begun), -1 before any */
+    bool finish_stamps;      /* a software rasteriser: glFinish after each stamp (timer.c says why) */
 } ob_timer_set;
 
 void ob_timers_init(ob_timer_set *t);

@@ -11,14 +11,35 @@
  * its own slot, and a slot is read only once GL_QUERY_RESULT_AVAILABLE says all its queries have
  * landed; the newest such frame is what the renderer reports. A slot is waited for only when the
  * CPU comes round to it again with its results still out, that is with the GPU OB_TIMER_RING
- * frames behind, where a wait costs nothing that the driver's own frame queue would not. */
+ * frames behind, where a wait costs nothing that the driver's own frame queue would not.
+ *
+ * Why a glFinish after each timestamp on a software rasteriser: llvmpipe takes a timestamp when
+ * its rasteriser threads run the current tile bins, that is at the next flush, whenever the
+ * framebuffer it last drew into has a size, while a compute dispatch runs at once on the calling
+ * thread. A stamp before a pass was then taken after the pass had run (at the barrier that ends
+ * it), so every pass read its successor's time, work drawn earlier (the G-buffer's rasterisation)
+ * landed in the next pass, and the frame's last pass, tonemap, whose two stamps were both taken at
+ * the flush after it, read 0.000 ms. That is the case in obscura view and in any host that renders
+ * to a window (framebuffer 0 has a size there); in a surfaceless EGL context (obscura render, the
+ * tests) framebuffer 0 has none and llvmpipe takes the stamp at the call, which hid it. Finishing
+ * after the stamp takes it where it stands. On a GPU, stamps are taken in command order and a
+ * finish would stall it: the finish is for software rasterisers only, where the dispatches already
+ * run on the CPU in order and it costs about a tenth of a millisecond per stamp. */
 #include <string.h>
 
 #include "gpu/gpu.h"
 
+/* A timestamp into query q, taken in command order on every driver (see above). */
+static void stamp(const ob_timer_set *t, GLuint q)
+{
+    glQueryCounter(q, GL_TIMESTAMP);
+    if (t->finish_stamps) glFinish();
+}
+
 void ob_timers_init(ob_timer_set *t)
 {
     memset(t, 0, sizeof *t);
+    t->finish_stamps = ob_renderer_is_software((const char *)glGetString(GL_RENDERER));
     for (int s = 0; s < OB_TIMER_RING; ++s) {
         glCreateQueries(GL_TIMESTAMP, 2 * OB_MAX_TIMED_PASSES, t->ring[s].queries);
         t->ring[s].frame = -1;
@@ -108,13 +129,13 @@ void ob_timer_begin(ob_timer_set *t, const char *name)
     if (f->count >= OB_MAX_TIMED_PASSES) return;
     f->names[f->count] = name;
     t->open = f->count++;
-    glQueryCounter(f->queries[2 * t->open], GL_TIMESTAMP);
+    stamp(t, f->queries[2 * t->open]);
 }
 
 void ob_timer_end(ob_timer_set *t)
 {
     if (t->open < 0 || !t->current) return;
-    glQueryCounter(t->current->queries[2 * t->open + 1], GL_TIMESTAMP);
+    stamp(t, t->current->queries[2 * t->open + 1]);
     t->open = -1;
 }
 

@@ -1,9 +1,10 @@
 /* The per-pass GPU timers (src/gpu/timer.c) through the public API: a ring of query sets read a
  * few frames late. Structure and consistency only, never speed: timings arrive after a few frames
  * without ob_wait_timings, they name the frame they describe, every pass that ran in that frame is
- * there once with a time >= 0, a pass that did not run (cached shadow maps) is absent, no frame's
- * passes add up to more than the wall-clock time from its submission to its completion, and a
- * framebuffer with a size bound (a window's, as in obscura view) does not shift the times. */
+ * there once with a time >= 0 and a CPU time > 0, a pass that did not run (cached shadow maps) is
+ * absent, no frame's passes (GPU or CPU times) add up to more than the wall-clock time from its
+ * submission to its completion, and a framebuffer with a size bound (a window's, as in obscura
+ * view) does not shift the times. */
 #include <math.h>
 #include <string.h>
 #include <time.h>
@@ -37,6 +38,8 @@ static void check_set(const ob_pass_timing *t, int n, const char *what)
     double sum = 0.0;
     for (int i = 0; i < n; ++i) {
         CHECK(isfinite(t[i].ms) && t[i].ms >= 0.0, "%s: %s %.6g ms", what, t[i].name, t[i].ms);
+        CHECK(isfinite(t[i].cpu_ms) && t[i].cpu_ms > 0.0, "%s: %s took %.6g ms of CPU to issue", what, t[i].name,
+              t[i].cpu_ms);
         CHECK(find(t, n, t[i].name) == 1, "%s: %s listed once", what, t[i].name);
         sum += t[i].ms;
     }
@@ -100,9 +103,11 @@ static void test_present_passes(ob_context *ctx, const ob_settings *base)
         CHECK(find(t, n, "shadow") == (f == 0), "frame %d: shadow %s", f, f == 0 ? "rendered" : "cached, absent");
         /* The passes run one after another between the call and the wait's return: their sum
          * cannot exceed that span (5 % and 1 ms for the two clocks' rounding). */
-        double sum = 0.0;
-        for (int i = 0; i < n; ++i) sum += t[i].ms;
+        double sum = 0.0, cpu = 0.0;
+        for (int i = 0; i < n; ++i) sum += t[i].ms, cpu += t[i].cpu_ms;
         CHECK(sum <= 1.05 * wall + 1.0, "frame %d: passes %.3f ms in a %.3f ms frame", f, sum, wall);
+        /* The CPU times are spans of the same call on the same clock: within it with no rounding. */
+        CHECK(cpu <= wall, "frame %d: passes issued in %.3f ms of CPU in a %.3f ms frame", f, cpu, wall);
     }
     ob_destroy_renderer(r);
 }
@@ -161,7 +166,7 @@ static GLuint busy_program(void)
  * last pass, whose two stamps were both taken at the flush after it, read 0.000 ms (tonemap in the
  * viewer). Each pass's time must cover its own dispatch: on llvmpipe the dispatch call returns
  * when the work is done, so its wall time is the work's. */
-static void test_sized_framebuffer(void)
+static void test_sized_framebuffer(bool software)
 {
     GLuint prog = busy_program();
     CHECK(prog != 0, "the busy compute program links");
@@ -201,6 +206,11 @@ static void test_sized_framebuffer(void)
         const double least = wall[i] >= 2.0 ? 0.5 * wall[i] : 0.0;
         CHECK(t.ms[i] > 0.0 && t.ms[i] >= least, "framebuffer with a size bound: %s reads %.3f ms, its dispatch "
               "took %.3f ms of wall time", t.names[i], t.ms[i], wall[i]);
+        /* The CPU time is the issuing of the dispatch and its barrier: within their wall time, and on a
+         * software rasteriser, which runs the dispatch in the call, most of it. */
+        CHECK(t.cpu_ms[i] > 0.0 && t.cpu_ms[i] <= wall[i] + 0.05 && (!software || t.cpu_ms[i] >= 0.5 * wall[i]),
+              "%s: %.3f ms of CPU to issue a dispatch of %.3f ms wall time (%s)", t.names[i], t.cpu_ms[i], wall[i],
+              software ? "software" : "GPU");
     }
     ob_timers_destroy(&t);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -226,7 +236,7 @@ int main(void)
     test_timer_set();
     test_ring(ctx, &s);
     test_present_passes(ctx, &s);
-    test_sized_framebuffer();
+    test_sized_framebuffer(ob_query_is_software(ctx));
     ob_destroy_scene(scene);
     ob_destroy_context(ctx);
     return check_finish("test_timers");

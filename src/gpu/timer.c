@@ -1,5 +1,7 @@
 /* Per-pass GPU time from GL_TIMESTAMP queries taken before and after each pass, kept in a ring of
- * OB_TIMER_RING frames and read a few frames late.
+ * OB_TIMER_RING frames and read a few frames late, and beside it the CPU time spent issuing the
+ * pass (CLOCK_MONOTONIC between the two stamps, the stamps themselves left out): what the driver
+ * costs the host's thread, which a GPU-bound frame hides and a CPU-bound one is made of.
  *
  * Why not GL_TIME_ELAPSED: Mesa's llvmpipe (22.3) records TIME_ELAPSED only for work that goes
  * through its rasteriser, so compute passes read 0 ms and a span that starts with a draw reads
@@ -26,8 +28,16 @@
  * finish would stall it: the finish is for software rasterisers only, where the dispatches already
  * run on the CPU in order and it costs about a tenth of a millisecond per stamp. */
 #include <string.h>
+#include <time.h>
 
 #include "gpu/gpu.h"
+
+static double now_ms(void)
+{
+    struct timespec ts = {0, 0};
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return 1e3 * (double)ts.tv_sec + 1e-6 * (double)ts.tv_nsec;
+}
 
 /* A timestamp into query q, taken in command order on every driver (see above). */
 static void stamp(const ob_timer_set *t, GLuint q)
@@ -96,6 +106,7 @@ static void collect_unguarded(ob_timer_set *t, ob_timer_frame *f, bool wait)
         glGetQueryObjectui64v(f->queries[2 * i + 1], GL_QUERY_RESULT, &t1);
         t->names[i] = f->names[i];
         t->ms[i] = t1 > t0 ? (double)(t1 - t0) * 1e-6 : 0.0;
+        t->cpu_ms[i] = f->cpu_ms[i];
     }
 }
 
@@ -128,13 +139,16 @@ void ob_timer_begin(ob_timer_set *t, const char *name)
     if (t->open >= 0) ob_timer_end(t);
     if (f->count >= OB_MAX_TIMED_PASSES) return;
     f->names[f->count] = name;
+    f->cpu_ms[f->count] = 0.0;
     t->open = f->count++;
     stamp(t, f->queries[2 * t->open]);
+    f->cpu_start = now_ms(); /* after the stamp: a software rasteriser's finish is not the pass's */
 }
 
 void ob_timer_end(ob_timer_set *t)
 {
     if (t->open < 0 || !t->current) return;
+    t->current->cpu_ms[t->open] = now_ms() - t->current->cpu_start;
     stamp(t, t->current->queries[2 * t->open + 1]);
     t->open = -1;
 }

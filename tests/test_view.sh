@@ -121,7 +121,8 @@ if [ "${w:-0}" = 240 ] && [ "${h:-0}" = 200 ] && gt "${sd:-0}" 5; then ok; else 
 # ---- the mouse works the camera on the picture only ---------------------------------------------
 # 640x360 with the panel: the right button dragged and the wheel on the bar above the picture
 # (y < 90, under the overlay, which takes no input) leave the camera alone; dragged on the
-# picture, it looks.
+# picture, it looks. Then the panel's left edge (x 320) dragged to x 400 narrows the panel, and
+# the picture widens to 400x225.
 cat >"$dir/mouse.txt" <<EOF
 0.0   screenshot $dir/mouse0.png
 0.05  move 100 40
@@ -135,7 +136,13 @@ cat >"$dir/mouse.txt" <<EOF
 0.45  move 250 180
 0.5   mouse right up
 0.55  screenshot $dir/mouse2.png
-0.6   quit
+0.6   move 320 200
+0.65  mouse left down
+0.7   move 360 200
+0.75  move 400 200
+0.8   mouse left up
+0.9   screenshot $dir/dragged.png
+0.95  quit
 EOF
 if xrun 300 "$OBSCURA" view --scene corner --size 640x360 --script "$dir/mouse.txt" >/dev/null 2>"$dir/mouse.err"; then ok
 else bad "mouse run failed: $(tail -3 "$dir/mouse.err")"; fi
@@ -143,6 +150,8 @@ if [ -f "$dir/mouse1.png" ] && ! gt "$("$IMGCHECK" diff "$dir/mouse0.png" "$dir/
 else bad "a drag or the wheel beside the picture moved the camera"; fi
 if [ -f "$dir/mouse2.png" ] && gt "$("$IMGCHECK" diff "$dir/mouse1.png" "$dir/mouse2.png")" 1; then ok
 else bad "a drag on the picture did not turn the camera"; fi
+read -r w h _ < <("$IMGCHECK" "$dir/dragged.png" 2>/dev/null)
+if [ "${w:-0}x${h:-0}" = 400x225 ]; then ok; else bad "dragging the panel's edge: the picture is ${w:-?}x${h:-?}, want 400x225"; fi
 
 # ---- the panel beside the picture at the usual window sizes -------------------------------------
 # The panel takes a column (at least 340 px at scale 1, 30 % of the width beyond, at most half),

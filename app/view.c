@@ -2,9 +2,9 @@
  *
  * A GLFW window whose GL 4.5 context the library adopts (ob_context_desc.use_current), so every
  * frame goes through the very ob_render_frame the CLI and the tests use; ob_present blits the
- * result (or a debug view) into the window and Dear ImGui draws the panel over it. The panel is
- * generated from the method and filter registries' parameter tables, like `obscura list` and
- * `--set`.
+ * result (or a debug view) into the picture's part of the window and Dear ImGui draws the panel in
+ * a column beside it (view_layout). The panel is generated from the method and filter registries'
+ * parameter tables, like `obscura list` and `--set`.
  *
  * Three ways to drive it: a person (keys, mouse, panel), a script of timed input events
  * (--script, replayed on a simulated clock so it runs the same on any machine) and the automatic
@@ -72,15 +72,22 @@ static void default_shot_path(viewer *v, char *out, size_t len)
              ob_method_at(v->s.method)->name, ++serial);
 }
 
-/* The window as it shows now (image and panel): the back buffer, before the swap. */
-void save_screenshot(viewer *v, const char *path)
+/* The window as it shows now (image and panel), or the picture's part of it: the back buffer,
+ * before the swap. */
+void save_screenshot(viewer *v, const char *path, bool picture_only)
 {
     char default_path[4200] = "";
     if (!path) {
         default_shot_path(v, default_path, sizeof default_path);
         path = default_path;
     }
-    int w = v->fb_width, h = v->fb_height;
+    int x = 0, y = 0, w = v->fb_width, h = v->fb_height;
+    if (picture_only) {
+        x = v->pic_x;
+        y = v->fb_height - v->pic_y - v->pic_h; /* GL's rows run bottom to top */
+        w = v->pic_w;
+        h = v->pic_h;
+    }
     size_t row = (size_t)w * 4;
     unsigned char *px = malloc(row * (size_t)h), *flipped = malloc(row * (size_t)h);
     if (!px || !flipped) {
@@ -92,8 +99,8 @@ void save_screenshot(viewer *v, const char *path)
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     glReadBuffer(GL_BACK);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px);
-    for (int y = 0; y < h; ++y) memcpy(flipped + (size_t)y * row, px + (size_t)(h - 1 - y) * row, row);
+    glReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    for (int r = 0; r < h; ++r) memcpy(flipped + (size_t)r * row, px + (size_t)(h - 1 - r) * row, row);
     for (size_t i = 3; i < row * (size_t)h; i += 4) flipped[i] = 255; /* the window's alpha is not the image's */
     /* Only the default name's directory is made, and only now: a viewer that takes no screenshot
      * leaves nothing behind, and a script's or --shots path's directory must exist. */
@@ -123,7 +130,7 @@ void reload_shaders(viewer *v)
     }
     /* A new renderer compiles every program from disk; the old one keeps running if anything
      * fails, so a typo in a shader shows its file:line here instead of ending the session. */
-    ob_renderer *fresh = ob_make_renderer(v->ctx, &(ob_renderer_desc){.width = v->fb_width, .height = v->fb_height});
+    ob_renderer *fresh = ob_make_renderer(v->ctx, &(ob_renderer_desc){.width = v->eye_width, .height = v->eye_height});
     ob_camera cam = current_camera(v);
     bool ok = fresh && ob_renderer_set_scene(fresh, v->scene) == OB_OK &&
               (!v->o.common.env || ob_renderer_set_environment(fresh, v->o.common.env) == OB_OK) &&
@@ -140,8 +147,6 @@ void reload_shaders(viewer *v)
     /* The right eye is made again, from the same shaders, by the next stereo frame. */
     ob_destroy_renderer(v->right);
     v->right = NULL;
-    v->eye_width = v->fb_width;
-    v->eye_height = v->fb_height;
     profiler_reset(&v->prof);
     say(v, false, "shaders reloaded from %s", dir);
 #else
@@ -152,8 +157,8 @@ void reload_shaders(viewer *v)
 /* ---- the frame ----------------------------------------------------------------------------- */
 const char *const view_stereo_names[VIEW_STEREO_COUNT] = {"mono", "mirror", "single"};
 
-/* Each renderer at the eye's size (half the window's width in mirror), the right eye's renderer
- * made when stereo first needs it. */
+/* Each renderer at the eye's size (the picture's, or half its width in mirror), the right eye's
+ * renderer made when stereo first needs it. */
 static bool fit_renderers(viewer *v, int w, int h)
 {
     int ew = v->stereo == VIEW_MIRROR ? (w / 2 > 0 ? w / 2 : 1) : w;
@@ -192,8 +197,12 @@ static int merge_timings(ob_pass_timing *t, int n, const ob_pass_timing *right, 
         eye_ms[1] += right[i].ms;
         int k = 0;
         while (k < n && strcmp(t[k].name, right[i].name) != 0) ++k;
-        if (k < n) t[k].ms += right[i].ms;
-        else if (n < MAX_PASSES) t[n++] = right[i];
+        if (k < n) {
+            t[k].ms += right[i].ms;
+            t[k].cpu_ms += right[i].cpu_ms;
+        } else if (n < MAX_PASSES) {
+            t[n++] = right[i];
+        }
     }
     return n;
 }
@@ -214,10 +223,11 @@ int view_timings(viewer *v, bool wait, ob_pass_timing *t, double eye_ms[2], long
     return n;
 }
 
-/* The scene as the window shows it: mono, both eyes, or the reference view's panes. */
-static bool draw_image(viewer *v, int w, int h)
+/* The scene in the picture's place: mono, both eyes, or the reference view's panes. */
+static bool draw_image(viewer *v)
 {
-    if (view_reference_on(v)) return view_reference_frame(v, w, h);
+    if (view_reference_on(v)) return view_reference_frame(v);
+    const int x = v->pic_x, y = v->fb_height - v->pic_y - v->pic_h, w = v->pic_w, h = v->pic_h;
     ob_camera cam = current_camera(v);
     /* Stereo: the eyes of the fly camera (parallel axes, frusta converging at its target). */
     ob_camera eyes[2] = {cam, cam};
@@ -228,10 +238,10 @@ static bool draw_image(viewer *v, int w, int h)
     if (ok && v->stereo != VIEW_MONO) ok = ob_render_frame(v->right, &eyes[1], &v->s) == OB_OK;
     if (ok) {
         if (v->stereo == VIEW_MIRROR)
-            ok = ob_present(v->r, v->view, 0, 0, 0, v->eye_width, h) == OB_OK &&
-                 ob_present(v->right, v->view, 0, v->eye_width, 0, v->eye_width, h) == OB_OK;
+            ok = ob_present(v->r, v->view, 0, x, y, v->eye_width, h) == OB_OK &&
+                 ob_present(v->right, v->view, 0, x + v->eye_width, y, v->eye_width, h) == OB_OK;
         else
-            ok = ob_present(v->r, v->view, 0, 0, 0, w, h) == OB_OK;
+            ok = ob_present(v->r, v->view, 0, x, y, w, h) == OB_OK;
     }
     return ok;
 }
@@ -244,20 +254,29 @@ static bool frame(viewer *v, double dt)
     v->fb_width = w;
     v->fb_height = h;
     if (v->events) run_script_events(v);
-    if (!fit_renderers(v, w, h)) return false;
+    /* After the script's events, which may hide the panel or resize the window. */
+    view_layout(v, w, h);
+    if (!fit_renderers(v, v->pic_w, v->pic_h)) return false;
     move_camera(v, dt);
     follow_path(v);
-    bool ok = draw_image(v, w, h);
+    /* The window's background: the bars beside the picture and the panel's column. */
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, w, h);
+    glClearColor(0.06f, 0.06f, 0.07f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    bool ok = draw_image(v);
     if (!ok) {
         /* A setting the renderer refuses (e.g. the environment ambient with no map): say so and
-         * show the background rather than a stale frame. */
+         * show the picture's background rather than a stale frame. */
         const char *msg = "";
         ob_get_error(&msg);
         if (strcmp(msg, v->message) != 0 || v->clock >= v->message_until) say(v, true, "%s", msg);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glViewport(0, 0, w, h);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(v->pic_x, h - v->pic_y - v->pic_h, v->pic_w, v->pic_h);
         glClearColor(0.1f, 0.0f, 0.0f, 1.0f);
         glClear(GL_COLOR_BUFFER_BIT);
+        glDisable(GL_SCISSOR_TEST);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, w, h);
@@ -268,7 +287,7 @@ static bool frame(viewer *v, double dt)
     if (v->events) script_screenshot(v, true);
     if (v->shot_requested) {
         v->shot_requested = false;
-        save_screenshot(v, NULL);
+        save_screenshot(v, NULL, false);
     }
     glfwSwapBuffers(v->window);
     /* The reference view renders the panes' renderer, not these: no timings of theirs to add. */
@@ -379,9 +398,11 @@ int cmd_view(int argc, char **argv)
     }
     glfwGetFramebufferSize(v->window, &v->fb_width, &v->fb_height);
     v->stereo = v->o.stereo;
-    v->eye_width = v->fb_width;
-    v->eye_height = v->fb_height;
-    v->r = ob_make_renderer(v->ctx, &(ob_renderer_desc){.width = v->fb_width, .height = v->fb_height});
+    view_layout(v, v->fb_width, v->fb_height);
+    /* Mono's size; the first frame fits the eyes of a stereo start. */
+    v->eye_width = v->pic_w;
+    v->eye_height = v->pic_h;
+    v->r = ob_make_renderer(v->ctx, &(ob_renderer_desc){.width = v->eye_width, .height = v->eye_height});
     if (!v->r || ob_renderer_set_scene(v->r, v->scene) != OB_OK) {
         code = cli_fail_from_library();
         goto close;

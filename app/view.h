@@ -41,9 +41,14 @@ typedef struct view_opts {
 int parse_view_opts(int argc, char **argv, view_opts *o);
 
 /* ---- profiler (view_profiler.c) -------------------------------------------------------------- */
+/* One pass's GPU time (timestamp queries) and CPU time (the calling thread issuing it), ms. */
+typedef struct time_stats {
+    double current, sum, min, max; /* current: in the newest timed frame, NAN if it did not run there */
+} time_stats;
+
 typedef struct pass_stats {
     const char *name;
-    double current, sum, min, max; /* current: in the newest timed frame, NAN if it did not run there */
+    time_stats gpu, cpu;
     long calls;                    /* timed frames it ran in: a pass that ran once is averaged once */
 } pass_stats;
 
@@ -52,9 +57,10 @@ typedef struct profiler {
     int count;
     double frame_sum, frame_min, frame_max; /* wall-clock frame time, ms */
     long frames;
-    /* Each timed frame's sum of its own passes (what the GPU spent on that frame), ms: a pass that
-     * ran in one frame only (the shadow maps, then cached) is in that frame's sum alone. */
-    double gpu_current, gpu_sum, gpu_min, gpu_max;
+    /* Each timed frame's sum of its own passes (what the GPU spent on that frame, and the CPU
+     * issuing it), ms: a pass that ran in one frame only (the shadow maps, then cached) is in that
+     * frame's sum alone. */
+    time_stats gpu, cpu;
     long gpu_frames;
     long long gpu_frame;   /* the renderer's frame the last timings described (ob_query_timings_frame) */
     long long first_frame; /* the first frame counted since the reset, -1 until the next add sets it */
@@ -97,6 +103,14 @@ typedef struct viewer {
     double mouse_x, mouse_y;
     bool mouse_known;
     int fb_width, fb_height;
+    /* The window's layout (view_layout): the panel docked in a column at the right edge, and the
+     * picture (the scene, both eyes or the reference view's panes) in the rest, with the window's
+     * shape scaled to fit and centred, bars above and below; framebuffer pixels from the top left.
+     * The panel never covers the picture; the overlay's lines sit on the bars (over the picture
+     * only in test mode, whose window is all picture, or where a narrow panel leaves thin bars). */
+    int pic_x, pic_y, pic_w, pic_h;
+    float panel_width;   /* the panel's column, px; 0 while it is hidden (F1, test mode) */
+    float panel_dragged; /* the width its left edge was dragged to, 0 if never */
     /* clock: wall time, or simulated in a script run */
     double clock, last_frame_ms, fps, fps_window_start;
     int fps_window_frames;
@@ -121,10 +135,10 @@ typedef struct viewer {
 void say(viewer *v, bool error, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 /* The window's title names the scene, the method and whether a debug view shows. */
 void update_title(viewer *v);
-/* The window's back buffer as PNG, as it is now (take it before the GUI is drawn for the image
- * alone, after for the window as shown); path NULL: a new name in the shot directory, which is
- * made then (never before a screenshot is taken). */
-void save_screenshot(viewer *v, const char *path);
+/* The back buffer as PNG, as it is now: the picture alone (picture_only; take it before the GUI is
+ * drawn: no overlay) or the whole window as shown (after); path NULL: a new name in the shot
+ * directory, which is made then (never before a screenshot is taken). */
+void save_screenshot(viewer *v, const char *path, bool picture_only);
 /* Development builds: a new renderer from the shaders on disk, the old one kept if it fails. */
 void reload_shaders(viewer *v);
 
@@ -188,6 +202,12 @@ void profiler_add_eyes(profiler *p, const double eye_ms[2]);
 void panel_profiler(viewer *v);
 
 /* ---- view_panel.c ---------------------------------------------------------------------------- */
+/* The layout of a w x h framebuffer (pic_*, panel_width) for this frame: the panel's column when
+ * it shows, the picture in the rest. */
+void view_layout(viewer *v, int w, int h);
+/* Whether (x, y), in window pixels from the top left, is on the picture (the mouse's camera
+ * control starts only there). */
+bool view_in_picture(const viewer *v, double x, double y);
 /* The overlay and the panel for this frame, drawn into the current framebuffer. */
 void build_gui(viewer *v);
 
@@ -199,13 +219,14 @@ bool view_reference_on(const viewer *v);
 void view_reference_toggle(viewer *v);
 /* A trace is under way on its worker thread (a script's clock waits for it). */
 bool view_reference_busy(const viewer *v);
-/* The four panes of a w x h window: the method's AO, the reference, the signed error and the
- * current view, each half the window each way. False with the library's error in v->message. */
-bool view_reference_frame(viewer *v, int w, int h);
+/* The four panes in the picture's place: the method's AO, the reference, the signed error and the
+ * current view, each half the picture each way. False with the library's error in v->message. */
+bool view_reference_frame(viewer *v);
 /* The panes' labels (ImGui; drawn even with the panel hidden) and the panel's section. */
 void view_reference_labels(viewer *v);
 void panel_reference(viewer *v);
-/* One line for the overlay while a trace is under way or the view is on. */
+/* One line for the overlay while a trace is under way or the view is on (then has_status). */
+bool view_reference_has_status(const viewer *v);
 void view_reference_overlay(const viewer *v);
 /* The AO radius R the current method is graded at (its radius, else the scene's). */
 float view_ao_radius(const viewer *v);

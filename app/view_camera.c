@@ -162,9 +162,12 @@ void handle_key(viewer *v, int key, int action, int mods)
     }
 }
 
+/* Looking starts on the picture only (a press on the bars or the panel's column is not the
+ * camera's), and goes on wherever the held button drags the cursor. */
 void handle_mouse_button(viewer *v, int button, int action)
 {
     if (button != GLFW_MOUSE_BUTTON_RIGHT) return;
+    if (action == GLFW_PRESS && !(v->mouse_known && view_in_picture(v, v->mouse_x, v->mouse_y))) return;
     v->look = action == GLFW_PRESS && !v->camera_locked;
 }
 
@@ -190,9 +193,10 @@ void handle_cursor(viewer *v, double x, double y)
     v->mouse_known = true;
 }
 
+/* Zoom with the cursor on the picture only. */
 void handle_scroll(viewer *v, double dy)
 {
-    if (v->camera_locked) return;
+    if (v->camera_locked || !(v->mouse_known && view_in_picture(v, v->mouse_x, v->mouse_y))) return;
     v->fov = v->fov * powf(0.9f, (float)dy);
     v->fov = v->fov < 5.0f ? 5.0f : v->fov > 120.0f ? 120.0f : v->fov;
 }
@@ -207,11 +211,20 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     handle_key(v, key, action, mods);
 }
 
+/* Where the cursor is now, for a button or the wheel (no move may have been reported since the
+ * cursor entered the window). */
+static void cursor_now(GLFWwindow *w, viewer *v)
+{
+    glfwGetCursorPos(w, &v->mouse_x, &v->mouse_y);
+    v->mouse_known = true;
+}
+
 static void on_mouse_button(GLFWwindow *w, int button, int action, int mods)
 {
     (void)mods;
     viewer *v = glfwGetWindowUserPointer(w);
     if (gui_wants_mouse() && action == GLFW_PRESS) return;
+    cursor_now(w, v);
     handle_mouse_button(v, button, action);
 }
 
@@ -221,7 +234,9 @@ static void on_scroll(GLFWwindow *w, double dx, double dy)
 {
     (void)dx;
     if (gui_wants_mouse()) return;
-    handle_scroll(glfwGetWindowUserPointer(w), dy);
+    viewer *v = glfwGetWindowUserPointer(w);
+    cursor_now(w, v);
+    handle_scroll(v, dy);
 }
 
 static void on_close(GLFWwindow *w)

@@ -24,7 +24,7 @@ bool gui_init(GLFWwindow *window)
     io.IniFilename = nullptr; // no imgui.ini in whatever directory the viewer was started from
     ImGui::StyleColorsDark();
     ImGui::GetStyle().WindowRounding = 2.0f;
-    ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 0.88f; // the image shows through a little
+    // The panel is opaque: it has a column of its own now. The overlays set their own alpha.
     base_style = ImGui::GetStyle();
     gui_current_scale = 1.0f;
     gui_framed = false;
@@ -96,12 +96,20 @@ void gui_render(void)
 bool gui_wants_mouse(void) { return gui_ready && ImGui::GetIO().WantCaptureMouse; }
 bool gui_wants_keyboard(void) { return gui_ready && ImGui::GetIO().WantCaptureKeyboard; }
 
-bool gui_begin(const char *title, float x, float y, float w, float h, bool place)
+bool gui_begin_docked(const char *title, float display_w, float display_h, float *width, float min_width,
+                      float max_width)
 {
-    const ImGuiCond when = place ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
-    ImGui::SetNextWindowPos(ImVec2(x, y), when);
-    ImGui::SetNextWindowSize(ImVec2(w, h), when);
-    return ImGui::Begin(title);
+    const float w = fminf(fmaxf(*width, min_width), max_width);
+    // Placed every frame: a drag of the left edge changes the size (and, for this frame, the
+    // position) after these, inside Begin, within the constraints.
+    ImGui::SetNextWindowPos(ImVec2(display_w - w, 0.0f), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(w, display_h), ImGuiCond_Always);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(min_width, display_h), ImVec2(max_width, display_h));
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                                   ImGuiWindowFlags_NoSavedSettings;
+    const bool shown = ImGui::Begin(title, nullptr, flags);
+    *width = ImGui::GetWindowWidth();
+    return shown;
 }
 
 void gui_push_item_width(float w) { ImGui::PushItemWidth(w); }
@@ -109,9 +117,9 @@ void gui_pop_item_width(void) { ImGui::PopItemWidth(); }
 
 void gui_progress(float fraction, const char *text) { ImGui::ProgressBar(fraction, ImVec2(-FLT_MIN, 0.0f), text); }
 
-bool gui_begin_overlay(const char *id, float x, float y)
+bool gui_begin_overlay(const char *id, float x, float y, bool bottom)
 {
-    ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_Always);
+    ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_Always, ImVec2(0.0f, bottom ? 1.0f : 0.0f));
     ImGui::SetNextWindowBgAlpha(0.6f);
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
@@ -179,9 +187,9 @@ void gui_text_colored(float r, float g, float b, const char *fmt, ...)
     va_end(ap);
 }
 
-void gui_tooltip(const char *text)
+// A tooltip now, whatever is hovered.
+static void tooltip_now(const char *text)
 {
-    if (!text || !*text || !ImGui::IsItemHovered()) return;
     // Wrapped at 35 em, and never wider than the window, so a small window shows it whole.
     const float em = ImGui::GetFontSize();
     const float wrap = fminf(35.0f * em, ImGui::GetIO().DisplaySize.x - 2.0f * em);
@@ -190,6 +198,12 @@ void gui_tooltip(const char *text)
     ImGui::TextUnformatted(text);
     ImGui::PopTextWrapPos();
     ImGui::EndTooltip();
+}
+
+void gui_tooltip(const char *text)
+{
+    if (!text || !*text || !ImGui::IsItemHovered()) return;
+    tooltip_now(text);
 }
 
 bool gui_combo(const char *label, int *index, const char *const *items, int count)
@@ -221,6 +235,33 @@ bool gui_begin_table(const char *id, int columns, const char *const *headers)
     if (!ImGui::BeginTable(id, columns, flags)) return false;
     for (int i = 0; i < columns; ++i) ImGui::TableSetupColumn(headers[i]);
     ImGui::TableHeadersRow();
+    return true;
+}
+
+bool gui_begin_wide_table(const char *id, int columns, const gui_column *cols, int rows)
+{
+    const ImGuiStyle &style = ImGui::GetStyle();
+    // Its own height: the header and the rows, the horizontal scroll bar and the borders; a child
+    // window of height 0 would take the panel's whole remaining height instead.
+    const float row = ImGui::GetTextLineHeight() + 2.0f * style.CellPadding.y;
+    const float height = (float)(rows + 1) * row + style.ScrollbarSize + 2.0f;
+    const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit |
+                                  ImGuiTableFlags_ScrollX;
+    if (!ImGui::BeginTable(id, columns, flags, ImVec2(0.0f, height))) return false;
+    ImGui::TableSetupScrollFreeze(1, 1); // the name column and the header stay
+    for (int i = 0; i < columns; ++i) ImGui::TableSetupColumn(cols[i].label, ImGuiTableColumnFlags_NoHide);
+    // The header row by hand, for each header's colour and tooltip (TableHeadersRow has neither).
+    ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+    for (int i = 0; i < columns; ++i) {
+        if (!ImGui::TableSetColumnIndex(i)) continue;
+        const bool tinted = cols[i].rgb[0] > 0.0f || cols[i].rgb[1] > 0.0f || cols[i].rgb[2] > 0.0f;
+        if (tinted) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(cols[i].rgb[0], cols[i].rgb[1], cols[i].rgb[2], 1.0f));
+        ImGui::PushID(i);
+        ImGui::TableHeader(cols[i].label);
+        ImGui::PopID();
+        if (tinted) ImGui::PopStyleColor();
+        if (cols[i].tip && ImGui::IsItemHovered()) tooltip_now(cols[i].tip);
+    }
     return true;
 }
 

@@ -40,18 +40,21 @@ void gui_render(void);
 bool gui_wants_mouse(void);
 bool gui_wants_keyboard(void);
 
-/* A window at (x, y) of size (w, h) on first use, and again whenever `place` is true (the
- * framebuffer changed size); returns whether it is expanded (its title bar collapses it). Always
- * pair with gui_end. */
-bool gui_begin(const char *title, float x, float y, float w, float h, bool place);
+/* A window docked at the right edge of a display_w x display_h display: the full height, *width
+ * wide; its left edge drags it wider or narrower within [min_width, max_width], and *width gets
+ * the width it has after this frame's input. It neither moves nor collapses. Returns whether its
+ * contents show; always pair with gui_end. */
+bool gui_begin_docked(const char *title, float display_w, float display_h, float *width, float min_width,
+                      float max_width);
 /* Widgets this wide until the pop (negative: the content width minus that much, which is left to
  * the labels). */
 void gui_push_item_width(float w);
 void gui_pop_item_width(void);
 /* A bar filled to fraction (0..1) with text on it. */
 void gui_progress(float fraction, const char *text);
-/* A small undecorated overlay at (x, y) that takes no input (FPS, camera, messages). */
-bool gui_begin_overlay(const char *id, float x, float y);
+/* A small undecorated overlay that takes no input (FPS, camera, messages), its top-left corner at
+ * (x, y), or its bottom-left corner with `bottom`. */
+bool gui_begin_overlay(const char *id, float x, float y, bool bottom);
 void gui_end(void);
 /* Text (lines split by \n) on a dark box whose bottom-left corner is at (x, y), behind every
  * window (the panel and the overlay cover it), in colour r, g, b. */
@@ -78,6 +81,17 @@ void gui_pop_id(void);
 
 /* Tables: gui_begin_table, then per row gui_table_row and one gui_table_cell per column. */
 bool gui_begin_table(const char *id, int columns, const char *const *headers);
+/* A column of gui_begin_wide_table: its header, what it shows when hovered (NULL: nothing) and the
+ * header's colour (all 0: the style's). */
+typedef struct gui_column {
+    const char *label;
+    const char *tip;
+    float rgb[3];
+} gui_column;
+/* A table for more columns than the window may be wide: the first column stays in place while the
+ * others scroll sideways (a scroll bar below, when they do not fit), as a profiler's name column
+ * does; `rows` body rows, which set its height (no vertical scrolling inside). */
+bool gui_begin_wide_table(const char *id, int columns, const gui_column *cols, int rows);
 void gui_table_row(void);
 void gui_table_cell(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void gui_end_table(void);

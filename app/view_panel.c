@@ -87,7 +87,7 @@ static void panel_guard(viewer *v)
 {
     static int last = 0;
     if (v->s.guard > 0) last = v->s.guard;
-    if (last == 0) last = ((v->fb_width > v->fb_height ? v->fb_width : v->fb_height) + 9) / 10;
+    if (last == 0) last = ((v->eye_width > v->eye_height ? v->eye_width : v->eye_height) + 9) / 10;
     bool on = v->s.guard > 0;
     if (gui_checkbox("guard band", &on)) {
         v->s.guard = on ? last : 0;
@@ -104,7 +104,7 @@ static void panel_guard(viewer *v)
         /* As the renderer rounds it (a multiple of 4 x the AO divisor, renderer.c ob_guard_pixels). */
         int step = 4 * (v->s.ao_divisor > 1 ? v->s.ao_divisor : 1);
         int used = (v->s.guard + step - 1) / step * step;
-        gui_text("AO chain at %dx%d (band %d px)", v->fb_width + 2 * used, v->fb_height + 2 * used, used);
+        gui_text("AO chain at %dx%d (band %d px)", v->eye_width + 2 * used, v->eye_height + 2 * used, used);
     }
 }
 
@@ -309,7 +309,7 @@ static void panel_display(viewer *v)
 /* The GUI's scale for a framebuffer: 1 (ImGui's 13 px font) up to 1280x720, growing with the
  * smaller of the two ratios beyond (1.5 at 1920x1080), in quarter steps so that a window being
  * dragged does not rebuild the font every frame. Never below 1: smaller text is unreadable, so
- * on a small window the panel gets a larger share of the width instead (view_panel_rect). */
+ * on a small window the panel gets a larger share of the width instead (panel_limits). */
 static float gui_scale_for(int w, int h)
 {
     float s = fminf((float)w / 1280.0f, (float)h / 720.0f);
@@ -317,17 +317,46 @@ static float gui_scale_for(int w, int h)
     return s < 1.0f ? 1.0f : s > 3.0f ? 3.0f : s;
 }
 
-/* The panel: 30 % of the width on the right, at least 270 px x scale (its labels' room), at most
- * half the window; the full height less a margin. */
-static void panel_rect(int w, int h, float scale, float r[4])
+/* The panel takes a column of the window instead of covering the picture; test mode has none, so
+ * that its timings are of the whole --size, as render's are. */
+static bool panel_shown(const viewer *v) { return v->gui_visible && !v->o.test_mode; }
+
+/* The panel's column: 30 % of the width, at least 340 px x scale (the labels' room, and the
+ * profiler's pass column with its first four times), at most half the window; dragged by its left
+ * edge, anywhere from 220 px x scale (or half the window, if less) to 60 % of it. */
+static void panel_limits(int w, float scale, float *lo, float *def, float *hi)
 {
-    float margin = 10.0f * scale;
-    float pw = fmaxf(0.3f * (float)w, 270.0f * scale);
-    pw = fminf(pw, 0.5f * (float)w);
-    r[0] = fmaxf((float)w - pw - margin, 0.0f);
-    r[1] = margin;
-    r[2] = pw;
-    r[3] = fmaxf((float)h - 2.0f * margin, 40.0f);
+    *hi = floorf(0.6f * (float)w);
+    *lo = floorf(fminf(220.0f * scale, 0.5f * (float)w));
+    *def = floorf(fminf(fmaxf(0.3f * (float)w, 340.0f * scale), 0.5f * (float)w));
+}
+
+void view_layout(viewer *v, int w, int h)
+{
+    float pw = 0.0f;
+    if (panel_shown(v)) {
+        float lo, def, hi;
+        panel_limits(w, gui_scale_for(w, h), &lo, &def, &hi);
+        pw = v->panel_dragged > 0.0f ? v->panel_dragged : def;
+        pw = pw < lo ? lo : pw > hi ? hi : pw;
+    }
+    v->panel_width = pw;
+    /* The picture keeps the window's shape (a panel shown or hidden does not change what the
+     * camera frames, only how large it shows), as large as the rest of the width allows,
+     * centred between bars above and below. */
+    int area = w - (int)pw;
+    area = area > 1 ? area : 1;
+    int ph = (int)lround((double)area * (double)h / (double)w);
+    ph = ph < 1 ? 1 : ph > h ? h : ph;
+    v->pic_x = 0;
+    v->pic_w = area;
+    v->pic_h = ph;
+    v->pic_y = (h - ph) / 2;
+}
+
+bool view_in_picture(const viewer *v, double x, double y)
+{
+    return x >= v->pic_x && x < v->pic_x + v->pic_w && y >= v->pic_y && y < v->pic_y + v->pic_h;
 }
 
 /* The switches a person reaches for most, above the sections: each has a key too. */
@@ -348,40 +377,46 @@ void build_gui(viewer *v)
     float scale = gui_scale_for(v->fb_width, v->fb_height);
     gui_set_scale(scale);
     gui_new_frame(v->events ? &v->script_mouse : NULL);
-    /* The panel follows the framebuffer when it changes size (or the scale does); between
-     * changes it stays where it was dragged. */
-    static int placed_w = 0, placed_h = 0;
-    bool place = placed_w != v->fb_width || placed_h != v->fb_height;
-    placed_w = v->fb_width;
-    placed_h = v->fb_height;
     view_reference_labels(v);
     if (v->gui_visible) {
-        /* The overlay: what a screenshot should say about itself (Puri 2024 §2.7). */
-        if (gui_begin_overlay("##overlay", 10.0f, 10.0f)) {
-            gui_text("%.1f FPS  %.1f ms   %dx%d", v->fps, v->last_frame_ms, v->fb_width, v->fb_height);
+        /* The overlay: what a screenshot should say about itself (Puri 2024 §2.7), on the bar above
+         * the picture, at its left; the lines that come and go (stereo, the reference, test mode,
+         * messages) on the bar below, so that neither grows over the picture. */
+        if (gui_begin_overlay("##overlay", (float)v->pic_x + 10.0f, 10.0f, false)) {
+            gui_text("%.1f FPS  %.1f ms   %dx%d", v->fps, v->last_frame_ms, v->pic_w, v->pic_h);
             gui_text("%s", ob_query_renderer(v->ctx));
             gui_text("%s  %s  %s%s", ob_query_scene_name(v->scene), ob_method_at(v->s.method)->name,
                      ob_view_name(v->view), v->camera_locked ? "  [camera locked]" : "");
             gui_text("camera %.2f %.2f %.2f  fov %.1f", (double)v->eye[0], (double)v->eye[1], (double)v->eye[2],
                      (double)v->fov);
-            if (v->stereo != VIEW_MONO)
-                gui_text("stereo %s, %dx%d per eye, ipd %.3g", view_stereo_names[v->stereo], v->eye_width,
-                         v->eye_height, (double)v->o.ipd);
-            view_reference_overlay(v);
-            if (v->test) test_overlay(v);
-            if (v->message[0] && v->clock < v->message_until) {
-                if (v->message_error) gui_text_colored(1.0f, 0.4f, 0.4f, "%s", v->message);
-                else gui_text_colored(0.6f, 1.0f, 0.6f, "%s", v->message);
-            }
         }
         gui_end();
-        float r[4];
-        panel_rect(v->fb_width, v->fb_height, scale, r);
-        if (gui_begin("Obscura", r[0], r[1], r[2], r[3], place)) {
+        const bool message = v->message[0] && v->clock < v->message_until;
+        if (v->stereo != VIEW_MONO || view_reference_has_status(v) || v->test || message) {
+            if (gui_begin_overlay("##status", (float)v->pic_x + 10.0f, (float)v->fb_height - 10.0f, true)) {
+                if (v->stereo != VIEW_MONO)
+                    gui_text("stereo %s, %dx%d per eye, ipd %.3g", view_stereo_names[v->stereo], v->eye_width,
+                             v->eye_height, (double)v->o.ipd);
+                view_reference_overlay(v);
+                if (v->test) test_overlay(v);
+                if (message) {
+                    if (v->message_error) gui_text_colored(1.0f, 0.4f, 0.4f, "%s", v->message);
+                    else gui_text_colored(0.6f, 1.0f, 0.6f, "%s", v->message);
+                }
+            }
+            gui_end();
+        }
+    }
+    if (panel_shown(v)) {
+        /* The panel fills the column view_layout left it; a drag of its left edge sets the next
+         * frame's layout (the picture follows one frame later). */
+        float lo, def, hi, width = v->panel_width;
+        panel_limits(v->fb_width, scale, &lo, &def, &hi);
+        if (gui_begin_docked("Obscura", (float)v->fb_width, (float)v->fb_height, &width, lo, hi)) {
             /* Widgets take what the labels leave: 40 % of the panel for a label, at least 150 px x
              * scale (21 characters, e.g. "sigma_plane (x depth)"), at most 55 %. */
-            gui_push_item_width(-fminf(fmaxf(150.0f * scale, 0.4f * r[2]), 0.55f * r[2]));
-            panel_switches(v, r[2], scale);
+            gui_push_item_width(-fminf(fmaxf(150.0f * scale, 0.4f * width), 0.55f * width));
+            panel_switches(v, width, scale);
             /* Stereo opens with the profiler and the stereo control in view, the method closed. */
             if (gui_header("Method and filter", v->stereo == VIEW_MONO)) panel_method(v);
             if (gui_header("Reference", view_reference_on(v))) panel_reference(v);
@@ -391,12 +426,14 @@ void build_gui(viewer *v)
             if (gui_header("Lights and shadows", false)) panel_lights(v);
             if (gui_header("HDR", false)) panel_hdr(v);
             if (gui_header("Keys", false))
-                gui_text("WASD move, Q/E down/up, Shift faster\nright mouse: look, scroll: zoom\n1-9, Tab: "
-                         "camera presets, L: lock camera\nM: method, V: view, F1/H: panel\nG: reference view, "
-                         "X: textures, T: temporal\nF3: vsync, P/F12: screenshot\nR: reload shaders, Esc: quit");
+                gui_text("WASD move, Q/E down/up, Shift faster\nright mouse: look, scroll: zoom\n(on the "
+                         "picture)\n1-9, Tab: camera presets, L: lock camera\nM: method, V: view, F1/H: panel\n"
+                         "G: reference view, X: textures, T: temporal\nF3: vsync, P/F12: screenshot\nR: reload "
+                         "shaders, Esc: quit\ndrag the panel's left edge to widen it");
             gui_pop_item_width();
         }
         gui_end();
+        if (fabsf(width - v->panel_width) >= 1.0f) v->panel_dragged = width;
     }
     gui_render();
 }

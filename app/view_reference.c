@@ -1,7 +1,7 @@
 /* obscura view's reference view (G, issue 20): the ground truth beside the method. The Embree
  * AO_R (docs/architecture.md: cosine-weighted rays from the very G-buffer points the method sees, ending at
  * R) of the current camera, the method's AO, their signed error and the current view, in four
- * panes of half the window each way, with the RMSE over the geometry pixels.
+ * panes of half the picture each way (beside the panel), with the RMSE over the geometry pixels.
  *
  * Why at the pane's size: the panes are what is shown, so tracing more pixels than that would be
  * time spent on pixels no one sees (450x300 on a 900x600 window: compare traced Cornell's in 4.8 s
@@ -246,7 +246,7 @@ static void pane_size(int w, int h, int *pw, int *ph)
 static void start(viewer *v, view_reference *R)
 {
     int pw = 0, ph = 0;
-    pane_size(v->fb_width, v->fb_height, &pw, &ph);
+    pane_size(v->pic_w, v->pic_h, &pw, &ph);
     ob_camera cam = current_camera(v);
     float radius = view_ao_radius(v);
     int spp = ref_spp_choices[R->spp_choice];
@@ -436,29 +436,27 @@ static void blit(view_reference *R, int k, int x, int y, int w, int h)
 }
 
 /* After a failure of the view's own (not a setting the renderer refuses): the view goes off and
- * this frame shows the background; the next one is the normal view. */
-static bool turn_off(view_reference *R, int w, int h)
+ * this frame shows the background (view.c cleared the window); the next one is the normal view. */
+static bool turn_off(view_reference *R)
 {
     stop_job(R);
     R->on = false;
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, w, h);
-    glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
     return true;
 }
 
-bool view_reference_frame(viewer *v, int w, int h)
+bool view_reference_frame(viewer *v)
 {
     view_reference *R = v->ref;
     poll_job(v, R);
+    /* The picture's rectangle, GL's origin bottom left. */
+    const int x = v->pic_x, y = v->fb_height - v->pic_y - v->pic_h, w = v->pic_w, h = v->pic_h;
     int pw = 0, ph = 0;
     pane_size(w, h, &pw, &ph);
     const char *msg = "";
     if (!fit_renderer(v, R, pw, ph)) {
         ob_get_error(&msg);
         say(v, true, "reference view: no %dx%d renderer, turned off: %s", pw, ph, msg);
-        return turn_off(R, w, h);
+        return turn_off(R);
     }
     ob_camera cam = current_camera(v);
     if (ob_render_frame(R->r, &cam, &v->s) != OB_OK) return false;
@@ -471,7 +469,7 @@ bool view_reference_frame(viewer *v, int w, int h)
         if (m) R->live_mask = m;
         if (!m) {
             say(v, true, "reference view: out of memory, turned off");
-            return turn_off(R, w, h);
+            return turn_off(R);
         }
         R->ao_cap = px;
     }
@@ -486,7 +484,7 @@ bool view_reference_frame(viewer *v, int w, int h)
     uint8_t *rgb = scratch_bytes(R, px * 3);
     if (!rgb) {
         say(v, true, "reference view: out of memory, turned off");
-        return turn_off(R, w, h);
+        return turn_off(R);
     }
     grey(R->ao, R->live_mask, px, rgb);
     upload(R, 0, rgb, pw, ph);
@@ -514,22 +512,25 @@ bool view_reference_frame(viewer *v, int w, int h)
         if (ob_error_heatmap(R->ao, R->ref, R->mask, pw, ph, false, REF_ERROR_RANGE, rgb) == OB_OK)
             upload(R, 2, rgb, pw, ph);
     }
-    /* Panes, GL's origin bottom left: method | reference over error | view. */
+    /* Panes in the picture's rectangle, GL's origin bottom left: method | reference over error |
+     * view. Its background first: a pane not there yet (no reference) shows it. */
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, w, h);
+    glViewport(0, 0, v->fb_width, v->fb_height);
+    glEnable(GL_SCISSOR_TEST);
     glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+    glScissor(x, y, w, h);
     glClear(GL_COLOR_BUFFER_BIT);
-    blit(R, 0, 0, h - ph, pw, ph);
-    if (R->have) blit(R, 1, pw, h - ph, pw, ph);
-    if (R->have && R->tex[2]) blit(R, 2, 0, h - 2 * ph, pw, ph);
-    bool ok = ob_present(R->r, v->view, 0, pw, h - 2 * ph, pw, ph) == OB_OK;
+    glDisable(GL_SCISSOR_TEST);
+    blit(R, 0, x, y + h - ph, pw, ph);
+    if (R->have) blit(R, 1, x + pw, y + h - ph, pw, ph);
+    if (R->have && R->tex[2]) blit(R, 2, x, y + h - 2 * ph, pw, ph);
+    bool ok = ob_present(R->r, v->view, 0, x + pw, y + h - 2 * ph, pw, ph) == OB_OK;
     /* A 2 px seam between the panes: white open surfaces would otherwise run into each other. */
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glEnable(GL_SCISSOR_TEST);
-    glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
-    glScissor(pw - 1, 0, 2, h);
+    glScissor(x + pw - 1, y, 2, h);
     glClear(GL_COLOR_BUFFER_BIT);
-    glScissor(0, h - ph - 1, w, 2);
+    glScissor(x, y + h - ph - 1, w, 2);
     glClear(GL_COLOR_BUFFER_BIT);
     glDisable(GL_SCISSOR_TEST);
     return ok;
@@ -547,9 +548,10 @@ void view_reference_labels(viewer *v)
     view_reference *R = v->ref;
     if (!R || !R->on) return;
     int pw = 0, ph = 0;
-    pane_size(v->fb_width, v->fb_height, &pw, &ph);
-    /* At each pane's bottom left: the overlay and the panel sit at the top. */
-    const float gap = 4.0f, top = (float)ph - gap, bottom = (float)(2 * ph) - gap, left = gap, right = (float)pw + gap;
+    pane_size(v->pic_w, v->pic_h, &pw, &ph);
+    /* At each pane's bottom left (window pixels from the top left): the overlay sits at the top. */
+    const float gap = 4.0f, top = (float)(v->pic_y + ph) - gap, bottom = (float)(v->pic_y + 2 * ph) - gap,
+                left = (float)v->pic_x + gap, right = (float)(v->pic_x + pw) + gap;
     gui_label(left, top, 1.0f, 1.0f, 1.0f, "method: %s, AO after the filter\ngraded at R = %.4g",
               ob_method_at(v->s.method)->name, (double)view_ao_radius(v));
     char text[160];
@@ -573,6 +575,12 @@ void view_reference_labels(viewer *v)
     gui_label(right, bottom, 1.0f, 1.0f, 1.0f, "view: %s", ob_view_name(v->view));
 }
 
+bool view_reference_has_status(const viewer *v)
+{
+    const view_reference *R = v->ref;
+    return R && (R->job || (R->on && R->measured));
+}
+
 void view_reference_overlay(const viewer *v)
 {
     const view_reference *R = v->ref;
@@ -593,7 +601,7 @@ void panel_reference(viewer *v)
     bool on = R->on;
     if (gui_checkbox("reference view (G)", &on)) view_reference_toggle(v);
     gui_tooltip("the Embree ground truth AO_R of this camera beside the method's AO, their signed error and the "
-                "current view, at half the window each way; cached, so a camera traced before is instant");
+                "current view, at half the picture each way; cached, so a camera traced before is instant");
     if (gui_combo("rays per pixel", &R->spp_choice, ref_spp_names, REF_SPP_COUNT) && R->on) start(v, R);
     gui_tooltip("512: compare's default, mean standard error under 0.01; fewer trace faster and noisier");
     if (R->on && !R->job && (!R->have || !R->fresh) && gui_button("trace this camera")) start(v, R);

@@ -235,7 +235,7 @@ void script_screenshot(viewer *v, bool with_ui)
     event_kind want = with_ui ? EV_SCREENSHOT_UI : EV_SCREENSHOT;
     while (v->next_event < v->event_count && v->events[v->next_event].kind == want &&
            v->events[v->next_event].t <= v->clock + 1e-9) {
-        save_screenshot(v, v->events[v->next_event].arg);
+        save_screenshot(v, v->events[v->next_event].arg, !with_ui);
         ++v->next_event;
     }
 }

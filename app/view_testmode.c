@@ -1,7 +1,8 @@
 /* obscura view --test-mode (Puri 2024 §3.5): every camera preset x every method, each slot timed
  * for --seconds and repeated --cycles times: a table on stdout (a camera's row as soon as its last
- * cycle is measured), progress on stderr (base/progress.h), then a CSV log (one row
- * per camera x method, ms per pass in frame order) and one screenshot per slot. */
+ * cycle is measured), progress on stderr (base/progress.h), then a CSV log (one row per camera x
+ * method: GPU ms per pass in frame order, the stereo columns, then CPU ms per pass) and one
+ * screenshot per slot. The window is all picture: test mode shows no panel (view_layout). */
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
@@ -13,16 +14,20 @@
 #include "view.h"
 #include "view_gui.h"
 
-/* The passes the renderer can time, in frame order: the CSV's columns. */
-static const char *const pass_order[] = {"shadow", "gbuffer", "lighting", "downsample", "edges", "depth_mips", "ao",
-                                         "filter", "upsample", "compose", "luminance", "bloom", "tonemap"};
+/* The passes the renderer can time, in frame order (temporal where it runs by default, before the
+ * filter): the CSV's columns, GPU times and then CPU times. */
+static const char *const pass_order[] = {"shadow",     "gbuffer", "lighting", "extra_view", "second_layer",
+                                         "downsample", "edges",   "depth_mips", "ao",       "temporal",
+                                         "filter",     "upsample", "compose",   "luminance", "bloom",
+                                         "tonemap"};
 enum { PASS_ORDER_COUNT = sizeof pass_order / sizeof pass_order[0] };
 
 typedef struct test_cell {
     double fps[MAX_CYCLES];
     long frames;
     double seconds;
-    double pass_ms[PASS_ORDER_COUNT]; /* sums over every measured frame */
+    double pass_ms[PASS_ORDER_COUNT];  /* GPU: sums over every measured frame */
+    double pass_cpu[PASS_ORDER_COUNT]; /* CPU issuing it: the same */
     long pass_calls[PASS_ORDER_COUNT];
     double eye_ms[2];                  /* stereo: each eye's GPU sum of passes, summed over frames */
     long eye_frames;
@@ -74,7 +79,7 @@ int test_finish(viewer *v)
     test_run *t = v->test;
     ob_progress_end(&t->bar);
     if (!t->done) return cli_fail(EXIT_RUNTIME, "test mode stopped before the end: no log written");
-    size_t cap = 4096 + (size_t)t->camera_count * (size_t)t->method_count * 512;
+    size_t cap = 4096 + (size_t)t->camera_count * (size_t)t->method_count * 1024;
     char *csv = malloc(cap);
     if (!csv) return cli_fail(EXIT_RUNTIME, "out of memory writing the log");
     size_t n = 0;
@@ -82,7 +87,11 @@ int test_finish(viewer *v)
     for (int p = 0; p < PASS_ORDER_COUNT; ++p) n += (size_t)snprintf(csv + n, cap - n, ",%s_ms", pass_order[p]);
     /* Stereo (Belonogov 2018 §5.2): the pass columns above are both eyes summed; these are each eye's
      * GPU sum, both, and whether both fit the 11.1 ms of 90 Hz (empty in mono). */
-    n += (size_t)snprintf(csv + n, cap - n, ",stereo,left_gpu_ms,right_gpu_ms,stereo_gpu_ms,within_90hz\n");
+    n += (size_t)snprintf(csv + n, cap - n, ",stereo,left_gpu_ms,right_gpu_ms,stereo_gpu_ms,within_90hz");
+    /* Each pass's CPU time, the viewer's thread issuing it (the processor's tab of the profiler in
+     * Belonogov 2018, Fig. 5.1), in the same order. */
+    for (int p = 0; p < PASS_ORDER_COUNT; ++p) n += (size_t)snprintf(csv + n, cap - n, ",%s_cpu_ms", pass_order[p]);
+    n += (size_t)snprintf(csv + n, cap - n, "\n");
     /* The table's rows went to stdout as each camera finished (print_row). */
     for (int c = 0; c < t->camera_count; ++c) {
         ob_camera cam = ob_query_camera(v->scene, c);
@@ -96,7 +105,7 @@ int test_finish(viewer *v)
             double fps = cell->seconds > 0.0 ? (double)cell->frames / cell->seconds : 0.0;
             n += (size_t)snprintf(csv + n, cap - n, "%s,%s,%s,%d,%d,%d,%ld,%.4f,%.3f,%.3f,%.3f,%.3f",
                                   ob_query_scene_name(v->scene), cam.name, ob_method_at(t->methods[m])->name,
-                                  v->fb_width, v->fb_height, v->o.cycles, cell->frames, cell->seconds, fps, lo, hi,
+                                  v->pic_w, v->pic_h, v->o.cycles, cell->frames, cell->seconds, fps, lo, hi,
                                   cell->frames > 0 ? 1000.0 * cell->seconds / (double)cell->frames : 0.0);
             for (int p = 0; p < PASS_ORDER_COUNT; ++p) {
                 if (cell->pass_calls[p] > 0)
@@ -106,11 +115,18 @@ int test_finish(viewer *v)
             }
             if (cell->eye_frames > 0) {
                 double l = cell->eye_ms[0] / (double)cell->eye_frames, r = cell->eye_ms[1] / (double)cell->eye_frames;
-                n += (size_t)snprintf(csv + n, cap - n, ",%s,%.4f,%.4f,%.4f,%d\n", view_stereo_names[v->stereo], l, r,
+                n += (size_t)snprintf(csv + n, cap - n, ",%s,%.4f,%.4f,%.4f,%d", view_stereo_names[v->stereo], l, r,
                                       l + r, l + r <= VIEW_VR_BUDGET_MS);
             } else {
-                n += (size_t)snprintf(csv + n, cap - n, ",mono,,,,\n");
+                n += (size_t)snprintf(csv + n, cap - n, ",mono,,,,");
             }
+            for (int p = 0; p < PASS_ORDER_COUNT; ++p) {
+                if (cell->pass_calls[p] > 0)
+                    n += (size_t)snprintf(csv + n, cap - n, ",%.4f", cell->pass_cpu[p] / (double)cell->pass_calls[p]);
+                else
+                    n += (size_t)snprintf(csv + n, cap - n, ",");
+            }
+            n += (size_t)snprintf(csv + n, cap - n, "\n");
         }
     }
     int code = EXIT_OK;
@@ -125,7 +141,7 @@ static void print_header(const viewer *v)
 {
     const test_run *t = v->test;
     printf("obscura view --test-mode: %s, %dx%d, %d cycle(s) of %.2f s per camera x method, %s\n",
-           ob_query_scene_name(v->scene), v->fb_width, v->fb_height, v->o.cycles, (double)v->o.seconds,
+           ob_query_scene_name(v->scene), v->pic_w, v->pic_h, v->o.cycles, (double)v->o.seconds,
            ob_query_renderer(v->ctx));
     if (v->stereo != VIEW_MONO)
         printf("stereo %s, %dx%d per eye: FPS (both eyes' GPU ms, * = over the 11.1 ms of 90 Hz)\n",
@@ -169,6 +185,7 @@ static void count_timings(viewer *v, test_cell *cell, bool wait)
         int col = pass_column(timings[i].name);
         if (col < 0) continue;
         cell->pass_ms[col] += timings[i].ms;
+        cell->pass_cpu[col] += timings[i].cpu_ms;
         ++cell->pass_calls[col];
     }
     if (v->stereo != VIEW_MONO) {

@@ -1,8 +1,10 @@
 /* The per-pass GPU timers (src/gpu/timer.c) through the public API: a ring of query sets read a
  * few frames late. Structure and consistency only, never speed: timings arrive after a few frames
  * without ob_wait_timings, they name the frame they describe, every pass that ran in that frame is
- * there once with a time >= 0, a pass that did not run (cached shadow maps) is absent, and no
- * frame's passes add up to more than the wall-clock time from its submission to its completion. */
+ * there once with a time >= 0 and a CPU time > 0, a pass that did not run (cached shadow maps) is
+ * absent, no frame's passes (GPU or CPU times) add up to more than the wall-clock time from its
+ * submission to its completion, and a framebuffer with a size bound (a window's, as in obscura
+ * view) does not shift the times. */
 #include <math.h>
 #include <string.h>
 #include <time.h>
@@ -36,6 +38,8 @@ static void check_set(const ob_pass_timing *t, int n, const char *what)
     double sum = 0.0;
     for (int i = 0; i < n; ++i) {
         CHECK(isfinite(t[i].ms) && t[i].ms >= 0.0, "%s: %s %.6g ms", what, t[i].name, t[i].ms);
+        CHECK(isfinite(t[i].cpu_ms) && t[i].cpu_ms > 0.0, "%s: %s took %.6g ms of CPU to issue", what, t[i].name,
+              t[i].cpu_ms);
         CHECK(find(t, n, t[i].name) == 1, "%s: %s listed once", what, t[i].name);
         sum += t[i].ms;
     }
@@ -99,9 +103,11 @@ static void test_present_passes(ob_context *ctx, const ob_settings *base)
         CHECK(find(t, n, "shadow") == (f == 0), "frame %d: shadow %s", f, f == 0 ? "rendered" : "cached, absent");
         /* The passes run one after another between the call and the wait's return: their sum
          * cannot exceed that span (5 % and 1 ms for the two clocks' rounding). */
-        double sum = 0.0;
-        for (int i = 0; i < n; ++i) sum += t[i].ms;
+        double sum = 0.0, cpu = 0.0;
+        for (int i = 0; i < n; ++i) sum += t[i].ms, cpu += t[i].cpu_ms;
         CHECK(sum <= 1.05 * wall + 1.0, "frame %d: passes %.3f ms in a %.3f ms frame", f, sum, wall);
+        /* The CPU times are spans of the same call on the same clock: within it with no rounding. */
+        CHECK(cpu <= wall, "frame %d: passes issued in %.3f ms of CPU in a %.3f ms frame", f, cpu, wall);
     }
     ob_destroy_renderer(r);
 }
@@ -130,6 +136,91 @@ static void test_timer_set(void)
     ob_timers_destroy(&t);
 }
 
+/* A compute pass that keeps the device busy for a while: every invocation a long dependent chain
+ * of arithmetic, its result stored so that nothing is optimised away. */
+static GLuint busy_program(void)
+{
+    static const char *const src = "#version 450 core\n"
+                                   "layout(local_size_x = 64) in;\n"
+                                   "layout(std430, binding = 0) buffer Out { float v[]; };\n"
+                                   "uniform int steps;\n"
+                                   "void main() {\n"
+                                   "    float x = float(gl_GlobalInvocationID.x);\n"
+                                   "    for (int i = 0; i < steps; ++i) x = fract(x * 1.0001 + 0.37);\n"
+                                   "    v[gl_GlobalInvocationID.x] = x;\n"
+                                   "}\n";
+    GLuint p = glCreateShaderProgramv(GL_COMPUTE_SHADER, 1, &src);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        glDeleteProgram(p);
+        return 0;
+    }
+    return p;
+}
+
+/* The timers with a framebuffer that has a size bound, as a window's is whenever obscura view
+ * renders (in a surfaceless context, framebuffer 0 has none). Mesa's llvmpipe then takes a
+ * timestamp only when its rasteriser runs the tile bins, at the next flush, while a compute
+ * dispatch runs at once: the pass after a stamp ran before the stamp was taken, and the frame's
+ * last pass, whose two stamps were both taken at the flush after it, read 0.000 ms (tonemap in the
+ * viewer). Each pass's time must cover its own dispatch: on llvmpipe the dispatch call returns
+ * when the work is done, so its wall time is the work's. */
+static void test_sized_framebuffer(bool software)
+{
+    GLuint prog = busy_program();
+    CHECK(prog != 0, "the busy compute program links");
+    if (!prog) return;
+    GLuint out = 0, tex = 0, fbo = 0;
+    glCreateBuffers(1, &out);
+    glNamedBufferData(out, 4096 * sizeof(float), NULL, GL_DYNAMIC_COPY);
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, GL_RGBA8, 512, 512);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, 512, 512);
+    glClearColor(0.2f, 0.3f, 0.4f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT); /* the driver now draws into it, as into a window after a present */
+    glUseProgram(prog);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out);
+    glUniform1i(glGetUniformLocation(prog, "steps"), 20000);
+    static const char *const names[] = {"first", "second", "last"};
+    double wall[3] = {0.0, 0.0, 0.0};
+    ob_timer_set t;
+    ob_timers_init(&t);
+    ob_timers_frame_begin(&t);
+    for (int i = 0; i < 3; ++i) {
+        ob_timer_begin(&t, names[i]);
+        const double t0 = now_ms();
+        glDispatchCompute(4096 / 64, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); /* as every pass of the frame ends */
+        wall[i] = now_ms() - t0;
+    }
+    ob_timers_frame_end(&t);
+    ob_timers_wait(&t);
+    CHECK(t.count == 3, "three passes timed, got %d", t.count);
+    for (int i = 0; i < t.count && i < 3; ++i) {
+        /* A GPU returns from the dispatch at once (wall ~0): only a wall time long enough to be the
+         * work itself says what the pass must at least read. */
+        const double least = wall[i] >= 2.0 ? 0.5 * wall[i] : 0.0;
+        CHECK(t.ms[i] > 0.0 && t.ms[i] >= least, "framebuffer with a size bound: %s reads %.3f ms, its dispatch "
+              "took %.3f ms of wall time", t.names[i], t.ms[i], wall[i]);
+        /* The CPU time is the issuing of the dispatch and its barrier: within their wall time, and on a
+         * software rasteriser, which runs the dispatch in the call, most of it. */
+        CHECK(t.cpu_ms[i] > 0.0 && t.cpu_ms[i] <= wall[i] + 0.05 && (!software || t.cpu_ms[i] >= 0.5 * wall[i]),
+              "%s: %.3f ms of CPU to issue a dispatch of %.3f ms wall time (%s)", t.names[i], t.cpu_ms[i], wall[i],
+              software ? "software" : "GPU");
+    }
+    ob_timers_destroy(&t);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glUseProgram(0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &tex);
+    glDeleteBuffers(1, &out);
+    glDeleteProgram(prog);
+}
+
 int main(void)
 {
     CHECK(ob_wait_timings(NULL) == OB_ERR_INVALID_ARGUMENT, "ob_wait_timings(NULL) refused");
@@ -145,6 +236,7 @@ int main(void)
     test_timer_set();
     test_ring(ctx, &s);
     test_present_passes(ctx, &s);
+    test_sized_framebuffer(ob_query_is_software(ctx));
     ob_destroy_scene(scene);
     ob_destroy_context(ctx);
     return check_finish("test_timers");

@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # obscura view under Xvfb (Debian's xvfb; Mesa's llvmpipe through GLX): the viewer starts and
-# renders, its screenshot is not blank and shows the panel, a scripted run moves the camera and
-# switches methods (the frames differ accordingly), test mode writes one CSV row and one
-# screenshot per camera x method, the reference view shows its panes (and comes from the cache
-# the second time), `screenshot` leaves the panel out where `screenshot_ui` keeps it, a scripted
-# click reaches the panel, no screenshots/ appears unless a screenshot goes there, and bad input
-# or a closed window exits cleanly.
+# renders, its screenshot is not blank and shows the panel in a column of its own beside the
+# picture (which keeps the window's shape, letterboxed) at 640x360, 1024x768, 1280x720 and
+# 1600x900, a scripted run moves the camera and switches methods (the frames differ accordingly),
+# the mouse works the camera on the picture only, test mode writes one CSV row and one screenshot
+# per camera x method with a GPU and a CPU time above 0 for every pass that ran, the reference
+# view shows its panes in the picture's place (and comes from the cache the second time),
+# `screenshot` is the picture alone where `screenshot_ui` is the window, a scripted click reaches
+# the panel, no screenshots/ appears unless a screenshot goes there, and bad input or a closed
+# window exits cleanly.
 set -u
 OBSCURA=$1
 IMGCHECK=$2
@@ -29,8 +32,9 @@ gt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a > b) }'; }
 lt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a < b) }'; }
 
 # ---- a scripted run: panel, camera movement, method switch, debug view ------------------------
-# 640x360: the panel (270 px wide, on the right) and the image (left) both have room. The clock
-# advances 1/30 s per frame, so W held for 0.5 s is 15 frames of movement on any machine.
+# 640x360: the panel takes the right half (x 320..640, its widest share), the picture the left,
+# 320x180 at y 90 with bars above and below; F1 hides the panel and the picture takes the window.
+# The clock advances 1/30 s per frame, so W held for 0.5 s is 15 frames of movement on any machine.
 cat >"$dir/walk.txt" <<EOF
 # time  event
 0.0   screenshot_ui $dir/gui.png
@@ -60,16 +64,17 @@ if [ -f "$dir/start.png" ]; then
     if [ "$w" = 640 ] && [ "$h" = 360 ]; then ok; else bad "screenshot is ${w}x$h, want 640x360"; fi
 fi
 if [ -f "$dir/gui.png" ] && [ -f "$dir/start.png" ]; then
-    # The panel covers the right side (x 360..630): with it the region is ImGui's dark window
-    # and differs from the same region without it; the image's left edge, outside the panel and
-    # the overlay, stays the same.
+    # The panel's column (x 320..640): with it the region is ImGui's dark window and differs from
+    # the same region without it (the picture is there then).
     read -r _ _ panel_mean _ < <("$IMGCHECK" region 370 60 250 250 "$dir/gui.png")
     read -r _ _ bare_mean _ < <("$IMGCHECK" region 370 60 250 250 "$dir/start.png")
     if lt "$panel_mean" 90 && gt "$(awk -v a="$bare_mean" -v b="$panel_mean" 'BEGIN { print a - b }')" 30; then ok
     else bad "no panel: the right side's mean is $panel_mean with the GUI and $bare_mean without"; fi
-    "$IMGCHECK" region 0 300 200 60 "$dir/gui.png" >"$dir/l1"
-    "$IMGCHECK" region 0 300 200 60 "$dir/start.png" >"$dir/l2"
-    if cmp -s "$dir/l1" "$dir/l2"; then ok; else bad "the image under the panel changed: $(cat "$dir/l1") vs $(cat "$dir/l2")"; fi
+    # Beside it the picture, 320x180 at y 90 (the window's shape), between flat bars.
+    read -r _ _ _ pic_sd < <("$IMGCHECK" region 0 100 320 160 "$dir/gui.png")
+    read -r bar_lo bar_hi _ bar_sd < <("$IMGCHECK" region 0 280 320 80 "$dir/gui.png")
+    if gt "$pic_sd" 20 && lt "$bar_sd" 2 && lt "$bar_hi" 40; then ok
+    else bad "no letterboxed picture beside the panel: picture stddev $pic_sd, bar $bar_lo..$bar_hi (stddev $bar_sd)"; fi
 fi
 if [ -f "$dir/start.png" ] && [ -f "$dir/moved.png" ]; then
     d=$("$IMGCHECK" diff "$dir/start.png" "$dir/moved.png")
@@ -113,16 +118,77 @@ read -r w h _ < <("$IMGCHECK" "$dir/resized.png" 2>/dev/null)
 read -r _ _ _ sd < <("$IMGCHECK" region 0 0 240 200 "$dir/resized.png" 2>/dev/null)
 if [ "${w:-0}" = 240 ] && [ "${h:-0}" = 200 ] && gt "${sd:-0}" 5; then ok; else bad "resize: screenshot ${w:-?}x${h:-?}, stddev ${sd:-?}"; fi
 
+# ---- the mouse works the camera on the picture only ---------------------------------------------
+# 640x360 with the panel: the right button dragged and the wheel on the bar above the picture
+# (y < 90, under the overlay, which takes no input) leave the camera alone; dragged on the
+# picture, it looks. Then the panel's left edge (x 320) dragged to x 400 narrows the panel, and
+# the picture widens to 400x225.
+cat >"$dir/mouse.txt" <<EOF
+0.0   screenshot $dir/mouse0.png
+0.05  move 100 40
+0.1   mouse right down
+0.15  move 300 40
+0.2   mouse right up
+0.25  scroll 5
+0.3   screenshot $dir/mouse1.png
+0.35  move 100 180
+0.4   mouse right down
+0.45  move 250 180
+0.5   mouse right up
+0.55  screenshot $dir/mouse2.png
+0.6   move 320 200
+0.65  mouse left down
+0.7   move 360 200
+0.75  move 400 200
+0.8   mouse left up
+0.9   screenshot $dir/dragged.png
+0.95  quit
+EOF
+if xrun 300 "$OBSCURA" view --scene corner --size 640x360 --script "$dir/mouse.txt" >/dev/null 2>"$dir/mouse.err"; then ok
+else bad "mouse run failed: $(tail -3 "$dir/mouse.err")"; fi
+if [ -f "$dir/mouse1.png" ] && ! gt "$("$IMGCHECK" diff "$dir/mouse0.png" "$dir/mouse1.png")" 1; then ok
+else bad "a drag or the wheel beside the picture moved the camera"; fi
+if [ -f "$dir/mouse2.png" ] && gt "$("$IMGCHECK" diff "$dir/mouse1.png" "$dir/mouse2.png")" 1; then ok
+else bad "a drag on the picture did not turn the camera"; fi
+read -r w h _ < <("$IMGCHECK" "$dir/dragged.png" 2>/dev/null)
+if [ "${w:-0}x${h:-0}" = 400x225 ]; then ok; else bad "dragging the panel's edge: the picture is ${w:-?}x${h:-?}, want 400x225"; fi
+
+# ---- the panel beside the picture at the usual window sizes -------------------------------------
+# The panel takes a column (at least 340 px at scale 1, 30 % of the width beyond, at most half),
+# the picture the rest with the window's shape: `screenshot` (the picture alone) is as wide as the
+# window less the panel, and the window shows that very picture (below the overlay's corner)
+# beside the panel's dark column.
+for size in 1024x768 1280x720 1600x900; do
+    W=${size%x*} H=${size#*x}
+    printf '0.1 screenshot %s\n0.1 screenshot_ui %s\n0.15 quit\n' "$dir/pic_$size.png" "$dir/win_$size.png" >"$dir/dock.txt"
+    if ! timeout 300 xvfb-run -a -s "-screen 0 1700x1000x24" "$OBSCURA" view --scene cornell --method ssao --size "$size" \
+        --script "$dir/dock.txt" >/dev/null 2>"$dir/dock.err"; then
+        bad "$size: the viewer failed: $(tail -3 "$dir/dock.err")"
+        continue
+    fi
+    read -r pw ph _ < <("$IMGCHECK" "$dir/pic_$size.png")
+    if [ $((W - pw)) -ge 340 ] && [ $((2 * pw)) -ge "$W" ] &&
+        [ "$(awk -v w="$W" -v h="$H" -v pw="$pw" -v ph="$ph" 'BEGIN { d = pw * h / w - ph; print (d < 1 && d > -1) }')" = 1 ]
+    then ok; else bad "$size: the picture is ${pw}x$ph"; fi
+    y0=$(((H - ph) / 2))
+    "$IMGCHECK" region 0 40 "$pw" $((ph - 40)) "$dir/pic_$size.png" >"$dir/p1"
+    "$IMGCHECK" region 0 $((y0 + 40)) "$pw" $((ph - 40)) "$dir/win_$size.png" >"$dir/p2"
+    if cmp -s "$dir/p1" "$dir/p2"; then ok
+    else bad "$size: the window's picture differs from the picture: $(cat "$dir/p2") vs $(cat "$dir/p1")"; fi
+    read -r _ _ col_mean _ < <("$IMGCHECK" region $((pw + 10)) 40 $((W - pw - 20)) $((H - 80)) "$dir/win_$size.png")
+    if lt "$col_mean" 90; then ok; else bad "$size: no panel beside the picture (the column's mean is $col_mean)"; fi
+done
+
 # ---- the reference view, screenshots with and without the panel, a scripted click --------------
 # The reference is cached under XDG_CACHE_HOME: here, so the run neither reads nor fills the user's.
-# The click: the panel's first control, "reference view (G)", sits at 640x360 at x 360 (640 - 270
-# - 10 margin) + 8 padding + 9 (half the 19 px box), y 10 + 19 title + 8 padding + 9 = (377, 46).
+# The click: the panel's first control, "reference view (G)", sits at 640x360 at x 320 (640 - 320,
+# the panel's column) + 8 padding + 9 (half the 19 px box), y 19 title + 8 padding + 9 = (337, 36).
 # The script's clock stands still while the reference is traced, so ref.png shows it finished.
 mkdir -p "$dir/cwd1" "$dir/cache"
 cat >"$dir/ref.txt" <<EOF
 0.0   screenshot $dir/plain.png
 0.0   screenshot_ui $dir/plain_ui.png
-0.1   move 377 46
+0.1   move 337 36
 0.2   mouse left down
 0.3   mouse left up
 0.5   screenshot $dir/ref.png
@@ -138,37 +204,41 @@ if grep -q "reference view on" "$dir/ref.err" && grep -q "reference: traced in" 
 else bad "the scripted click did not turn the reference view on: $(cat "$dir/ref.err")"; fi
 # ... and moving the camera makes the reference stale.
 if grep -q "reference: stale" "$dir/ref.err"; then ok; else bad "moving the camera did not mark the reference stale"; fi
-# The panes, each 320x180: the method's AO (top left), the reference (top right) and the signed
-# error (bottom left) each show the corner's walls (not one flat colour), the two AO panes agree
-# roughly (ssao against AO_R) while the error pane (white where they agree, grey sky) is another
-# image; the window-sized screenshot holds all four.
+# The panes, each 160x90, in the picture's 320x180 beside the panel: the method's AO (top left),
+# the reference (top right) and the signed error (bottom left) each show the corner's walls (not
+# one flat colour), the two AO panes agree roughly (ssao against AO_R) while the error pane (white
+# where they agree, grey sky) is another image; the picture-sized screenshot holds all four.
 if [ -f "$dir/ref.png" ]; then
     read -r w h _ < <("$IMGCHECK" "$dir/ref.png")
-    if [ "$w" = 640 ] && [ "$h" = 360 ]; then ok; else bad "reference screenshot is ${w}x$h, want 640x360"; fi
-    for pane in "method 0 0" "reference 320 0" "error 0 180" "view 320 180"; do
+    if [ "$w" = 320 ] && [ "$h" = 180 ]; then ok; else bad "reference screenshot is ${w}x$h, want the picture's 320x180"; fi
+    for pane in "method 0 0" "reference 160 0" "error 0 90" "view 160 90"; do
         set -- $pane
-        read -r lo hi _ sd < <("$IMGCHECK" region "$2" "$3" 320 180 "$dir/ref.png")
+        read -r lo hi _ sd < <("$IMGCHECK" region "$2" "$3" 160 90 "$dir/ref.png")
         if gt "$sd" 5 && gt "$hi" "$lo"; then ok; else bad "reference view: the $1 pane is flat (stddev $sd, $lo..$hi)"; fi
     done
-    read -r _ _ m_method _ < <("$IMGCHECK" region 0 0 320 180 "$dir/ref.png")
-    read -r _ _ m_ref _ < <("$IMGCHECK" region 320 0 320 180 "$dir/ref.png")
-    read -r _ _ m_err _ < <("$IMGCHECK" region 0 180 320 180 "$dir/ref.png")
+    read -r _ _ m_method _ < <("$IMGCHECK" region 0 0 160 90 "$dir/ref.png")
+    read -r _ _ m_ref _ < <("$IMGCHECK" region 160 0 160 90 "$dir/ref.png")
+    read -r _ _ m_err _ < <("$IMGCHECK" region 0 90 160 90 "$dir/ref.png")
     if lt "$(awk -v a="$m_method" -v b="$m_ref" 'BEGIN { d = a - b; print d < 0 ? -d : d }')" 10 &&
         gt "$(awk -v a="$m_err" -v b="$m_ref" 'BEGIN { d = a - b; print d < 0 ? -d : d }')" 20; then ok
     else bad "reference view panes: means method $m_method, reference $m_ref, error $m_err"; fi
 else
     bad "no reference screenshot"
 fi
-# `screenshot` is the image alone, `screenshot_ui` the window: the same frame, so they differ only
-# where the panel (x 360..630) and the overlay (top left) are drawn.
+# `screenshot` is the picture alone (320x180), `screenshot_ui` the window (640x360): the same
+# frame, so the window holds that very picture at y 90 (the overlay is on the bar above it), and
+# the panel beside it.
 if [ -f "$dir/plain.png" ] && [ -f "$dir/plain_ui.png" ]; then
-    "$IMGCHECK" region 0 200 350 160 "$dir/plain.png" >"$dir/r1"
-    "$IMGCHECK" region 0 200 350 160 "$dir/plain_ui.png" >"$dir/r2"
-    if cmp -s "$dir/r1" "$dir/r2"; then ok; else bad "outside the panel the two screenshots differ: $(cat "$dir/r1") vs $(cat "$dir/r2")"; fi
+    read -r w h _ < <("$IMGCHECK" "$dir/plain.png")
+    read -r uw uh _ < <("$IMGCHECK" "$dir/plain_ui.png")
+    if [ "$w x $h, $uw x $uh" = "320 x 180, 640 x 360" ]; then ok
+    else bad "screenshot ${w}x$h and screenshot_ui ${uw}x$uh, want the picture's 320x180 and the window's 640x360"; fi
+    "$IMGCHECK" region 0 20 320 160 "$dir/plain.png" >"$dir/r1"
+    "$IMGCHECK" region 0 110 320 160 "$dir/plain_ui.png" >"$dir/r2"
+    if cmp -s "$dir/r1" "$dir/r2"; then ok
+    else bad "the window's picture differs from the picture: $(cat "$dir/r2") vs $(cat "$dir/r1")"; fi
     read -r _ _ with_mean _ < <("$IMGCHECK" region 370 60 250 250 "$dir/plain_ui.png")
-    read -r _ _ without_mean _ < <("$IMGCHECK" region 370 60 250 250 "$dir/plain.png")
-    if gt "$(awk -v a="$without_mean" -v b="$with_mean" 'BEGIN { print a - b }')" 30; then ok
-    else bad "screenshot_ui has no panel or screenshot has one: means $with_mean (ui) vs $without_mean"; fi
+    if lt "$with_mean" 90; then ok; else bad "screenshot_ui has no panel: the column's mean is $with_mean"; fi
 else
     bad "no plain.png / plain_ui.png"
 fi
@@ -200,6 +270,19 @@ if [ -f "$dir/t/test.csv" ]; then
                 { if ($col["frames"] < 2 || $col["fps"] <= 0 || $col["gbuffer_ms"] <= 0) exit 1
                   if ($3 != "none" && $col["ao_ms"] <= 0) exit 1 }' "$dir/t/test.csv"; then ok
     else bad "CSV rows without frames, FPS or pass times: $(cat "$dir/t/test.csv")"; fi
+    # Every pass that ran reads more than 0 ms in every row, GPU and CPU (an empty cell is a pass
+    # that did not run): on llvmpipe, with the window's framebuffer bound, timestamps were taken
+    # late and the frame's last pass, tonemap, read 0.0000 while render measured it
+    # (src/gpu/timer.c). gbuffer, compose and tonemap run in every frame.
+    if awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) { col[$i] = i; if ($i ~ /_ms$/) ms[i] = $i }; next }
+                { for (i in ms) if ($i != "" && $i + 0 <= 0) { print $3 " " $2 ": " ms[i] " = " $i; bad = 1 }
+                  split("gbuffer_ms compose_ms tonemap_ms", always, " ")
+                  for (k in always) if ($col[always[k]] == "") { print $3 " " $2 ": no " always[k]; bad = 1 }
+                  # A pass with a GPU time has its CPU time, and the other way round.
+                  for (i in ms) { c = ms[i]; sub(/_ms$/, "_cpu_ms", c)
+                      if (c in col && ($i == "") != ($col[c] == "")) { print $3 " " $2 ": " ms[i] " and " c; bad = 1 } } }
+                END { exit bad }' "$dir/t/test.csv" >"$dir/t/zero"; then ok
+    else bad "CSV pass times of 0 ms or missing: $(cat "$dir/t/zero")"; fi
     shots=$(ls "$dir/t"/*.png 2>/dev/null | wc -l)
     if [ "$shots" -eq "$rows" ]; then ok; else bad "$shots screenshots for $rows rows"; fi
     if grep -q "^FPS" "$dir/test.out"; then ok; else bad "no summary table: $(cat "$dir/test.out")"; fi

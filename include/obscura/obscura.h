@@ -564,9 +564,12 @@ typedef struct ob_pass_timing {
     const char *name; /* "shadow", "gbuffer", "lighting", "downsample", "edges", "depth_mips", "ao", "temporal", "filter",
                          "upsample", "compose", "luminance", "bloom", "tonemap" */
     double ms;        /* GPU time between GL_TIMESTAMP queries around the pass */
+    double cpu_ms;    /* CPU time the calling thread spent issuing the pass (CLOCK_MONOTONIC around
+                         its calls), of the same frame; on a GPU mostly the driver's, on a software
+                         rasteriser, which runs compute work in the call, close to ms */
 } ob_pass_timing;
 
-/* Per-pass GPU times of the newest frame whose timer queries the GPU has finished, read without
+/* Per-pass GPU (and CPU) times of the newest frame whose timer queries the GPU has finished, read without
  * waiting: the queries of the last 4 frames are kept in a ring, so this is usually a frame one to
  * three behind the last ob_render_frame (ob_query_timings_frame says which). Only the passes that
  * ran in that frame are listed, in the order they ran: a frame that reused its shadow maps

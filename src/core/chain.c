@@ -119,6 +119,16 @@ static int temporal_at(const ob_renderer *r, const ob_settings *s)
  * values, `*_out` where the accumulation goes (passes/temporal.c). The history is reused only when
  * the last frame accumulated under the same key; the pass also writes this frame's depth and
  * normals for the next (geometry[1 - h]). */
+/* Field by field, not memcmp: the key's tail padding (after the two bools) is whatever the stack
+ * held, since an initializer sets the members only, so memcmp rejected the history whenever the
+ * stack under this frame's key held other bytes than under the last one's (it did every frame once
+ * the timers called glFinish on llvmpipe, src/gpu/timer.c). */
+static bool same_history(const ob_history_key *a, const ob_history_key *b)
+{
+    return a->method == b->method && a->scale == b->scale && a->at == b->at && a->width == b->width &&
+           a->height == b->height && a->orthographic == b->orthographic && a->rgb == b->rgb && a->bounce == b->bounce;
+}
+
 static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const ob_method_plan *plan, ao_targets *t,
                              const ob_chain_io *io, const GLuint guide[2], GLuint main_in, GLuint main_out,
                              GLuint bounce_in, GLuint bounce_out)
@@ -127,7 +137,7 @@ static ob_error run_temporal(ob_renderer *r, const ob_settings *s, const ob_meth
                                 .width = r->inner_width, .height = r->inner_height,
                                 .orthographic = r->frame_constants.orthographic, .rgb = plan->rgb,
                                 .bounce = plan->bounce};
-    const bool valid = r->history_valid && !memcmp(&key, &r->history_key, sizeof key);
+    const bool valid = r->history_valid && same_history(&key, &r->history_key);
     /* The last frame's camera with this frame's jitter: a point seen now at pixel p is looked up
      * where it lay in the last frame's unjittered raster, moved by this frame's jitter, which for
      * a still camera is p itself. So the history is never resampled between pixels by the jitter

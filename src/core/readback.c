@@ -250,6 +250,7 @@ int ob_query_timings(ob_renderer *r, ob_pass_timing *out, int max)
     for (int i = 0; i < n; ++i) {
         out[i].name = r->timers.names[i];
         out[i].ms = r->timers.ms[i];
+        out[i].cpu_ms = r->timers.cpu_ms[i];
     }
     return n;
 }

@@ -98,6 +98,8 @@ void ob_gl_set_quiet(bool on);
 typedef struct ob_timer_frame {
     GLuint queries[2 * OB_MAX_TIMED_PASSES]; /* a GL_TIMESTAMP before and after each pass */
     const char *names[OB_MAX_TIMED_PASSES];
+    double cpu_ms[OB_MAX_TIMED_PASSES];      /* CPU time spent issuing each pass (CLOCK_MONOTONIC) */
+    double cpu_start;                        /* when the open pass began issuing, ms */
     int count;          /* passes begun in this frame */
     long long frame;    /* the frame recorded here (ob_timers_frame_begin's count), -1 if none */
     bool pending;       /* recorded, results not read yet */
@@ -111,8 +113,10 @@ typedef struct ob_timer_set {
     /* The newest frame whose queries have all landed: */
     const char *names[OB_MAX_TIMED_PASSES];
     double ms[OB_MAX_TIMED_PASSES];
+    double cpu_ms[OB_MAX_TIMED_PASSES]; /* of the same frame, reported with its GPU times */
     int count;
     long long frame;         /* its number (0 = the first frame begun), -1 before any */
+    bool finish_stamps;      /* a software rasteriser: glFinish after each stamp (timer.c says why) */
 } ob_timer_set;
 
 void ob_timers_init(ob_timer_set *t);

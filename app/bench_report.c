@@ -2,7 +2,8 @@
  * bench_host.c measured (bench.h). Every time in them is GPU time from GL timestamps around each
  * pass (ob_query_timings); a frame's ms is the sum of its timed passes, not the wall-clock time of
  * the frame (the CPU's own work, any gap between passes and the present are not in it). Only
- * --host's call cpu ms is wall-clock time, measured on the CPU around the call. */
+ * --host's call cpu ms is wall-clock time, measured on the CPU around the call. Every number of
+ * the JSON goes through cli_json_add_number: 6 significant digits, whole numbers as they are. */
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -313,19 +314,19 @@ static void config_json(cJSON *j, const char *label, int method, const cli_confi
     cJSON_AddStringToObject(j, "method", method_name(method));
     cJSON_AddStringToObject(j, "label", label);
     cJSON_AddStringToObject(j, "filter", ob_filter_at(cfg->filter)->name);
-    cJSON_AddNumberToObject(j, "ao_scale", 1.0 / cfg->ao_divisor);
+    cli_json_add_number(j, "ao_scale", 1.0 / cfg->ao_divisor);
     cJSON_AddStringToObject(j, "camera", ob_query_camera(scene, camera).name);
-    if (samples > 0) cJSON_AddNumberToObject(j, "samples", samples);
+    if (samples > 0) cli_json_add_number(j, "samples", samples);
     else cJSON_AddNullToObject(j, "samples");
     if (r > 0.0f) {
-        cJSON_AddNumberToObject(j, "radius", r);
-        cJSON_AddNumberToObject(j, "radius_world", radius_world);
+        cli_json_add_number(j, "radius", r);
+        cli_json_add_number(j, "radius_world", radius_world);
     } else {
         cJSON_AddNullToObject(j, "radius");
         cJSON_AddNullToObject(j, "radius_world");
     }
-    cJSON_AddNumberToObject(j, "width", width);
-    cJSON_AddNumberToObject(j, "height", height);
+    cli_json_add_number(j, "width", width);
+    cli_json_add_number(j, "height", height);
 }
 
 static cJSON *row_json(const bench_row *r, const bench_row *none, const ob_scene *scene)
@@ -334,44 +335,44 @@ static cJSON *row_json(const bench_row *r, const bench_row *none, const ob_scene
     char label[CLI_MAX_LABEL + 32] = "";
     row_label(r, label, sizeof label);
     config_json(j, label, r->method, r->cfg, scene, r->camera, r->samples, r->r, r->radius_world, r->width, r->height);
-    cJSON_AddNumberToObject(j, "triangles", r->triangles);
-    cJSON_AddNumberToObject(j, "tessellation_levels", r->tess);
+    cli_json_add_number(j, "triangles", r->triangles);
+    cli_json_add_number(j, "tessellation_levels", r->tess);
     cJSON *passes = cJSON_AddArrayToObject(j, "passes");
     for (int p = 0; p < r->pass_count; ++p) {
         cJSON *q = cJSON_CreateObject();
         cJSON_AddStringToObject(q, "name", r->pass[p]);
-        cJSON_AddNumberToObject(q, "median", r->med[p]);
-        cJSON_AddNumberToObject(q, "min", r->min[p]);
-        cJSON_AddNumberToObject(q, "max", r->max[p]);
+        cli_json_add_number(q, "median", r->med[p]);
+        cli_json_add_number(q, "min", r->min[p]);
+        cli_json_add_number(q, "max", r->max[p]);
         cJSON_AddItemToArray(passes, q);
     }
     cJSON *fr = cJSON_AddObjectToObject(j, "frame_ms");
-    cJSON_AddNumberToObject(fr, "median", r->frame_med);
-    cJSON_AddNumberToObject(fr, "min", r->frame_min);
-    cJSON_AddNumberToObject(fr, "max", r->frame_max);
-    cJSON_AddNumberToObject(j, "fps", 1000.0 / r->frame_med);
-    cJSON_AddNumberToObject(j, "ao_ms", r->ao_ms);
+    cli_json_add_number(fr, "median", r->frame_med);
+    cli_json_add_number(fr, "min", r->frame_min);
+    cli_json_add_number(fr, "max", r->frame_max);
+    cli_json_add_number(j, "fps", 1000.0 / r->frame_med);
+    cli_json_add_number(j, "ao_ms", r->ao_ms);
     if (r->floor_taps > 0) {
         cJSON *fl = cJSON_AddObjectToObject(j, "floor_ms");
-        cJSON_AddNumberToObject(fl, "median", r->floor_med);
-        cJSON_AddNumberToObject(fl, "min", r->floor_min);
-        cJSON_AddNumberToObject(fl, "max", r->floor_max);
-        if (r->floor_ratio > 0.0) cJSON_AddNumberToObject(j, "floor_ratio", r->floor_ratio);
+        cli_json_add_number(fl, "median", r->floor_med);
+        cli_json_add_number(fl, "min", r->floor_min);
+        cli_json_add_number(fl, "max", r->floor_max);
+        if (r->floor_ratio > 0.0) cli_json_add_number(j, "floor_ratio", r->floor_ratio);
         else cJSON_AddNullToObject(j, "floor_ratio");
-        cJSON_AddNumberToObject(j, "floor_taps", r->floor_taps);
+        cli_json_add_number(j, "floor_taps", r->floor_taps);
         cJSON_AddStringToObject(j, "floor_pattern", r->floor_rays > 0 ? "rays" : "disk");
-        if (r->floor_rays > 0) cJSON_AddNumberToObject(j, "floor_rays", r->floor_rays);
+        if (r->floor_rays > 0) cli_json_add_number(j, "floor_rays", r->floor_rays);
     } else {
         cJSON_AddNullToObject(j, "floor_ms");
         cJSON_AddNullToObject(j, "floor_ratio");
     }
     if (none) {
         cJSON *v = cJSON_AddObjectToObject(j, "vs_none");
-        cJSON_AddNumberToObject(v, "ao_minus_ms", r->ao_ms - none->ao_ms);
-        if (none->ao_ms > 0.0) cJSON_AddNumberToObject(v, "ao_ratio", r->ao_ms / none->ao_ms);
+        cli_json_add_number(v, "ao_minus_ms", r->ao_ms - none->ao_ms);
+        if (none->ao_ms > 0.0) cli_json_add_number(v, "ao_ratio", r->ao_ms / none->ao_ms);
         else cJSON_AddNullToObject(v, "ao_ratio");
-        cJSON_AddNumberToObject(v, "frame_minus_ms", r->frame_med - none->frame_med);
-        cJSON_AddNumberToObject(v, "frame_ratio", r->frame_med / none->frame_med);
+        cli_json_add_number(v, "frame_minus_ms", r->frame_med - none->frame_med);
+        cli_json_add_number(v, "frame_ratio", r->frame_med / none->frame_med);
     } else {
         cJSON_AddNullToObject(j, "vs_none");
     }
@@ -515,9 +516,9 @@ static void stat_json(cJSON *parent, const char *name, const double *v, bool ran
         return;
     }
     cJSON *j = cJSON_AddObjectToObject(parent, name);
-    cJSON_AddNumberToObject(j, "median", v[0]);
-    cJSON_AddNumberToObject(j, "min", v[1]);
-    cJSON_AddNumberToObject(j, "max", v[2]);
+    cli_json_add_number(j, "median", v[0]);
+    cli_json_add_number(j, "min", v[1]);
+    cli_json_add_number(j, "max", v[2]);
 }
 
 static cJSON *host_row_json(const host_row *r, const ob_scene *scene)
@@ -539,9 +540,9 @@ static cJSON *host_row_json(const host_row *r, const ob_scene *scene)
         for (int k = 0; k < pr->pass_count; ++k) {
             cJSON *q = cJSON_CreateObject();
             cJSON_AddStringToObject(q, "name", pr->pass[k]);
-            cJSON_AddNumberToObject(q, "median", pr->med[k]);
-            cJSON_AddNumberToObject(q, "min", pr->min[k]);
-            cJSON_AddNumberToObject(q, "max", pr->max[k]);
+            cli_json_add_number(q, "median", pr->med[k]);
+            cli_json_add_number(q, "min", pr->min[k]);
+            cli_json_add_number(q, "max", pr->max[k]);
             cJSON_AddItemToArray(passes, q);
         }
         stat_json(x, "chain_ms", pr->chain, true);
@@ -552,7 +553,7 @@ static cJSON *host_row_json(const host_row *r, const ob_scene *scene)
         stat_json(x, "call_cpu_ms", pr->call, true);
     }
     const double *q = r->path[HOST_LINEAR].ratio;
-    cJSON_AddNumberToObject(j, "host_ratio", q[0]);
+    cli_json_add_number(j, "host_ratio", q[0]);
     cJSON_AddBoolToObject(j, "host_within_target", q[0] <= HOST_TARGET);
     return j;
 }
@@ -560,10 +561,10 @@ static cJSON *host_row_json(const host_row *r, const ob_scene *scene)
 static cJSON *host_acc_json(const host_state *hst)
 {
     cJSON *j = cJSON_CreateObject();
-    cJSON_AddNumberToObject(j, "width", HOST_RMSE_W);
-    cJSON_AddNumberToObject(j, "height", HOST_RMSE_H);
-    cJSON_AddNumberToObject(j, "reference_spp", HOST_RMSE_SPP);
-    cJSON_AddNumberToObject(j, "calls", HOST_RMSE_FRAMES);
+    cli_json_add_number(j, "width", HOST_RMSE_W);
+    cli_json_add_number(j, "height", HOST_RMSE_H);
+    cli_json_add_number(j, "reference_spp", HOST_RMSE_SPP);
+    cli_json_add_number(j, "calls", HOST_RMSE_FRAMES);
     cJSON *arr = cJSON_AddArrayToObject(j, "views");
     for (int i = 0; i < hst->acc_count; ++i) {
         const host_acc_row *a = &hst->acc[i];
@@ -572,20 +573,20 @@ static cJSON *host_acc_json(const host_state *hst)
         cJSON_AddStringToObject(x, "camera", a->camera);
         cJSON_AddStringToObject(x, "method", method_name(a->cfg->method));
         cJSON_AddStringToObject(x, "label", a->cfg->label);
-        if (a->samples > 0) cJSON_AddNumberToObject(x, "samples", a->samples);
+        if (a->samples > 0) cli_json_add_number(x, "samples", a->samples);
         else cJSON_AddNullToObject(x, "samples");
-        cJSON_AddNumberToObject(x, "radius_world", a->radius);
+        cli_json_add_number(x, "radius_world", a->radius);
         cJSON_AddBoolToObject(x, "reference_cached", a->ref_cached);
-        cJSON_AddNumberToObject(x, "reference_stderr", a->ref_stderr);
-        cJSON_AddNumberToObject(x, "pixels", (double)a->m[HOST_FRAME].count);
+        cli_json_add_number(x, "reference_stderr", a->ref_stderr);
+        cli_json_add_number(x, "pixels", (double)a->m[HOST_FRAME].count);
         for (int p = 0; p < HOST_PATHS; ++p) {
             cJSON *m = cJSON_AddObjectToObject(x, host_path_names[p]);
-            cJSON_AddNumberToObject(m, "rmse", a->m[p].rmse);
-            cJSON_AddNumberToObject(m, "bias", a->m[p].bias);
-            cJSON_AddNumberToObject(m, "mae", a->m[p].mae);
-            cJSON_AddNumberToObject(m, "ssim", a->m[p].ssim);
+            cli_json_add_number(m, "rmse", a->m[p].rmse);
+            cli_json_add_number(m, "bias", a->m[p].bias);
+            cli_json_add_number(m, "mae", a->m[p].mae);
+            cli_json_add_number(m, "ssim", a->m[p].ssim);
         }
-        cJSON_AddNumberToObject(x, "no_normals_minus_linear_rmse", a->m[HOST_NO_NORMALS].rmse - a->m[HOST_LINEAR].rmse);
+        cli_json_add_number(x, "no_normals_minus_linear_rmse", a->m[HOST_NO_NORMALS].rmse - a->m[HOST_LINEAR].rmse);
         cJSON_AddItemToArray(arr, x);
     }
     return j;
@@ -663,36 +664,36 @@ static void json_run(cJSON *root, const bench_opts *o, ob_context *ctx, const ob
     cJSON_AddStringToObject(root, "device", ob_query_device(ctx));
     cJSON_AddBoolToObject(root, "software", ob_query_is_software(ctx));
     cJSON_AddStringToObject(root, "cpu", cpu);
-    cJSON_AddNumberToObject(root, "cpu_cores", (double)sysconf(_SC_NPROCESSORS_ONLN));
+    cli_json_add_number(root, "cpu_cores", (double)sysconf(_SC_NPROCESSORS_ONLN));
     cJSON_AddStringToObject(root, "scene", ob_query_scene_name(scene));
-    cJSON_AddNumberToObject(root, "triangles", ob_query_scene_stats(scene).triangles);
-    cJSON_AddNumberToObject(root, "scene_radius", ob_query_scene_ao_radius(scene));
+    cli_json_add_number(root, "triangles", ob_query_scene_stats(scene).triangles);
+    cli_json_add_number(root, "scene_radius", ob_query_scene_ao_radius(scene));
     cJSON_AddStringToObject(root, "radius_rule", "radius_world = r x scene_radius / 4 (r = 4: the suggested radius)");
     cJSON_AddStringToObject(root, "mode", o->host ? "host" : o->scaling ? "scaling" : o->stereo ? "stereo" : "sweep");
-    cJSON_AddNumberToObject(root, "width", c->width);
-    cJSON_AddNumberToObject(root, "height", c->height);
-    cJSON_AddNumberToObject(root, "eyes", o->stereo ? 2 : 1);
+    cli_json_add_number(root, "width", c->width);
+    cli_json_add_number(root, "height", c->height);
+    cli_json_add_number(root, "eyes", o->stereo ? 2 : 1);
     if (o->stereo) {
-        cJSON_AddNumberToObject(root, "ipd", o->ipd);
-        cJSON_AddNumberToObject(root, "budget_ms", VR_BUDGET_MS);
+        cli_json_add_number(root, "ipd", o->ipd);
+        cli_json_add_number(root, "budget_ms", VR_BUDGET_MS);
     }
-    cJSON_AddNumberToObject(root, "frames", o->frames);
+    cli_json_add_number(root, "frames", o->frames);
     /* Issue 17: the accumulation and the camera's motion change every pass's work. */
     cJSON_AddBoolToObject(root, "temporal", c->temporal);
     if (c->temporal) cli_common_temporal_json(c, root);
     if (c->path) cJSON_AddStringToObject(root, "path", c->path);
-    if (c->has_orbit) cJSON_AddNumberToObject(root, "orbit_degrees", c->orbit_deg);
-    if (cli_common_moves(c)) cJSON_AddNumberToObject(root, "path_frames", c->path_frames);
-    cJSON_AddNumberToObject(root, "warmup", o->warmup);
+    if (c->has_orbit) cli_json_add_number(root, "orbit_degrees", c->orbit_deg);
+    if (cli_common_moves(c)) cli_json_add_number(root, "path_frames", c->path_frames);
+    cli_json_add_number(root, "warmup", o->warmup);
     cJSON_AddBoolToObject(root, "floor", o->floor);
     cJSON_AddStringToObject(root, "filter", filters);
-    cJSON_AddNumberToObject(root, "seconds", seconds);
+    cli_json_add_number(root, "seconds", seconds);
 }
 
 /* --host: the target, the four paths, each configuration's paths and the accuracy. */
 static void json_host(cJSON *root, cJSON *arr, const host_state *hst, const ob_scene *scene)
 {
-    cJSON_AddNumberToObject(root, "host_target", HOST_TARGET);
+    cli_json_add_number(root, "host_target", HOST_TARGET);
     cJSON *hp = cJSON_AddArrayToObject(root, "host_paths");
     for (int p = 0; p < HOST_PATHS; ++p) {
         cJSON *x = cJSON_CreateObject();
@@ -716,9 +717,9 @@ static void json_scaling(cJSON *root, const bench_state *st, const cli_config *c
         cJSON *j = cJSON_CreateObject();
         cJSON_AddStringToObject(j, "method", method_name(configs[k].method));
         cJSON_AddStringToObject(j, "label", configs[k].label);
-        cJSON_AddNumberToObject(j, "triangle_max_min_ratio", v.tri_ratio);
+        cli_json_add_number(j, "triangle_max_min_ratio", v.tri_ratio);
         cJSON_AddBoolToObject(j, "flat_in_triangles", v.flat_in_triangles);
-        cJSON_AddNumberToObject(j, "ms_per_megapixel_spread", v.mpx_spread);
+        cli_json_add_number(j, "ms_per_megapixel_spread", v.mpx_spread);
         cJSON_AddBoolToObject(j, "linear_in_pixels", v.linear_in_pixels);
         cJSON_AddItemToArray(sc, j);
     }

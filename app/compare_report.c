@@ -1,6 +1,8 @@
 /* obscura compare's report: results.json (every number) and index.html (the tables, the images and
  * each view's chart, inlined), from the views compare.c ran. Both are written whole or not at
- * all: into the report's temporary directory (compare.h), index.html through a .tmp file. */
+ * all: into the report's temporary directory (compare.h), index.html through a .tmp file. Every
+ * number of results.json goes through cli_json_add_number: 6 significant digits, whole numbers as
+ * they are (a float setting such as 0.1f comes out 0.1). */
 #include <cjson/cJSON.h>
 #include <errno.h>
 #include <math.h>
@@ -13,14 +15,6 @@
 #include "run_program.h"
 
 /* ---- what the rows say together ------------------------------------------------------------ */
-
-/* A float setting as the decimal it was written as (0.1, not 0.10000000149011612). */
-static double json_float(float v)
-{
-    char text[32];
-    snprintf(text, sizeof text, "%.7g", (double)v);
-    return strtod(text, NULL);
-}
 
 /* The rows on the error/time Pareto front: no other row is at most as slow (AO chain ms) and
  * strictly more accurate, or as accurate and strictly faster. */
@@ -151,11 +145,11 @@ static void json_run(cJSON *root, const compare_opts *o, ob_context *ctx)
     for (int i = 0; i < o->argc; ++i) cJSON_AddItemToArray(cmd, cJSON_CreateString(o->argv[i]));
     cJSON_AddStringToObject(root, "renderer", ob_query_renderer(ctx));
     cJSON_AddStringToObject(root, "gl_version", ob_query_gl_version(ctx));
-    cJSON_AddNumberToObject(root, "width", o->common.width);
-    cJSON_AddNumberToObject(root, "height", o->common.height);
-    cJSON_AddNumberToObject(root, "reference_spp", o->spp);
+    cli_json_add_number(root, "width", o->common.width);
+    cli_json_add_number(root, "height", o->common.height);
+    cli_json_add_number(root, "reference_spp", o->spp);
     /* --guard as given, in pixels per side (the renderer rounds it up to 4 x the AO divisor). */
-    cJSON_AddNumberToObject(root, "guard", o->common.guard_px);
+    cli_json_add_number(root, "guard", o->common.guard_px);
     cJSON_AddBoolToObject(root, "temporal", o->common.temporal);
     cli_common_temporal_json(&o->common, root); /* the flicker rows' "on" too */
     time_t now = time(NULL);
@@ -178,9 +172,9 @@ static void json_sets(cJSON *root, const view_result *views, int count)
             continue;
         }
         cJSON *set = cJSON_AddObjectToObject(jsets, view_set_names[s]);
-        cJSON_AddNumberToObject(set, "views", n);
+        cli_json_add_number(set, "views", n);
         cJSON *means = cJSON_AddObjectToObject(set, "mean_rmse");
-        for (int k = 0; k < nrows; ++k) cJSON_AddNumberToObject(means, views[0].methods[k].label, mean[k]);
+        for (int k = 0; k < nrows; ++k) cli_json_add_number(means, views[0].methods[k].label, mean[k]);
     }
     free(mean);
 }
@@ -195,11 +189,11 @@ static void json_summary(cJSON *root, const view_result *views, int count)
         cJSON *e = cJSON_CreateObject();
         cJSON_AddStringToObject(e, "label", views[0].methods[k].label);
         cJSON_AddStringToObject(e, "method", views[0].methods[k].name);
-        cJSON_AddNumberToObject(e, "mean_rmse", sum[k].rmse);
-        cJSON_AddNumberToObject(e, "mean_bias", sum[k].bias);
-        cJSON_AddNumberToObject(e, "mean_rank", sum[k].rank);
-        cJSON_AddNumberToObject(e, "wins", sum[k].wins);
-        cJSON_AddNumberToObject(e, "median_ao_ms", sum[k].ao_ms);
+        cli_json_add_number(e, "mean_rmse", sum[k].rmse);
+        cli_json_add_number(e, "mean_bias", sum[k].bias);
+        cli_json_add_number(e, "mean_rank", sum[k].rank);
+        cli_json_add_number(e, "wins", sum[k].wins);
+        cli_json_add_number(e, "median_ao_ms", sum[k].ao_ms);
         cJSON_AddBoolToObject(e, "front", sum[k].front);
         cJSON_AddItemToArray(jsum, e);
     }
@@ -211,17 +205,17 @@ static void json_masks(cJSON *j, const view_result *vr)
 {
     const ob_metric_mask_desc *md = &vr->mask_desc;
     cJSON *js = cJSON_AddObjectToObject(j, "mask_settings");
-    cJSON_AddNumberToObject(js, "occluded_below", json_float(md->occluded_below));
-    cJSON_AddNumberToObject(js, "edge_relative", json_float(md->edge_relative));
-    cJSON_AddNumberToObject(js, "edge_band_px", md->edge_band);
-    cJSON_AddNumberToObject(js, "thin_reach_px", md->thin_reach);
-    cJSON_AddNumberToObject(js, "thin_depth", json_float(vr->radius));
-    cJSON_AddNumberToObject(js, "border_fraction", json_float(md->border_fraction));
+    cli_json_add_number(js, "occluded_below", md->occluded_below);
+    cli_json_add_number(js, "edge_relative", md->edge_relative);
+    cli_json_add_number(js, "edge_band_px", md->edge_band);
+    cli_json_add_number(js, "thin_reach_px", md->thin_reach);
+    cli_json_add_number(js, "thin_depth", vr->radius);
+    cli_json_add_number(js, "border_fraction", md->border_fraction);
     cJSON *jmask = cJSON_AddObjectToObject(j, "masks");
     for (int q = 0; q < OB_MASK_COUNT; ++q) {
         const char *name = ob_metric_mask_name((ob_metric_mask)q);
         cJSON *e = cJSON_AddObjectToObject(jmask, name);
-        cJSON_AddNumberToObject(e, "pixels", (double)vr->mask_pixels[q]);
+        cli_json_add_number(e, "pixels", (double)vr->mask_pixels[q]);
         char image[300];
         snprintf(image, sizeof image, "%s/mask_%s.png", vr->dir, name);
         cJSON_AddStringToObject(e, "image", image);
@@ -236,44 +230,44 @@ static cJSON *json_row(const method_result *m)
     /* The row's settings: the label names those that vary between rows. */
     cJSON_AddStringToObject(e, "label", m->label);
     cJSON_AddStringToObject(e, "filter", ob_filter_at(m->config->filter)->name);
-    cJSON_AddNumberToObject(e, "ao_scale", 1.0 / m->config->ao_divisor);
+    cli_json_add_number(e, "ao_scale", 1.0 / m->config->ao_divisor);
     if (m->config->samples.quality) cJSON_AddStringToObject(e, "quality", m->config->samples.quality);
-    if (m->config->samples.count > 0) cJSON_AddNumberToObject(e, "samples", m->config->samples.count);
-    cJSON_AddNumberToObject(e, "rmse", m->m.rmse);
-    cJSON_AddNumberToObject(e, "mae", m->m.mae);
-    cJSON_AddNumberToObject(e, "bias", m->m.bias);
+    if (m->config->samples.count > 0) cli_json_add_number(e, "samples", m->config->samples.count);
+    cli_json_add_number(e, "rmse", m->m.rmse);
+    cli_json_add_number(e, "mae", m->m.mae);
+    cli_json_add_number(e, "bias", m->m.bias);
     /* JSON has no infinity: identical images report psnr null. */
-    if (isfinite(m->m.psnr)) cJSON_AddNumberToObject(e, "psnr", m->m.psnr);
+    if (isfinite(m->m.psnr)) cli_json_add_number(e, "psnr", m->m.psnr);
     else cJSON_AddNullToObject(e, "psnr");
     /* XeGTAO's measure: PSNR of the sRGB-encoded AO. */
-    if (isfinite(m->m.psnr_srgb)) cJSON_AddNumberToObject(e, "psnr_srgb", m->m.psnr_srgb);
+    if (isfinite(m->m.psnr_srgb)) cli_json_add_number(e, "psnr_srgb", m->m.psnr_srgb);
     else cJSON_AddNullToObject(e, "psnr_srgb");
-    cJSON_AddNumberToObject(e, "ssim", m->m.ssim);
-    cJSON_AddNumberToObject(e, "pixels", (double)m->m.count);
+    cli_json_add_number(e, "ssim", m->m.ssim);
+    cli_json_add_number(e, "pixels", (double)m->m.count);
     /* The error inside each metric mask; an empty mask has no error to report (null). */
     cJSON *jin = cJSON_AddObjectToObject(e, "masks");
     for (int q = 0; q < OB_MASK_COUNT; ++q) {
         cJSON *x = cJSON_AddObjectToObject(jin, ob_metric_mask_name((ob_metric_mask)q));
         const ob_metrics *mm = &m->in_mask[q];
         if (mm->count > 0) {
-            cJSON_AddNumberToObject(x, "rmse", mm->rmse);
-            cJSON_AddNumberToObject(x, "bias", mm->bias);
+            cli_json_add_number(x, "rmse", mm->rmse);
+            cli_json_add_number(x, "bias", mm->bias);
         } else {
             cJSON_AddNullToObject(x, "rmse");
             cJSON_AddNullToObject(x, "bias");
         }
-        cJSON_AddNumberToObject(x, "pixels", (double)mm->count);
+        cli_json_add_number(x, "pixels", (double)mm->count);
     }
     if (m->directional) {
         cJSON *rgb = cJSON_AddObjectToObject(e, "radiance");
-        cJSON_AddNumberToObject(rgb, "rmse", m->rgb.rmse);
-        cJSON_AddNumberToObject(rgb, "bias", m->rgb.bias);
-        cJSON_AddNumberToObject(rgb, "ssim", m->rgb.ssim);
+        cli_json_add_number(rgb, "rmse", m->rgb.rmse);
+        cli_json_add_number(rgb, "bias", m->rgb.bias);
+        cli_json_add_number(rgb, "ssim", m->rgb.ssim);
     }
-    cJSON_AddNumberToObject(e, "ao_ms", m->ao_ms);
-    cJSON_AddNumberToObject(e, "chain_ms", m->chain_ms);
+    cli_json_add_number(e, "ao_ms", m->ao_ms);
+    cli_json_add_number(e, "chain_ms", m->chain_ms);
     cJSON_AddBoolToObject(e, "pareto", m->pareto);
-    cJSON_AddNumberToObject(e, "frame_ms", m->frame_ms);
+    cli_json_add_number(e, "frame_ms", m->frame_ms);
     return e;
 }
 
@@ -283,14 +277,14 @@ static void json_flicker(cJSON *j, const compare_opts *o, const view_result *vr)
 {
     cJSON *fl = cJSON_AddObjectToObject(j, "flicker");
     cJSON_AddStringToObject(fl, "path", o->common.path ? o->common.path : "orbit");
-    if (o->common.has_orbit) cJSON_AddNumberToObject(fl, "orbit_degrees", o->common.orbit_deg);
-    cJSON_AddNumberToObject(fl, "path_frames", vr->flicker_ref.frames);
+    if (o->common.has_orbit) cli_json_add_number(fl, "orbit_degrees", o->common.orbit_deg);
+    cli_json_add_number(fl, "path_frames", vr->flicker_ref.frames);
     /* Frames that see nothing (--allow-empty): in no mean; their rmse_frames are null. */
-    cJSON_AddNumberToObject(fl, "path_frames_empty", vr->flicker_ref.frames_empty);
-    cJSON_AddNumberToObject(fl, "still_frames", FLICKER_STILL_FRAMES);
+    cli_json_add_number(fl, "path_frames_empty", vr->flicker_ref.frames_empty);
+    cli_json_add_number(fl, "still_frames", FLICKER_STILL_FRAMES);
     /* Both variants' G-buffer jitter and the reference's footprint (0: pixel centres). */
-    cJSON_AddNumberToObject(fl, "jitter_positions", vr->flicker_ref.jitter);
-    cJSON_AddNumberToObject(fl, "reference_warped_error", vr->flicker_ref.warped);
+    cli_json_add_number(fl, "jitter_positions", vr->flicker_ref.jitter);
+    cli_json_add_number(fl, "reference_warped_error", vr->flicker_ref.warped);
     cJSON *rows = cJSON_AddArrayToObject(fl, "rows");
     for (int k = 0; k < vr->method_count; ++k) {
         const cli_flicker_row *row = &vr->flicker[k];
@@ -300,17 +294,17 @@ static void json_flicker(cJSON *j, const compare_opts *o, const view_result *vr)
         const cli_flicker_variant *vs[2] = {&row->off, &row->on};
         for (int q = 0; q < 2; ++q) {
             cJSON *x = cJSON_AddObjectToObject(e, q ? "temporal_on" : "temporal_off");
-            cJSON_AddNumberToObject(x, "static_noise", vs[q]->static_noise);
-            cJSON_AddNumberToObject(x, "warped_error", vs[q]->warped_excess);
-            cJSON_AddNumberToObject(x, "warped_error_raw", vs[q]->warped);
-            cJSON_AddNumberToObject(x, "rmse_last", vs[q]->rmse_last);
-            cJSON_AddNumberToObject(x, "rmse_worst", vs[q]->rmse_worst);
-            cJSON_AddNumberToObject(x, "worst_frame", vs[q]->worst_frame);
-            cJSON_AddNumberToObject(x, "rmse_mean", vs[q]->rmse_mean);
+            cli_json_add_number(x, "static_noise", vs[q]->static_noise);
+            cli_json_add_number(x, "warped_error", vs[q]->warped_excess);
+            cli_json_add_number(x, "warped_error_raw", vs[q]->warped);
+            cli_json_add_number(x, "rmse_last", vs[q]->rmse_last);
+            cli_json_add_number(x, "rmse_worst", vs[q]->rmse_worst);
+            cli_json_add_number(x, "worst_frame", vs[q]->worst_frame);
+            cli_json_add_number(x, "rmse_mean", vs[q]->rmse_mean);
             cJSON *curve = cJSON_AddArrayToObject(x, "rmse_frames");
             for (int t = 0; vs[q]->rmse_frames && t < vr->flicker_ref.frames; ++t)
-                cJSON_AddItemToArray(curve, cJSON_CreateNumber(vs[q]->rmse_frames[t]));
-            cJSON_AddNumberToObject(x, "temporal_ms", vs[q]->temporal_ms);
+                cJSON_AddItemToArray(curve, cJSON_CreateNumber(cli_json_round(vs[q]->rmse_frames[t])));
+            cli_json_add_number(x, "temporal_ms", vs[q]->temporal_ms);
         }
         cJSON_AddItemToArray(rows, e);
     }
@@ -320,7 +314,7 @@ static void json_flicker(cJSON *j, const compare_opts *o, const view_result *vr)
 static void json_shootout(cJSON *j, const view_result *vr, double budget)
 {
     cJSON *so = cJSON_AddObjectToObject(j, "shootout");
-    cJSON_AddNumberToObject(so, "budget_ms", budget);
+    cli_json_add_number(so, "budget_ms", budget);
     cJSON *arr = cJSON_AddArrayToObject(so, "methods");
     const char *names[CLI_MAX_CONFIGS];
     int n = method_names(vr, names, CLI_MAX_CONFIGS);
@@ -332,10 +326,10 @@ static void json_shootout(cJSON *j, const view_result *vr, double budget)
         cJSON_AddBoolToObject(e, "within_budget", best >= 0);
         if (best >= 0) {
             cJSON_AddStringToObject(e, "label", vr->methods[best].label);
-            cJSON_AddNumberToObject(e, "rmse", vr->methods[best].m.rmse);
-            cJSON_AddNumberToObject(e, "chain_ms", vr->methods[best].chain_ms);
+            cli_json_add_number(e, "rmse", vr->methods[best].m.rmse);
+            cli_json_add_number(e, "chain_ms", vr->methods[best].chain_ms);
         }
-        cJSON_AddNumberToObject(e, "fastest_ms", vr->methods[fastest].chain_ms);
+        cli_json_add_number(e, "fastest_ms", vr->methods[fastest].chain_ms);
         cJSON_AddItemToArray(arr, e);
     }
 }
@@ -348,12 +342,12 @@ static cJSON *json_view(const compare_opts *o, const view_result *vr)
     cJSON_AddStringToObject(j, "dir", vr->dir);
     if (vr->set) cJSON_AddStringToObject(j, "set", vr->set);
     else cJSON_AddNullToObject(j, "set");
-    cJSON_AddNumberToObject(j, "radius", vr->radius);
+    cli_json_add_number(j, "radius", vr->radius);
     cJSON *jr = cJSON_AddObjectToObject(j, "reference");
-    cJSON_AddNumberToObject(jr, "seconds", vr->ref_seconds);
+    cli_json_add_number(jr, "seconds", vr->ref_seconds);
     cJSON_AddBoolToObject(jr, "cached", vr->ref_cached);
-    cJSON_AddNumberToObject(jr, "mean_standard_error", vr->ref_stderr_mean);
-    if (vr->has_bounce) cJSON_AddNumberToObject(jr, "bounce_seconds", vr->bounce_seconds);
+    cli_json_add_number(jr, "mean_standard_error", vr->ref_stderr_mean);
+    if (vr->has_bounce) cli_json_add_number(jr, "bounce_seconds", vr->bounce_seconds);
     json_masks(j, vr);
     cJSON *jm = cJSON_AddArrayToObject(j, "methods");
     for (int k = 0; k < vr->method_count; ++k) cJSON_AddItemToArray(jm, json_row(&vr->methods[k]));

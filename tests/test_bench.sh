@@ -86,7 +86,8 @@ for c in cfgs:
     for k in ("median", "min", "max"):
         pos(c["frame_ms"][k], f"frame {k}")
     pos(c["fps"], "fps")
-    assert abs(c["fps"] - 1000.0 / c["frame_ms"]["median"]) < 1e-6 * c["fps"]
+    # Both written at 6 significant digits: each within 5e-6 of its value, relative.
+    assert abs(c["fps"] - 1000.0 / c["frame_ms"]["median"]) < 2e-5 * c["fps"]
     if mode != "scaling":
         v = c["vs_none"]
         for k in ("ao_minus_ms", "frame_minus_ms"):

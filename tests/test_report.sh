@@ -301,8 +301,10 @@ s = r["summary"]
 assert [e["label"] for e in s] == rows == ["ssao", "vbao"], (s, rows)
 for e in s:
     views = [next(m for m in v["methods"] if m["label"] == e["label"]) for v in r["views"]]
-    assert abs(e["mean_rmse"] - sum(m["rmse"] for m in views) / 2) < 1e-9, e
-    assert abs(e["mean_bias"] - sum(m["bias"] for m in views) / 2) < 1e-9, e
+    # Each number is written at 6 significant digits, within 5e-7 of its value below 1: the mean of
+    # the written values is within 1e-6 of the written mean.
+    assert abs(e["mean_rmse"] - sum(m["rmse"] for m in views) / 2) < 2e-6, e
+    assert abs(e["mean_bias"] - sum(m["bias"] for m in views) / 2) < 2e-6, e
     assert 1 <= e["mean_rank"] <= 2 and e["median_ao_ms"] > 0, e
 assert sum(e["wins"] for e in s) >= 2 and any(e["front"] for e in s), s
 html = open(os.path.join(report, "index.html")).read()
@@ -332,8 +334,8 @@ for x in (off, on):
     assert 0 <= x["worst_frame"] < 3 and x["rmse_worst"] >= x["rmse_last"] > 0, x
     curve = x["rmse_frames"]
     assert len(curve) == 3 and curve[-1] == x["rmse_last"] and max(curve) == x["rmse_worst"], x
-    assert curve[x["worst_frame"]] == x["rmse_worst"] and abs(x["rmse_mean"] - sum(curve) / 3) < 1e-9, x
-    assert abs(x["warped_error"] - (x["warped_error_raw"] - fl["reference_warped_error"])) < 1e-9, x
+    assert curve[x["worst_frame"]] == x["rmse_worst"] and abs(x["rmse_mean"] - sum(curve) / 3) < 2e-6, x
+    assert abs(x["warped_error"] - (x["warped_error_raw"] - fl["reference_warped_error"])) < 2e-6, x
 assert on["temporal_ms"] > 0 and off["temporal_ms"] == 0, row
 html = open(os.path.join(report, "index.html")).read()
 assert "Flicker along an orbit of 10" in html and "_temporal_worst.png" in html and "RMSE mean off" in html

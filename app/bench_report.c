@@ -122,7 +122,7 @@ static void print_one_table(const bench_state *st, int camera, const cli_config 
 {
     int width = 6;
     for (int k = 0; k < count; ++k) width = (int)strlen(configs[k].label) > width ? (int)strlen(configs[k].label) : width;
-    printf("\n%-*s %6s %8s %22s %14s\n", width, "method", "N", "r", "AO-pass ms / frame ms", "frame / none");
+    printf("\n%-*s %6s %8s %27s %14s\n", width, "method", "N", "r", "AO-pass ms / frame ms (GPU)", "frame / none");
     for (int k = 0; k < count; ++k)
         for (int i = 0; i < st->count; ++i) {
             const bench_row *r = &st->rows[i];
@@ -131,7 +131,7 @@ static void print_one_table(const bench_state *st, int camera, const cli_config 
             char cell[48], ratio[16] = "-";
             snprintf(cell, sizeof cell, "%.3f / %.3f", r->ao_ms, r->frame_med);
             if (none && none->frame_med > 0.0) snprintf(ratio, sizeof ratio, "%.2fx", r->frame_med / none->frame_med);
-            printf("%-*s %6d %8g %22s %14s\n", width, configs[k].label, r->samples, (double)r->r, cell, ratio);
+            printf("%-*s %6d %8g %27s %14s\n", width, configs[k].label, r->samples, (double)r->r, cell, ratio);
             for (int p = 0; p < r->pass_count; ++p)
                 if (!strcmp(r->pass[p], "temporal") && r->ao_ms > 0.0)
                     printf("%-*s temporal accumulation %.3f ms = %.1f %% of the AO pass\n", width, "", r->med[p],
@@ -159,7 +159,7 @@ static void table_axes(const bench_state *st, int camera, const cli_config *cfg,
  * none frame; then its floor table and its accumulation's share. */
 static void print_method_table(const bench_opts *o, const bench_state *st, int camera, const cli_config *cfg)
 {
-    printf("\n%s: AO-pass ms / frame ms", cfg->label);
+    printf("\n%s: AO-pass ms / frame ms (GPU; frame = the sum of its passes)", cfg->label);
     if (o->stereo) printf(" (frame budget 11.1 ms at 90 Hz; * = over)");
     printf("\n");
     float rs[MAX_LIST];
@@ -208,8 +208,10 @@ void bench_print_tables(const bench_opts *o, const ob_scene *scene, const bench_
     const char *unit = o->stereo ? "both eyes" : "one view";
     for (int c = 0; c < cam_count; ++c) {
         const char *cname = ob_query_camera(scene, cams[c]).name;
-        printf("\n== %s, camera %s, %dx%d%s, median of %d frames (%s) ==\n", ob_query_scene_name(scene), cname,
-               o->common.width, o->common.height, o->stereo ? " per eye" : "", o->frames, unit);
+        printf("\n== %s, camera %s, %dx%d%s, GPU ms, median of %d frames (%s) ==\n", ob_query_scene_name(scene),
+               cname, o->common.width, o->common.height, o->stereo ? " per eye" : "", o->frames, unit);
+        printf("GPU ms from timestamps around each pass; frame ms = the sum of the frame's passes, not wall-clock "
+               "time\n");
         print_baselines(o, st, cams[c]);
         if (one_table(o, st, cams[c], configs, config_count)) {
             print_one_table(st, cams[c], configs, config_count);
@@ -267,7 +269,7 @@ static const char *floor_note(const bench_row *r)
 void bench_print_scaling(const bench_opts *o, const ob_scene *scene, const ob_camera *cam, const bench_state *st,
                          const cli_config *configs, int count)
 {
-    printf("\n== scaling: AO-pass median ms, %s camera %s, %d frames ==\n", ob_query_scene_name(scene), cam->name,
+    printf("\n== scaling: AO-pass median GPU ms, %s camera %s, %d frames ==\n", ob_query_scene_name(scene), cam->name,
            o->frames);
     for (int k = 0; k < count; ++k) {
         printf("\n%s\n  resolution:", configs[k].label);
@@ -454,7 +456,7 @@ void bench_print_host_tables(const bench_opts *o, const ob_scene *scene, const h
 {
     static const char *const letter[HOST_PATHS] = {"(a)", "(b)", "(c)", "(d)"};
     for (int ci = 0; ci < cam_count; ++ci) {
-        printf("\n== %s, camera %s, %dx%d%s: the host path (ob_host_ao) beside the frame's AO chain, ms median (min-max) "
+        printf("\n== %s, camera %s, %dx%d%s: the host path (ob_host_ao) beside the frame's AO chain, GPU ms median (min-max) "
                "of %d frames, the four alternated frame by frame ==\n",
                ob_query_scene_name(scene), ob_query_camera(scene, cams[ci]).name, o->common.width, o->common.height,
                o->common.temporal ? ", temporal on" : "", o->frames);
@@ -686,6 +688,11 @@ static void json_run(cJSON *root, const bench_opts *o, ob_context *ctx, const ob
     if (cli_common_moves(c)) cli_json_add_number(root, "path_frames", c->path_frames);
     cli_json_add_number(root, "warmup", o->warmup);
     cJSON_AddBoolToObject(root, "floor", o->floor);
+    /* What every ms below is: frame_ms is easily read as the frame's wall-clock time, which it is not. */
+    cJSON_AddStringToObject(root, "timing", "GPU ms from GL_TIMESTAMP queries around each pass, median/min/max over the "
+                                            "measured frames; frame_ms is the sum of a frame's timed passes (stereo: both "
+                                            "eyes') and fps 1000 / its median, not wall-clock time; only --host's "
+                                            "call_cpu_ms is wall-clock time, on the CPU");
     cJSON_AddStringToObject(root, "filter", filters);
     cli_json_add_number(root, "seconds", seconds);
 }

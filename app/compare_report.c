@@ -145,6 +145,11 @@ static void json_run(cJSON *root, const compare_opts *o, ob_context *ctx)
     for (int i = 0; i < o->argc; ++i) cJSON_AddItemToArray(cmd, cJSON_CreateString(o->argv[i]));
     cJSON_AddStringToObject(root, "renderer", ob_query_renderer(ctx));
     cJSON_AddStringToObject(root, "gl_version", ob_query_gl_version(ctx));
+    /* What the rows' ms are: frame_ms is easily read as the frame's wall-clock time, which it is not. */
+    cJSON_AddStringToObject(root, "timing", "GPU ms from GL_TIMESTAMP queries around each pass, medians of 5 frames: "
+                                            "ao_ms the AO pass, chain_ms the AO chain (AO pass, depth MIPs, edges, "
+                                            "filter, upsampling), frame_ms the sum of every timed pass of the frame, not "
+                                            "wall-clock time");
     cli_json_add_number(root, "width", o->common.width);
     cli_json_add_number(root, "height", o->common.height);
     cli_json_add_number(root, "reference_spp", o->spp);
@@ -636,7 +641,7 @@ static void html_sets(FILE *f, const view_result *views, int count, int rows)
 static void html_rows_table(FILE *f, const view_result *vr)
 {
     fputs("<table class=\"sortable\"><thead><tr><th>method</th><th>RMSE</th><th>bias</th><th>MAE</th><th>SSIM</th>"
-          "<th>PSNR dB</th><th>sRGB PSNR dB</th><th>AO ms</th><th>frame ms</th></tr></thead><tbody>\n",
+          "<th>PSNR dB</th><th>sRGB PSNR dB</th><th>AO GPU ms</th><th>frame GPU ms</th></tr></thead><tbody>\n",
           f);
     for (int k = 0; k < vr->method_count; ++k) {
         const method_result *m = &vr->methods[k];
@@ -651,7 +656,10 @@ static void html_rows_table(FILE *f, const view_result *vr)
         }
         fprintf(f, "<td>%.2f</td><td>%.1f</td></tr>\n", m->ao_ms, m->frame_ms);
     }
-    fputs("</tbody></table>\n", f);
+    fprintf(f, "</tbody></table>\n<p class=\"note\">AO GPU ms and frame GPU ms: GPU time from timestamps around each "
+               "pass, medians of %d frames; the AO pass alone, and the sum of every pass of the frame (shadows, "
+               "G-buffer, lighting, the AO chain, compose, tone map), which is not the frame's wall-clock time.</p>\n",
+            FRAMES);
 }
 
 /* Directional methods: their composed radiance against the one-bounce reference. */

@@ -72,6 +72,9 @@ for v in r["views"]:
 # scenes/views.json's sets: corner:diagonal is a choose view, the hostile model in none; the choose
 # means are that one view's RMSEs, and there is no check view here.
 assert [v["set"] for v in r["views"]] == ["choose", None], [v["set"] for v in r["views"]]
+# The rows' ms are GPU time, frame_ms the sum of the frame's passes, not wall-clock time.
+assert "GL_TIMESTAMP" in r["timing"] and "frame_ms the sum of every timed pass" in r["timing"] and \
+    "not wall-clock time" in r["timing"], r["timing"]
 assert r["sets"]["check"] is None and r["sets"]["choose"]["views"] == 1, r["sets"]
 for m in r["views"][0]["methods"]:
     assert abs(r["sets"]["choose"]["mean_rmse"][m["label"]] - m["rmse"]) < 1e-12, m["label"]
@@ -145,6 +148,8 @@ done
 grep -q '&lt;img src=x onerror=alert(1)&gt;' "$dir/report/index.html" && ok || bad "the hostile name is not escaped"
 grep -q '<img src=x' "$dir/report/index.html" && bad "the hostile name reached the page as markup" || ok
 grep -q '<svg' "$dir/report/index.html" && ok || bad "no chart in the page"
+grep -q '<th>frame GPU ms</th>' "$dir/report/index.html" && grep -q "which is not the frame's wall-clock time" "$dir/report/index.html" &&
+    ok || bad "the report does not say what frame ms is"
 
 # expect_compare CODE PATTERN -- ARGS...: exit code, one stderr line matching PATTERN, and no report
 # left: bad input is found before anything is written.

@@ -7,6 +7,7 @@
  *   report/VIEW/METHOD_final.png, _ao.png, _error.png
  *   report/VIEW/mask_NAME.png            where each metric mask lies (ob_metric_masks)
  *   report/VIEW/chart.svg                quality (RMSE) against GPU time, made with gnuplot
+ *   report/VIEW/chart.gp                 the gnuplot script it was drawn from
  *
  * The reference is cached by (scene, camera, size, radius, spp) under $XDG_CACHE_HOME/obscura
  * (or ~/.cache/obscura): the report is re-run far more often than the geometry changes.

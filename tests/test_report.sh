@@ -369,5 +369,65 @@ then ok; else bad "compare --orbit --jitter off: $(tail -2 "$dir/flicker.err")";
 [ $? -ne 0 ] && [ "$(wc -l <"$dir/flicker_bad.err")" = 1 ] && grep -q "unknown camera path 'nowhere'" "$dir/flicker_bad.err" &&
     [ ! -e "$dir/flicker_bad" ] && ok || bad "compare --path nowhere: $(cat "$dir/flicker_bad.err")"
 
+# The error-against-time charts (issue 48): every report's chart.gp (kept beside chart.svg) sets the
+# axes from 0 (RMSE always; time unless the chart's times spread over more than 10x: then a log
+# axis from the decade at or below the fastest row, and the SVG's title says "log scale"), past
+# the largest value. In the SVG gnuplot drew, each placed label is there once, and no label's box
+# (its characters x 6.2 px, 12 px high, as app/chart_layout.c estimates them) meets another or
+# comes within a point's 4.95 px, or leaves the plot area the script's margins set. A run whose
+# times spread far (alchemy low at a quarter of the pixels against vbgi ultra at full size) gives
+# the log axis its test where the machine's times allow.
+"$OBSCURA" compare --scene corner:diagonal --size 160x120 --spp 8 --methods alchemy,vbgi --quality low,ultra \
+    --ao-scales 1,0.25 --report "$dir/spread" >/dev/null 2>"$dir/spread.err" || bad "compare for a log chart: $(tail -2 "$dir/spread.err")"
+for rep in "$dir"/report "$dir"/lists "$dir"/common "$dir"/shoot "$dir"/obscura-report "$dir"/flicker "$dir"/spread; do
+    if python3 - "$rep" <<'PY'
+import json, math, os, re, sys
+report = sys.argv[1]
+W, H, LEFT, RIGHT, TOP, BOTTOM = 720, 420, 78, 704, 14, 362
+for v in json.load(open(os.path.join(report, "results.json")))["views"]:
+    gp = open(os.path.join(report, v["dir"], "chart.gp"), encoding="utf-8").read()
+    svg = open(os.path.join(report, v["dir"], "chart.svg"), encoding="utf-8").read()
+    rng = {a: tuple(map(float, re.search(r"^set %srange \[([^:\]]+):([^\]]+)\]$" % a, gp, re.M).groups())) for a in "xy"}
+    log = re.search(r"^set logscale x", gp, re.M) is not None
+    times = [m["chain_ms"] for m in v["methods"]]
+    rmse = [m["rmse"] for m in v["methods"]]
+    pos = [t for t in times if t > 0]
+    spread = max(pos) / min(pos) if pos else 1.0
+    assert log == (spread > 10), (report, v["dir"], log, spread)
+    assert rng["y"][0] == 0 and rng["y"][1] >= max(rmse), rng
+    if log:
+        assert rng["x"][0] == 10 ** math.floor(math.log10(min(pos))), (rng, min(pos))
+        assert ("log scale" in svg) and rng["x"][1] >= max(pos), rng
+    else:
+        assert rng["x"][0] == 0 and rng["x"][1] >= max(times) and "log scale" not in svg, rng
+    for what, at in (("lmargin", LEFT / W), ("rmargin", RIGHT / W), ("tmargin", 1 - TOP / H), ("bmargin", 1 - BOTTOM / H)):
+        assert abs(float(re.search(r"^set %s at screen ([0-9.]+)$" % what, gp, re.M).group(1)) - at) < 1e-5, what
+    # The labels as gnuplot drew them: translate(x, baseline) and the anchor; the points' centres.
+    drawn = re.findall(r'<g transform="translate\(([0-9.]+),([0-9.]+)\)"[^>]*font-size="10.00"\s+text-anchor="(\w+)">\s*'
+                       r'<text>([^<]*)</text>', svg)
+    points = [tuple(map(float, p)) for p in re.findall(r"href='#gpPt6' transform='translate\(([0-9.]+),([0-9.]+)\)", svg)]
+    placed = re.findall(r'^[-0-9.e+]+ [-0-9.e+]+ "(.*)"$', gp, re.M)
+    assert len(points) == sum(1 for t in times if t > 0 or not log), (len(points), times)
+    assert sorted(t for *_, t in drawn) == sorted(placed), (drawn, placed)
+    assert len(placed) >= min(len(times), 4) or len(times) > 16, ("too few labels", placed, times)
+    boxes = []
+    for x, y, anchor, text in drawn:
+        x, y, w = float(x), float(y), len(text) * 6.2
+        x0 = x if anchor == "start" else x - w if anchor == "end" else x - w / 2
+        boxes.append((x0, y - 3.25 - 6, x0 + w, y - 3.25 + 6, text))
+    slack = 0.5
+    for i, (x0, y0, x1, y1, t) in enumerate(boxes):
+        assert LEFT - slack <= x0 and x1 <= RIGHT + slack and TOP - slack <= y0 and y1 <= BOTTOM + slack, ("outside", t)
+        for (a0, b0, a1, b1, u) in boxes[i + 1:]:
+            assert not (x0 < a1 - slack and a0 < x1 - slack and y0 < b1 - slack and b0 < y1 - slack), ("overlap", t, u)
+        for px, py in points:
+            dx, dy = max(x0 - px, 0, px - x1), max(y0 - py, 0, py - y1)
+            assert math.hypot(dx, dy) >= 4.95 - slack, ("covers a point", t, px, py)
+    print("%s/%s: %s axis, times %.3g-%.3g ms, %d of %d labels" % (os.path.basename(report), v["dir"],
+          "log" if log else "linear", min(times), max(times), len(placed), len(times)))
+PY
+    then ok; else bad "the chart of $rep"; fi
+done
+
 echo "test_report: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -429,7 +429,7 @@ static void write_shootout_table(FILE *f, const view_result *vr, double budget)
             }
         }
     fprintf(f, "<p class=\"note\">Equal-time shoot-out: the most accurate row of each method whose AO (pass + depth "
-               "MIPs + filter + upsampling) took at most %.2f ms.</p>\n<table><thead><tr><th>method</th><th>best row "
+               "MIPs + filter + upsampling) took at most %.2f ms.</p>\n<table class=\"sortable\"><thead><tr><th>method</th><th>best row "
                "within budget</th><th>RMSE</th><th>AO ms</th></tr></thead><tbody>\n",
             budget);
     for (int i = 0; i < n; ++i) {
@@ -570,6 +570,8 @@ static void html_head(FILE *f, const compare_opts *o, ob_context *ctx)
           "<style>body{font:14px sans-serif;margin:24px;color:#222}h2{margin-top:36px}"
           "table{border-collapse:collapse;margin:12px 0}th,td{padding:4px 10px;border-bottom:1px solid #ddd;text-align:right}"
           "th{cursor:pointer;background:#f2f2f2}td:first-child,th:first-child{text-align:left}"
+          /* The sorted column's header shows its direction: the arrow follows aria-sort. */
+          "th[aria-sort=ascending]::after{content:\" \xe2\x96\xb2\"}th[aria-sort=descending]::after{content:\" \xe2\x96\xbc\"}"
           ".grid{display:flex;flex-wrap:wrap;gap:10px}.cell{font-size:12px}.cell img{display:block;border:1px solid #ccc}"
           ".note{color:#666}</style></head><body>\n<h1>Screen-space AO against the ray-traced ground truth</h1>\n<p class=\"note\">",
           f);
@@ -577,7 +579,7 @@ static void html_head(FILE *f, const compare_opts *o, ob_context *ctx)
             o->common.width, o->common.height, o->spp);
     html_escape(f, ob_query_renderer(ctx));
     fputs(". Error maps: red = the method is brighter (misses occlusion), blue = darker; &plusmn;0.5 saturates. "
-          "Click a column to sort.</p>\n",
+          "Click a column's header to sort by it (&#9650; ascending, &#9660; descending; again to reverse).</p>\n",
           f);
 }
 
@@ -723,18 +725,24 @@ static void html_view(FILE *f, const compare_opts *o, const view_result *vr)
     fputs("</section>\n", f);
 }
 
-/* Sort a table by a column: numbers numerically, text alphabetically; click again to reverse.
- * The column is the header cell's index in its own row (forEach's index counts every table's). */
+/* Sort a table by a column: numbers numerically, text alphabetically; click again (or Enter or
+ * Space on the focused header) to reverse. The sorted header carries aria-sort, ascending or
+ * descending, which the style shows as ▲ or ▼ and a screen reader reads; the table's other
+ * headers lose theirs. The column is the header cell's index in its own row (forEach's index
+ * counts every table's). Inline: the report works offline, from any directory. */
 static void html_script(FILE *f)
 {
     fputs("<script>\n"
           "document.querySelectorAll('table.sortable th').forEach(function (th) {\n"
-          "  th.addEventListener('click', function () {\n"
+          "  th.tabIndex = 0;\n"
+          "  th.title = 'Sort by this column';\n"
+          "  function sort() {\n"
           "    var col = th.cellIndex;\n"
           "    var body = th.closest('table').tBodies[0];\n"
           "    var rows = Array.prototype.slice.call(body.rows);\n"
-          "    var dir = th.dataset.dir === 'asc' ? -1 : 1;\n"
-          "    th.dataset.dir = dir === 1 ? 'asc' : 'desc';\n"
+          "    var dir = th.getAttribute('aria-sort') === 'ascending' ? -1 : 1;\n"
+          "    th.parentNode.querySelectorAll('th').forEach(function (h) { h.removeAttribute('aria-sort'); });\n"
+          "    th.setAttribute('aria-sort', dir === 1 ? 'ascending' : 'descending');\n"
           "    rows.sort(function (a, b) {\n"
           "      var x = a.cells[col].textContent, y = b.cells[col].textContent;\n"
           "      var nx = parseFloat(x), ny = parseFloat(y);\n"
@@ -742,6 +750,10 @@ static void html_script(FILE *f)
           "      return dir * c;\n"
           "    });\n"
           "    rows.forEach(function (r) { body.appendChild(r); });\n"
+          "  }\n"
+          "  th.addEventListener('click', sort);\n"
+          "  th.addEventListener('keydown', function (e) {\n"
+          "    if (e.key === 'Enter' || e.key === ' ') { e.preventDefault(); sort(); }\n"
           "  });\n"
           "});\n"
           "</script>\n</body></html>\n",

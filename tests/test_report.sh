@@ -258,7 +258,53 @@ else
     [ "${hi:-0}" -gt "${lo:-0}" ] && ok || bad "the screenshot is blank ($lo..$hi)"
     timeout 120 "$chrome" "${flags[@]}" --dump-dom "file://$dir/report/index.html" >"$dir/dom.html" 2>/dev/null
     grep -q 'class="sortable"' "$dir/dom.html" && ok || bad "the DOM has no sortable table"
+    # The sort indicator: a page that loads the report in a frame clicks a view's RMSE header twice
+    # and presses Enter on its bias header, and writes what the report did: aria-sort and the
+    # header's arrow (::after), and the rows in order.
+    cat >"$dir/sort.html" <<'HTML'
+<!DOCTYPE html><html><body><pre id="result">not run</pre><iframe id="r" src="report/index.html"></iframe>
+<script>
+document.getElementById('r').addEventListener('load', function () {
+  var out = [];
+  try {
+    var d = this.contentDocument, table = d.querySelector('section.view table.sortable');
+    var rmse = table.tHead.rows[0].cells[1], bias = table.tHead.rows[0].cells[2];
+    var state = function (th) {
+      var col = Array.prototype.map.call(table.tBodies[0].rows, function (r) { return r.cells[1].textContent; });
+      return th.getAttribute('aria-sort') + ' ' + d.defaultView.getComputedStyle(th, '::after').content + ' ' + col.join(',');
+    };
+    rmse.click();
+    out.push('first ' + state(rmse));
+    rmse.click();
+    out.push('second ' + state(rmse));
+    bias.dispatchEvent(new d.defaultView.KeyboardEvent('keydown', {key: 'Enter'}));
+    out.push('enter ' + bias.getAttribute('aria-sort') + ' ' + rmse.getAttribute('aria-sort') + ' ' + bias.tabIndex);
+  } catch (e) { out.push('error ' + e); }
+  document.getElementById('result').textContent = out.join('\n');
+});
+</script></body></html>
+HTML
+    timeout 120 "$chrome" "${flags[@]}" --dump-dom "file://$dir/sort.html" >"$dir/sort.dom" 2>/dev/null
+    if python3 - "$dir/sort.dom" <<'PY'
+import html, re, sys
+text = html.unescape(re.search(r'<pre id="result">(.*?)</pre>', open(sys.argv[1], encoding="utf-8").read(), re.S).group(1))
+lines = dict(l.split(" ", 1) for l in text.splitlines())
+def rows(line):
+    return [float(x) for x in line.rsplit(" ", 1)[1].split(",")]
+first, second = lines["first"], lines["second"]
+assert first.startswith('ascending " \u25b2" '), first
+assert rows(first) == sorted(rows(first)) and len(rows(first)) > 2, first
+assert second.startswith('descending " \u25bc" '), second
+assert rows(second) == sorted(rows(second), reverse=True), second
+assert lines["enter"] == "ascending null 0", lines["enter"]
+PY
+    then ok; else bad "sorting a table: $(grep -A4 'id="result"' "$dir/sort.dom" | head -5)"; fi
 fi
+# The sort indicator is in the page itself (no external script): the style's arrows follow aria-sort.
+grep -q 'th\[aria-sort=ascending\]::after{content:" ▲"}' "$dir/report/index.html" &&
+    grep -q 'th\[aria-sort=descending\]::after{content:" ▼"}' "$dir/report/index.html" &&
+    grep -q "th.setAttribute('aria-sort'" "$dir/report/index.html" && ! grep -q '<script src' "$dir/report/index.html" &&
+    ok || bad "the report has no sort indicator"
 
 # The equal-time shoot-out: every listed preset x scale per method; the best row within the budget
 # is within it and is the most accurate such row; the Pareto rows are undominated.
@@ -270,6 +316,8 @@ rows = v["methods"]
 assert len(rows) == 8, len(rows)
 so = v["shootout"]
 assert so["budget_ms"] == 1000 and [m["method"] for m in so["methods"]] == ["gtao", "hbao"], so
+html = open(sys.argv[1].replace("results.json", "index.html"), encoding="utf-8").read()
+assert '<table class="sortable"><thead><tr><th>method</th><th>best row within budget' in html, "the shoot-out table sorts"
 for m in so["methods"]:
     assert m["within_budget"], m
     fits = [r for r in rows if r["method"] == m["method"] and r["chain_ms"] <= 1000]

@@ -8,7 +8,6 @@
  * where two methods land almost on the same spot (gtao and vbao, ssao and hbao) they covered each
  * other and the points. */
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -14,6 +14,8 @@
 #include <sys/statvfs.h>
 #include <unistd.h>
 
+#include <cjson/cJSON.h>
+
 #include "cli.h"
 #include "suggest.h"
 
@@ -250,6 +252,20 @@ double cli_median(double *v, int n)
     if (n <= 0) return NAN;
     qsort(v, (size_t)n, sizeof *v, cmp_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double cli_json_round(double v)
+{
+    /* 2^53: beyond it every double is whole, and "%.6g" would drop a count's digits. */
+    if (!isfinite(v) || (v == trunc(v) && fabs(v) < 9007199254740992.0)) return v;
+    char text[32];
+    snprintf(text, sizeof text, "%.6g", v);
+    return strtod(text, NULL);
+}
+
+cJSON *cli_json_add_number(cJSON *object, const char *name, double v)
+{
+    return cJSON_AddNumberToObject(object, name, cli_json_round(v));
 }
 
 double cli_frame_log_average(ob_renderer *r, float *rgb, size_t px)

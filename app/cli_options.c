@@ -1144,9 +1144,9 @@ void cli_common_temporal_json(const cli_common *c, cJSON *root)
 {
     cJSON *t = cJSON_AddObjectToObject(root, "temporal_settings");
     cJSON_AddStringToObject(t, "at", cli_common_temporal_at(c));
-    cJSON_AddNumberToObject(t, "frames", cli_common_temporal_frames(c));
-    cJSON_AddNumberToObject(t, "detail", c->temporal_detail);
-    if (cli_common_moves(c)) cJSON_AddNumberToObject(t, "jitter_positions", cli_common_path_jitter(c));
+    cli_json_add_number(t, "frames", cli_common_temporal_frames(c));
+    cli_json_add_number(t, "detail", c->temporal_detail);
+    if (cli_common_moves(c)) cli_json_add_number(t, "jitter_positions", cli_common_path_jitter(c));
 }
 
 int cli_common_path_camera(const cli_common *c, const ob_scene *scene, const ob_camera *base, int f, ob_camera *out)

@@ -118,7 +118,7 @@ for row in v["rows"]:
         assert frames[2] is None, frames          # the empty frame has no error, not 0
         seen = [e for e in frames if e is not None]
         assert all(e > 0 for e in seen), frames
-        assert math.isclose(x["rmse_mean"], sum(seen) / len(seen), rel_tol=1e-6), (x["rmse_mean"], seen)
+        assert math.isclose(x["rmse_mean"], sum(seen) / len(seen), rel_tol=2e-5), (x["rmse_mean"], seen)  # 6 digits each
         assert x["worst_frame"] != 2 and x["rmse_last"] == frames[-1]
 PY
 else

@@ -5,7 +5,7 @@
 # libobscura, the FZK-Haus model and the commit). Everything it writes lands in $OUT (or
 # bench/results/gpu) and is packed as results.tgz after every step, so a step that runs out of
 # time loses only itself.
-#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|host|tests|fzk|temporal|deinterleave|miptaps|slicemips|upsample|all]...
+#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|host|tests|fzk|temporal|deinterleave|miptaps|slicemips|upsample|atrium|all]...
 #   (default all; the smoke render always)
 # Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-egl.md).
 # shellcheck disable=SC2054 # the commas separate an option's values (--quality low,high), not array elements
@@ -153,6 +153,14 @@ want upsample && run upsample_block 120 "${ups[@]}" --upsample block
 # repository root must be the same path as here, /work/main on these machines: CTest and the
 # tests name absolute paths). The library and GPU suites only: the cli-labelled ones need llvmpipe
 # (--gpu sw), gnuplot, chromium or a display and would fail there for that alone.
+# Puri 2024's Table 1 on its Sponza stand-in (docs/atrium.md): the four cameras x ssao, hbao,
+# alchemy (16 samples each) and none at the thesis's 1920x1080, headless (the viewer's test mode
+# needs a display). The map comes from data/ in the ctest tarball.
+if want atrium && [ -f .gl/ctest.tar.xz ]; then
+    [ -f data/czest1dm.pk3 ] || tar -xJf .gl/ctest.tar.xz data
+    run atrium 120 --scene czest1dm --size 1920x1080 --cameras detail,across,closeup,upper \
+        --methods ssao,hbao,alchemy,none --samples 16 --set hbao.directions=4 --radius 4 --frames 100 --warmup 10
+fi
 if want tests && [ -f .gl/ctest.tar.xz ]; then
     tar -xJf .gl/ctest.tar.xz -C / usr 2>/dev/null
     tar -xJf .gl/ctest.tar.xz build data

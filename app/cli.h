@@ -121,5 +121,6 @@ int cmd_compare(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_view(int argc, char **argv);
 int cmd_tune(int argc, char **argv);
+int cmd_dataset(int argc, char **argv);
 
 #endif

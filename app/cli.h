@@ -122,5 +122,6 @@ int cmd_bench(int argc, char **argv);
 int cmd_view(int argc, char **argv);
 int cmd_tune(int argc, char **argv);
 int cmd_dataset(int argc, char **argv);
+int cmd_merge(int argc, char **argv);
 
 #endif

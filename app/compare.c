@@ -52,6 +52,9 @@ static void compare_usage(FILE *f, const cli_common *defaults)
           "                        (default: each scene's suggested radius; a --set M.radius=... wins\n"
           "                        for method M, the reference keeps R)\n"
           "  --no-cache            recompute the reference even if a cached one exists\n"
+          "  --shard K/N           run only this process's share of the views (K = 0..N-1, as a Slurm\n"
+          "                        array's SLURM_ARRAY_TASK_ID), each shard with its own --report;\n"
+          "                        obscura merge puts the N reports together (docs/scale.md)\n"
           "  --budget-ms T         the equal-time shoot-out: every method at every --quality preset and\n"
           "                        --ao-scale (all of them unless the lists are given), and per view the\n"
           "                        best RMSE each method reaches within T ms of AO (pass + filter +\n"
@@ -63,9 +66,18 @@ static void compare_usage(FILE *f, const cli_common *defaults)
     cli_common_usage(f, defaults);
 }
 
-static int parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
+void compare_assign_shards(compare_opts *o, int shards)
 {
-    *o = (compare_opts){.spp = 512, .outs = outs, .report_index = -1, .argc = argc, .argv = argv};
+    /* Every view costs pixels x rays (one size and spp a run; its rows are the same for every
+     * view): balanced by that, the same on every machine (shard.h). */
+    double cost[MAX_VIEWS];
+    for (int v = 0; v < o->view_count; ++v) cost[v] = (double)o->common.width * (double)o->common.height * (double)o->spp;
+    cli_shard_assign(cost, o->view_count, shards, o->owner);
+}
+
+int compare_parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
+{
+    *o = (compare_opts){.spp = 512, .outs = outs, .report_index = -1, .argc = argc, .argv = argv, .shard = {0, 1}};
     cli_common_init(&o->common, "compare", CLI_TAKES_CAMERA | CLI_TAKES_LISTS | CLI_TAKES_GPU | CLI_TAKES_PATH);
     o->common.default_method = NULL; /* every method */
     o->common.width = 320;
@@ -84,7 +96,7 @@ static int parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
         if (taken == CLI_TAKEN) continue;
         if (taken != CLI_NOT_MINE) return taken;
         if (strcmp(a, "--scene") && strcmp(a, "--report") && strcmp(a, "--spp") && strcmp(a, "--radius") &&
-            strcmp(a, "--budget-ms"))
+            strcmp(a, "--budget-ms") && strcmp(a, "--shard"))
             return cli_unknown_option("compare", a, compare_usage, &o->common);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura compare --help)", a);
         const char *v = argv[++i];
@@ -93,6 +105,9 @@ static int parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
             o->views[o->view_count++] = v;
         } else if (!strcmp(a, "--report")) {
             o->report = v;
+        } else if (!strcmp(a, "--shard")) {
+            int code = cli_shard_parse("--shard", v, &o->shard);
+            if (code != EXIT_OK) return code;
         } else if (!strcmp(a, "--spp")) {
             char *end = NULL;
             long n = strtol(v, &end, 10);
@@ -129,6 +144,9 @@ static int parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
     if (!*o->report) return cli_fail(EXIT_USAGE, "--report: expected a directory, got ''");
     int code = cli_common_finish(&o->common);
     if (code != EXIT_OK) return code;
+    if (o->shard.count > 1 && cli_common_moves(&o->common))
+        return cli_fail(EXIT_USAGE, "--shard: not with --path or --orbit (their flicker rows are not merged yet)");
+    compare_assign_shards(o, o->shard.count);
     if (o->common.ambient_mode != OB_AMBIENT_CONSTANT)
         return cli_fail(EXIT_USAGE, "--ambient: compare takes only 'constant' (the one-bounce reference has a constant ambient)");
     o->final_report = o->report;
@@ -171,7 +189,7 @@ bool compare_track_file(report_files *out, const char *path)
 }
 
 /* mkdir, remembering a directory this run made; fails on a path that exists but is no directory. */
-static int make_report_dir(report_files *out, const char *path)
+int compare_make_dir(report_files *out, const char *path)
 {
     struct stat st = {0};
     if (stat(path, &st) == 0) {
@@ -186,7 +204,7 @@ static int make_report_dir(report_files *out, const char *path)
     return EXIT_OK;
 }
 
-static void report_files_finish(report_files *out, bool failed)
+void compare_files_finish(report_files *out, bool failed)
 {
     for (int i = out->file_count - 1; i >= 0; --i) {
         if (failed) remove(out->files[i]);
@@ -561,7 +579,7 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     view_buffers b;
     int code = buffers_make(&b, c->width, c->height);
     snprintf(b.dir, sizeof b.dir, "%s/%s", o->report, vr->dir);
-    if (code == EXIT_OK) code = make_report_dir(out, b.dir);
+    if (code == EXIT_OK) code = compare_make_dir(out, b.dir);
     if (code == EXIT_OK) code = view_gbuffer(o, r, &in->cam, vr, &b);
     if (code == EXIT_OK) code = view_reference(o, in, vr, &b, out);
     if (code == EXIT_OK) code = view_masks(vr, &b, out);
@@ -601,7 +619,7 @@ int cmd_compare(int argc, char **argv)
 {
     compare_opts o;
     cli_outputs outs = {0};
-    int code = parse(argc, argv, &o, &outs);
+    int code = compare_parse(argc, argv, &o, &outs);
     if (code == 0) code = compare_checked(&o);
     /* The report replaces --report only whole; a failure removes the temporary one. */
     code = cli_outputs_finish(&outs, code < 0 ? EXIT_OK : code);
@@ -628,7 +646,7 @@ typedef struct compare_run {
 
 /* Everything is checked before the report directory is touched: the combinations and their
  * settings, every scene and camera, the context and the renderer's size. */
-static int compare_prepare(const compare_opts *o, compare_run *run)
+static int compare_prepare(compare_opts *o, compare_run *run)
 {
     const cli_common *c = &o->common;
     int code = cli_common_configs(c, &run->configs, &run->count);
@@ -636,7 +654,7 @@ static int compare_prepare(const compare_opts *o, compare_run *run)
     run->views = calloc(MAX_VIEWS, sizeof *run->views);
     if (!run->views) return cli_fail(EXIT_RUNTIME, "out of memory");
     for (int v = 0; v < o->view_count && code == EXIT_OK; ++v)
-        code = load_view(o, o->views[v], &run->inputs[v], run->inputs, v);
+        if (o->owner[v] == o->shard.index) code = load_view(o, o->views[v], &run->inputs[v], run->inputs, v);
     for (int v = 0; v < o->view_count && code == EXIT_OK && cli_common_moves(c); ++v) {
         ob_camera probe; /* --path names a path of every scene */
         code = cli_common_path_camera(c, run->inputs[v].scene, &run->inputs[v].cam, 0, &probe);
@@ -644,6 +662,8 @@ static int compare_prepare(const compare_opts *o, compare_run *run)
     if (code != EXIT_OK) return code;
     run->ctx = cli_make_context(c->gpu, c->verbose);
     if (!run->ctx) return cli_fail_from_library();
+    snprintf(o->renderer, sizeof o->renderer, "%s", ob_query_renderer(run->ctx));
+    snprintf(o->gl_version, sizeof o->gl_version, "%s", ob_query_gl_version(run->ctx));
     run->r = ob_make_renderer(run->ctx, &(ob_renderer_desc){.width = c->width, .height = c->height});
     if (!run->r) return cli_fail_from_library();
     return cli_common_prepare(c, run->r);
@@ -661,12 +681,16 @@ static int run_views(compare_opts *o, compare_run *run)
      * (its line ended) before a view's references so that their bars draw on the lines below. */
     const int count = run->count;
     const int per_view = count * (cli_common_moves(c) ? 2 : 1);
-    ob_progress_begin(&run->bar, "compare", (long long)o->view_count * per_view);
+    int mine = 0;
+    for (int v = 0; v < o->view_count; ++v) mine += o->owner[v] == o->shard.index;
+    ob_progress_begin(&run->bar, "compare", (long long)mine * per_view);
     run->bar.each = true;
     o->bar = &run->bar;
     int code = EXIT_OK;
     for (int v = 0; v < o->view_count && code == EXIT_OK; ++v) {
-        view_result *vr = &run->views[v];
+        if (o->owner[v] != o->shard.index) continue; /* another shard's view */
+        view_result *vr = &run->views[run->done];
+        vr->index = v;
         /* On a terminal the bar keeps its own line above the reference's bar (issue 48). */
         char step[320];
         snprintf(step, sizeof step, "%.60s:%.40s reference (view %d/%d)", run->inputs[v].name,
@@ -692,14 +716,14 @@ static int run_views(compare_opts *o, compare_run *run)
 
 /* Each view's set, if scenes/views.json names it (as SCENE:CAMERA): labels, never a failure
  * when the file is missing; a malformed one is an error like any input. */
-static int label_sets(compare_run *run)
+int compare_label_sets(view_result *views, int count)
 {
     cli_view_sets sets;
     int code = cli_view_sets_load(&sets, false);
-    for (int v = 0; v < run->done && code == EXIT_OK; ++v) {
+    for (int v = 0; v < count && code == EXIT_OK; ++v) {
         char spec[256];
-        snprintf(spec, sizeof spec, "%s:%s", run->views[v].scene, run->views[v].camera);
-        run->views[v].set = cli_view_set_of(&sets, spec);
+        snprintf(spec, sizeof spec, "%s:%s", views[v].scene, views[v].camera);
+        views[v].set = cli_view_set_of(&sets, spec);
     }
     return code;
 }
@@ -707,7 +731,7 @@ static int label_sets(compare_run *run)
 static void compare_run_free(compare_run *run, bool failed)
 {
     ob_progress_end(&run->bar);
-    report_files_finish(&run->out, failed);
+    compare_files_finish(&run->out, failed);
     for (int v = 0; v < MAX_VIEWS && run->views; ++v) {
         free(run->views[v].methods);
         cli_flicker_free(run->views[v].flicker, run->views[v].method_count);
@@ -728,9 +752,10 @@ static int compare_checked(const compare_opts *op)
     if (!run) return cli_fail(EXIT_RUNTIME, "out of memory");
     int code = compare_prepare(&o, run);
     if (code == EXIT_OK) code = run_views(&o, run);
-    if (code == EXIT_OK) code = label_sets(run);
-    if (code == EXIT_OK) code = compare_write_json(&o, run->ctx, run->views, run->done, &run->out);
-    if (code == EXIT_OK) code = compare_write_html(&o, run->ctx, run->views, run->done, &run->out);
+    if (code == EXIT_OK) code = compare_label_sets(run->views, run->done);
+    if (code == EXIT_OK) code = compare_write_json(&o, run->views, run->done, &run->out);
+    if (code == EXIT_OK) code = compare_write_html(&o, run->views, run->done, &run->out);
+    if (code == EXIT_OK && o.shard.count > 1) code = compare_write_shard(&o, run->views, run->done, &run->out);
     compare_run_free(run, code != EXIT_OK);
     free(run);
     return code;

@@ -12,6 +12,7 @@
 #include "flicker.h"
 #include "outputs.h"
 #include "progress.h"
+#include "shard.h"
 
 /* compare without --report writes here (in the current directory). */
 #define CLI_DEFAULT_REPORT "obscura-report"
@@ -35,6 +36,11 @@ typedef struct compare_opts {
     int argc;                     /* the command line as given: results.json records it */
     char **argv;
     ob_progress *bar;             /* the run's bar: one step per method of a view (and per flicker row) */
+    /* The GL renderer the rows ran on, for the report's head (a merge takes its shards'). */
+    char renderer[256], gl_version[256];
+    /* --shard K/N: only the views owner[] gives this shard (shard.h); {0, 1} runs every view. */
+    cli_shard shard;
+    int owner[MAX_VIEWS];
 } compare_opts;
 
 /* One row of a view's table: one combination of the lists. */
@@ -55,6 +61,7 @@ typedef struct method_result {
 } method_result;
 
 typedef struct view_result {
+    int index;                          /* its --scene's position in the run */
     char scene[128], camera[64], dir[192];
     float radius;
     double ref_seconds, ref_stderr_mean, bounce_seconds;
@@ -81,13 +88,26 @@ typedef struct report_files {
  * when memory ran out. */
 bool compare_track_file(report_files *out, const char *path);
 
+/* compare.c: the parser (a merge re-reads its shards' command line with it), the views' sets
+ * (choose/check, scenes/views.json), and the report's directories (made and tracked) and files
+ * (removed again when the run fails). */
+int compare_parse(int argc, char **argv, compare_opts *o, cli_outputs *outs);
+/* o->owner for the run split over `shards` (compare_parse does it for --shard). */
+void compare_assign_shards(compare_opts *o, int shards);
+int compare_label_sets(view_result *views, int count);
+int compare_make_dir(report_files *out, const char *path);
+void compare_files_finish(report_files *out, bool failed);
+
+/* compare_merge.c: a shard's REPORT/shard.bin (every view it ran, for obscura merge). */
+int compare_write_shard(const compare_opts *o, const view_result *views, int count, report_files *out);
+
 /* compare_report.c */
 /* Marks the rows on the view's error/time Pareto front (method_result.pareto). */
 void compare_mark_pareto(view_result *vr);
 /* REPORT/results.json and REPORT/index.html for the count views done: EXIT_OK or an exit code
  * after one line on stderr. */
-int compare_write_json(const compare_opts *o, ob_context *ctx, const view_result *views, int count, report_files *out);
-int compare_write_html(const compare_opts *o, ob_context *ctx, const view_result *views, int count, report_files *out);
+int compare_write_json(const compare_opts *o, const view_result *views, int count, report_files *out);
+int compare_write_html(const compare_opts *o, const view_result *views, int count, report_files *out);
 
 /* compare_chart.c: REPORT/VIEW/chart.svg, drawn by gnuplot. */
 int compare_write_chart(const compare_opts *o, const view_result *vr, report_files *out);

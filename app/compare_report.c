@@ -135,7 +135,7 @@ static row_summary *summarise(const view_result *views, int count, int rows)
 
 /* What made the numbers: the tool, its commit, the command line as given, the GPU and the run's
  * settings. */
-static void json_run(cJSON *root, const compare_opts *o, ob_context *ctx)
+static void json_run(cJSON *root, const compare_opts *o)
 {
     cJSON_AddStringToObject(root, "version", OB_VERSION_STRING);
     char commit[64];
@@ -143,8 +143,21 @@ static void json_run(cJSON *root, const compare_opts *o, ob_context *ctx)
     cJSON_AddStringToObject(root, "commit", commit);
     cJSON *cmd = cJSON_AddArrayToObject(root, "command_line");
     for (int i = 0; i < o->argc; ++i) cJSON_AddItemToArray(cmd, cJSON_CreateString(o->argv[i]));
-    cJSON_AddStringToObject(root, "renderer", ob_query_renderer(ctx));
-    cJSON_AddStringToObject(root, "gl_version", ob_query_gl_version(ctx));
+    cJSON_AddStringToObject(root, "renderer", o->renderer);
+    cJSON_AddStringToObject(root, "gl_version", o->gl_version);
+    if (o->shard.count > 1) {
+        /* One of N shards (--shard K/N): which views went where, for obscura merge. */
+        cJSON *sh = cJSON_AddObjectToObject(root, "shard");
+        cli_json_add_number(sh, "index", o->shard.index);
+        cli_json_add_number(sh, "count", o->shard.count);
+        cJSON *all = cJSON_AddArrayToObject(sh, "views");
+        for (int v = 0; v < o->view_count; ++v) {
+            cJSON *e = cJSON_CreateObject();
+            cJSON_AddStringToObject(e, "view", o->views[v]);
+            cli_json_add_number(e, "shard", o->owner[v]);
+            cJSON_AddItemToArray(all, e);
+        }
+    }
     /* What the rows' ms are: frame_ms is easily read as the frame's wall-clock time, which it is not. */
     cJSON_AddStringToObject(root, "timing", "GPU ms from GL_TIMESTAMP queries around each pass, medians of 5 frames: "
                                             "ao_ms the AO pass, chain_ms the AO chain (AO pass, depth MIPs, edges, "
@@ -361,10 +374,10 @@ static cJSON *json_view(const compare_opts *o, const view_result *vr)
     return j;
 }
 
-int compare_write_json(const compare_opts *o, ob_context *ctx, const view_result *views, int count, report_files *out)
+int compare_write_json(const compare_opts *o, const view_result *views, int count, report_files *out)
 {
     cJSON *root = cJSON_CreateObject();
-    json_run(root, o, ctx);
+    json_run(root, o);
     json_sets(root, views, count);
     json_summary(root, views, count);
     cJSON *jv = cJSON_AddArrayToObject(root, "views");
@@ -564,7 +577,7 @@ static void write_flicker_table(FILE *f, const compare_opts *o, const view_resul
 }
 
 /* The page's head, its style and the run's line. */
-static void html_head(FILE *f, const compare_opts *o, ob_context *ctx)
+static void html_head(FILE *f, const compare_opts *o)
 {
     fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>Obscura: AO against ground truth</title>\n"
           "<style>body{font:14px sans-serif;margin:24px;color:#222}h2{margin-top:36px}"
@@ -577,7 +590,7 @@ static void html_head(FILE *f, const compare_opts *o, ob_context *ctx)
           f);
     fprintf(f, "%dx%d, reference %d rays per pixel (cosine-weighted, AO<sub>R</sub> as in docs/compare.md), GPU: ",
             o->common.width, o->common.height, o->spp);
-    html_escape(f, ob_query_renderer(ctx));
+    html_escape(f, o->renderer);
     fputs(". Error maps: red = the method is brighter (misses occlusion), blue = darker; &plusmn;0.5 saturates. "
           "Click a column's header to sort by it (&#9650; ascending, &#9660; descending; again to reverse).</p>\n",
           f);
@@ -760,7 +773,7 @@ static void html_script(FILE *f)
           f);
 }
 
-int compare_write_html(const compare_opts *o, ob_context *ctx, const view_result *views, int count, report_files *out)
+int compare_write_html(const compare_opts *o, const view_result *views, int count, report_files *out)
 {
     char path[700], tmp[720];
     snprintf(path, sizeof path, "%s/index.html", o->report);
@@ -768,7 +781,7 @@ int compare_write_html(const compare_opts *o, ob_context *ctx, const view_result
     if (!compare_track_file(out, path)) return cli_fail(EXIT_RUNTIME, "out of memory");
     FILE *f = fopen(tmp, "w");
     if (!f) return cli_fail(EXIT_OUTPUT, "cannot write %s: %s", path, strerror(errno));
-    html_head(f, o, ctx);
+    html_head(f, o);
     const int rows = count > 0 ? views[0].method_count : 0;
     html_summary(f, views, count, rows);
     html_sets(f, views, count, rows);

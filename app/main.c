@@ -55,9 +55,10 @@ int main(int argc, char **argv)
     }
     if (!strcmp(cmd, "tune")) return cmd_tune(argc - 1, argv + 1);
     if (!strcmp(cmd, "dataset")) return cmd_dataset(argc - 1, argv + 1);
-    static const char *const commands[] = {"render", "list", "sheet", "compare", "bench", "view", "tune", "dataset"};
+    if (!strcmp(cmd, "merge")) return cmd_merge(argc - 1, argv + 1);
+    static const char *const commands[] = {"render", "list", "sheet", "compare", "bench", "view", "tune", "dataset", "merge"};
     char hint[96];
-    fprintf(stderr, "obscura: unknown command '%s'%s (commands: render, list, sheet, compare, bench, view, tune, dataset; see obscura --help)\n",
-            cmd, ob_suggest_text(cmd, strlen(cmd), commands, 8, hint, sizeof hint));
+    fprintf(stderr, "obscura: unknown command '%s'%s (commands: render, list, sheet, compare, bench, view, tune, dataset, merge; see obscura --help)\n",
+            cmd, ob_suggest_text(cmd, strlen(cmd), commands, 9, hint, sizeof hint));
     return EXIT_USAGE;
 }

@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# compare --shard K/N and obscura merge (issue 49, items 1 and 2): a run split over 2 and over 3
+# shards and merged is the unsharded run's report: the same files, every image byte for byte, and
+# every number of results.json equal but the timings (GPU ms and what is ranked by them: the
+# Pareto front) and the run's own facts (its date, command line, whether a reference came from the
+# cache). Each shard runs only the views the cost-balanced assignment gives it. A missing, repeated
+# or foreign shard is one line naming it, exit 2, and no report.
+# usage: test_shards.sh OBSCURA
+set -u
+OBSCURA=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+export XDG_CACHE_HOME="$dir/cache"
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); }
+bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
+
+run=(--scene corner:diagonal --scene cornell:front --scene sphere-on-plane:contact --methods ssao,gtao,ssdo
+    --size 48x36 --spp 16)
+"$OBSCURA" compare "${run[@]}" --report "$dir/whole" >/dev/null 2>"$dir/err" && ok || bad "unsharded: $(tail -1 "$dir/err")"
+for n in 2 3; do
+    for ((k = 0; k < n; ++k)); do
+        "$OBSCURA" compare "${run[@]}" --shard "$k/$n" --report "$dir/s$k-of-$n" >/dev/null 2>"$dir/err" ||
+            bad "shard $k/$n: $(tail -1 "$dir/err")"
+    done
+done
+# Three views of equal cost over two shards: in turn (0, 1, 0); over three, one each.
+[ -d "$dir/s0-of-2/corner_diagonal" ] && [ -d "$dir/s0-of-2/sphere-on-plane_contact" ] &&
+    [ ! -e "$dir/s0-of-2/cornell_front" ] && [ -d "$dir/s1-of-2/cornell_front" ] &&
+    [ ! -e "$dir/s1-of-2/corner_diagonal" ] && [ -d "$dir/s2-of-3/sphere-on-plane_contact" ] && ok ||
+    bad "the shards' views: $(ls "$dir"/s*)"
+python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["shard"] == {"index": 1, "count": 2, "views": [{"view": "corner:diagonal", "shard": 0},
+    {"view": "cornell:front", "shard": 1}, {"view": "sphere-on-plane:contact", "shard": 0}]}, d["shard"]
+assert [v["camera"] for v in d["views"]] == ["front"], d["views"]
+' "$dir/s1-of-2/results.json" && ok || bad "shard 1/2's results.json"
+
+# same WHOLE MERGED: the unsharded run's report, up to timings.
+same() {
+    python3 - "$1" "$2" <<'PY'
+import json, os, sys
+a_dir, b_dir = sys.argv[1:]
+def files(root):
+    return sorted(os.path.relpath(os.path.join(d, f), root) for d, _, fs in os.walk(root) for f in fs)
+assert files(a_dir) == files(b_dir), (files(a_dir), files(b_dir))
+for f in files(a_dir):
+    if f.endswith(".png"):
+        assert open(os.path.join(a_dir, f), "rb").read() == open(os.path.join(b_dir, f), "rb").read(), f
+TIMING = {"ao_ms", "frame_ms", "chain_ms", "pareto", "median_ao_ms", "front", "seconds", "bounce_seconds",
+          "cached", "date", "command_line"}
+def walk(a, b, path):
+    if isinstance(a, dict):
+        assert isinstance(b, dict) and set(a) == set(b), (path, sorted(set(a) ^ set(b)))
+        for k in a:
+            if k not in TIMING:
+                walk(a[k], b[k], path + "." + k)
+    elif isinstance(a, list):
+        assert isinstance(b, list) and len(a) == len(b), (path, len(a), len(b))
+        for i, (x, y) in enumerate(zip(a, b)):
+            walk(x, y, "%s[%d]" % (path, i))
+    else:
+        assert a == b, (path, a, b)
+ja, jb = (json.load(open(os.path.join(d, "results.json"))) for d in (a_dir, b_dir))
+walk(ja, jb, "")
+assert [v["dir"] for v in jb["views"]] == ["corner_diagonal", "cornell_front", "sphere-on-plane_contact"]
+ha, hb = (open(os.path.join(d, "index.html")).read() for d in (a_dir, b_dir))
+for v in ("corner &mdash; diagonal", "cornell &mdash; front", "sphere-on-plane &mdash; contact"):
+    assert v in hb, v
+assert hb.index("cornell &mdash; front") < hb.index("sphere-on-plane &mdash; contact")
+PY
+}
+# Given in any order.
+"$OBSCURA" merge "$dir/s1-of-2" "$dir/s0-of-2" --report "$dir/merged2" >"$dir/out" 2>"$dir/err" && ok ||
+    bad "merge of 2: $(cat "$dir/err")"
+grep -qx "report: $dir/merged2/index.html" "$dir/out" && ok || bad "merge's stdout: $(cat "$dir/out")"
+same "$dir/whole" "$dir/merged2" && ok || bad "2 shards merged differ from the unsharded run"
+"$OBSCURA" merge "$dir/s2-of-3" "$dir/s0-of-3" "$dir/s1-of-3" --report "$dir/merged3" >/dev/null 2>"$dir/err" && ok ||
+    bad "merge of 3: $(cat "$dir/err")"
+same "$dir/whole" "$dir/merged3" && ok || bad "3 shards merged differ from the unsharded run"
+
+# Bad input: one line naming the shard, exit 2 (3 for a file that is not what it claims), no report.
+expect() { # CODE PATTERN ARGS...
+    local code=$1 pattern=$2
+    shift 2
+    "$OBSCURA" "$@" >"$dir/stdout" 2>"$dir/stderr"
+    local got=$?
+    if [ $got -ne "$code" ] || [ "$(wc -l <"$dir/stderr")" -ne 1 ] || ! grep -qE -e "$pattern" "$dir/stderr"; then
+        bad "$* exited $got: $(cat "$dir/stderr") (want $code and /$pattern/)"
+    else ok; fi
+}
+expect 2 "shard 1/2 is missing \(1 of 2 given\)" merge "$dir/s0-of-2" --report "$dir/bad"
+expect 2 "shard 0/2 is given twice: $dir/s0-of-2 and $dir/s0-of-2" merge "$dir/s0-of-2" "$dir/s0-of-2" "$dir/s1-of-2" --report "$dir/bad"
+expect 2 "are shards of different runs" merge "$dir/s0-of-2" "$dir/s1-of-3" --report "$dir/bad"
+expect 2 "$dir/whole: not a shard" merge "$dir/whole" --report "$dir/bad"
+expect 3 "$dir/nowhere: cannot read results.json" merge "$dir/nowhere" --report "$dir/bad"
+expect 2 "merge: no shard directories" merge --report "$dir/bad"
+expect 2 "unknown option '--reprot'; did you mean '--report'" merge "$dir/s0-of-2" --reprot "$dir/bad"
+"$OBSCURA" compare "${run[@]}" --spp 8 --shard 1/2 --report "$dir/other" >/dev/null 2>&1
+expect 2 "are shards of different runs" merge "$dir/s0-of-2" "$dir/other" --report "$dir/bad"
+# A shard.bin cut short, or of another build: exit 3, named.
+cp -r "$dir/s1-of-2" "$dir/cut"
+head -c 300 "$dir/s1-of-2/shard.bin" >"$dir/cut/shard.bin"
+expect 3 "$dir/cut/shard.bin: (truncated|not a shard file)" merge "$dir/s0-of-2" "$dir/cut" --report "$dir/bad"
+printf 'obscura compare shard 1\n0.0.0\n' >"$dir/cut/shard.bin"
+expect 3 "$dir/cut/shard.bin: not a shard file of this obscura" merge "$dir/s0-of-2" "$dir/cut" --report "$dir/bad"
+[ ! -e "$dir/bad" ] && ! ls "$dir"/bad.tmp-* >/dev/null 2>&1 && ok || bad "a failed merge left $(ls -d "$dir"/bad*)"
+for s in 2/2 -1/2 1/0 x 1/2/3; do
+    expect 2 "^obscura: --shard: expected K/N" compare --scene corner --shard "$s" --report "$dir/bad"
+done
+expect 2 "--shard: not with --path or --orbit" compare --scene corner --orbit 10 --shard 0/2 --report "$dir/bad"
+
+echo "shards: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]

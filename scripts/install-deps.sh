@@ -23,6 +23,9 @@ packages=(
     # the comparison report: charts, and the headless browser its test opens it in
     gnuplot-nox
     chromium
+    # make test's Slurm test (tests/test_slurm.sh): a single-node cluster on localhost, started and
+    # stopped by the test itself in a scratch folder (no service is enabled or started here)
+    munge slurmctld slurmd slurm-client
     # scenes the demo and the tests use
     glmark2-data          # /usr/share/glmark2/models/bunny.obj (Stanford bunny)
     assimp-testmodels     # IFC/AC14-FZK-Haus.ifc, glTF2/2CylinderEngine-glTF-Binary (engine)

@@ -38,40 +38,8 @@ assert d["shard"] == {"index": 1, "count": 2, "views": [{"view": "corner:diagona
 assert [v["camera"] for v in d["views"]] == ["front"], d["views"]
 ' "$dir/s1-of-2/results.json" && ok || bad "shard 1/2's results.json"
 
-# same WHOLE MERGED: the unsharded run's report, up to timings.
-same() {
-    python3 - "$1" "$2" <<'PY'
-import json, os, sys
-a_dir, b_dir = sys.argv[1:]
-def files(root):
-    return sorted(os.path.relpath(os.path.join(d, f), root) for d, _, fs in os.walk(root) for f in fs)
-assert files(a_dir) == files(b_dir), (files(a_dir), files(b_dir))
-for f in files(a_dir):
-    if f.endswith(".png"):
-        assert open(os.path.join(a_dir, f), "rb").read() == open(os.path.join(b_dir, f), "rb").read(), f
-TIMING = {"ao_ms", "frame_ms", "chain_ms", "pareto", "median_ao_ms", "front", "seconds", "bounce_seconds",
-          "cached", "date", "command_line"}
-def walk(a, b, path):
-    if isinstance(a, dict):
-        assert isinstance(b, dict) and set(a) == set(b), (path, sorted(set(a) ^ set(b)))
-        for k in a:
-            if k not in TIMING:
-                walk(a[k], b[k], path + "." + k)
-    elif isinstance(a, list):
-        assert isinstance(b, list) and len(a) == len(b), (path, len(a), len(b))
-        for i, (x, y) in enumerate(zip(a, b)):
-            walk(x, y, "%s[%d]" % (path, i))
-    else:
-        assert a == b, (path, a, b)
-ja, jb = (json.load(open(os.path.join(d, "results.json"))) for d in (a_dir, b_dir))
-walk(ja, jb, "")
-assert [v["dir"] for v in jb["views"]] == ["corner_diagonal", "cornell_front", "sphere-on-plane_contact"]
-ha, hb = (open(os.path.join(d, "index.html")).read() for d in (a_dir, b_dir))
-for v in ("corner &mdash; diagonal", "cornell &mdash; front", "sphere-on-plane &mdash; contact"):
-    assert v in hb, v
-assert hb.index("cornell &mdash; front") < hb.index("sphere-on-plane &mdash; contact")
-PY
-}
+# same WHOLE MERGED: the unsharded run's report, up to timings (tests/report_same.py).
+same() { python3 "$(dirname "$0")/report_same.py" "$1" "$2"; }
 # Given in any order.
 "$OBSCURA" merge "$dir/s1-of-2" "$dir/s0-of-2" --report "$dir/merged2" >"$dir/out" 2>"$dir/err" && ok ||
     bad "merge of 2: $(cat "$dir/err")"

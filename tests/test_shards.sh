@@ -36,7 +36,7 @@ d = json.load(open(sys.argv[1]))
 assert d["shard"] == {"index": 1, "count": 2, "views": [{"view": "corner:diagonal", "shard": 0},
     {"view": "cornell:front", "shard": 1}, {"view": "sphere-on-plane:contact", "shard": 0}]}, d["shard"]
 assert [v["camera"] for v in d["views"]] == ["front"], d["views"]
-# The shards share the reference cache the unsharded run filled: each finds its view's entry.
+# The shards share the reference cache the unsharded run filled: each finds the entry of its view.
 assert d["views"][0]["reference"]["cached"] is True, d["views"][0]["reference"]
 ' "$dir/s1-of-2/results.json" && ok || bad "shard 1/2's results.json"
 

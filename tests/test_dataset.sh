@@ -163,5 +163,8 @@ expect 4 "--out" --scene corner --size 32x24 --spp 4 --out "$dir/mine"
 if "$OBSCURA" dataset --scene corner --size 32x24 --spp 4 --out "$dir/all" >/dev/null 2>&1 && [ -d "$dir/all/corner_default" ] &&
     [ ! -e "$dir/all/cornell_front" ]; then ok; else bad "rerun into its own directory: $(ls "$dir/all")"; fi
 
+# obscura --help lists the command.
+"$OBSCURA" --help | grep -q "^  dataset " && ok || bad "obscura --help does not list dataset"
+
 echo "dataset: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

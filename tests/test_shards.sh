@@ -82,5 +82,8 @@ for s in 2/2 -1/2 1/0 x 1/2/3; do
 done
 expect 2 "--shard: not with --path or --orbit" compare --scene corner --orbit 10 --shard 0/2 --report "$dir/bad"
 
+# obscura --help lists the command.
+"$OBSCURA" --help | grep -q "^  merge " && ok || bad "obscura --help does not list merge"
+
 echo "shards: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

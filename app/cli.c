@@ -107,6 +107,17 @@ int cli_fail_library_as(int code)
     return cli_fail(code, "%s", msg && *msg ? msg : ob_error_name(err));
 }
 
+void cli_safe_name(char *out, size_t n, const char *in)
+{
+    size_t k = 0;
+    for (; *in && k + 1 < n; ++in) {
+        char c = *in;
+        bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
+        out[k++] = ok ? c : '_';
+    }
+    out[k] = '\0';
+}
+
 bool cli_parse_size(const char *text, int *w, int *h)
 {
     char *end = NULL;

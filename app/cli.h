@@ -37,6 +37,9 @@ int cli_unknown_option(const char *command, const char *arg, void (*usage)(FILE 
                        const struct cli_common *c);
 
 bool cli_parse_size(const char *text, int *w, int *h);
+/* A file-system-safe name (a view's directory): letters, digits, '-' and '_' kept, any other byte
+ * '_', cut to n - 1 bytes. */
+void cli_safe_name(char *out, size_t n, const char *in);
 bool cli_parse_vec3(const char *text, float out[3]);
 bool cli_parse_float(const char *text, float *out);
 /* The GL context for a command; with verbose, one stderr line naming GL_RENDERER, GL_VERSION and

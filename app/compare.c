@@ -155,18 +155,6 @@ int compare_parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
 
 /* ---- the report's files ---------------------------------------------------------------------- */
 
-/* A file-system-safe name for a view directory: letters, digits, '-' and '_' only. */
-static void safe_name(char *out, size_t n, const char *in)
-{
-    size_t k = 0;
-    for (; *in && k + 1 < n; ++in) {
-        char c = *in;
-        bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
-        out[k++] = ok ? c : '_';
-    }
-    out[k] = '\0';
-}
-
 static bool push_path(char ***list, int *count, int *cap, const char *path)
 {
     if (*count == *cap) {
@@ -568,8 +556,8 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     snprintf(vr->scene, sizeof vr->scene, "%s", ob_query_scene_name(in->scene));
     snprintf(vr->camera, sizeof vr->camera, "%s", in->cam.name);
     char safe_scene[128], safe_cam[64];
-    safe_name(safe_scene, sizeof safe_scene, vr->scene);
-    safe_name(safe_cam, sizeof safe_cam, vr->camera);
+    cli_safe_name(safe_scene, sizeof safe_scene, vr->scene);
+    cli_safe_name(safe_cam, sizeof safe_cam, vr->camera);
     snprintf(vr->dir, sizeof vr->dir, "%s_%s", safe_scene, safe_cam);
     vr->radius = o->radius > 0.0f ? o->radius : ob_query_scene_ao_radius(in->scene);
 

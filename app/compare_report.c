@@ -147,16 +147,7 @@ static void json_run(cJSON *root, const compare_opts *o)
     cJSON_AddStringToObject(root, "gl_version", o->gl_version);
     if (o->shard.count > 1) {
         /* One of N shards (--shard K/N): which views went where, for obscura merge. */
-        cJSON *sh = cJSON_AddObjectToObject(root, "shard");
-        cli_json_add_number(sh, "index", o->shard.index);
-        cli_json_add_number(sh, "count", o->shard.count);
-        cJSON *all = cJSON_AddArrayToObject(sh, "views");
-        for (int v = 0; v < o->view_count; ++v) {
-            cJSON *e = cJSON_CreateObject();
-            cJSON_AddStringToObject(e, "view", o->views[v]);
-            cli_json_add_number(e, "shard", o->owner[v]);
-            cJSON_AddItemToArray(all, e);
-        }
+        cli_shard_json(root, &o->shard, o->views, o->owner, o->view_count);
     }
     /* What the rows' ms are: frame_ms is easily read as the frame's wall-clock time, which it is not. */
     cJSON_AddStringToObject(root, "timing", "GPU ms from GL_TIMESTAMP queries around each pass, medians of 5 frames: "

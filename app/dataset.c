@@ -132,18 +132,6 @@ static int parse(int argc, char **argv, dataset_opts *o)
     return cli_outputs_add(&o->outs, "--out", o->out, CLI_FMT_DIR, &o->out_index);
 }
 
-/* A file-system-safe view directory name: letters, digits, '-' and '_' (as compare's). */
-static void safe_name(char *out, size_t n, const char *in)
-{
-    size_t k = 0;
-    for (; *in && k + 1 < n; ++in) {
-        char c = *in;
-        bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
-        out[k++] = ok ? c : '_';
-    }
-    out[k] = '\0';
-}
-
 /* One view's buffers, bottom row first as ob_read_image gives them. */
 typedef struct view_images {
     cli_view_frame frame; /* depth, normals, the camera's matrices */
@@ -268,8 +256,8 @@ static int run_view(const dataset_opts *o, ob_renderer *r, const ob_settings *li
         v.se[i] = v.frame.depth[i] > 0.0f ? sqrtf(fmaxf(v.ao[i] * (1.0f - v.ao[i]), 0.0f) / (float)(o->spp - 1)) : 0.0f;
     if (code == EXIT_OK && o->bounce) code = trace_bounce(o, scene, lit, radius, &v);
     char safe_scene[128], safe_cam[64], dir[200], path[1000];
-    safe_name(safe_scene, sizeof safe_scene, scene ? ob_query_scene_name(scene) : "");
-    safe_name(safe_cam, sizeof safe_cam, cam.name);
+    cli_safe_name(safe_scene, sizeof safe_scene, scene ? ob_query_scene_name(scene) : "");
+    cli_safe_name(safe_cam, sizeof safe_cam, cam.name);
     snprintf(dir, sizeof dir, "%s_%s", safe_scene, safe_cam);
     snprintf(path, sizeof path, "%s/%s", root, dir);
     if (code == EXIT_OK && mkdir(path, 0777) != 0)
@@ -298,16 +286,7 @@ static cJSON *manifest_head(const dataset_opts *o, ob_context *ctx, const int *o
     cJSON *cmd = cJSON_AddArrayToObject(root, "command_line");
     for (int i = 0; i < o->argc; ++i) cJSON_AddItemToArray(cmd, cJSON_CreateString(o->argv[i]));
     cJSON_AddStringToObject(root, "renderer", ob_query_renderer(ctx));
-    cJSON *sh = cJSON_AddObjectToObject(root, "shard");
-    cli_json_add_number(sh, "index", o->shard.index);
-    cli_json_add_number(sh, "count", o->shard.count);
-    cJSON *all = cJSON_AddArrayToObject(sh, "views");
-    for (int v = 0; v < o->view_count; ++v) {
-        cJSON *e = cJSON_CreateObject();
-        cJSON_AddStringToObject(e, "view", o->views[v]);
-        cli_json_add_number(e, "shard", owner[v]);
-        cJSON_AddItemToArray(all, e);
-    }
+    cli_shard_json(root, &o->shard, o->views, owner, o->view_count);
     cJSON *conv = cJSON_AddObjectToObject(root, "conventions");
     cJSON_AddStringToObject(conv, "pfm", "32-bit little-endian floats, rows bottom first (PFM's own order)");
     cJSON_AddStringToObject(conv, "depth", "linear view depth along -Z in world units; 0 where no geometry (sky)");

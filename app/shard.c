@@ -1,6 +1,7 @@
 /* Work units split over shards (shard.h). */
 #include "shard.h"
 
+#include <cjson/cJSON.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -55,4 +56,18 @@ void cli_shard_assign(const double *cost, int units, int shards, int *owner)
     }
     free(order);
     free(load);
+}
+
+void cli_shard_json(cJSON *root, const cli_shard *s, const char *const *views, const int *owner, int count)
+{
+    cJSON *sh = cJSON_AddObjectToObject(root, "shard");
+    cli_json_add_number(sh, "index", s->index);
+    cli_json_add_number(sh, "count", s->count);
+    cJSON *all = cJSON_AddArrayToObject(sh, "views");
+    for (int u = 0; u < count; ++u) {
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddStringToObject(e, "view", views[u]);
+        cli_json_add_number(e, "shard", owner[u]);
+        cJSON_AddItemToArray(all, e);
+    }
 }

@@ -23,4 +23,9 @@ int cli_shard_parse(const char *option, const char *text, cli_shard *s);
  * floating-point sum depends on the order the shards run in). cost[u] >= 0. */
 void cli_shard_assign(const double *cost, int units, int shards, int *owner);
 
+/* root.shard = {"index": K, "count": N, "views": [{"view": views[u], "shard": owner[u]}, ...]}:
+ * which unit went where, as compare's results.json and dataset's manifest.json record it. */
+struct cJSON;
+void cli_shard_json(struct cJSON *root, const cli_shard *s, const char *const *views, const int *owner, int count);
+
 #endif

@@ -144,8 +144,6 @@ int compare_parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
     if (!*o->report) return cli_fail(EXIT_USAGE, "--report: expected a directory, got ''");
     int code = cli_common_finish(&o->common);
     if (code != EXIT_OK) return code;
-    if (o->shard.count > 1 && cli_common_moves(&o->common))
-        return cli_fail(EXIT_USAGE, "--shard: not with --path or --orbit (their flicker rows are not merged yet)");
     compare_assign_shards(o, o->shard.count);
     if (o->common.ambient_mode != OB_AMBIENT_CONSTANT)
         return cli_fail(EXIT_USAGE, "--ambient: compare takes only 'constant' (the one-bounce reference has a constant ambient)");

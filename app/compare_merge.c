@@ -22,8 +22,32 @@
 #define SHARD_MAGIC "obscura compare shard 1\n"
 
 typedef struct shard_header {
-    uint32_t view_size, method_size, views, methods;
+    uint32_t view_size, method_size, flicker_size, views, methods;
 } shard_header;
+
+/* A variant's per-frame RMSE curve: a flag, then flicker_ref.frames doubles when it has one. */
+static bool write_curve(FILE *f, const double *curve, int frames)
+{
+    const uint8_t has = curve != NULL;
+    return fwrite(&has, 1, 1, f) == 1 && (!has || fwrite(curve, sizeof *curve, (size_t)frames, f) == (size_t)frames);
+}
+
+/* --path/--orbit: a flag, then each row's flicker metrics (pointers cleared) and their curves. The
+ * worst frames' images are in the view's directory already (STEM_temporal_worst.png). */
+static bool write_flicker(FILE *f, const view_result *vr)
+{
+    const uint8_t has = vr->flicker != NULL;
+    bool ok = fwrite(&has, 1, 1, f) == 1;
+    for (int k = 0; has && ok && k < vr->method_count; ++k) {
+        cli_flicker_row row = vr->flicker[k];
+        row.config = NULL;
+        row.off.rmse_frames = row.on.rmse_frames = NULL;
+        row.off.worst_ao = row.on.worst_ao = NULL;
+        ok = fwrite(&row, sizeof row, 1, f) == 1 && write_curve(f, vr->flicker[k].off.rmse_frames, vr->flicker_ref.frames) &&
+             write_curve(f, vr->flicker[k].on.rmse_frames, vr->flicker_ref.frames);
+    }
+    return ok;
+}
 
 int compare_write_shard(const compare_opts *o, const view_result *views, int count, report_files *out)
 {
@@ -32,8 +56,8 @@ int compare_write_shard(const compare_opts *o, const view_result *views, int cou
     if (!compare_track_file(out, path)) return cli_fail(EXIT_RUNTIME, "out of memory");
     FILE *f = fopen(path, "wb");
     if (!f) return cli_fail(EXIT_OUTPUT, "cannot write %s: %s", path, strerror(errno));
-    shard_header h = {(uint32_t)sizeof(view_result), (uint32_t)sizeof(method_result), (uint32_t)count,
-                      count > 0 ? (uint32_t)views[0].method_count : 0u};
+    shard_header h = {(uint32_t)sizeof(view_result), (uint32_t)sizeof(method_result), (uint32_t)sizeof(cli_flicker_row),
+                      (uint32_t)count, count > 0 ? (uint32_t)views[0].method_count : 0u};
     bool ok = fputs(SHARD_MAGIC, f) >= 0 && fprintf(f, "%s\n", OB_VERSION_STRING) > 0 && fwrite(&h, sizeof h, 1, f) == 1;
     for (int v = 0; v < count && ok; ++v) {
         /* Pointers mean nothing in another process: the reader sets them again. */
@@ -47,6 +71,7 @@ int compare_write_shard(const compare_opts *o, const view_result *views, int cou
             m.config = NULL;
             ok = fwrite(&m, sizeof m, 1, f) == 1;
         }
+        if (ok) ok = write_flicker(f, &views[v]);
     }
     int e = errno;
     if (fclose(f) != 0 && ok) {
@@ -211,6 +236,42 @@ static bool byte_bool(const bool *b)
     return c != 0;
 }
 
+/* A curve written by write_curve, into *curve (NULL when it had none). */
+static int read_curve(FILE *f, double **curve, int frames, const char *path)
+{
+    uint8_t has = 0;
+    if (fread(&has, 1, 1, f) != 1 || has > 1) return cli_fail(EXIT_INPUT, "%s: truncated", path);
+    if (!has) return EXIT_OK;
+    *curve = malloc((size_t)frames * sizeof **curve);
+    if (!*curve) return cli_fail(EXIT_RUNTIME, "out of memory");
+    return fread(*curve, sizeof **curve, (size_t)frames, f) == (size_t)frames ? EXIT_OK : cli_fail(EXIT_INPUT, "%s: truncated", path);
+}
+
+/* The view's flicker rows (write_flicker), which a --path/--orbit run has and no other. */
+static int read_flicker(merge_state *m, view_result *vr, FILE *f, const char *path)
+{
+    uint8_t has = 0;
+    if (fread(&has, 1, 1, f) != 1 || has > 1) return cli_fail(EXIT_INPUT, "%s: truncated", path);
+    if ((has != 0) != cli_common_moves(&m->o.common))
+        return cli_fail(EXIT_INPUT, "%s: flicker rows %s the run's --path/--orbit", path, has ? "without" : "missing for");
+    if (!has) return EXIT_OK;
+    if (vr->flicker_ref.frames < 1 || vr->flicker_ref.frames > 1 << 16)
+        return cli_fail(EXIT_INPUT, "%s: %d path frames", path, vr->flicker_ref.frames);
+    vr->flicker = calloc((size_t)vr->method_count, sizeof *vr->flicker);
+    if (!vr->flicker) return cli_fail(EXIT_RUNTIME, "out of memory");
+    int code = EXIT_OK;
+    for (int k = 0; k < vr->method_count && code == EXIT_OK; ++k) {
+        cli_flicker_row *row = &vr->flicker[k];
+        if (fread(row, sizeof *row, 1, f) != 1) return cli_fail(EXIT_INPUT, "%s: truncated", path);
+        row->config = &m->configs[k];
+        row->off.rmse_frames = row->on.rmse_frames = NULL;
+        row->off.worst_ao = row->on.worst_ao = NULL;
+        code = read_curve(f, &row->off.rmse_frames, vr->flicker_ref.frames, path);
+        if (code == EXIT_OK) code = read_curve(f, &row->on.rmse_frames, vr->flicker_ref.frames, path);
+    }
+    return code;
+}
+
 /* One view of a shard's shard.bin into m->views[vr.index]. */
 static int read_view(merge_state *m, const shard_in *s, FILE *f, const char *path)
 {
@@ -240,7 +301,7 @@ static int read_view(merge_state *m, const shard_in *s, FILE *f, const char *pat
         if (!mr->stem[0] || mr->stem[0] == '.' || strpbrk(mr->stem, "/\\"))
             return cli_fail(EXIT_INPUT, "%s: a row's image name leaves the report", path);
     }
-    return EXIT_OK;
+    return read_flicker(m, &m->views[vr.index], f, path);
 }
 
 /* SHARD/shard.bin: the views the shard ran. */
@@ -254,7 +315,8 @@ static int read_views(merge_state *m, const shard_in *s)
     int code = EXIT_OK;
     if (!fgets(magic, sizeof magic, f) || strcmp(magic, SHARD_MAGIC) || !fgets(version, sizeof version, f) ||
         strncmp(version, OB_VERSION_STRING, strlen(OB_VERSION_STRING)) || fread(&h, sizeof h, 1, f) != 1 ||
-        h.view_size != sizeof(view_result) || h.method_size != sizeof(method_result))
+        h.view_size != sizeof(view_result) || h.method_size != sizeof(method_result) ||
+        h.flicker_size != sizeof(cli_flicker_row))
         code = cli_fail(EXIT_INPUT, "%s: not a shard file of this obscura (%s) build", path, OB_VERSION_STRING);
     for (uint32_t v = 0; v < h.views && code == EXIT_OK; ++v) code = read_view(m, s, f, path);
     fclose(f);
@@ -351,7 +413,11 @@ static int merge_checked(merge_state *m)
 static void merge_free(merge_state *m, bool failed)
 {
     compare_files_finish(&m->out, failed);
-    for (int v = 0; v < MAX_VIEWS; ++v) free(m->views[v].methods);
+    for (int v = 0; v < MAX_VIEWS; ++v) {
+        free(m->views[v].methods);
+        cli_flicker_free(m->views[v].flicker, m->views[v].method_count);
+        free(m->views[v].flicker);
+    }
     for (int i = 0; i < m->shard_count; ++i) {
         free(m->shards[i].args);
         cJSON_Delete(m->shards[i].json);

@@ -9,7 +9,7 @@ import json
 import os
 import sys
 
-TIMING = {"ao_ms", "frame_ms", "chain_ms", "pareto", "median_ao_ms", "front", "seconds", "bounce_seconds",
+TIMING = {"ao_ms", "frame_ms", "chain_ms", "temporal_ms", "pareto", "median_ao_ms", "front", "seconds", "bounce_seconds",
           "cached", "date", "command_line"}
 
 

@@ -80,7 +80,23 @@ expect 3 "$dir/cut/shard.bin: not a shard file of this obscura" merge "$dir/s0-o
 for s in 2/2 -1/2 1/0 x 1/2/3; do
     expect 2 "^obscura: --shard: expected K/N" compare --scene corner --shard "$s" --report "$dir/bad"
 done
-expect 2 "--shard: not with --path or --orbit" compare --scene corner --orbit 10 --shard 0/2 --report "$dir/bad"
+
+# A moving camera's flicker rows (--orbit) are merged too: their numbers and worst frames.
+orbit=(--scene corner:diagonal --scene sphere-on-plane:contact --methods ssao,vbao --size 32x24 --spp 16 --orbit 10
+    --path-frames 3)
+"$OBSCURA" compare "${orbit[@]}" --report "$dir/orbit" >/dev/null 2>"$dir/err" || bad "orbit: $(tail -1 "$dir/err")"
+for k in 0 1; do
+    "$OBSCURA" compare "${orbit[@]}" --shard "$k/2" --report "$dir/orbit$k" >/dev/null 2>"$dir/err" ||
+        bad "orbit shard $k/2: $(tail -1 "$dir/err")"
+done
+"$OBSCURA" merge "$dir/orbit0" "$dir/orbit1" --report "$dir/orbit-merged" >/dev/null 2>"$dir/err" ||
+    bad "orbit merge: $(cat "$dir/err")"
+same "$dir/orbit" "$dir/orbit-merged" && python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert all(len(v["flicker"]["rows"]) == 2 and len(v["flicker"]["rows"][1]["temporal_on"]["rmse_frames"]) == 3
+           for v in d["views"]), d["views"]
+' "$dir/orbit-merged/results.json" && ok || bad "the orbit shards merged differ from the unsharded orbit run"
 
 # obscura --help lists the command.
 "$OBSCURA" --help | grep -q "^  merge " && ok || bad "obscura --help does not list merge"

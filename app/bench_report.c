@@ -642,9 +642,8 @@ int bench_write_host_csv(cli_outputs *outs, int index, const host_state *hst, co
 static void json_run(cJSON *root, const bench_opts *o, ob_context *ctx, const ob_scene *scene, double seconds)
 {
     const cli_common *c = &o->common;
-    char cpu[256], commit[64], date[64];
+    char cpu[256], date[64];
     cpu_model(cpu, sizeof cpu);
-    cli_git_commit(commit, sizeof commit);
     time_t t = time(NULL);
     struct tm tm_utc;
     gmtime_r(&t, &tm_utc);
@@ -657,10 +656,8 @@ static void json_run(cJSON *root, const bench_opts *o, ob_context *ctx, const ob
     }
     cJSON_AddStringToObject(root, "tool", "obscura bench " OB_VERSION_STRING);
     cJSON_AddStringToObject(root, "date", date);
-    cJSON_AddStringToObject(root, "commit", commit);
     /* Every option that shaped the run (--set, --settings, --shadow, --hdr included), as given. */
-    cJSON *cmd = cJSON_AddArrayToObject(root, "command_line");
-    for (int i = 0; i < o->argc; ++i) cJSON_AddItemToArray(cmd, cJSON_CreateString(o->argv[i]));
+    cli_json_commit_and_command(root, o->argc, o->argv);
     cJSON_AddStringToObject(root, "renderer", ob_query_renderer(ctx));
     cJSON_AddStringToObject(root, "gl_version", ob_query_gl_version(ctx));
     cJSON_AddStringToObject(root, "device", ob_query_device(ctx));

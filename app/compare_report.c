@@ -138,11 +138,7 @@ static row_summary *summarise(const view_result *views, int count, int rows)
 static void json_run(cJSON *root, const compare_opts *o)
 {
     cJSON_AddStringToObject(root, "version", OB_VERSION_STRING);
-    char commit[64];
-    cli_git_commit(commit, sizeof commit);
-    cJSON_AddStringToObject(root, "commit", commit);
-    cJSON *cmd = cJSON_AddArrayToObject(root, "command_line");
-    for (int i = 0; i < o->argc; ++i) cJSON_AddItemToArray(cmd, cJSON_CreateString(o->argv[i]));
+    cli_json_commit_and_command(root, o->argc, o->argv);
     cJSON_AddStringToObject(root, "renderer", o->renderer);
     cJSON_AddStringToObject(root, "gl_version", o->gl_version);
     if (o->shard.count > 1) {

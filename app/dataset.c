@@ -215,8 +215,15 @@ static void view_entry(cJSON *views, const char *spec, const char *dir, const ob
 }
 
 /* One view: its G-buffer from a `none` frame, AO_R (and the bounce), the files and its entry. */
+/* The scene the last view loaded: consecutive views of one scene (its cameras) load it once, as
+ * compare's views share theirs. */
+typedef struct loaded_scene {
+    char name[256];
+    ob_scene *scene;
+} loaded_scene;
+
 static int run_view(const dataset_opts *o, ob_renderer *r, const ob_settings *lit, const char *spec, const char *root,
-                    cJSON *views)
+                    cJSON *views, loaded_scene *loaded)
 {
     const cli_common *c = &o->common;
     char name[256];
@@ -228,11 +235,25 @@ static int run_view(const dataset_opts *o, ob_renderer *r, const ob_settings *li
         *colon = '\0';
         camera = colon + 1;
     }
-    ob_scene *scene = NULL;
+    int code = EXIT_OK;
+    ob_scene *previous = NULL; /* destroyed once the renderer holds the new one */
+    if (!loaded->scene || strcmp(loaded->name, name)) {
+        previous = loaded->scene;
+        loaded->scene = NULL;
+        snprintf(loaded->name, sizeof loaded->name, "%s", name);
+        code = cli_common_load_scene(c, name, &loaded->scene);
+    }
+    ob_scene *scene = loaded->scene;
     ob_camera cam;
-    int code = cli_common_load_scene(c, name, &scene);
     if (code == EXIT_OK) code = cli_common_camera(c, scene, camera, &cam);
     if (code == EXIT_OK && ob_renderer_set_scene(r, scene) != OB_OK) code = cli_fail_from_library();
+    if (code == EXIT_OK) {
+        ob_destroy_scene(previous);
+    } else if (previous) {
+        /* The renderer may still hold it: destroyed at the end, after the renderer. */
+        ob_destroy_scene(loaded->scene);
+        loaded->scene = previous;
+    }
     view_images v = {0};
     if (code == EXIT_OK) code = cli_view_frame_make(r, &cam, c->width, c->height, &v.frame);
     const size_t px = (size_t)c->width * (size_t)c->height;
@@ -271,7 +292,6 @@ static int run_view(const dataset_opts *o, ob_renderer *r, const ob_settings *li
     if (code == EXIT_OK && o->bounce) code = write_pfm(path, "bounce.pfm", w, h, 3, v.bounce);
     if (code == EXIT_OK) view_entry(views, spec, dir, scene, &v, radius, o->spp, &info, o->bounce);
     images_free(&v);
-    ob_destroy_scene(scene);
     return code;
 }
 
@@ -280,11 +300,7 @@ static cJSON *manifest_head(const dataset_opts *o, ob_context *ctx, const int *o
 {
     cJSON *root = cJSON_CreateObject();
     cJSON_AddStringToObject(root, "version", OB_VERSION_STRING);
-    char commit[64];
-    cli_git_commit(commit, sizeof commit);
-    cJSON_AddStringToObject(root, "commit", commit);
-    cJSON *cmd = cJSON_AddArrayToObject(root, "command_line");
-    for (int i = 0; i < o->argc; ++i) cJSON_AddItemToArray(cmd, cJSON_CreateString(o->argv[i]));
+    cli_json_commit_and_command(root, o->argc, o->argv);
     cJSON_AddStringToObject(root, "renderer", ob_query_renderer(ctx));
     cli_shard_json(root, &o->shard, o->views, owner, o->view_count);
     cJSON *conv = cJSON_AddObjectToObject(root, "conventions");
@@ -320,9 +336,10 @@ static int dataset_checked(dataset_opts *o)
     cJSON *manifest = code == EXIT_OK ? manifest_head(o, ctx, owner) : NULL;
     cJSON *views = manifest ? cJSON_AddArrayToObject(manifest, "views") : NULL;
     int mine = 0;
+    loaded_scene loaded = {"", NULL};
     for (int v = 0; v < o->view_count && code == EXIT_OK; ++v) {
         if (owner[v] != o->shard.index) continue;
-        code = run_view(o, r, &configs[0].settings, o->views[v], root, views);
+        code = run_view(o, r, &configs[0].settings, o->views[v], root, views, &loaded);
         ++mine;
     }
     if (code == EXIT_OK) {
@@ -338,6 +355,7 @@ static int dataset_checked(dataset_opts *o)
     cJSON_Delete(manifest);
     free(configs);
     ob_destroy_renderer(r);
+    ob_destroy_scene(loaded.scene); /* after the renderer that held it */
     ob_destroy_context(ctx);
     return code;
 }

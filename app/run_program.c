@@ -1,6 +1,8 @@
 /* Programs run with an argument vector, never through a shell (run_program.h). */
 #include "run_program.h"
 
+#include <cjson/cJSON.h>
+
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -150,4 +152,13 @@ void cli_git_commit(char *out, size_t n)
         if (line.data[0]) snprintf(out, n, "%s", line.data);
     }
     cli_spawn_output_free(&line);
+}
+
+void cli_json_commit_and_command(cJSON *root, int argc, char **argv)
+{
+    char commit[64];
+    cli_git_commit(commit, sizeof commit);
+    cJSON_AddStringToObject(root, "commit", commit);
+    cJSON *cmd = cJSON_AddArrayToObject(root, "command_line");
+    for (int i = 0; i < argc; ++i) cJSON_AddItemToArray(cmd, cJSON_CreateString(argv[i]));
 }

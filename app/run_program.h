@@ -40,4 +40,9 @@ void cli_spawn_last_line(const cli_spawn_output *o, char *buf, size_t n);
  * shell), or "unknown" without git or a repository: what results.json and bench --json record. */
 void cli_git_commit(char *out, size_t n);
 
+/* "commit" (cli_git_commit) and "command_line" (argv as given, every option that shaped the run)
+ * into a JSON object: what compare's results.json, bench --json and dataset's manifest record. */
+struct cJSON;
+void cli_json_commit_and_command(struct cJSON *root, int argc, char **argv);
+
 #endif

@@ -69,36 +69,16 @@ then ok; else bad "the dataset's files"; fi
 # AO_R is compare's reference: the same points, rays and cache (its PNG quantises to 8 bits).
 if "$OBSCURA" compare --scene cornell:front --methods none --size 48x36 --spp 16 --report "$dir/report" \
     >/dev/null 2>"$dir/stderr" &&
-    python3 - "$dir/all/cornell_front/ao.pfm" "$dir/report/cornell_front/reference_ao.png" <<'PY'
-import struct, sys, zlib
-data = open(sys.argv[1], "rb").read()
+    python3 - "$(dirname "$0")/../scripts" "$dir/all/cornell_front/ao.pfm" "$dir/report/cornell_front/reference_ao.png" <<'PY'
+import struct, sys
+sys.path.insert(0, sys.argv[1])
+from ao_visibility import read_png  # the demo's PNG reader (standard library only)
+data = open(sys.argv[2], "rb").read()
 kind, dims, scale, body = data.split(b"\n", 3)
 w, h = map(int, dims.split())
 ao = struct.unpack("<%df" % (w * h), body)
-png = open(sys.argv[2], "rb").read()
-pos, idat, ihdr = 8, b"", None
-while pos < len(png):
-    n, t = struct.unpack(">I4s", png[pos:pos + 8])
-    if t == b"IHDR": ihdr = struct.unpack(">IIBBBBB", png[pos + 8:pos + 8 + n])
-    if t == b"IDAT": idat += png[pos + 8:pos + 8 + n]
-    pos += 12 + n
-pw, ph, depth, colour = ihdr[:4]
-ch = {0: 1, 2: 3, 4: 2, 6: 4}[colour]
-raw, stride, rows, prev = zlib.decompress(idat), pw * ch, [], bytearray(pw * ch)
-for y in range(ph):
-    f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-    for i in range(stride):
-        a = line[i - ch] if i >= ch else 0
-        b, c = prev[i], (prev[i - ch] if i >= ch else 0)
-        if f == 1: line[i] = (line[i] + a) & 255
-        elif f == 2: line[i] = (line[i] + b) & 255
-        elif f == 3: line[i] = (line[i] + ((a + b) >> 1)) & 255
-        elif f == 4:
-            p = a + b - c
-            pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-            line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-    rows.append(line)
-    prev = line
+pw, ph, ch, px = read_png(sys.argv[3])
+rows = [px[y * pw * ch:(y + 1) * pw * ch] for y in range(ph)]
 assert (pw, ph) == (w, h), (pw, ph, w, h)
 worst = 0
 for y in range(h):

@@ -3,6 +3,10 @@
 #define OB_GBUFFER_PARAMS_H
 #include "ob_shared.h"
 
+/* A vertex's part label (scene/parts.c) carries this on top on a sheet, a part with holes in it:
+ * the vertex shader takes it off into a flag (scene.h's OB_PART_SHEET, the same number). */
+#define OB_PART_SHEET_FLAG 4096
+
 OB_CONSTANTS_BEGIN(ob_gbuffer_constants, OB_BINDING_PASS)
     OB_MAT4 view;           /* world -> view, column-major */
     OB_MAT4 proj;           /* view -> clip */

@@ -20,6 +20,12 @@
  * a room as the back of a wall, and oa_shouse's beams and furniture read black bands so
  * (docs/methods.md, "Which surface is the back"). Where the two do not bound one solid the layer
  * is 0, as where nothing lies behind: the method's own thickness, the single-layer answer.
+ *
+ * A sheet with holes in it (scene/parts.c: a part whose open edges form two loops or more, a
+ * drilled plate or a grille) has no thickness at all: where nothing of its own part closes it,
+ * the layer is the sheet itself, which the methods read as their thinnest occluder (one step's
+ * spacing, ob_layer_thickness). With the constant instead, the floor seen through the holes and
+ * around the sheet read a slab between them, and the holes black (docs/methods.md, "Thin holes").
  */
 #include "gbuffer_params.h"
 
@@ -27,6 +33,7 @@ in vec3 v_view_pos;
 in vec3 v_view_normal;
 in vec2 v_uv;
 flat in float v_part;
+flat in float v_sheet;
 
 layout(binding = OB_UNIT_FIRST_LAYER) uniform sampler2D first_layer; /* the G-buffer's R32F linear depth, 0 = sky */
 layout(binding = OB_UNIT_FIRST_FACING) uniform sampler2D first_normal; /* the G-buffer's normal: w = ±part, + front face */
@@ -53,6 +60,12 @@ void main()
      * solid of no thickness, and behind it lies the other disc. Any other triangle there is
      * the first layer itself or a copy of it. */
     bool coincident = z <= first * (1.0 + SEPARATION);
+    /* The first layer's own fragment, on a sheet: the sheet is its own back. It lies nearer than
+     * anything behind, so the depth test keeps it over the surfaces beyond. */
+    if (coincident && !closes && v_sheet > 0.5 && same_part && gl_FrontFacing == first_front) {
+        out_linear_depth = first;
+        return;
+    }
     if (coincident && !closes) discard;
     out_linear_depth = closes ? max(z, first) : 0.0;
 }

@@ -1327,8 +1327,9 @@ static void test_parts(void)
         int64_t again = labels ? ob_mesh_part_labels(m, OB_PART_LABELS - 1u, labels) : -1;
         float lo = 1e9f, hi = 0.0f;
         for (uint32_t v = 0; labels && v < m->vertex_count; ++v) {
-            lo = labels[v] < lo ? labels[v] : lo;
-            hi = labels[v] > hi ? labels[v] : hi;
+            float l = labels[v] >= (float)OB_PART_SHEET ? labels[v] - (float)OB_PART_SHEET : labels[v]; /* a sheet's flag off */
+            lo = l < lo ? l : lo;
+            hi = l > hi ? l : hi;
         }
         /* From first = 2046 the three parts are 2047, then 1 and 2 (folded). */
         CHECK(again == 3 && lo == 1.0f && hi == (float)OB_PART_LABELS, "%s: labels from 2046 fold into %g..%g", names[k],
@@ -1336,6 +1337,109 @@ static void test_parts(void)
         free(labels);
         ob_destroy_scene(s);
     }
+}
+
+/* A 2 x 2 square frame with a 1 x 1 hole at height y, one part in a mesh of its own (8 corners,
+ * 8 triangles): a flat part whose open edges form two loops, a sheet candidate. `bend` lifts one
+ * outer corner off the plane. */
+static void add_frame(ob_scene *s, float y, float bend)
+{
+    ob_mesh *m = ob_scene_add_mesh(s, 8, 24, false);
+    if (!m) return;
+    static const float xz[8][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-0.5f, -0.5f}, {0.5f, -0.5f}, {0.5f, 0.5f}, {-0.5f, 0.5f}};
+    for (int v = 0; v < 8; ++v) {
+        m->positions[3 * v] = xz[v][0], m->positions[3 * v + 1] = y + (v == 0 ? bend : 0.0f), m->positions[3 * v + 2] = xz[v][1];
+        m->normals[3 * v] = 0.0f, m->normals[3 * v + 1] = 1.0f, m->normals[3 * v + 2] = 0.0f;
+    }
+    for (uint32_t k = 0; k < 4; ++k) { /* each side of the frame: outer k, k+1 and inner k, k+1 */
+        uint32_t a = k, b = (k + 1u) % 4u, c = 4u + (k + 1u) % 4u, d = 4u + k, *ix = &m->indices[6u * k];
+        ix[0] = a, ix[1] = b, ix[2] = c, ix[3] = a, ix[4] = c, ix[5] = d;
+    }
+}
+
+/* A 0.5 m box standing on y = 0 at the origin, in a mesh of its own: its bottom corners lie on
+ * the frame's plane, in its hole. */
+static void add_box(ob_scene *s)
+{
+    ob_mesh *m = ob_scene_add_mesh(s, 8, 36, false);
+    if (!m) return;
+    for (int v = 0; v < 8; ++v) {
+        m->positions[3 * v] = (v & 1) ? 0.25f : -0.25f;
+        m->positions[3 * v + 1] = (v & 2) ? 0.5f : 0.0f;
+        m->positions[3 * v + 2] = (v & 4) ? 0.25f : -0.25f;
+        m->normals[3 * v + 1] = 1.0f;
+    }
+    static const uint32_t quads[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+    for (uint32_t q = 0; q < 6u; ++q) {
+        uint32_t *ix = &m->indices[6u * q];
+        ix[0] = quads[q][0], ix[1] = quads[q][1], ix[2] = quads[q][2], ix[3] = quads[q][0], ix[4] = quads[q][2],
+        ix[5] = quads[q][3];
+    }
+}
+
+/* Sheets found and settled over a scene: the number of sheets, or -1. */
+static int count_sheets(ob_scene *s)
+{
+    float *labels[8] = {0};
+    int sheets = -1;
+    bool ok = s->mesh_count <= 8;
+    for (int m = 0; ok && m < s->mesh_count; ++m) {
+        labels[m] = malloc((size_t)s->meshes[m].vertex_count * sizeof(float));
+        ok = labels[m] && ob_mesh_part_labels(&s->meshes[m], 0u, labels[m]) >= 0;
+    }
+    if (ok) sheets = ob_scene_settle_sheets(s, labels);
+    /* What is left marked is the sheets, each vertex of them. */
+    int marked = 0;
+    for (int m = 0; ok && m < s->mesh_count; ++m)
+        for (uint32_t v = 0; v < s->meshes[m].vertex_count; ++v) marked += labels[m][v] >= (float)OB_PART_SHEET;
+    CHECK(!ok || (sheets == 0) == (marked == 0), "%s: %d sheets, %d vertices marked", s->name, sheets, marked);
+    for (int m = 0; m < 8; ++m) free(labels[m]);
+    return sheets;
+}
+
+/* Which parts are sheets (scene/parts.c, scene/sheets.c): a flat part with holes that nothing
+ * stands in. The grille's drilled sheet is one; its closed plate and its floor are not. A frame
+ * is one alone and over a floor far below it; bent off its plane, or with a box standing in its
+ * hole (a Quake map's floor around a pillar), it is not; nor is a plain quad (one loop). */
+static void test_sheets(void)
+{
+    ob_scene *g = load("grille", NULL, OB_UP_DEFAULT);
+    CHECK(g != NULL, "grille loads");
+    if (g) {
+        const ob_mesh *m = &g->meshes[0];
+        float *labels = malloc((size_t)m->vertex_count * sizeof(float));
+        int sheets = labels && ob_mesh_part_labels(m, 0u, labels) >= 0 ? ob_scene_settle_sheets(g, &labels) : -1;
+        int wrong = 0, on_sheet = 0;
+        for (uint32_t v = 0; labels && v < m->vertex_count; ++v) {
+            const float *p = &m->positions[3u * v];
+            bool sheet_vertex = fabsf(p[1] - 0.45f) < 1e-4f && p[0] < -0.5f; /* build_grille's sheet, x in [-1.8, -0.6] */
+            on_sheet += sheet_vertex;
+            wrong += sheet_vertex != (labels[v] >= (float)OB_PART_SHEET);
+        }
+        CHECK(sheets == 1 && on_sheet > 0 && wrong == 0, "grille: %d sheets (1), %d of %d vertices wrongly marked",
+              sheets, wrong, (int)m->vertex_count);
+        free(labels);
+        ob_destroy_scene(g);
+    }
+    struct {
+        const char *name;
+        float bend;
+        bool box;
+        int sheets;
+    } cases[] = {{"frame", 0.0f, false, 1}, {"bent frame", 0.2f, false, 0}, {"frame round a box", 0.0f, true, 0}};
+    for (int k = 0; k < 3; ++k) {
+        ob_scene *s = ob_scene_alloc(cases[k].name);
+        add_frame(s, 0.0f, cases[k].bend);
+        if (cases[k].box) add_box(s);
+        ob_scene_finish(s);
+        int got = count_sheets(s);
+        CHECK(got == cases[k].sheets, "%s: %d sheets, expected %d", cases[k].name, got, cases[k].sheets);
+        ob_destroy_scene(s);
+    }
+    /* One loop: slab's floor, a plain 8 m quad grid, is no candidate. */
+    ob_scene *slab = load("slab", NULL, OB_UP_DEFAULT);
+    CHECK(slab && count_sheets(slab) == 0, "slab: no sheet");
+    ob_destroy_scene(slab);
 }
 
 int main(void)
@@ -1363,6 +1467,7 @@ int main(void)
     test_tessellate();
     test_paths();
     test_parts();
+    test_sheets();
     rmdir(tmpdir);
     return check_finish("scene");
 }

@@ -8,6 +8,8 @@
 #include "gbuffer_params.h"
 #include "passes/passes.h"
 
+_Static_assert(OB_PART_SHEET == OB_PART_SHEET_FLAG, "the sheet flag of scene/parts.c and the G-buffer's shaders");
+
 /* The four targets in the order of ob_gbuffer's members: depth, linear depth, normal, albedo. */
 static void make_targets(GLuint tex[4], int width, int height)
 {
@@ -98,6 +100,29 @@ static void release_scene(ob_gbuffer *g)
     g->mesh_count = g->material_count = 0;
 }
 
+/* Each mesh's per-vertex part labels (scene/parts.c), numbered across the meshes (a part never
+ * spans two), with the sheets settled over the whole scene (scene/sheets.c). NULL when out of
+ * memory. */
+static float **scene_part_labels(const ob_scene *scene)
+{
+    float **labels = calloc((size_t)scene->mesh_count + 1, sizeof *labels);
+    uint32_t parts = 0;
+    bool ok = labels != NULL;
+    for (int i = 0; ok && i < scene->mesh_count; ++i) {
+        labels[i] = malloc((size_t)scene->meshes[i].vertex_count * sizeof(float) + 1);
+        int64_t found = labels[i] ? ob_mesh_part_labels(&scene->meshes[i], parts, labels[i]) : -1;
+        ok = found >= 0;
+        if (ok) parts += (uint32_t)(found % OB_PART_LABELS);
+    }
+    if (ok) ok = ob_scene_settle_sheets(scene, labels) >= 0;
+    if (!ok && labels) {
+        for (int i = 0; i < scene->mesh_count; ++i) free(labels[i]);
+        free(labels);
+        return NULL;
+    }
+    return labels;
+}
+
 ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene)
 {
     /* Before anything is given up: a texture the GL cannot hold would be incomplete, and sampling
@@ -147,17 +172,14 @@ ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene)
         glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
         g->textures[i] = tex;
     }
-    uint32_t parts = 0; /* numbered across the meshes: a part never spans two */
+    float **part_labels = scene_part_labels(scene);
+    if (!part_labels) {
+        release_scene(g);
+        return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory uploading the scene");
+    }
     for (int i = 0; i < scene->mesh_count; ++i) {
         const ob_mesh *src = &scene->meshes[i];
-        float *labels = malloc((size_t)src->vertex_count * sizeof(float) + 1);
-        int64_t found = labels ? ob_mesh_part_labels(src, parts, labels) : -1;
-        if (found < 0) {
-            free(labels);
-            release_scene(g);
-            return ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory uploading the scene");
-        }
-        parts += (uint32_t)(found % OB_PART_LABELS);
+        float *labels = part_labels[i];
         ob_gpu_mesh *dst = &g->meshes[g->mesh_count++];
         dst->index_count = (GLsizei)src->index_count;
         dst->material = src->material;
@@ -170,6 +192,7 @@ ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene)
         glNamedBufferStorage(dst->buffers[3], (GLsizeiptr)(src->index_count * sizeof(uint32_t)), src->indices, 0);
         glNamedBufferStorage(dst->buffers[4], (GLsizeiptr)(vn * sizeof(float)), labels, 0);
         free(labels);
+        part_labels[i] = NULL;
         glVertexArrayVertexBuffer(dst->vao, 3, dst->buffers[4], 0, sizeof(float));
         glEnableVertexArrayAttrib(dst->vao, 3);
         glVertexArrayAttribFormat(dst->vao, 3, 1, GL_FLOAT, GL_FALSE, 0);
@@ -189,6 +212,7 @@ ob_error ob_gbuffer_set_scene(ob_gbuffer *g, const ob_scene *scene)
             glVertexArrayAttribBinding(dst->vao, 2, 2);
         } /* else: a disabled attribute reads (0, 0, 0, 1), and no texture is bound anyway */
     }
+    free(part_labels);
     return OB_OK;
 }
 

@@ -8,6 +8,7 @@
  * wound either way, on a ground quad) put the ground 0.8 m behind a part, wound the other way,
  * as that part's back, and its holes read black; the parts tell them apart. */
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
 
@@ -45,6 +46,99 @@ static void join(uint32_t *parent, uint32_t a, uint32_t b)
     if (a != b) parent[a < b ? b : a] = a < b ? a : b;
 }
 
+static int compare_edges(const void *pa, const void *pb)
+{
+    uint64_t a = *(const uint64_t *)pa, b = *(const uint64_t *)pb;
+    return a < b ? -1 : a > b;
+}
+
+/* flat[part root]: every vertex of the part lies within `tolerance` of the plane of its first
+ * triangle with an area. -1 when out of memory. */
+static int find_flat_parts(const ob_mesh *m, uint32_t *parent, double tolerance, bool *flat)
+{
+    uint32_t n = m->vertex_count;
+    double *plane = malloc((size_t)n * 4u * sizeof *plane + 1); /* per root: unit normal, offset */
+    bool *has = calloc((size_t)n + 1, sizeof *has);
+    if (!plane || !has) {
+        free(plane);
+        free(has);
+        return -1;
+    }
+    const float *p = m->positions;
+    for (uint32_t t = 0; t + 2u < m->index_count; t += 3u) {
+        uint32_t a = m->indices[t], b = m->indices[t + 1u], c = m->indices[t + 2u];
+        if (a >= n || b >= n || c >= n) continue;
+        uint32_t r = find_root(parent, a);
+        if (has[r]) continue;
+        double u[3], w[3], nrm[3];
+        for (int k = 0; k < 3; ++k) {
+            u[k] = (double)p[3u * b + (uint32_t)k] - (double)p[3u * a + (uint32_t)k];
+            w[k] = (double)p[3u * c + (uint32_t)k] - (double)p[3u * a + (uint32_t)k];
+        }
+        nrm[0] = u[1] * w[2] - u[2] * w[1], nrm[1] = u[2] * w[0] - u[0] * w[2], nrm[2] = u[0] * w[1] - u[1] * w[0];
+        double len = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+        if (!(len > 0.0)) continue;
+        for (int k = 0; k < 3; ++k) plane[4u * r + (uint32_t)k] = nrm[k] / len;
+        plane[4u * r + 3u] = (nrm[0] * p[3u * a] + nrm[1] * p[3u * a + 1u] + nrm[2] * p[3u * a + 2u]) / len;
+        has[r] = true;
+    }
+    for (uint32_t v = 0; v < n; ++v) flat[v] = true;
+    for (uint32_t v = 0; v < n; ++v) {
+        uint32_t r = find_root(parent, v);
+        if (!has[r]) continue;
+        const double *q = &plane[4u * r];
+        double d = q[0] * p[3u * v] + q[1] * p[3u * v + 1u] + q[2] * p[3u * v + 2u] - q[3];
+        if (fabs(d) > tolerance) flat[r] = false;
+    }
+    free(plane);
+    free(has);
+    return 0;
+}
+
+/* Which parts are sheets: a part whose open edges (edges of one triangle only, corners taken by
+ * position) form two loops or more is a surface with holes in it, a drilled or cut sheet, which
+ * has no thickness of its own. A closed solid has no open edge; a single polygon, or a wall of a
+ * Quake map (whose brushes are not closed in the mesh), has one loop and stays unknown: its solid
+ * may lie behind it. sheet[part root] is set for each vertex's part (parent: the parts' forest);
+ * welded[v] is the first vertex at v's position. -1 when out of memory. */
+static int find_sheets(const ob_mesh *m, const uint32_t *welded, uint32_t *parent, double tolerance, bool *sheet)
+{
+    uint32_t n = m->vertex_count;
+    size_t edges = 0, cap = (size_t)(m->index_count / 3u) * 3u;
+    uint64_t *edge = malloc(cap * sizeof *edge + 1);
+    uint32_t *loop = malloc((size_t)n * sizeof *loop + 1), *loops = calloc((size_t)n + 1, sizeof *loops);
+    bool *open = calloc((size_t)n + 1, sizeof *open);
+    int code = edge && loop && loops && open ? 0 : -1;
+    for (uint32_t t = 0; code == 0 && t + 2u < m->index_count; t += 3u)
+        for (uint32_t k = 0; k < 3u; ++k) {
+            uint32_t i = m->indices[t + k], j = m->indices[t + (k + 1u) % 3u];
+            if (i >= n || j >= n || welded[i] == welded[j]) continue; /* out of range, or degenerate */
+            uint32_t a = welded[i] < welded[j] ? welded[i] : welded[j], b = welded[i] < welded[j] ? welded[j] : welded[i];
+            edge[edges++] = (uint64_t)a << 32 | b;
+        }
+    if (code == 0) {
+        qsort(edge, edges, sizeof *edge, compare_edges);
+        for (uint32_t v = 0; v < n; ++v) loop[v] = v;
+        for (size_t e = 0, run; e < edges; e = run) {
+            for (run = e + 1; run < edges && edge[run] == edge[e];) ++run;
+            if (run > e + 1) continue; /* shared by two triangles or more */
+            uint32_t a = (uint32_t)(edge[e] >> 32), b = (uint32_t)edge[e];
+            open[a] = open[b] = true;
+            join(loop, a, b);
+        }
+        /* Each loop once, at its root (an open corner: join keeps the lower index), on its part. */
+        for (uint32_t v = 0; v < n; ++v)
+            if (open[v] && find_root(loop, v) == v) ++loops[find_root(parent, v)];
+        code = find_flat_parts(m, parent, tolerance, sheet);
+        for (uint32_t v = 0; code == 0 && v < n; ++v) sheet[v] = sheet[v] && loops[v] >= 2u;
+    }
+    free(edge);
+    free(loop);
+    free(loops);
+    free(open);
+    return code;
+}
+
 int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels)
 {
     uint32_t n = m->vertex_count;
@@ -73,8 +167,15 @@ int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels)
             sorted[v].key[k] = (int64_t)llround(((double)m->positions[3u * v + (uint32_t)k] - (double)lo[k]) / quantum);
     }
     qsort(sorted, n, sizeof *sorted, compare_corners);
-    for (uint32_t i = 1; i < n; ++i)
-        if (compare_corners(&sorted[i - 1], &sorted[i]) == 0) join(parent, sorted[i - 1].vertex, sorted[i].vertex);
+    uint32_t *welded = malloc((size_t)n * sizeof *welded + 1); /* the first vertex at each position */
+    bool *sheet = malloc((size_t)n * sizeof *sheet + 1);
+    for (uint32_t i = 0, run = 0; welded && i < n; ++i) {
+        if (i > 0 && compare_corners(&sorted[i - 1], &sorted[i]) == 0)
+            join(parent, sorted[i - 1].vertex, sorted[i].vertex);
+        else
+            run = sorted[i].vertex;
+        welded[sorted[i].vertex] = run;
+    }
     free(sorted);
     for (uint32_t t = 0; t + 2u < m->index_count; t += 3u) {
         uint32_t a = m->indices[t], b = m->indices[t + 1u], c = m->indices[t + 2u];
@@ -84,9 +185,13 @@ int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels)
     }
     /* Each root takes the next number in vertex order; the label is that number from `first` on,
      * folded into 1..OB_PART_LABELS (an RGBA16F channel holds the integers to 2048 exactly). Two
-     * parts that fold onto one label are told apart by the winding alone. */
+     * parts that fold onto one label are told apart by the winding alone. A sheet's vertices carry
+     * OB_PART_SHEET on top, which the raster passes take off (shaders/gbuffer.vert.glsl). */
     uint32_t *number = malloc((size_t)n * sizeof *number + 1);
-    if (!number) {
+    if (!number || !welded || !sheet || find_sheets(m, welded, parent, 100.0 * quantum, sheet) != 0) {
+        free(number);
+        free(welded);
+        free(sheet);
         free(parent);
         ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory finding the parts of a %u-vertex mesh", n);
         return -1;
@@ -96,9 +201,11 @@ int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels)
     for (uint32_t v = 0; v < n; ++v) {
         uint32_t r = find_root(parent, v);
         if (number[r] == UINT32_MAX) number[r] = count++;
-        labels[v] = (float)(1u + (first + number[r]) % OB_PART_LABELS);
+        labels[v] = (float)(1u + (first + number[r]) % OB_PART_LABELS + (sheet[r] ? OB_PART_SHEET : 0u));
     }
     free(number);
+    free(welded);
+    free(sheet);
     free(parent);
     return count;
 }

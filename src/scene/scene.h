@@ -74,10 +74,18 @@ OB_EVAL_SHARED ob_scene *ob_scene_builtin(const char *name); /* NULL + OB_ERR_UN
 OB_EVAL_SHARED bool ob_scene_check_bounds(const ob_scene *s, const char *source);
 
 /* The connected parts of mesh m (scene/parts.c): labels[v] (vertex_count floats) gets vertex v's
- * part, numbered from `first` and folded into 1..OB_PART_LABELS. Returns the number of parts, or
- * -1 (out of memory, error set). */
+ * part, numbered from `first` and folded into 1..OB_PART_LABELS, plus OB_PART_SHEET on a sheet's.
+ * Returns the number of parts, or -1 (out of memory, error set). */
 #define OB_PART_LABELS 2047u
+/* Added to the label of a sheet's vertices: a part with holes in it, whose open edges form two
+ * loops or more (a drilled plate, a grille), has no thickness (scene/parts.c). */
+#define OB_PART_SHEET 4096u
 int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels);
+/* Over the whole scene (scene/sheets.c): a part ob_mesh_part_labels marked a sheet stays one only
+ * when no vertex of another part lies on its plane within its bounds; the others lose
+ * OB_PART_SHEET. labels[m] are mesh m's labels. Returns the sheets left, or -1 (out of memory,
+ * error set). */
+int ob_scene_settle_sheets(const ob_scene *s, float *const *labels);
 
 /* The default framing camera for bounds, looking from the front-above-right. */
 ob_camera ob_camera_frame_bounds(const float bmin[3], const float bmax[3], float fov_y_deg);

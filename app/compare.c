@@ -55,6 +55,12 @@ static void compare_usage(FILE *f, const cli_common *defaults)
           "  --shard K/N           run only this process's share of the views (K = 0..N-1, as a Slurm\n"
           "                        array's SLURM_ARRAY_TASK_ID), each shard with its own --report;\n"
           "                        obscura merge puts the N reports together (docs/scale.md)\n"
+          "  --shard-unit view|row what a shard takes: whole views, each with its reference and every\n"
+          "                        row (default), or single rows of views, balanced by their samples\n"
+          "                        per pixel, for more shards than views; a row's view takes its\n"
+          "                        reference from the cache, so run --references-only first\n"
+          "  --references-only     trace (or find) each view's AO_R in the reference cache and stop:\n"
+          "                        no report (with --shard K/N, this shard's views)\n"
           "  --budget-ms T         the equal-time shoot-out: every method at every --quality preset and\n"
           "                        --ao-scale (all of them unless the lists are given), and per view the\n"
           "                        best RMSE each method reaches within T ms of AO (pass + filter +\n"
@@ -64,6 +70,51 @@ static void compare_usage(FILE *f, const cli_common *defaults)
           "constant ambient (--ambient-color), so --ambient hemisphere|env is not taken here.\n",
           f);
     cli_common_usage(f, defaults);
+}
+
+/* A row's expected cost beside the others of its view: its samples per pixel (16 where the
+ * method takes its own count) over the pixels its AO scale leaves, as the frames it times cost. */
+static double row_cost(const cli_config *cfg)
+{
+    double taps = cfg->samples.count > 0 ? (double)cfg->samples.count : 16.0;
+    return taps / ((double)cfg->ao_divisor * (double)cfg->ao_divisor);
+}
+
+int compare_assign_rows(compare_opts *o, const cli_config *configs, int count, int shards)
+{
+    const int units = o->view_count * count;
+    double *cost = malloc((size_t)units * sizeof *cost + 1);
+    free(o->row_owner);
+    o->row_owner = malloc((size_t)units * sizeof *o->row_owner + 1);
+    if (!cost || !o->row_owner) {
+        free(cost);
+        return cli_fail(EXIT_RUNTIME, "out of memory");
+    }
+    for (int v = 0; v < o->view_count; ++v)
+        for (int k = 0; k < count; ++k)
+            cost[v * count + k] = (double)o->common.width * (double)o->common.height * row_cost(&configs[k]);
+    cli_shard_assign(cost, units, shards, o->row_owner);
+    o->row_count = count;
+    free(cost);
+    return EXIT_OK;
+}
+
+int compare_row_owner(const compare_opts *o, int v, int k)
+{
+    return o->by_row ? o->row_owner[v * o->row_count + k] : o->owner[v];
+}
+
+bool compare_row_is_mine(const compare_opts *o, int v, int k)
+{
+    return compare_row_owner(o, v, k) == o->shard.index;
+}
+
+bool compare_view_is_mine(const compare_opts *o, int v)
+{
+    if (!o->by_row) return o->owner[v] == o->shard.index;
+    for (int k = 0; k < o->row_count; ++k)
+        if (compare_row_is_mine(o, v, k)) return true;
+    return false;
 }
 
 void compare_assign_shards(compare_opts *o, int shards)
@@ -88,15 +139,16 @@ int compare_parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
             compare_usage(stdout, &o->common);
             return -1;
         }
-        if (!strcmp(a, "--no-cache")) {
-            o->no_cache = true;
+        if (!strcmp(a, "--no-cache") || !strcmp(a, "--references-only")) {
+            if (a[2] == 'n') o->no_cache = true;
+            else o->references_only = true;
             continue;
         }
         int taken = cli_common_option(&o->common, argc, argv, &i);
         if (taken == CLI_TAKEN) continue;
         if (taken != CLI_NOT_MINE) return taken;
         if (strcmp(a, "--scene") && strcmp(a, "--report") && strcmp(a, "--spp") && strcmp(a, "--radius") &&
-            strcmp(a, "--budget-ms") && strcmp(a, "--shard"))
+            strcmp(a, "--budget-ms") && strcmp(a, "--shard") && strcmp(a, "--shard-unit"))
             return cli_unknown_option("compare", a, compare_usage, &o->common);
         if (i + 1 >= argc) return cli_fail(EXIT_USAGE, "%s: missing value (see obscura compare --help)", a);
         const char *v = argv[++i];
@@ -108,6 +160,10 @@ int compare_parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
         } else if (!strcmp(a, "--shard")) {
             int code = cli_shard_parse("--shard", v, &o->shard);
             if (code != EXIT_OK) return code;
+        } else if (!strcmp(a, "--shard-unit")) {
+            if (strcmp(v, "view") && strcmp(v, "row"))
+                return cli_fail(EXIT_USAGE, "--shard-unit: expected view or row, got '%s'", v);
+            o->by_row = !strcmp(v, "row");
         } else if (!strcmp(a, "--spp")) {
             char *end = NULL;
             long n = strtol(v, &end, 10);
@@ -134,19 +190,23 @@ int compare_parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
         k = 0;
         if (c->ao_count == 0 && (code = cli_common_option(c, 2, s_argv, &k)) != CLI_TAKEN) return code;
     }
-    if (!o->report) {
+    if (o->references_only && (o->report || o->by_row || o->budget_ms > 0.0 || cli_common_moves(&o->common)))
+        return cli_fail(EXIT_USAGE, "--references-only writes no report: it takes no --report, --shard-unit, --budget-ms, "
+                                    "--path or --orbit");
+    if (!o->report && !o->references_only) {
         /* No --report: a folder of the current directory, replaced next time as --report would
          * replace it (only what this tool wrote there), and named before anything runs. */
         o->report = CLI_DEFAULT_REPORT;
         printf("compare: no --report: the report goes to %s/ (--report DIR to choose)\n", o->report);
     }
     if (o->view_count == 0) return cli_fail(EXIT_USAGE, "--scene is required (see obscura compare --help)");
-    if (!*o->report) return cli_fail(EXIT_USAGE, "--report: expected a directory, got ''");
+    if (o->report && !*o->report) return cli_fail(EXIT_USAGE, "--report: expected a directory, got ''");
     int code = cli_common_finish(&o->common);
     if (code != EXIT_OK) return code;
     compare_assign_shards(o, o->shard.count);
     if (o->common.ambient_mode != OB_AMBIENT_CONSTANT)
         return cli_fail(EXIT_USAGE, "--ambient: compare takes only 'constant' (the one-bounce reference has a constant ambient)");
+    if (o->references_only) return EXIT_OK;
     o->final_report = o->report;
     return cli_outputs_add(o->outs, "--report", o->report, CLI_FMT_DIR, &o->report_index);
 }
@@ -358,9 +418,8 @@ static int view_gbuffer(const compare_opts *o, ob_renderer *r, const ob_camera *
     return EXIT_OK;
 }
 
-/* AO_R at the G-buffer's points (cached, reference_cache.h), written as reference_ao.png. */
-static int view_reference(const compare_opts *o, const view_input *in, view_result *vr, view_buffers *b,
-                          report_files *out)
+/* AO_R at the G-buffer's points, from the reference cache or traced into it (reference_cache.h). */
+static int view_trace(const compare_opts *o, const view_input *in, view_result *vr, view_buffers *b)
 {
     const cli_common *c = &o->common;
     char key[900] = "";
@@ -370,6 +429,14 @@ static int view_reference(const compare_opts *o, const view_input *in, view_resu
     vr->ref_cached = info.cached;
     vr->ref_seconds = info.seconds;
     vr->ref_stderr_mean = info.stderr_mean;
+    return code;
+}
+
+/* AO_R (view_trace), written as reference_ao.png. */
+static int view_reference(const compare_opts *o, const view_input *in, view_result *vr, view_buffers *b,
+                          report_files *out)
+{
+    int code = view_trace(o, in, vr, b);
     if (code != EXIT_OK) return code;
     char path[900] = "";
     snprintf(path, sizeof path, "%s/reference_ao.png", b->dir);
@@ -546,11 +613,9 @@ static int run_row(const compare_opts *o, ob_renderer *r, const ob_camera *cam, 
     return EXIT_OK;
 }
 
-/* One view: its directory, G-buffer, reference, masks (and one-bounce reference), then every row. */
-static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in, const cli_config *configs, int count,
-                    report_files *out, view_result *vr)
+/* The view's scene, camera, directory name and radius. */
+static void view_name(const compare_opts *o, const view_input *in, view_result *vr)
 {
-    const cli_common *c = &o->common;
     snprintf(vr->scene, sizeof vr->scene, "%s", ob_query_scene_name(in->scene));
     snprintf(vr->camera, sizeof vr->camera, "%s", in->cam.name);
     char safe_scene[128], safe_cam[64];
@@ -558,6 +623,36 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     cli_safe_name(safe_cam, sizeof safe_cam, vr->camera);
     snprintf(vr->dir, sizeof vr->dir, "%s_%s", safe_scene, safe_cam);
     vr->radius = o->radius > 0.0f ? o->radius : ob_query_scene_ao_radius(in->scene);
+}
+
+/* --references-only: this shard's views' AO_R into the reference cache (found there or traced),
+ * a line each, and no report: the first stage of a run split by rows (docs/scale.md). */
+static int run_references(const compare_opts *o, ob_renderer *r, const view_input *inputs)
+{
+    int code = EXIT_OK;
+    for (int v = 0; v < o->view_count && code == EXIT_OK; ++v) {
+        if (!compare_view_is_mine(o, v)) continue;
+        view_result vr = {.index = v};
+        view_name(o, &inputs[v], &vr);
+        if (ob_renderer_set_scene(r, inputs[v].scene) != OB_OK) return cli_fail_from_library();
+        view_buffers b;
+        code = buffers_make(&b, o->common.width, o->common.height);
+        if (code == EXIT_OK) code = view_gbuffer(o, r, &inputs[v].cam, &vr, &b);
+        if (code == EXIT_OK) code = view_trace(o, &inputs[v], &vr, &b);
+        if (code == EXIT_OK)
+            printf("reference: %s:%s %s (%.1f s, mean standard error %.4f)\n", vr.scene, vr.camera,
+                   vr.ref_cached ? "was in the cache" : "traced into the cache", vr.ref_seconds, vr.ref_stderr_mean);
+        buffers_free(&b);
+    }
+    return code;
+}
+
+/* One view: its directory, G-buffer, reference, masks (and one-bounce reference), then every row. */
+static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in, const cli_config *configs, int count,
+                    report_files *out, view_result *vr)
+{
+    const cli_common *c = &o->common;
+    view_name(o, in, vr);
 
     vr->methods = calloc((size_t)count, sizeof *vr->methods);
     if (!vr->methods) return cli_fail(EXIT_RUNTIME, "out of memory");
@@ -570,11 +665,13 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
     if (code == EXIT_OK) code = view_reference(o, in, vr, &b, out);
     if (code == EXIT_OK) code = view_masks(vr, &b, out);
     bool any_directional = false;
-    for (int k = 0; k < count; ++k) any_directional = any_directional || ob_method_at(configs[k].method)->directional;
+    for (int k = 0; k < count; ++k)
+        any_directional = any_directional || (compare_row_is_mine(o, vr->index, k) && ob_method_at(configs[k].method)->directional);
     if (code == EXIT_OK && any_directional) code = view_bounce(o, r, in->scene, configs, vr, &b);
     /* One exposure for the view's final images: the view without AO's (cli_exposure_begin). */
     if (code == EXIT_OK) code = cli_exposure_begin(&b.exposure, r, &in->cam, &configs[0].settings, b.px);
-    for (int k = 0; k < count && code == EXIT_OK; ++k) code = run_row(o, r, &in->cam, &configs[k], k, count, vr, &b, out);
+    for (int k = 0; k < count && code == EXIT_OK; ++k)
+        if (compare_row_is_mine(o, vr->index, k)) code = run_row(o, r, &in->cam, &configs[k], k, count, vr, &b, out);
     buffers_free(&b);
     return code;
 }
@@ -584,12 +681,24 @@ static int run_view(const compare_opts *o, ob_renderer *r, const view_input *in,
 static int run_flicker(const compare_opts *o, ob_renderer *r, const view_input *in, const cli_config *configs, int count,
                        report_files *out, view_result *vr)
 {
+    /* The view's rows this shard ran (every row but with --shard-unit row), in their order. */
+    cli_config *mine = malloc((size_t)count * sizeof *mine);
+    int *index = malloc((size_t)count * sizeof *index), n = 0;
     vr->flicker = calloc((size_t)count, sizeof *vr->flicker);
-    if (!vr->flicker) return cli_fail(EXIT_RUNTIME, "out of memory");
+    if (!vr->flicker || !mine || !index) {
+        free(mine);
+        free(index);
+        return cli_fail(EXIT_RUNTIME, "out of memory");
+    }
+    for (int k = 0; k < count; ++k)
+        if (compare_row_is_mine(o, vr->index, k)) mine[n] = configs[k], index[n++] = k;
     const cli_flicker_desc d = {.common = &o->common, .renderer = r, .scene = in->scene, .scene_key = in->name,
                                 .base = in->cam, .radius = vr->radius, .spp = o->spp, .no_cache = o->no_cache};
-    int code = cli_flicker_run(&d, configs, count, vr->flicker, &vr->flicker_ref);
-    for (int k = 0; k < count && code == EXIT_OK; ++k) {
+    int code = cli_flicker_run(&d, mine, n, vr->flicker, &vr->flicker_ref);
+    for (int k = 0; k < n; ++k) vr->flicker[k].config = &configs[index[k]];
+    free(mine);
+    free(index);
+    for (int k = 0; k < n && code == EXIT_OK; ++k) {
         char path[900] = "";
         snprintf(path, sizeof path, "%s/%s/%s_temporal_worst.png", o->report, vr->dir, vr->methods[k].stem);
         if (!compare_track_file(out, path)) return cli_fail(EXIT_RUNTIME, "out of memory");
@@ -636,11 +745,12 @@ static int compare_prepare(compare_opts *o, compare_run *run)
 {
     const cli_common *c = &o->common;
     int code = cli_common_configs(c, &run->configs, &run->count);
+    if (code == EXIT_OK && o->by_row) code = compare_assign_rows(o, run->configs, run->count, o->shard.count);
     if (code != EXIT_OK) return code;
     run->views = calloc(MAX_VIEWS, sizeof *run->views);
     if (!run->views) return cli_fail(EXIT_RUNTIME, "out of memory");
     for (int v = 0; v < o->view_count && code == EXIT_OK; ++v)
-        if (o->owner[v] == o->shard.index) code = load_view(o, o->views[v], &run->inputs[v], run->inputs, v);
+        if (compare_view_is_mine(o, v)) code = load_view(o, o->views[v], &run->inputs[v], run->inputs, v);
     for (int v = 0; v < o->view_count && code == EXIT_OK && cli_common_moves(c); ++v) {
         ob_camera probe; /* --path names a path of every scene */
         code = cli_common_path_camera(c, run->inputs[v].scene, &run->inputs[v].cam, 0, &probe);
@@ -666,15 +776,15 @@ static int run_views(compare_opts *o, compare_run *run)
      * a run of ten methods never looks hung; in a log each step is a line. On a terminal it is held
      * (its line ended) before a view's references so that their bars draw on the lines below. */
     const int count = run->count;
-    const int per_view = count * (cli_common_moves(c) ? 2 : 1);
-    int mine = 0;
-    for (int v = 0; v < o->view_count; ++v) mine += o->owner[v] == o->shard.index;
-    ob_progress_begin(&run->bar, "compare", (long long)mine * per_view);
+    int mine = 0; /* rows of this shard */
+    for (int v = 0; v < o->view_count; ++v)
+        for (int k = 0; k < count; ++k) mine += compare_row_is_mine(o, v, k);
+    ob_progress_begin(&run->bar, "compare", (long long)mine * (cli_common_moves(c) ? 2 : 1));
     run->bar.each = true;
     o->bar = &run->bar;
     int code = EXIT_OK;
     for (int v = 0; v < o->view_count && code == EXIT_OK; ++v) {
-        if (o->owner[v] != o->shard.index) continue; /* another shard's view */
+        if (!compare_view_is_mine(o, v)) continue; /* another shard's view */
         view_result *vr = &run->views[run->done];
         vr->index = v;
         /* On a terminal the bar keeps its own line above the reference's bar (issue 48). */
@@ -689,8 +799,8 @@ static int run_views(compare_opts *o, compare_run *run)
             ob_progress_hold(&run->bar, step);
             code = run_flicker(o, run->r, &run->inputs[v], run->configs, count, &run->out, vr);
             char what[160];
-            snprintf(what, sizeof what, "%.60s:%.40s flicker, %d rows", vr->scene, vr->camera, count);
-            if (code == EXIT_OK) ob_progress_advance(&run->bar, count, what);
+            snprintf(what, sizeof what, "%.60s:%.40s flicker, %d rows", vr->scene, vr->camera, vr->method_count);
+            if (code == EXIT_OK) ob_progress_advance(&run->bar, vr->method_count, what);
         }
         if (code == EXIT_OK) compare_mark_pareto(vr);
         if (code == EXIT_OK) code = compare_write_chart(o, vr, &run->out);
@@ -737,12 +847,19 @@ static int compare_checked(const compare_opts *op)
     compare_run *run = calloc(1, sizeof *run);
     if (!run) return cli_fail(EXIT_RUNTIME, "out of memory");
     int code = compare_prepare(&o, run);
+    if (code == EXIT_OK && o.references_only) {
+        code = run_references(&o, run->r, run->inputs);
+        compare_run_free(run, code != EXIT_OK);
+        free(run);
+        return code;
+    }
     if (code == EXIT_OK) code = run_views(&o, run);
     if (code == EXIT_OK) code = compare_label_sets(run->views, run->done);
     if (code == EXIT_OK) code = compare_write_json(&o, run->views, run->done, &run->out);
     if (code == EXIT_OK) code = compare_write_html(&o, run->views, run->done, &run->out);
-    if (code == EXIT_OK && o.shard.count > 1) code = compare_write_shard(&o, run->views, run->done, &run->out);
+    if (code == EXIT_OK && o.shard.count > 1) code = compare_write_shard(&o, run->configs, run->views, run->done, &run->out);
     compare_run_free(run, code != EXIT_OK);
     free(run);
+    free(o.row_owner);
     return code;
 }

@@ -41,6 +41,13 @@ typedef struct compare_opts {
     /* --shard K/N: only the views owner[] gives this shard (shard.h); {0, 1} runs every view. */
     cli_shard shard;
     int owner[MAX_VIEWS];
+    /* --shard-unit row: each row of each view is a unit of its own, row_owner[v * row_count + k]
+     * (compare_assign_rows), and a shard runs the views it has a row of, with their references
+     * from the shared cache (traced there first by --references-only). */
+    bool by_row;
+    int *row_owner, row_count;
+    /* --references-only: trace (or find) each view's AO_R into the reference cache, and stop. */
+    bool references_only;
 } compare_opts;
 
 /* One row of a view's table: one combination of the lists. */
@@ -94,12 +101,21 @@ bool compare_track_file(report_files *out, const char *path);
 int compare_parse(int argc, char **argv, compare_opts *o, cli_outputs *outs);
 /* o->owner for the run split over `shards` (compare_parse does it for --shard). */
 void compare_assign_shards(compare_opts *o, int shards);
+/* With --shard-unit row: o->row_owner over the count rows of every view, split over `shards`
+ * (o->shard.count when it runs, the shards' N when merging). EXIT_OK or an exit code. */
+int compare_assign_rows(compare_opts *o, const cli_config *configs, int count, int shards);
+/* The shard that runs row k of view v (after compare_assign_shards, and compare_assign_rows with
+ * --shard-unit row). Does this shard run view v (a row of it), and row k of it? */
+int compare_row_owner(const compare_opts *o, int v, int k);
+bool compare_view_is_mine(const compare_opts *o, int v);
+bool compare_row_is_mine(const compare_opts *o, int v, int k);
 int compare_label_sets(view_result *views, int count);
 int compare_make_dir(report_files *out, const char *path);
 void compare_files_finish(report_files *out, bool failed);
 
 /* compare_merge.c: a shard's REPORT/shard.bin (every view it ran, for obscura merge). */
-int compare_write_shard(const compare_opts *o, const view_result *views, int count, report_files *out);
+int compare_write_shard(const compare_opts *o, const cli_config *configs, const view_result *views, int count,
+                        report_files *out);
 
 /* compare_report.c */
 /* Marks the rows on the view's error/time Pareto front (method_result.pareto). */

@@ -19,7 +19,10 @@
 #include "compare.h"
 #include "suggest.h"
 
-#define SHARD_MAGIC "obscura compare shard 1\n"
+/* 2: each row carries its index among the run's rows (a shard of --shard-unit row has some). */
+#define SHARD_MAGIC "obscura compare shard 2\n"
+
+enum { MAX_MERGE_ROWS = 4096 }; /* rows of one view a shard may give */
 
 typedef struct shard_header {
     uint32_t view_size, method_size, flicker_size, views, methods;
@@ -49,7 +52,8 @@ static bool write_flicker(FILE *f, const view_result *vr)
     return ok;
 }
 
-int compare_write_shard(const compare_opts *o, const view_result *views, int count, report_files *out)
+int compare_write_shard(const compare_opts *o, const cli_config *configs, const view_result *views, int count,
+                        report_files *out)
 {
     char path[900];
     snprintf(path, sizeof path, "%s/shard.bin", o->report);
@@ -68,8 +72,9 @@ int compare_write_shard(const compare_opts *o, const view_result *views, int cou
         ok = fwrite(&vr, sizeof vr, 1, f) == 1;
         for (int k = 0; k < views[v].method_count && ok; ++k) {
             method_result m = views[v].methods[k];
+            const uint32_t row = (uint32_t)(m.config - configs); /* its index among the run's rows */
             m.config = NULL;
-            ok = fwrite(&m, sizeof m, 1, f) == 1;
+            ok = fwrite(&row, sizeof row, 1, f) == 1 && fwrite(&m, sizeof m, 1, f) == 1;
         }
         if (ok) ok = write_flicker(f, &views[v]);
     }
@@ -89,6 +94,7 @@ typedef struct shard_in {
     int index, count;  /* K and N */
     char **args;       /* its command line without --shard K/N and --report DIR */
     int arg_count;
+    bool has[MAX_VIEWS]; /* the views it ran (some of their rows, with --shard-unit row) */
 } shard_in;
 
 typedef struct merge_state {
@@ -102,6 +108,7 @@ typedef struct merge_state {
     cli_config *configs;
     int config_count;
     view_result views[MAX_VIEWS];
+    bool *have[MAX_VIEWS];   /* per view, the rows read so far */
     int view_count;
     report_files out;
 } merge_state;
@@ -211,6 +218,7 @@ static int parse_run(merge_state *m)
     /* Which shard ran each view, as the shards computed it; the merged report is no shard. */
     if (code == EXIT_OK) compare_assign_shards(&m->o, s->count);
     if (code == EXIT_OK) code = cli_common_configs(&m->o.common, &m->configs, &m->config_count);
+    if (code == EXIT_OK && m->o.by_row) code = compare_assign_rows(&m->o, m->configs, m->config_count, s->count);
     const cJSON *r = cJSON_GetObjectItemCaseSensitive(s->json, "renderer");
     const cJSON *g = cJSON_GetObjectItemCaseSensitive(s->json, "gl_version");
     snprintf(m->o.renderer, sizeof m->o.renderer, "%s", cJSON_IsString(r) ? r->valuestring : "(unknown)");
@@ -247,8 +255,9 @@ static int read_curve(FILE *f, double **curve, int frames, const char *path)
     return fread(*curve, sizeof **curve, (size_t)frames, f) == (size_t)frames ? EXIT_OK : cli_fail(EXIT_INPUT, "%s: truncated", path);
 }
 
-/* The view's flicker rows (write_flicker), which a --path/--orbit run has and no other. */
-static int read_flicker(merge_state *m, view_result *vr, FILE *f, const char *path)
+/* The view's flicker rows (write_flicker), which a --path/--orbit run has and no other: the
+ * shard's rows, at their indices row[j] among the run's. */
+static int read_flicker(merge_state *m, view_result *vr, const int *row, int rows, FILE *f, const char *path)
 {
     uint8_t has = 0;
     if (fread(&has, 1, 1, f) != 1 || has > 1) return cli_fail(EXIT_INPUT, "%s: truncated", path);
@@ -257,55 +266,81 @@ static int read_flicker(merge_state *m, view_result *vr, FILE *f, const char *pa
     if (!has) return EXIT_OK;
     if (vr->flicker_ref.frames < 1 || vr->flicker_ref.frames > 1 << 16)
         return cli_fail(EXIT_INPUT, "%s: %d path frames", path, vr->flicker_ref.frames);
-    vr->flicker = calloc((size_t)vr->method_count, sizeof *vr->flicker);
+    if (!vr->flicker) vr->flicker = calloc((size_t)m->config_count, sizeof *vr->flicker);
     if (!vr->flicker) return cli_fail(EXIT_RUNTIME, "out of memory");
     int code = EXIT_OK;
-    for (int k = 0; k < vr->method_count && code == EXIT_OK; ++k) {
-        cli_flicker_row *row = &vr->flicker[k];
-        if (fread(row, sizeof *row, 1, f) != 1) return cli_fail(EXIT_INPUT, "%s: truncated", path);
-        row->config = &m->configs[k];
-        row->off.rmse_frames = row->on.rmse_frames = NULL;
-        row->off.worst_ao = row->on.worst_ao = NULL;
-        code = read_curve(f, &row->off.rmse_frames, vr->flicker_ref.frames, path);
-        if (code == EXIT_OK) code = read_curve(f, &row->on.rmse_frames, vr->flicker_ref.frames, path);
+    for (int j = 0; j < rows && code == EXIT_OK; ++j) {
+        cli_flicker_row *r = &vr->flicker[row[j]];
+        if (fread(r, sizeof *r, 1, f) != 1) return cli_fail(EXIT_INPUT, "%s: truncated", path);
+        r->config = &m->configs[row[j]];
+        r->off.rmse_frames = r->on.rmse_frames = NULL;
+        r->off.worst_ao = r->on.worst_ao = NULL;
+        code = read_curve(f, &r->off.rmse_frames, vr->flicker_ref.frames, path);
+        if (code == EXIT_OK) code = read_curve(f, &r->on.rmse_frames, vr->flicker_ref.frames, path);
     }
     return code;
 }
 
-/* One view of a shard's shard.bin into m->views[vr.index]. */
-static int read_view(merge_state *m, const shard_in *s, FILE *f, const char *path)
+/* A row of a view: its index among the run's rows, which this shard must own and no shard have
+ * given before, then the row into vr->methods[*row]. */
+static int read_row(merge_state *m, const shard_in *s, int v, FILE *f, const char *path, int *row)
+{
+    uint32_t k = 0;
+    if (fread(&k, sizeof k, 1, f) != 1) return cli_fail(EXIT_INPUT, "%s: truncated", path);
+    if (k >= (uint32_t)m->config_count || compare_row_owner(&m->o, v, (int)k) != s->index)
+        return cli_fail(EXIT_INPUT, "%s: a row that is not this run's shard %d's", path, s->index);
+    if (m->have[v][k]) return cli_fail(EXIT_INPUT, "%s: view %d row %u twice", path, v, k);
+    m->have[v][k] = true;
+    method_result *mr = &m->views[v].methods[k];
+    if (fread(mr, sizeof *mr, 1, f) != 1) return cli_fail(EXIT_INPUT, "%s: truncated", path);
+    mr->config = &m->configs[k];
+    mr->directional = byte_bool(&mr->directional);
+    mr->pareto = byte_bool(&mr->pareto);
+    mr->name[sizeof mr->name - 1] = mr->label[sizeof mr->label - 1] = mr->stem[sizeof mr->stem - 1] = '\0';
+    /* The stem names the row's images in index.html: never a path out of the view's directory. */
+    if (!mr->stem[0] || mr->stem[0] == '.' || strpbrk(mr->stem, "/\\"))
+        return cli_fail(EXIT_INPUT, "%s: a row's image name leaves the report", path);
+    *row = (int)k;
+    return EXIT_OK;
+}
+
+/* One view of a shard's shard.bin: its rows into m->views[vr.index] at their indices. A view split
+ * by rows comes from several shards; the first record of it gives the view's own fields (the same
+ * G-buffer, reference and masks in each). */
+static int read_view(merge_state *m, shard_in *s, FILE *f, const char *path)
 {
     view_result vr;
     if (fread(&vr, sizeof vr, 1, f) != 1) return cli_fail(EXIT_INPUT, "%s: truncated", path);
-    if (vr.index < 0 || vr.index >= m->o.view_count || m->o.owner[vr.index] != s->index ||
-        vr.method_count != m->config_count || !safe_dir(vr.dir, sizeof vr.dir) || !memchr(vr.scene, '\0', sizeof vr.scene) ||
+    if (vr.index < 0 || vr.index >= m->o.view_count || vr.method_count < 1 || vr.method_count > m->config_count ||
+        !safe_dir(vr.dir, sizeof vr.dir) || !memchr(vr.scene, '\0', sizeof vr.scene) ||
         !memchr(vr.camera, '\0', sizeof vr.camera))
         return cli_fail(EXIT_INPUT, "%s: a view that is not this run's shard %d's", path, s->index);
-    if (m->views[vr.index].methods) return cli_fail(EXIT_INPUT, "%s: view %d twice", path, vr.index);
-    /* A bool read from a file may hold any byte: only 0 and 1 are bools. */
-    vr.ref_cached = byte_bool(&vr.ref_cached);
-    vr.has_bounce = byte_bool(&vr.has_bounce);
-    vr.methods = calloc((size_t)vr.method_count, sizeof *vr.methods);
-    vr.flicker = NULL;
-    vr.set = NULL;
-    if (!vr.methods) return cli_fail(EXIT_RUNTIME, "out of memory");
-    m->views[vr.index] = vr;
-    for (int k = 0; k < vr.method_count; ++k) {
-        method_result *mr = &m->views[vr.index].methods[k];
-        if (fread(mr, sizeof *mr, 1, f) != 1) return cli_fail(EXIT_INPUT, "%s: truncated", path);
-        mr->config = &m->configs[k];
-        mr->directional = byte_bool(&mr->directional);
-        mr->pareto = byte_bool(&mr->pareto);
-        mr->name[sizeof mr->name - 1] = mr->label[sizeof mr->label - 1] = mr->stem[sizeof mr->stem - 1] = '\0';
-        /* The stem names the row's images in index.html: never a path out of the view's directory. */
-        if (!mr->stem[0] || mr->stem[0] == '.' || strpbrk(mr->stem, "/\\"))
-            return cli_fail(EXIT_INPUT, "%s: a row's image name leaves the report", path);
+    const int v = vr.index;
+    if (s->has[v]) return cli_fail(EXIT_INPUT, "%s: view %d twice", path, v);
+    s->has[v] = true;
+    view_result *into = &m->views[v];
+    if (!into->methods) {
+        /* A bool read from a file may hold any byte: only 0 and 1 are bools. */
+        vr.ref_cached = byte_bool(&vr.ref_cached);
+        vr.has_bounce = byte_bool(&vr.has_bounce);
+        vr.flicker = NULL;
+        vr.set = NULL;
+        vr.methods = calloc((size_t)m->config_count, sizeof *vr.methods);
+        m->have[v] = calloc((size_t)m->config_count, sizeof *m->have[v]);
+        *into = vr;
+        into->method_count = m->config_count; /* every row's place, filled by the shards that own them */
+        if (!into->methods || !m->have[v]) return cli_fail(EXIT_RUNTIME, "out of memory");
+    } else if (strcmp(into->dir, vr.dir)) {
+        return cli_fail(EXIT_INPUT, "%s: view %d is %s here and %s in another shard", path, v, vr.dir, into->dir);
     }
-    return read_flicker(m, &m->views[vr.index], f, path);
+    int row[MAX_MERGE_ROWS], code = EXIT_OK;
+    if (vr.method_count > MAX_MERGE_ROWS) return cli_fail(EXIT_INPUT, "%s: %d rows in a view", path, vr.method_count);
+    for (int j = 0; j < vr.method_count && code == EXIT_OK; ++j) code = read_row(m, s, v, f, path, &row[j]);
+    return code == EXIT_OK ? read_flicker(m, into, row, vr.method_count, f, path) : code;
 }
 
 /* SHARD/shard.bin: the views the shard ran. */
-static int read_views(merge_state *m, const shard_in *s)
+static int read_views(merge_state *m, shard_in *s)
 {
     char path[4200], version[64] = "", magic[sizeof SHARD_MAGIC] = "";
     snprintf(path, sizeof path, "%s/shard.bin", s->dir);
@@ -383,6 +418,17 @@ static int merge_parse(int argc, char **argv, merge_state *m)
     return EXIT_OK;
 }
 
+/* Every row of view v, each from the shard that owns it (read_row placed them). */
+static int check_rows(merge_state *m, int v)
+{
+    for (int k = 0; k < m->config_count; ++k)
+        if (!m->have[v][k])
+            return cli_fail(EXIT_INPUT, "view %d (%s) row %d (%s) is in none of the shards' shard.bin (shard %d should "
+                                        "have run it)",
+                            v, m->o.views[v], k, m->configs[k].label, compare_row_owner(&m->o, v, k));
+    return EXIT_OK;
+}
+
 static int merge_checked(merge_state *m)
 {
     int code = EXIT_OK;
@@ -393,16 +439,23 @@ static int merge_checked(merge_state *m)
     for (int v = 0; v < m->o.view_count && code == EXIT_OK; ++v)
         if (!m->views[v].methods)
             code = cli_fail(EXIT_INPUT, "view %d (%s) is in none of the shards' shard.bin (shard %d should have run it)", v,
-                            m->o.views[v], m->o.owner[v]);
+                            m->o.views[v], compare_row_owner(&m->o, v, 0));
+        else
+            code = check_rows(m, v);
     m->view_count = m->o.view_count;
     const char *root = code == EXIT_OK ? cli_outputs_dir(m->o.outs, m->o.report_index) : NULL;
     if (code == EXIT_OK && !root) code = EXIT_OUTPUT;
     if (code == EXIT_OK) m->o.report = root;
-    for (int v = 0; v < m->view_count && code == EXIT_OK; ++v) {
-        const shard_in *s = NULL;
-        for (int i = 0; i < m->shard_count; ++i)
-            if (m->shards[i].index == m->o.owner[v]) s = &m->shards[i];
-        code = copy_view(m, s->dir, m->views[v].dir);
+    /* Each view's directory from every shard that ran some of it: the view's own images are the
+     * same in each, the rows' images each shard's own. */
+    for (int v = 0; v < m->view_count && code == EXIT_OK; ++v)
+        for (int i = 0; i < m->shard_count && code == EXIT_OK; ++i)
+            if (m->shards[i].has[v]) code = copy_view(m, m->shards[i].dir, m->views[v].dir);
+    /* Split by rows, no shard saw a whole view: its Pareto front and chart are drawn here, from
+     * every row, as the unsharded run draws them. */
+    for (int v = 0; v < m->view_count && code == EXIT_OK && m->o.by_row; ++v) {
+        compare_mark_pareto(&m->views[v]);
+        code = compare_write_chart(&m->o, &m->views[v], &m->out);
     }
     if (code == EXIT_OK) code = compare_label_sets(m->views, m->view_count);
     if (code == EXIT_OK) code = compare_write_json(&m->o, m->views, m->view_count, &m->out);
@@ -414,6 +467,7 @@ static void merge_free(merge_state *m, bool failed)
 {
     compare_files_finish(&m->out, failed);
     for (int v = 0; v < MAX_VIEWS; ++v) {
+        free(m->have[v]);
         free(m->views[v].methods);
         cli_flicker_free(m->views[v].flicker, m->views[v].method_count);
         free(m->views[v].flicker);
@@ -424,6 +478,7 @@ static void merge_free(merge_state *m, bool failed)
     }
     free(m->configs);
     free(m->argv);
+    free(m->o.row_owner);
 }
 
 int cmd_merge(int argc, char **argv)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # compare --shard K/N and obscura merge (issue 49, items 1 and 2): a run split over 2 and over 3
-# shards and merged is the unsharded run's report: the same files, every image byte for byte, and
+# shards, and one split by rows over 5, merged is the unsharded run's report: the same files, every image byte for byte, and
 # every number of results.json equal but the timings (GPU ms and what is ranked by them: the
 # Pareto front) and the run's own facts (its date, command line, whether a reference came from the
 # cache). Each shard runs only the views the cost-balanced assignment gives it. A missing, repeated
@@ -97,6 +97,56 @@ d = json.load(open(sys.argv[1]))
 assert all(len(v["flicker"]["rows"]) == 2 and len(v["flicker"]["rows"][1]["temporal_on"]["rmse_frames"]) == 3
            for v in d["views"]), d["views"]
 ' "$dir/orbit-merged/results.json" && ok || bad "the orbit shards merged differ from the unsharded orbit run"
+
+# Rows as units (--shard-unit row): more shards (5) than views (2). The references come first
+# (--references-only traces them into the cache, a fresh one here, and writes no report); then each
+# row of each view goes to the least-loaded shard by its samples per pixel (12 at low, 36 at high),
+# each shard finds its views' references in the cache, and the merge puts every view's rows back
+# together and draws its Pareto front and chart from all of them.
+export XDG_CACHE_HOME="$dir/cache-rows"
+rows=(--scene corner:diagonal --scene cornell:front --methods ssao,gtao,vbao --quality low,high --size 48x36 --spp 16)
+"$OBSCURA" compare "${rows[@]}" --references-only >"$dir/out" 2>"$dir/err" || bad "references only: $(tail -1 "$dir/err")"
+[ "$(grep -c 'traced into the cache' "$dir/out")" -eq 2 ] && [ ! -e obscura-report ] && ok ||
+    bad "--references-only: $(cat "$dir/out")"
+"$OBSCURA" compare "${rows[@]}" --references-only >"$dir/out" 2>&1
+[ "$(grep -c 'was in the cache' "$dir/out")" -eq 2 ] && ok || bad "--references-only again: $(cat "$dir/out")"
+for k in 0 1 2 3 4; do
+    "$OBSCURA" compare "${rows[@]}" --shard "$k/5" --shard-unit row --report "$dir/r$k" >/dev/null 2>"$dir/err" ||
+        bad "row shard $k/5: $(tail -1 "$dir/err")"
+done
+python3 -c '
+import json, sys
+# 12 rows, each run once; by cost (36 against 12) the five shards carry 72, 72, 72, 72 and 96 of 384.
+seen, load = [], []
+for k in range(5):
+    d = json.load(open(sys.argv[1] + "/r%d/results.json" % k))
+    assert d["shard"]["index"] == k and d["shard"]["count"] == 5, d["shard"]
+    rows = [(v["scene"] + ":" + v["camera"], m["label"]) for v in d["views"] for m in v["methods"]]
+    assert all(v["reference"]["cached"] is True for v in d["views"]), k
+    seen += rows
+    load.append(sum(36 if "high" in label else 12 for _, label in rows))
+assert len(seen) == 12 and len(set(seen)) == 12, seen
+assert max(load) - min(load) <= 36, load
+' "$dir" && ok || bad "the row shards' split"
+"$OBSCURA" compare "${rows[@]}" --report "$dir/rows-whole" >/dev/null 2>"$dir/err" || bad "rows unsharded: $(tail -1 "$dir/err")"
+"$OBSCURA" merge "$dir"/r4 "$dir"/r0 "$dir"/r1 "$dir"/r2 "$dir"/r3 --report "$dir/rows-merged" >/dev/null 2>"$dir/err" ||
+    bad "row merge: $(cat "$dir/err")"
+same "$dir/rows-whole" "$dir/rows-merged" && ok || bad "the row shards merged differ from the unsharded run"
+# A row given by a shard that does not own it: exit 3, named.
+cp -r "$dir/r1" "$dir/r1-foreign"
+python3 -c '
+import struct, sys
+b = bytearray(open(sys.argv[1], "rb").read())
+at = b.index(b"\n", b.index(b"\n") + 1) + 1
+view_size = struct.unpack_from("<I", b, at)[0]
+row = at + 20 + view_size                       # the first view'"'"'s first row index
+struct.pack_into("<I", b, row, (struct.unpack_from("<I", b, row)[0] + 1) % 6)
+open(sys.argv[1], "wb").write(b)
+' "$dir/r1-foreign/shard.bin"
+expect 3 "$dir/r1-foreign/shard.bin: a row that is not this run's shard 1's" merge "$dir"/r0 "$dir/r1-foreign" "$dir"/r2 "$dir"/r3 "$dir"/r4 --report "$dir/bad"
+expect 2 "^obscura: --shard-unit: expected view or row, got 'rows'" compare --scene corner --shard-unit rows --report "$dir/bad"
+expect 2 "^obscura: --references-only writes no report" compare --scene corner --references-only --report "$dir/bad"
+[ ! -e "$dir/bad" ] && ok || bad "a failed run left $dir/bad"
 
 # obscura --help lists the command.
 "$OBSCURA" --help | grep -q "^  merge " && ok || bad "obscura --help does not list merge"

@@ -80,7 +80,7 @@ typedef struct tune_opts {
 static void tune_usage(FILE *f, const cli_common *c)
 {
     fputs("usage: obscura tune --method M --params LIST --train S:C[,S:C] [--validate S:C[,S:C]] [--check S:C[,S:C]]\n"
-          "                   --out FILE.json\n"
+          "                   --out FILE.json [--shard K/N --exchange DIR]\n"
           "\n"
           "The values of M's parameters that minimise the mean MSE of its (filtered) AO against the\n"
           "ray-traced AO_R over the training views, by coordinate descent over a narrowing grid;\n"

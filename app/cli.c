@@ -53,6 +53,21 @@ int cli_unknown_option(const char *command, const char *arg, void (*usage)(FILE 
     return cli_fail(EXIT_USAGE, "unknown option '%s'%s (see obscura %s --help)", arg, hint, command);
 }
 
+/* The last line cli_fail printed, as printed (tune_exchange.c passes it to the other shards). */
+static char last_failure[1024];
+
+const char *cli_last_failure(void) { return last_failure; }
+
+/* text appended to last_failure while room is left (cut, never overrun: the line on stderr is whole). */
+static void remember(size_t *at, const char *text)
+{
+    size_t n = strlen(text);
+    if (*at + n < sizeof last_failure) {
+        memcpy(last_failure + *at, text, n + 1);
+        *at += n;
+    }
+}
+
 int cli_fail(int code, const char *fmt, ...)
 {
     char *buf = NULL;
@@ -64,11 +79,15 @@ int cli_fail(int code, const char *fmt, ...)
      * control bytes are written as \n, \t or \xNN, so that the message stays one line and
      * shows the name as it is. */
     fputs("obscura: ", stderr);
+    size_t at = 0;
+    last_failure[0] = '\0';
     for (const unsigned char *p = (const unsigned char *)(len >= 0 ? buf : "out of memory"); *p; ++p) {
-        if (*p == '\n') fputs("\\n", stderr);
-        else if (*p == '\t') fputs("\\t", stderr);
-        else if (*p < 0x20 || *p == 0x7f) fprintf(stderr, "\\x%02x", *p);
-        else fputc(*p, stderr);
+        char one[8] = {(char)*p, '\0'};
+        if (*p == '\n') snprintf(one, sizeof one, "\\n");
+        else if (*p == '\t') snprintf(one, sizeof one, "\\t");
+        else if (*p < 0x20 || *p == 0x7f) snprintf(one, sizeof one, "\\x%02x", *p);
+        fputs(one, stderr);
+        remember(&at, one);
     }
     fputc('\n', stderr);
     if (len >= 0) free(buf);

@@ -29,6 +29,9 @@ int cli_fail_from_library_in(const char *where);
 int cli_fail_library_as(int code);
 /* Print "obscura: MESSAGE" and return code. */
 int cli_fail(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* The message of the last cli_fail (any of the above) as it was printed, without "obscura: ": one
+ * line, control bytes escaped, cut to about 1000 bytes; "" before any. */
+const char *cli_last_failure(void);
 /* "unknown option 'ARG'; did you mean '--NEAR'? (see obscura COMMAND --help)", exit EXIT_USAGE: the
  * options to suggest are the ones the command's own --help text names (usage writes it), so the
  * suggestion never names one the command does not take. */

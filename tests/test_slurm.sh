@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# compare on a real Slurm (issue 49, item 4): a single-node cluster from Debian's packages (munge,
-# slurmctld, slurmd) on localhost, with its configuration, state and sockets in a scratch folder
-# and ports the kernel picks, takes scripts/slurm/submit.sh's job array of 4 shards over a small
-# sweep and its dependent merge; the merged report must be the unsharded run's
-# (tests/report_same.py). Everything it started is stopped at the end. When Slurm cannot start
-# here the test says why and fails: it is never skipped.
+# compare and tune on a real Slurm (issue 49, items 1 and 4): a single-node cluster from Debian's
+# packages (munge, slurmctld, slurmd) on localhost, with its configuration, state and sockets in a
+# scratch folder and ports the kernel picks, takes scripts/slurm/submit.sh's job array of 4 shards
+# over a small sweep and its dependent merge; the merged report must be the unsharded run's
+# (tests/report_same.py). Then scripts/slurm/tune.sbatch runs a tune as one job of 2 tasks, which
+# must run at once and exchange their evaluations; shard 0's settings must be the unsharded run's.
+# Everything it started is stopped at the end. When Slurm cannot start here the test says why and
+# fails: it is never skipped.
 # usage: test_slurm.sh OBSCURA
 set -u
 OBSCURA=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -119,6 +121,36 @@ for k in 0 1 2 3; do
     [ "$(find "$dir/sweep/shard-$k" -mindepth 1 -maxdepth 1 -type d | wc -l)" -eq 1 ] && ok ||
         bad "shard $k ran $(ls "$dir/sweep/shard-$k")"
 done
+
+# tune as one job step of 2 tasks (the node has CPUs=$(nproc): 2 on the test machine, or the tasks
+# share a CPU with --overcommit); both shards must run at once, or they time out.
+tune=(--size 64x48 --method hbao --params hbao.radius_scale,hbao.intensity=0:3 --spp 16 --passes 1 --steps 3
+    --train corner:diagonal,cornell:front --validate sphere-on-plane:front)
+"$OBSCURA" tune "${tune[@]}" --out "$dir/tune-whole.json" >/dev/null 2>"$dir/err" && ok || bad "unsharded tune: $(tail -1 "$dir/err")"
+over=()
+[ "$(nproc)" -ge 2 ] || over=(--overcommit)
+if job=$(sbatch --parsable --ntasks=2 "${over[@]}" --output="$dir/tune.log" "$scripts/tune.sbatch" "$dir/exchange" \
+    "${tune[@]}" --exchange-timeout 60 --out "$dir/tune-slurm.json" 2>"$dir/err"); then ok
+else cannot "sbatch refused the tune job: $(cat "$dir/err")"; fi
+job=${job%%;*}
+for _ in $(seq 1 120); do
+    squeue -h -j "$job" 2>/dev/null | grep -q . || break
+    sleep 1
+done
+squeue -h -j "$job" 2>/dev/null | grep -q . && bad "tune job $job still queued after 120 s: $(squeue 2>&1)"
+# Each task said which views it loads (srun --label: "K: "), both in the job's one folder.
+grep -q "^0: tune: shard 0/2 loads 2 of 3 views (corner:diagonal, sphere-on-plane:front); records in $dir/exchange/job-$job-0/" \
+    "$dir/tune.log" && grep -q "^1: tune: shard 1/2 loads 1 of 3 views (cornell:front)" "$dir/tune.log" &&
+    grep -q "^1: shard 1/2 done" "$dir/tune.log" && ok || bad "the tune job's tasks: $(cat "$dir/tune.log")"
+python3 - "$dir/tune-whole.json" "$dir/tune-slurm.json" <<'PY' && ok || bad "the tune job's settings differ from the unsharded run's"
+import json, sys
+whole, sharded = (json.load(open(p)) for p in sys.argv[1:])
+assert whole["params"]["radius_scale"] != 1 and len(whole["tuned"]["training"]) == 2, whole
+assert sharded["tuned"].pop("shard")["count"] == 2, sharded
+for d in (whole, sharded):
+    d["tuned"].pop("seconds")
+assert whole == sharded, (whole, sharded)
+PY
 
 echo "slurm: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

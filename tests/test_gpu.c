@@ -103,7 +103,7 @@ static void test_gbuffer(ob_renderer *r, const ob_settings *s)
     for (int y = 2; y < H; y += 5) {
         for (int x = 2; x < W; x += 5) {
             float d = 0.0f, edge = 0.0f;
-            vec3 nw;
+            vec3 nw = {0.0f, 0.0f, 0.0f}; /* analytic_hit sets it on a hit; Release builds cannot see that */
             float got_d = depth[y * W + x];
             if (!analytic_hit(x, y, &d, nw, &edge)) {
                 /* Background: no geometry, depth cleared to 0. */

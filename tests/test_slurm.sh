@@ -3,7 +3,8 @@
 # packages (munge, slurmctld, slurmd) on localhost, with its configuration, state and sockets in a
 # scratch folder and ports the kernel picks, takes scripts/slurm/submit.sh's job array of 4 shards
 # over a small sweep and its dependent merge; the merged report must be the unsharded run's
-# (tests/report_same.py). Then scripts/slurm/tune.sbatch runs a tune as one job of 2 tasks, which
+# (tests/report_same.py); the same with SHARD_UNIT=row (a references array, the rows' array after
+# it, the merge). Then scripts/slurm/tune.sbatch runs a tune as one job of 2 tasks, which
 # must run at once and exchange their evaluations; shard 0's settings must be the unsharded run's.
 # Everything it started is stopped at the end. When Slurm cannot start here the test says why and
 # fails: it is never skipped.
@@ -121,6 +122,31 @@ for k in 0 1 2 3; do
     [ "$(find "$dir/sweep/shard-$k" -mindepth 1 -maxdepth 1 -type d | wc -l)" -eq 1 ] && ok ||
         bad "shard $k ran $(ls "$dir/sweep/shard-$k")"
 done
+
+# Split by rows (SHARD_UNIT=row): an array tracing the references into the cache, the rows' array
+# after it, and the merge; three jobs, in order, a fresh cache so that the first traces them.
+export XDG_CACHE_HOME="$dir/cache-rows"
+rows=(--scene corner:diagonal --scene cornell:front --methods ssao,gtao,vbao --size 48x36 --spp 16)
+if ids=$(SHARD_UNIT=row "$scripts/submit.sh" 4 "$dir/rows" "${rows[@]}" 2>"$dir/err"); then ok
+else cannot "sbatch refused the row arrays: $(cat "$dir/err")"; fi
+read -r references array merge <<<"$ids"
+[ -n "$merge" ] && ok || bad "submit.sh with SHARD_UNIT=row printed '$ids', not three job ids"
+for _ in $(seq 1 300); do
+    squeue -h -j "$references,$array,$merge" 2>/dev/null | grep -q . || break
+    sleep 1
+done
+grep -h 'traced into the cache' "$dir"/rows/slurm/references-*.log | wc -l | grep -qx 2 && ok ||
+    bad "the references array: $(cat "$dir"/rows/slurm/references-*.log 2>&1)"
+python3 -c '
+import json, sys
+for k in range(4):
+    d = json.load(open(sys.argv[1] + "/shard-%d/results.json" % k))
+    assert all(v["reference"]["cached"] is True for v in d["views"]), k  # traced by the first array
+' "$dir/rows" && ok || bad "a row shard did not find its reference in the cache"
+"$OBSCURA" compare "${rows[@]}" --report "$dir/rows-whole" >/dev/null 2>"$dir/err" || bad "rows unsharded: $(tail -1 "$dir/err")"
+python3 "$here/report_same.py" "$dir/rows-whole" "$dir/rows/report" && ok ||
+    bad "the row shards' merged report differs from the unsharded run: $(cat "$dir/rows/slurm/merge.log" 2>&1)"
+export XDG_CACHE_HOME="$dir/cache"
 
 # tune as one job step of 2 tasks (the node has CPUs=$(nproc): 2 on the test machine, or the tasks
 # share a CPU with --overcommit); both shards must run at once, or they time out.

@@ -59,8 +59,9 @@ static void compare_usage(FILE *f, const cli_common *defaults)
           "                        row (default), or single rows of views, balanced by their samples\n"
           "                        per pixel, for more shards than views; a row's view takes its\n"
           "                        reference from the cache, so run --references-only first\n"
-          "  --references-only     trace (or find) each view's AO_R in the reference cache and stop:\n"
-          "                        no report (with --shard K/N, this shard's views)\n"
+          "  --references-only     trace (or find) each view's AO_R in the reference cache (with\n"
+          "                        --path/--orbit, every frame's too) and stop: no report (with\n"
+          "                        --shard K/N, this shard's views)\n"
           "  --budget-ms T         the equal-time shoot-out: every method at every --quality preset and\n"
           "                        --ao-scale (all of them unless the lists are given), and per view the\n"
           "                        best RMSE each method reaches within T ms of AO (pass + filter +\n"
@@ -190,9 +191,8 @@ int compare_parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
         k = 0;
         if (c->ao_count == 0 && (code = cli_common_option(c, 2, s_argv, &k)) != CLI_TAKEN) return code;
     }
-    if (o->references_only && (o->report || o->by_row || o->budget_ms > 0.0 || cli_common_moves(&o->common)))
-        return cli_fail(EXIT_USAGE, "--references-only writes no report: it takes no --report, --shard-unit, --budget-ms, "
-                                    "--path or --orbit");
+    if (o->references_only && (o->report || o->by_row || o->budget_ms > 0.0))
+        return cli_fail(EXIT_USAGE, "--references-only writes no report: it takes no --report, --shard-unit or --budget-ms");
     if (!o->report && !o->references_only) {
         /* No --report: a folder of the current directory, replaced next time as --report would
          * replace it (only what this tool wrote there), and named before anything runs. */
@@ -643,6 +643,18 @@ static int run_references(const compare_opts *o, ob_renderer *r, const view_inpu
             printf("reference: %s:%s %s (%.1f s, mean standard error %.4f)\n", vr.scene, vr.camera,
                    vr.ref_cached ? "was in the cache" : "traced into the cache", vr.ref_seconds, vr.ref_stderr_mean);
         buffers_free(&b);
+        if (code == EXIT_OK && cli_common_moves(&o->common)) {
+            /* Along --path/--orbit: every frame's reference, as the flicker rows take them (no row). */
+            const cli_flicker_desc d = {.common = &o->common, .renderer = r, .scene = inputs[v].scene,
+                                        .scene_key = inputs[v].name, .base = inputs[v].cam, .radius = vr.radius,
+                                        .spp = o->spp, .no_cache = o->no_cache};
+            cli_flicker_row none;
+            cli_flicker_reference ref;
+            code = cli_flicker_run(&d, NULL, 0, &none, &ref);
+            if (code == EXIT_OK)
+                printf("reference: %s:%s along the %s, %d frames, in the cache\n", vr.scene, vr.camera,
+                       o->common.path ? "path" : "orbit", ref.frames);
+        }
     }
     return code;
 }

@@ -132,6 +132,24 @@ assert max(load) - min(load) <= 36, load
 "$OBSCURA" merge "$dir"/r4 "$dir"/r0 "$dir"/r1 "$dir"/r2 "$dir"/r3 --report "$dir/rows-merged" >/dev/null 2>"$dir/err" ||
     bad "row merge: $(cat "$dir/err")"
 same "$dir/rows-whole" "$dir/rows-merged" && ok || bad "the row shards merged differ from the unsharded run"
+# Along an orbit, --references-only traces every frame's reference too: the row shards then trace
+# nothing (the cache gains no entry) and merge into the unsharded orbit run.
+export XDG_CACHE_HOME="$dir/cache-orbit-rows"
+orows=(--scene corner:diagonal --scene sphere-on-plane:contact --methods ssao,vbao --size 32x24 --spp 16 --orbit 10
+    --path-frames 3)
+"$OBSCURA" compare "${orows[@]}" --references-only >"$dir/out" 2>/dev/null || bad "orbit references only"
+grep -q "corner:diagonal along the orbit, 3 frames, in the cache" "$dir/out" && ok || bad "orbit references: $(cat "$dir/out")"
+entries=$(find "$XDG_CACHE_HOME/obscura" -type f | wc -l) # (Mesa keeps its shader cache beside it)
+for k in 0 1 2; do
+    "$OBSCURA" compare "${orows[@]}" --shard "$k/3" --shard-unit row --report "$dir/or$k" >/dev/null 2>"$dir/err" ||
+        bad "orbit row shard $k/3: $(tail -1 "$dir/err")"
+done
+[ "$entries" -gt 6 ] && [ "$(find "$XDG_CACHE_HOME/obscura" -type f | wc -l)" -eq "$entries" ] && ok ||
+    bad "the orbit row shards traced references ($entries entries before, $(find "$XDG_CACHE_HOME/obscura" -type f | wc -l) after)"
+"$OBSCURA" merge "$dir"/or0 "$dir"/or1 "$dir"/or2 --report "$dir/orows-merged" >/dev/null 2>"$dir/err" ||
+    bad "orbit row merge: $(cat "$dir/err")"
+same "$dir/orbit" "$dir/orows-merged" && ok || bad "the orbit row shards merged differ from the unsharded orbit run"
+
 # A row given by a shard that does not own it: exit 3, named.
 cp -r "$dir/r1" "$dir/r1-foreign"
 python3 -c '

@@ -52,55 +52,66 @@ static int compare_edges(const void *pa, const void *pb)
     return a < b ? -1 : a > b;
 }
 
-/* flat[part root]: every vertex of the part lies within `tolerance` of the plane of its first
- * triangle with an area. -1 when out of memory. */
-static int find_flat_parts(const ob_mesh *m, uint32_t *parent, double tolerance, bool *flat)
+bool ob_triangle_plane(const ob_mesh *m, uint32_t t, double plane[4])
 {
-    uint32_t n = m->vertex_count;
-    double *plane = malloc((size_t)n * 4u * sizeof *plane + 1); /* per root: unit normal, offset */
-    bool *has = calloc((size_t)n + 1, sizeof *has);
-    if (!plane || !has) {
-        free(plane);
-        free(has);
+    const uint32_t n = m->vertex_count, a = m->indices[t], b = m->indices[t + 1u], c = m->indices[t + 2u];
+    if (a >= n || b >= n || c >= n) return false;
+    const float *p = m->positions;
+    double u[3], w[3];
+    for (uint32_t k = 0; k < 3u; ++k) {
+        u[k] = (double)p[3u * b + k] - (double)p[3u * a + k];
+        w[k] = (double)p[3u * c + k] - (double)p[3u * a + k];
+    }
+    double nx = u[1] * w[2] - u[2] * w[1], ny = u[2] * w[0] - u[0] * w[2], nz = u[0] * w[1] - u[1] * w[0];
+    double len = sqrt(nx * nx + ny * ny + nz * nz);
+    if (!(len > 0.0)) return false;
+    plane[0] = nx / len, plane[1] = ny / len, plane[2] = nz / len;
+    plane[3] = plane[0] * p[3u * a] + plane[1] * p[3u * a + 1u] + plane[2] * p[3u * a + 2u];
+    return true;
+}
+
+/* Which of the parts with two loops or more (loops[root] >= 2) are flat: every vertex within
+ * `tolerance` of the plane of the part's first triangle with an area. sheet[root] is set for those.
+ * slot: n words of scratch. -1 when out of memory. */
+static int flat_parts(const ob_mesh *m, uint32_t *parent, const uint32_t *loops, double tolerance, uint32_t *slot,
+                      bool *sheet)
+{
+    const uint32_t n = m->vertex_count;
+    uint32_t count = 0;
+    for (uint32_t v = 0; v < n; ++v) slot[v] = loops[v] >= 2u ? count++ : UINT32_MAX; /* loops counts at roots only */
+    double *plane = malloc((size_t)count * 4u * sizeof *plane + 1);
+    bool *has = calloc((size_t)count + 1, sizeof *has), *flat = malloc((size_t)count + 1);
+    if (!plane || !has || !flat) {
+        free(plane), free(has), free(flat);
         return -1;
     }
+    for (uint32_t i = 0; i < count; ++i) flat[i] = true;
+    for (uint32_t t = 0; count > 0 && t + 2u < m->index_count; t += 3u) {
+        uint32_t a = m->indices[t];
+        uint32_t c = a < n ? slot[find_root(parent, a)] : UINT32_MAX;
+        if (c != UINT32_MAX && !has[c]) has[c] = ob_triangle_plane(m, t, &plane[4u * c]);
+    }
     const float *p = m->positions;
-    for (uint32_t t = 0; t + 2u < m->index_count; t += 3u) {
-        uint32_t a = m->indices[t], b = m->indices[t + 1u], c = m->indices[t + 2u];
-        if (a >= n || b >= n || c >= n) continue;
-        uint32_t r = find_root(parent, a);
-        if (has[r]) continue;
-        double u[3], w[3], nrm[3];
-        for (int k = 0; k < 3; ++k) {
-            u[k] = (double)p[3u * b + (uint32_t)k] - (double)p[3u * a + (uint32_t)k];
-            w[k] = (double)p[3u * c + (uint32_t)k] - (double)p[3u * a + (uint32_t)k];
-        }
-        nrm[0] = u[1] * w[2] - u[2] * w[1], nrm[1] = u[2] * w[0] - u[0] * w[2], nrm[2] = u[0] * w[1] - u[1] * w[0];
-        double len = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-        if (!(len > 0.0)) continue;
-        for (int k = 0; k < 3; ++k) plane[4u * r + (uint32_t)k] = nrm[k] / len;
-        plane[4u * r + 3u] = (nrm[0] * p[3u * a] + nrm[1] * p[3u * a + 1u] + nrm[2] * p[3u * a + 2u]) / len;
-        has[r] = true;
+    for (uint32_t v = 0; count > 0 && v < n; ++v) {
+        uint32_t c = slot[find_root(parent, v)];
+        if (c == UINT32_MAX || !has[c]) continue;
+        const double *q = &plane[4u * c];
+        if (fabs(q[0] * p[3u * v] + q[1] * p[3u * v + 1u] + q[2] * p[3u * v + 2u] - q[3]) > tolerance) flat[c] = false;
     }
-    for (uint32_t v = 0; v < n; ++v) flat[v] = true;
-    for (uint32_t v = 0; v < n; ++v) {
-        uint32_t r = find_root(parent, v);
-        if (!has[r]) continue;
-        const double *q = &plane[4u * r];
-        double d = q[0] * p[3u * v] + q[1] * p[3u * v + 1u] + q[2] * p[3u * v + 2u] - q[3];
-        if (fabs(d) > tolerance) flat[r] = false;
-    }
-    free(plane);
-    free(has);
+    for (uint32_t v = 0; v < n; ++v) sheet[v] = slot[v] != UINT32_MAX && has[slot[v]] && flat[slot[v]];
+    free(plane), free(has), free(flat);
     return 0;
 }
 
-/* Which parts are sheets: a part whose open edges (edges of one triangle only, corners taken by
- * position) form two loops or more is a surface with holes in it, a drilled or cut sheet, which
+/* Which parts are sheets: a flat part whose open edges (edges of one triangle only, corners taken
+ * by position) form two loops or more is a surface with holes in it, a drilled or cut sheet, which
  * has no thickness of its own. A closed solid has no open edge; a single polygon, or a wall of a
  * Quake map (whose brushes are not closed in the mesh), has one loop and stays unknown: its solid
- * may lie behind it. sheet[part root] is set for each vertex's part (parent: the parts' forest);
- * welded[v] is the first vertex at v's position. -1 when out of memory. */
+ * may lie behind it. Open edges alone are not enough: real meshes have cracks (the engine's
+ * castings, the motorbike's parts read as sheets made the fins 4x worse: docs/methods.md, "Thin
+ * holes"), and a part that is not flat is not a sheet of one plane. scene/sheets.c then settles
+ * these candidates over the whole scene. sheet[part root] is set for each vertex's part (parent:
+ * the parts' forest); welded[v] is the first vertex at v's position. -1 when out of memory. */
 static int find_sheets(const ob_mesh *m, const uint32_t *welded, uint32_t *parent, double tolerance, bool *sheet)
 {
     uint32_t n = m->vertex_count;
@@ -129,8 +140,7 @@ static int find_sheets(const ob_mesh *m, const uint32_t *welded, uint32_t *paren
         /* Each loop once, at its root (an open corner: join keeps the lower index), on its part. */
         for (uint32_t v = 0; v < n; ++v)
             if (open[v] && find_root(loop, v) == v) ++loops[find_root(parent, v)];
-        code = find_flat_parts(m, parent, tolerance, sheet);
-        for (uint32_t v = 0; code == 0 && v < n; ++v) sheet[v] = sheet[v] && loops[v] >= 2u;
+        code = flat_parts(m, parent, loops, tolerance, loop, sheet); /* the loops' forest is done with */
     }
     free(edge);
     free(loop);

@@ -81,6 +81,9 @@ OB_EVAL_SHARED bool ob_scene_check_bounds(const ob_scene *s, const char *source)
  * loops or more (a drilled plate, a grille), has no thickness (scene/parts.c). */
 #define OB_PART_SHEET 4096u
 int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels);
+/* The plane of triangle t (its first index): unit normal and offset, plane[0..2] . x = plane[3].
+ * False for a triangle with no area or an index out of range. */
+bool ob_triangle_plane(const ob_mesh *m, uint32_t t, double plane[4]);
 /* Over the whole scene (scene/sheets.c): a part ob_mesh_part_labels marked a sheet stays one only
  * when no vertex of another part lies on its plane within its bounds; the others lose
  * OB_PART_SHEET. labels[m] are mesh m's labels. Returns the sheets left, or -1 (out of memory,

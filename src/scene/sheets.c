@@ -61,21 +61,12 @@ static int gather(const ob_scene *s, float *const *labels, candidate **out, int 
     }
     for (int i = 0; i < n; ++i) {
         const ob_mesh *mesh = &s->meshes[c[i].mesh];
-        const float *p = mesh->positions;
         for (uint32_t t = 0; !c[i].has_plane && t + 2u < mesh->index_count; t += 3u) {
-            uint32_t a = mesh->indices[t], b = mesh->indices[t + 1u], d = mesh->indices[t + 2u];
-            if (a >= mesh->vertex_count || b >= mesh->vertex_count || d >= mesh->vertex_count) continue;
-            if (labels[c[i].mesh][a] != c[i].label) continue;
-            double u[3], w[3];
-            for (int k = 0; k < 3; ++k) {
-                u[k] = (double)p[3u * b + (uint32_t)k] - (double)p[3u * a + (uint32_t)k];
-                w[k] = (double)p[3u * d + (uint32_t)k] - (double)p[3u * a + (uint32_t)k];
-            }
-            double nx = u[1] * w[2] - u[2] * w[1], ny = u[2] * w[0] - u[0] * w[2], nz = u[0] * w[1] - u[1] * w[0];
-            double len = sqrt(nx * nx + ny * ny + nz * nz);
-            if (!(len > 0.0)) continue;
-            c[i].normal[0] = nx / len, c[i].normal[1] = ny / len, c[i].normal[2] = nz / len;
-            c[i].offset = (nx * p[3u * a] + ny * p[3u * a + 1u] + nz * p[3u * a + 2u]) / len;
+            uint32_t a = mesh->indices[t];
+            if (a >= mesh->vertex_count || labels[c[i].mesh][a] != c[i].label) continue;
+            double q[4];
+            if (!ob_triangle_plane(mesh, t, q)) continue;
+            c[i].normal[0] = q[0], c[i].normal[1] = q[1], c[i].normal[2] = q[2], c[i].offset = q[3];
             c[i].has_plane = true;
         }
     }

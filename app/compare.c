@@ -140,9 +140,12 @@ int compare_parse(int argc, char **argv, compare_opts *o, cli_outputs *outs)
             compare_usage(stdout, &o->common);
             return -1;
         }
-        if (!strcmp(a, "--no-cache") || !strcmp(a, "--references-only")) {
-            if (a[2] == 'n') o->no_cache = true;
-            else o->references_only = true;
+        if (!strcmp(a, "--no-cache")) {
+            o->no_cache = true;
+            continue;
+        }
+        if (!strcmp(a, "--references-only")) {
+            o->references_only = true;
             continue;
         }
         int taken = cli_common_option(&o->common, argc, argv, &i);
@@ -853,23 +856,24 @@ static void compare_run_free(compare_run *run, bool failed)
     free(run->configs);
 }
 
+/* The report of the views run: results.json, index.html and, for a shard, shard.bin. */
+static int write_report(const compare_opts *o, compare_run *run)
+{
+    int code = compare_label_sets(run->views, run->done);
+    if (code == EXIT_OK) code = compare_write_json(o, run->views, run->done, &run->out);
+    if (code == EXIT_OK) code = compare_write_html(o, run->views, run->done, &run->out);
+    if (code == EXIT_OK && o->shard.count > 1) code = compare_write_shard(o, run->configs, run->views, run->done, &run->out);
+    return code;
+}
+
 static int compare_checked(const compare_opts *op)
 {
     compare_opts o = *op;
     compare_run *run = calloc(1, sizeof *run);
     if (!run) return cli_fail(EXIT_RUNTIME, "out of memory");
     int code = compare_prepare(&o, run);
-    if (code == EXIT_OK && o.references_only) {
-        code = run_references(&o, run->r, run->inputs);
-        compare_run_free(run, code != EXIT_OK);
-        free(run);
-        return code;
-    }
-    if (code == EXIT_OK) code = run_views(&o, run);
-    if (code == EXIT_OK) code = compare_label_sets(run->views, run->done);
-    if (code == EXIT_OK) code = compare_write_json(&o, run->views, run->done, &run->out);
-    if (code == EXIT_OK) code = compare_write_html(&o, run->views, run->done, &run->out);
-    if (code == EXIT_OK && o.shard.count > 1) code = compare_write_shard(&o, run->configs, run->views, run->done, &run->out);
+    if (code == EXIT_OK) code = o.references_only ? run_references(&o, run->r, run->inputs) : run_views(&o, run);
+    if (code == EXIT_OK && !o.references_only) code = write_report(&o, run);
     compare_run_free(run, code != EXIT_OK);
     free(run);
     free(o.row_owner);

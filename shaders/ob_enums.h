@@ -57,4 +57,11 @@
 #define OB_SECTOR_COVERAGE_HALF 1
 #define OB_SECTOR_COVERAGE_ALL 2
 
+/* How a visibility bitmask joins consecutive steps on one surface (vbao.c's connect options):
+ * not at all, by the chord between their fronts, or by the curve through both with their
+ * normals' tangents, each run's ends extended over their strata. */
+#define OB_CONNECT_OFF 0
+#define OB_CONNECT_CHORD 1
+#define OB_CONNECT_CURVE 2
+
 #endif

@@ -15,7 +15,7 @@ OB_CONSTANTS_BEGIN(ob_vb_constants, OB_BINDING_PASS)
     OB_FLOAT thickness;       /* a sample's thickness behind its front, world units: */
     OB_FLOAT thickness_slope; /*   thickness + thickness_slope x the sample's linear depth */
     OB_INT weighting;         /* OB_DIRECTIONS_MODE_*: sectors weighted uniformly in angle or by the cosine */
-    OB_INT connect;           /* 1: steps on one continuous surface are joined (the coverage rule is the program's) */
+    OB_INT connect;           /* OB_CONNECT_*: how steps on one continuous surface are joined (the coverage rule is the program's) */
     OB_INT slices;            /* N_slices: screen directions over [0, π) */
     OB_INT steps;             /* steps on each side of each slice */
     OB_INT noise;             /* OB_NOISE_* per-pixel slice and step jitter */

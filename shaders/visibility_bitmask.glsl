@@ -64,15 +64,52 @@ const float CONTINUOUS_STRETCH = 3.0;
 
 /* The last step taken on one side of a slice, for joining the next to it (vb.connect): its offset
  * from P, its distance from P in pixels and the rise of its front; `solid`: it occluded (within R,
- * or its column entered the sphere). The march starts each side from P itself. */
+ * or its column entered the sphere). Under `curve` also its surface's unit tangent in the slice's
+ * 2D coordinates and the sectors its stratum's outer half adds if its run ends there (`ends`).
+ * The march starts each side from P itself, whose tangent is the slice's (1, 0). */
 struct ob_prev_step {
     vec3 w;
     float px;
     float rise;
     bool solid;
+    vec2 tangent;
+    uint ends;
 };
 
-ob_prev_step ob_prev_step_at_p() { return ob_prev_step(vec3(0.0), 0.0, 0.0, true); }
+ob_prev_step ob_prev_step_at_p() { return ob_prev_step(vec3(0.0), 0.0, 0.0, true, vec2(1.0, 0.0), 0u); }
+
+/* The normal of the sample at AO-grid texel q, as ob_march_fetch read its depth (vbgi's packed
+ * texel holds the same half floats). */
+vec3 ob_march_normal(ivec2 q)
+{
+#ifdef OB_MARCH_PACKED
+    return ob_packed_normal(ob_march_packed);
+#else
+    return texelFetch(view_normal, q, 0).xyz;
+#endif
+}
+
+/* The cubic Hermite curve from a to b with unit end tangents ta, tb (each turned to run along the
+ * chord and scaled by its length, the usual choice that makes a circle's arc within 0.1 % of
+ * its radius), at parameter 1/4, 1/2 and 3/4 (the basis weights written out). A surface
+ * between two of its samples is a curve with those tangents: a straight chord where both
+ * tangents lie along it, the chord pushed outward where the surface is convex between them. */
+void ob_hermite_quarters(vec2 a, vec2 ta, vec2 b, vec2 tb, out vec2 q1, out vec2 q2, out vec2 q3)
+{
+    vec2 chord = b - a;
+    float len = length(chord);
+    vec2 ma = ta * (dot(ta, chord) < 0.0 ? -len : len), mb = tb * (dot(tb, chord) < 0.0 ? -len : len);
+    q1 = 0.84375 * a + 0.140625 * ma + 0.15625 * b - 0.046875 * mb;
+    q2 = 0.5 * (a + b) + 0.125 * (ma - mb);
+    q3 = 0.15625 * a + 0.046875 * ma + 0.84375 * b - 0.140625 * mb;
+}
+
+/* The rise of a point of the slice's 2D coordinates (ob_rise_angle_of) where it lies within R of
+ * P, else `outside` (a curve point beyond R is no occluder of AO_R). */
+float ob_rise_within(vec2 xy, float radius, float outside)
+{
+    return dot(xy, xy) <= radius * radius ? ob_rise_angle_of(xy) : outside;
+}
 
 /* One sample on one side of slice s (positive: along +dir), at AO-grid position `at`, dist_px
  * from P. `refine`: a bisection step of the gap, counting only while it is open (it joins no
@@ -142,9 +179,80 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     vec3 jump = w - prev.w;
     float reach = CONTINUOUS_STRETCH * (dist_px - prev.px) * px_world;
     bool continuous = dot(jump, jump) <= reach * reach;
-    bool join = vb.connect != 0 && !refine && solid && prev.solid && continuous;
-    bits |= join ? ob_sample_bits(prev.rise, rise_front, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
-    prev = refine ? prev : ob_prev_step(w, dist_px, rise_front, solid);
+    bool join = vb.connect != OB_CONNECT_OFF && !refine && solid && prev.solid && continuous;
+    vec2 rises = vec2(min(prev.rise, rise_front), max(prev.rise, rise_front));
+    /* `curve` (docs/methods.md, "Steps joined along a curve"): what the steps leave out of the
+     * surfaces they land on, from the samples' own normals. Uniform, so a branch; one normal
+     * fetch per step inside it. */
+    vec2 tangent = vec2(1.0, 0.0);
+    uint ends = 0u, deferred = 0u;
+    if (vb.connect == OB_CONNECT_CURVE && !refine) {
+        /* The sample's surface in the slice: the line across its normal's in-slice part (the
+         * normal's part along the slice axis tilts the surface across the slice, not within it). */
+        vec3 n_s = ob_march_normal(texel);
+        vec2 n2 = vec2(dot(n_s, t), dot(n_s, s.n_slice));
+        float n2_len = length(n2);
+        vec2 f0 = column ? front + t_entry * ray : front;
+        vec2 a = vec2(dot(prev.w, t), dot(prev.w, s.n_slice)), q1, q2, q3;
+        /* A normal across the slice leaves no direction in it: the chord's then. */
+        vec2 chord = f0 - a;
+        tangent = n2_len > 1e-3 ? vec2(n2.y, -n2.x) / n2_len : chord * inversesqrt(max(dot(chord, chord), 1e-30));
+        /* 1. Between two joined steps the surface is a curve, not the chord: on a convex surface
+         *    (a rounded bar, a sphere, a link of a chain) its highest point seen from P lies
+         *    between the steps more often than on one, and a sparse march reads the top of every
+         *    convex occluder low. The cubic through both fronts with both tangents bounds the
+         *    angles it subtends; its points within R widen the joined interval. */
+        ob_hermite_quarters(a, prev.tangent, f0, tangent, q1, q2, q3);
+        float r1 = ob_rise_within(q1, vb.radius, rise_front), r2 = ob_rise_within(q2, vb.radius, rise_front),
+              r3 = ob_rise_within(q3, vb.radius, rise_front);
+        /* Not between two steps on P's own plane (no rise at either): there the curve stands off
+         * the plane by the normals' rounding alone (8-bit normals: 4e-3 rad), which `touch` turns
+         * into a whole sector (test_host_inputs' RGBA8 normals read 0.046 darker so). */
+        bool curved = rises.y > 0.0;
+        rises = curved ? vec2(min(rises.x, min(r1, min(r2, r3))), max(rises.y, max(r1, max(r2, r3)))) : rises;
+        /* 2. A step stands for its stratum, half the steps' spacing h on either side along the
+         *    screen (the strata of ob_slice_step_px, shifted by the jitter). Where a run of joined
+         *    steps ends, the surface goes on, on average, half a stratum past its last step: a
+         *    sparse march puts the top edge of every occluder one step's jitter too low, and the
+         *    start of a run as far too late. So a run's first step adds the inner half of its
+         *    stratum and its last step the outer half: h pixels' world length at the sample's
+         *    depth, laid along its surface's tangent, the outer ends within R. With the steps
+         *    jittered uniformly in their strata, the extended run's end is where the surface
+         *    ends, on average, at every step count. Laid along the surface and not across the
+         *    view ray, the extension never leaves a plane; not stretched to cover the stratum's
+         *    whole projection on a surface seen edge-on (up to CONTINUOUS_STRETCH x, as the join
+         *    allows), which darkened a wedge of cornell's side wall, seen edge-on (cornell:front
+         *    0.0297 against 0.0268, both with coverage=half: docs/methods.md). Only a sample with an interval of its own (P's open plane has
+         *    none) is extended. */
+        float h = 0.5 * max(s.radius_px - 1.5, 0.0) / float(vb.steps);
+        float pxw = ob_depth_scale(max(-sv.z, 1e-20)) * vb.radius / (ob_depth_scale(-p.z) * max(s.radius_px, 1e-6));
+        /* A screen step along dir at constant depth, turned outward on this side: the tangent's
+         * orientation away from P. */
+        vec3 across = normalize(vec3(s.dir * frame.ao_proj_info.xy * frame.ao_inv_size, 0.0));
+        vec2 out_dir = vec2(dot(across, t), dot(across, s.n_slice)) * (positive ? 1.0 : -1.0);
+        vec2 te = dot(tangent, out_dir) < 0.0 ? -tangent : tangent;
+        vec2 e = te * (h * pxw);
+        vec2 b0 = front + thick * ray, o0 = f0 + e, o1 = b0 + e;
+        float r2_max = vb.radius * vb.radius;
+        o0 = dot(o0, o0) > r2_max ? f0 : o0;
+        o1 = dot(o1, o1) > r2_max ? b0 : o1;
+        vec2 own = vec2(min(rise_front, rise_back), max(rise_front, rise_back));
+        bool extend = solid && own.y > 0.0;
+        float ro0 = ob_rise_angle_of(o0), ro1 = ob_rise_angle_of(o1);
+        ends = extend ? ob_sample_bits(min(own.x, min(ro0, ro1)), max(own.y, max(ro0, ro1)), s.ang_n, positive,
+                                       OB_VB_COVERAGE)
+                      : 0u;
+        bool starts = extend && !(prev.solid && continuous);
+        float ri0 = ob_rise_angle_of(f0 - e), ri1 = ob_rise_angle_of(b0 - e);
+        bits |= starts ? ob_sample_bits(min(own.x, min(ri0, ri1)), max(own.y, max(ri0, ri1)), s.ang_n, positive,
+                                        OB_VB_COVERAGE)
+                       : 0u;
+        /* The last step's outer half, now that its run has ended (this step is open, or not on
+         * its surface); after the march, the last step's (main). */
+        deferred = join ? 0u : prev.ends;
+    }
+    bits |= join ? ob_sample_bits(rises.x, rises.y, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
+    prev = refine ? prev : ob_prev_step(w, dist_px, rise_front, solid, tangent, ends);
 #ifdef OB_VBGI
     /* The sender's direct radiance through the directions it is the first to occlude, only where
      * it occludes a sector first: most samples set none (open surfaces, or sectors already set),
@@ -177,7 +285,9 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
         bounce += l_s * (emit * share * measure);
     }
 #endif
-    mask |= bits;
+    /* The previous step's outer half sends vbgi no light: its sender was that step, whose radiance
+     * is gone; it still occludes. */
+    mask |= bits | deferred;
     if (refine) ob_gap_halve(gap, inside);
     else ob_gap_note(gap, inside, hit && !inside && rise_front > rise, dist_px);
     rise = solid ? max(rise, rise_front) : rise;
@@ -232,6 +342,8 @@ void main()
          * (ob_gap_next_side). The one branch of the march: most pixels (open surfaces) have no
          * gap, so whole SIMD groups skip the loop, and a group runs it as often as its busiest
          * lane needs. */
+        /* The outer halves of the strata of each side's last step (its run ends at the march's end). */
+        mask |= prev_pos.ends | prev_neg.ends;
         ivec2 left = ob_gap_refinements(gap_pos, gap_neg, REFINE_STEPS);
         for (int b = 0; b < 2 * REFINE_STEPS; ++b) {
             if (left.x + left.y == 0) break;

@@ -31,6 +31,7 @@ enum {
 };
 
 static const char *const coverage_options[] = {"touch", "half", "all"};
+static const char *const connect_options[] = {"off", "chord", "curve"};
 
 /* The defaults and the views that chose them: docs/methods.md, "vbao". */
 static const ob_param_info vb_params[P_COUNT] = {
@@ -71,14 +72,17 @@ static const ob_param_info vb_params[P_COUNT] = {
                   "depth layers: 2 = a sample's back is the second depth layer (depth peeling) where that is "
                   "the back of its own solid, else the constant thickness; 1 = the constant thickness alone",
                   false},
-    /* On: the sectors between two consecutive steps on one continuous surface are set too
-     * (shaders/visibility_bitmask.glsl, "Steps joined along a surface"): the directions a sparse
-     * march leaves open between the steps of a wall, most at a crease's foot, and the presets
-     * drift less (docs/methods.md, "Steps joined along a surface"). */
-    [P_CONNECT] = {"connect", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
-                   "join consecutive steps on one continuous surface: the sectors between their fronts are set "
-                   "(off: each step's own interval alone, the paper's)",
-                   false},
+    /* chord: the sectors between two consecutive steps on one continuous surface are set too
+     * (shaders/visibility_bitmask.glsl): the directions a sparse march leaves open between the
+     * steps of a wall, most at a crease's foot (docs/methods.md, "Steps joined along a surface").
+     * curve (the default): the surface between them is the cubic through both fronts with their
+     * normals' tangents, and a run's first and last steps stand for their strata's outer halves,
+     * so that the presets' mean AO agrees (docs/methods.md, "Steps joined along a curve"). */
+    [P_CONNECT] = {"connect", OB_PARAM_ENUM, 0.0f, 2.0f, 2.0f, "",
+                   "join consecutive steps on one continuous surface: off (each step's own interval, the "
+                   "paper's), chord (the sectors between their fronts) or curve (the curve through both fronts "
+                   "along their normals' tangents, and each run extended over its end steps' strata)",
+                   false, connect_options},
     [P_EMITTER_COSINE] = {"emitter_cosine", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                           "a sender's radiance times its cosine toward P (the paper's); off: its radiance where it "
                           "faces P (the solid-angle form of the one-bounce integral)",
@@ -109,7 +113,7 @@ static void fill_constants(ob_vb_constants *c, const float *params, bool gi, con
     c->thickness = params[P_THICKNESS] * r;
     c->thickness_slope = params[P_THICKNESS_SLOPE];
     c->layers = params[P_LAYERS] >= 2.0f ? 1 : 0;
-    c->connect = params[P_CONNECT] != 0.0f ? 1 : 0;
+    c->connect = (int)params[P_CONNECT]; /* OB_CONNECT_* */
     c->weighting = (int)params[P_WEIGHTING];
     c->slices = (int)params[P_SLICES];
     c->steps = (int)params[P_STEPS];

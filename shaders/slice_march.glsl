@@ -110,6 +110,7 @@ struct ob_slice {
     float radius_px; /* R along dir at P's depth, in AO pixels */
     vec3 t_pos;      /* the unit tangent of P's surface in the slice on dir's side (θ = π/2 + n) */
     vec3 t_neg;      /*   and on the opposite side (θ = -(π/2 - n)) */
+    vec2 across;     /* a unit screen step along dir at constant depth, as (dot with t_pos, with n_slice) */
 };
 
 /* The slice along screen direction dir through P at linear depth d. to_view turns a screen
@@ -136,7 +137,18 @@ bool ob_slice_setup(vec2 dir, vec3 p, vec3 v, vec3 n, float d, vec2 to_view, flo
      * on dir's side and at π/2 - n on the other, cos(π/2 ± n) v ± sin(π/2 ± n) o. */
     s.t_pos = -s.sin_n * v + s.cos_n * s.o;
     s.t_neg = s.sin_n * v - s.cos_n * s.o;
+    /* A constant-depth offset along the screen line stays in the slice plane (the plane holds the
+     * eye and the whole line), so two coordinates hold it. */
+    vec3 dv_unit = normalize(dv);
+    s.across = vec2(dot(dv_unit, s.t_pos), dot(dv_unit, s.n_slice));
     return s.len_n >= 1e-4;
+}
+
+/* The world length of one AO pixel along a slice at linear depth z, R / radius_px at P's depth d
+ * (the same everywhere for an orthographic camera: ob_depth_scale). */
+float ob_pixel_world(float z, float d, float radius, float radius_px)
+{
+    return ob_depth_scale(z) * radius / (ob_depth_scale(d) * max(radius_px, 1e-6));
 }
 
 /* Step j (0-based, of `steps`) on one side: uniform strata of [1.5 px, R's projection], shifted

@@ -90,8 +90,8 @@ vec3 ob_march_normal(ivec2 q)
 }
 
 /* The cubic Hermite curve from a to b with unit end tangents ta, tb (each turned to run along the
- * chord and scaled by its length, the usual choice that makes a circle's arc within 0.1 % of
- * its radius), at parameter 1/4, 1/2 and 3/4 (the basis weights written out). A surface
+ * chord and scaled by its length, the usual choice: for a short arc of a circle, close to the
+ * circle's own), at parameter 1/4, 1/2 and 3/4 (the basis weights written out). A surface
  * between two of its samples is a curve with those tangents: a straight chord where both
  * tangents lie along it, the chord pushed outward where the surface is convex between them. */
 void ob_hermite_quarters(vec2 a, vec2 ta, vec2 b, vec2 tb, out vec2 q1, out vec2 q2, out vec2 q3)
@@ -174,7 +174,7 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
      * angles between theirs. A silhouette over a floor jumps in depth and is not joined, so the
      * gap under a floating slab stays open. */
     float deeper = max(-(p.z + w.z), -(p.z + prev.w.z));
-    float px_world = ob_depth_scale(deeper) * vb.radius / (ob_depth_scale(-p.z) * max(s.radius_px, 1e-6));
+    float px_world = ob_pixel_world(deeper, -p.z, vb.radius, s.radius_px);
     /* Squared: no square root per step in the march. */
     vec3 jump = w - prev.w;
     float reach = CONTINUOUS_STRETCH * (dist_px - prev.px) * px_world;
@@ -225,13 +225,11 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
          *    0.0297 against 0.0268, both with coverage=half: docs/methods.md). Only a sample with an interval of its own (P's open plane has
          *    none) is extended. */
         float h = 0.5 * max(s.radius_px - 1.5, 0.0) / float(vb.steps);
-        float pxw = ob_depth_scale(max(-sv.z, 1e-20)) * vb.radius / (ob_depth_scale(-p.z) * max(s.radius_px, 1e-6));
-        /* A screen step along dir at constant depth, turned outward on this side: the tangent's
-         * orientation away from P. */
-        vec3 across = normalize(vec3(s.dir * frame.ao_proj_info.xy * frame.ao_inv_size, 0.0));
-        vec2 out_dir = vec2(dot(across, t), dot(across, s.n_slice)) * (positive ? 1.0 : -1.0);
+        /* The screen step away from P on this side (t is -t_pos on side -, and the step -dir):
+         * it orients the tangent outward. */
+        vec2 out_dir = positive ? s.across : vec2(s.across.x, -s.across.y);
         vec2 te = dot(tangent, out_dir) < 0.0 ? -tangent : tangent;
-        vec2 e = te * (h * pxw);
+        vec2 e = te * (h * ob_pixel_world(max(-sv.z, 1e-20), -p.z, vb.radius, s.radius_px));
         vec2 b0 = front + thick * ray, o0 = f0 + e, o1 = b0 + e;
         float r2_max = vb.radius * vb.radius;
         o0 = dot(o0, o0) > r2_max ? f0 : o0;

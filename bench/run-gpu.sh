@@ -5,7 +5,7 @@
 # libobscura, the FZK-Haus model and the commit). Everything it writes lands in $OUT (or
 # bench/results/gpu) and is packed as results.tgz after every step, so a step that runs out of
 # time loses only itself.
-#   usage: bench/run-gpu.sh [maps|h1080|stereo|filters|host|tests|fzk|temporal|deinterleave|miptaps|slicemips|upsample|atrium|all]...
+#   usage: bench/run-gpu.sh [maps|defaults|h1080|stereo|filters|host|tests|fzk|temporal|deinterleave|miptaps|slicemips|upsample|atrium|all]...
 #   (default all; the smoke render always)
 # Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-egl.md).
 # shellcheck disable=SC2054 # the commas separate an option's values (--quality low,high), not array elements
@@ -85,6 +85,25 @@ run() {
 # Every method x preset, 200 measured frames after 20, shadow maps every frame (--full), the
 # floor kernel beside each configuration, the default filter: the whole frame as shipped.
 sweep=(--full --cameras front --radius 4 --quality low,medium,high,ultra --frames 200 --warmup 20 --floor)
+# Issue 47's new defaults for vbao and vbgi, each against the value it replaced, in runs side by
+# side on one machine: two depth layers (layers=2: the second_layer pass, one more raster of the
+# scene, and the AO pass reading it) against one, and steps joined along a curve (connect=curve:
+# one more normal fetch per step) against the chord and against none. cornell:front and FZK-Haus's
+# stair at 1080p, every preset, shadows off (no pass here reads them); the default run again last,
+# so that a drift of the machine during the step shows.
+d47=(--size 1920x1080 --radius 4 --quality low,medium,high,ultra --frames 100 --warmup 20 --shadow none --methods vbao,vbgi)
+both() { printf -- '--set vbao.%s --set vbgi.%s ' "$1" "$1"; }
+for sc in cornell:front fzk-haus:stair; do
+    dv=(--scene "${sc%%:*}" --cameras "${sc#*:}" "${d47[@]}")
+    want defaults && run "defaults_${sc%%:*}" 60 "${dv[@]}"
+    # shellcheck disable=SC2046 # both's words are separate arguments on purpose
+    want defaults && run "layers1_${sc%%:*}" 60 "${dv[@]}" $(both layers=1)
+    # shellcheck disable=SC2046
+    want defaults && run "chord_${sc%%:*}" 60 "${dv[@]}" $(both connect=chord)
+    # shellcheck disable=SC2046
+    want defaults && run "connect_off_${sc%%:*}" 60 "${dv[@]}" $(both connect=off)
+    want defaults && run "defaults_again_${sc%%:*}" 60 "${dv[@]}"
+done
 want h1080 && run h1080 150 --scene cornell --size 1920x1080 "${sweep[@]}"
 want stereo && run stereo 150 --scene cornell --stereo "${sweep[@]}"
 # The filters after gtao high (crease's tiled auto picks the plain program on a GPU; on names

@@ -261,7 +261,7 @@ static const struct {
     {"--temporal-at", 0},          {"--temporal-frames", 0}, {"--temporal-detail", 0}, {"--upsample", 0},
     {"--path", CLI_TAKES_PATH},    {"--orbit", CLI_TAKES_PATH}, {"--path-frames", CLI_TAKES_PATH},
     {"--jitter", CLI_TAKES_PATH},
-    {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU},
+    {"--hdr", 0},                  {"--gpu", CLI_TAKES_GPU}, {"--shader-dir", CLI_TAKES_GPU},
 };
 
 int cli_common_option(cli_common *c, int argc, char **argv, int *i)
@@ -431,6 +431,9 @@ int cli_common_option(cli_common *c, int argc, char **argv, int *i)
         c->hdr_off = !on;
     } else if (!strcmp(a, "--gpu")) {
         if (!cli_parse_gpu(v, &c->gpu)) return cli_fail(EXIT_USAGE, "--gpu: expected auto, hw or sw, got '%s'", v);
+    } else if (!strcmp(a, "--shader-dir")) {
+        /* Process-wide and before any program is made: every renderer of the run compiles from it. */
+        if (ob_set_shader_directory(v) != OB_OK) return cli_fail(EXIT_INPUT, "--shader-dir: '%s' is not a readable directory", v);
     }
     return CLI_TAKEN;
 }
@@ -615,7 +618,10 @@ void cli_common_usage(FILE *f, const cli_common *c)
           f);
     if (takes(c, CLI_TAKES_GPU))
         fputs("  --gpu auto|hw|sw      hardware EGL device, Mesa llvmpipe, or hardware first (default auto)\n"
-              "  -v                    print the GL renderer and device\n",
+              "  -v                    print the GL renderer and device\n"
+              "  --shader-dir DIR      compile the shaders from DIR (a copy of the source tree's shaders/,\n"
+              "                        edited) instead of the built-in ones: A/B a shader edit without a\n"
+              "                        rebuild, e.g. bench --shader-dir old/shaders against the built-in\n",
               f);
 }
 

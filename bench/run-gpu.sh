@@ -5,7 +5,7 @@
 # libobscura, the FZK-Haus model and the commit). Everything it writes lands in $OUT (or
 # bench/results/gpu) and is packed as results.tgz after every step, so a step that runs out of
 # time loses only itself.
-#   usage: bench/run-gpu.sh [maps|defaults|h1080|stereo|filters|host|tests|fzk|temporal|deinterleave|miptaps|slicemips|upsample|atrium|all]...
+#   usage: bench/run-gpu.sh [maps|defaults|shaders|h1080|stereo|filters|host|tests|fzk|temporal|deinterleave|miptaps|slicemips|upsample|atrium|all]...
 #   (default all; the smoke render always)
 # Verified on an NVIDIA H100 through EGL on 2026-11-23 (bench/results/2026-11-23-h100-egl.md).
 # shellcheck disable=SC2054 # the commas separate an option's values (--quality low,high), not array elements
@@ -102,8 +102,24 @@ for sc in cornell:front fzk-haus:stair; do
     want defaults && run "chord_${sc%%:*}" 60 "${dv[@]}" $(both connect=chord)
     # shellcheck disable=SC2046
     want defaults && run "connect_off_${sc%%:*}" 60 "${dv[@]}" $(both connect=off)
+    # shellcheck disable=SC2046
+    want defaults && run "before_${sc%%:*}" 60 "${dv[@]}" $(both layers=1) $(both connect=off)
     want defaults && run "defaults_again_${sc%%:*}" 60 "${dv[@]}"
 done
+# Shader edits side by side (bench --shader-dir): every copy of shaders/ under .gl/sh/NAME, each
+# with its own edit (whoever packs .gl makes them), at the defaults step's settings at high alone,
+# beside the built-in shaders, before and after them.
+if want shaders && [ -d .gl/sh ]; then
+    for sc in cornell:front fzk-haus:stair; do
+        hv=(--scene "${sc%%:*}" --cameras "${sc#*:}" "${d47[@]}" --quality high)
+        run "builtin_${sc%%:*}" 60 "${hv[@]}"
+        for d in .gl/sh/*/; do
+            n=$(basename "$d")
+            run "sh_${n}_${sc%%:*}" 60 "${hv[@]}" --shader-dir "$d"
+        done
+        run "builtin_again_${sc%%:*}" 60 "${hv[@]}"
+    done
+fi
 want h1080 && run h1080 150 --scene cornell --size 1920x1080 "${sweep[@]}"
 want stereo && run stereo 150 --scene cornell --stereo "${sweep[@]}"
 # The filters after gtao high (crease's tiled auto picks the plain program on a GPU; on names

@@ -45,5 +45,5 @@ void main()
             weight += w;
         }
     }
-    imageStore(ao_out, pix, vec4(sum / weight));
+    imageStore(ao_out, pix, vec4(OB_FILTER_RESULT(sum / weight)));
 }

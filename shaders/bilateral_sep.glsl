@@ -40,5 +40,5 @@ void main()
         sum += w * OB_FILTER_FETCH(ao_in, q);
         weight += w;
     }
-    imageStore(ao_out, pix, vec4(sum / weight));
+    imageStore(ao_out, pix, vec4(OB_FILTER_RESULT(sum / weight)));
 }

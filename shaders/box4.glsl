@@ -30,5 +30,5 @@ void main()
             weight += 1.0;
         }
     }
-    imageStore(ao_out, pix, vec4(sum / max(weight, 1.0)));
+    imageStore(ao_out, pix, vec4(OB_FILTER_RESULT(sum / max(weight, 1.0))));
 }

@@ -126,7 +126,7 @@ void main()
             weight += 2.0 * w;
         }
     }
-    imageStore(ao_out, pix, vec4(sum / weight));
+    imageStore(ao_out, pix, vec4(OB_FILTER_RESULT(sum / weight)));
 }
 #elif defined(OB_CREASE_BLOCK)
 /* The block program (`tiled` block, radius 2 only): each invocation filters a 4x4 block of
@@ -202,7 +202,7 @@ OB_FILTER_T win_ao[WINDOW * WINDOW];
             PAIR(bx, by, 1, 0) PAIR(bx, by, 2, 0) \
             PAIR(bx, by, -2, 1) PAIR(bx, by, -1, 1) PAIR(bx, by, 0, 1) PAIR(bx, by, 1, 1) PAIR(bx, by, 2, 1) \
             PAIR(bx, by, -2, 2) PAIR(bx, by, -1, 2) PAIR(bx, by, 0, 2) PAIR(bx, by, 1, 2) PAIR(bx, by, 2, 2) \
-            imageStore(ao_out, pix, vec4(sum / weight)); \
+            imageStore(ao_out, pix, vec4(OB_FILTER_RESULT(sum / weight))); \
         } \
     } }
 #define PIXEL_ROW(y) PIXEL(0, y) PIXEL(1, y) PIXEL(2, y) PIXEL(3, y)
@@ -245,6 +245,6 @@ void main()
             weight += 2.0 * w;
         }
     }
-    imageStore(ao_out, pix, vec4(sum / weight));
+    imageStore(ao_out, pix, vec4(OB_FILTER_RESULT(sum / weight)));
 }
 #endif

@@ -19,11 +19,15 @@
 #define OB_FILTER_T vec4
 #define OB_FILTER_FETCH(tex, q) texelFetch(tex, q, 0)
 #define OB_FILTER_SKY vec4(flt.sky_value)
+#define OB_FILTER_RESULT(v) (v)
 #else
 #define OB_FILTER_FORMAT r32f
 #define OB_FILTER_T float
 #define OB_FILTER_FETCH(tex, q) texelFetch(tex, q, 0).r
 #define OB_FILTER_SKY vec4(1.0)
+/* AO is a fraction: a weighted mean of values in [0, 1] lies in it, but not after rounding (an
+ * NVIDIA H200 wrote 1 + 1 ulp, which a host's check of its output range refuses). */
+#define OB_FILTER_RESULT(v) clamp(v, 0.0, 1.0)
 #endif
 #endif
 

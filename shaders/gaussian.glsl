@@ -25,5 +25,5 @@ void main()
         ivec2 q = clamp(pix + i * dir, ivec2(0), size - 1);
         sum += flt.weights[abs(i)].x * OB_FILTER_FETCH(ao_in, q);
     }
-    imageStore(ao_out, pix, vec4(sum));
+    imageStore(ao_out, pix, vec4(OB_FILTER_RESULT(sum)));
 }

@@ -30,11 +30,13 @@
 #define OB_UP_T vec4
 #define OB_UP_FETCH(tex, q) texelFetch(tex, q, 0)
 #define OB_UP_SKY OB_UP_T(rs.upsample_sky_value)
+#define OB_UP_RESULT(v) (v)
 #else
 #define OB_UP_FORMAT r32f
 #define OB_UP_T float
 #define OB_UP_FETCH(tex, q) texelFetch(tex, q, 0).r
 #define OB_UP_SKY OB_UP_T(1.0)
+#define OB_UP_RESULT(v) clamp(v, 0.0, 1.0) /* AO: a weighted mean in [0, 1] but for rounding (filter_params.h) */
 #endif
 
 layout(local_size_x = OB_RESAMPLE_GROUP_X, local_size_y = OB_RESAMPLE_GROUP_Y) in;
@@ -65,7 +67,7 @@ upsampled nothing_yet() { return upsampled(OB_UP_T(0.0), OB_UP_SKY, vec4(0.0), v
 /* Writes pixel pix's value(s); sky pixels take OB_UP_SKY and 0. */
 void store(ivec2 pix, upsampled u)
 {
-    imageStore(ao_out, pix, vec4(u.weight > 1e-4 ? u.sum / u.weight : u.best_value));
+    imageStore(ao_out, pix, vec4(OB_UP_RESULT(u.weight > 1e-4 ? u.sum / u.weight : u.best_value)));
 #ifdef OB_UPSAMPLE_PAIR
     imageStore(second_out, pix, u.weight > 1e-4 ? u.sum2 / u.weight : u.best2);
 #endif

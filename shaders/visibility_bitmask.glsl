@@ -161,7 +161,12 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     float rise_front = ob_rise_angle_of(column ? front + t_entry * ray : front);
     float rise_back = ob_rise_angle_of(front + thick * ray);
     bool solid = inside || column;
-    uint bits = solid ? ob_sample_bits(rise_front, rise_back, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
+    /* The sample's own interval, from its front to its back. Every interval this step adds below
+     * holds rise_front too (the joined one runs from the last step's front to this one's, the
+     * extended ones widen this one), so their union is one interval and one ob_sample_bits call
+     * sets it: under `touch` (the default) exactly the union of the intervals' own sectors, under
+     * `half` and `all` the sectors the union covers, which the surface between them does. */
+    vec2 span = vec2(min(rise_front, rise_back), max(rise_front, rise_back));
     /* Steps joined along a surface. The march sees a surface only at its steps, and an interval
      * covers only the directions from a step's front to its back: the directions between two
      * steps on one surface stay open, though the surface between them blocks them. Most of all at
@@ -193,63 +198,67 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
         vec2 n2 = vec2(dot(n_s, t), dot(n_s, s.n_slice));
         float n2_len = length(n2);
         vec2 f0 = column ? front + t_entry * ray : front;
-        vec2 a = vec2(dot(prev.w, t), dot(prev.w, s.n_slice)), q1, q2, q3;
+        vec2 a = vec2(dot(prev.w, t), dot(prev.w, s.n_slice));
         /* A normal across the slice leaves no direction in it: the chord's then. */
         vec2 chord = f0 - a;
         tangent = n2_len > 1e-3 ? vec2(n2.y, -n2.x) / n2_len : chord * inversesqrt(max(dot(chord, chord), 1e-30));
-        /* 1. Between two joined steps the surface is a curve, not the chord: on a convex surface
-         *    (a rounded bar, a sphere, a link of a chain) its highest point seen from P lies
-         *    between the steps more often than on one, and a sparse march reads the top of every
-         *    convex occluder low. The cubic through both fronts with both tangents bounds the
-         *    angles it subtends; its points within R widen the joined interval. */
-        ob_hermite_quarters(a, prev.tangent, f0, tangent, q1, q2, q3);
-        float r1 = ob_rise_within(q1, vb.radius, rise_front), r2 = ob_rise_within(q2, vb.radius, rise_front),
-              r3 = ob_rise_within(q3, vb.radius, rise_front);
-        /* Not between two steps on P's own plane (no rise at either): there the curve stands off
-         * the plane by the normals' rounding alone (8-bit normals: 4e-3 rad), which `touch` turns
-         * into a whole sector (test_host_inputs' RGBA8 normals read 0.046 darker so). */
-        bool curved = rises.y > 0.0;
-        rises = curved ? vec2(min(rises.x, min(r1, min(r2, r3))), max(rises.y, max(r1, max(r2, r3)))) : rises;
-        /* 2. A step stands for its stratum, half the steps' spacing h on either side along the
-         *    screen (the strata of ob_slice_step_px, shifted by the jitter). Where a run of joined
-         *    steps ends, the surface goes on, on average, half a stratum past its last step: a
-         *    sparse march puts the top edge of every occluder one step's jitter too low, and the
-         *    start of a run as far too late. So a run's first step adds the inner half of its
-         *    stratum and its last step the outer half: h pixels' world length at the sample's
-         *    depth, laid along its surface's tangent, the outer ends within R. With the steps
-         *    jittered uniformly in their strata, the extended run's end is where the surface
-         *    ends, on average, at every step count. Laid along the surface and not across the
-         *    view ray, the extension never leaves a plane; not stretched to cover the stratum's
-         *    whole projection on a surface seen edge-on (up to CONTINUOUS_STRETCH x, as the join
-         *    allows), which darkened a wedge of cornell's side wall, seen edge-on (cornell:front
-         *    0.0297 against 0.0268, both with coverage=half: docs/methods.md). Only a sample with an interval of its own (P's open plane has
-         *    none) is extended. */
-        float h = 0.5 * max(s.radius_px - 1.5, 0.0) / float(vb.steps);
-        /* The screen step away from P on this side (t is -t_pos on side -, and the step -dir):
-         * it orients the tangent outward. */
-        vec2 out_dir = positive ? s.across : vec2(s.across.x, -s.across.y);
-        vec2 te = dot(tangent, out_dir) < 0.0 ? -tangent : tangent;
-        vec2 e = te * (h * ob_pixel_world(max(-sv.z, 1e-20), -p.z, vb.radius, s.radius_px));
-        vec2 b0 = front + thick * ray, o0 = f0 + e, o1 = b0 + e;
-        float r2_max = vb.radius * vb.radius;
-        o0 = dot(o0, o0) > r2_max ? f0 : o0;
-        o1 = dot(o1, o1) > r2_max ? b0 : o1;
-        vec2 own = vec2(min(rise_front, rise_back), max(rise_front, rise_back));
-        bool extend = solid && own.y > 0.0;
-        float ro0 = ob_rise_angle_of(o0), ro1 = ob_rise_angle_of(o1);
-        ends = extend ? ob_sample_bits(min(own.x, min(ro0, ro1)), max(own.y, max(ro0, ro1)), s.ang_n, positive,
-                                       OB_VB_COVERAGE)
-                      : 0u;
-        bool starts = extend && !(prev.solid && continuous);
-        float ri0 = ob_rise_angle_of(f0 - e), ri1 = ob_rise_angle_of(b0 - e);
-        bits |= starts ? ob_sample_bits(min(own.x, min(ri0, ri1)), max(own.y, max(ri0, ri1)), s.ang_n, positive,
-                                        OB_VB_COVERAGE)
-                       : 0u;
         /* The last step's outer half, now that its run has ended (this step is open, or not on
          * its surface); after the march, the last step's (main). */
         deferred = join ? 0u : prev.ends;
+        /* Not between two steps on P's own plane (no rise at either): there the curve stands off
+         * the plane by the normals' rounding alone (8-bit normals: 4e-3 rad), which `touch` turns
+         * into a whole sector (test_host_inputs' RGBA8 normals read 0.046 darker so). Only a
+         * sample with an interval of its own (P's open plane has none) is extended. */
+        bool curved = join && rises.y > 0.0;
+        bool extend = solid && span.y > 0.0;
+        /* Neither holds for a step on P's open plane, where most of a scene's samples land: a
+         * SIMD group all of whose lanes are there skips the curve's points and their angles. */
+        if (curved || extend) {
+            /* 1. Between two joined steps the surface is a curve, not the chord: on a convex
+             *    surface (a rounded bar, a sphere, a link of a chain) its highest point seen from
+             *    P lies between the steps more often than on one, and a sparse march reads the top
+             *    of every convex occluder low. The cubic through both fronts with both tangents
+             *    bounds the angles it subtends; its points within R widen the joined interval. */
+            vec2 q1, q2, q3;
+            ob_hermite_quarters(a, prev.tangent, f0, tangent, q1, q2, q3);
+            float r1 = ob_rise_within(q1, vb.radius, rise_front), r2 = ob_rise_within(q2, vb.radius, rise_front),
+                  r3 = ob_rise_within(q3, vb.radius, rise_front);
+            rises = curved ? vec2(min(rises.x, min(r1, min(r2, r3))), max(rises.y, max(r1, max(r2, r3)))) : rises;
+            /* 2. A step stands for its stratum, half the steps' spacing h on either side along
+             *    the screen (the strata of ob_slice_step_px, shifted by the jitter). Where a run of
+             *    joined steps ends, the surface goes on, on average, half a stratum past its last
+             *    step: a sparse march puts the top edge of every occluder one step's jitter too
+             *    low, and the start of a run as far too late. So a run's first step adds the inner
+             *    half of its stratum and its last step the outer half: h pixels' world length at
+             *    the sample's depth, laid along its surface's tangent, the outer ends within R.
+             *    With the steps jittered uniformly in their strata, the extended run's end is
+             *    where the surface ends, on average, at every step count. Laid along the surface
+             *    and not across the view ray, the extension never leaves a plane; not stretched to
+             *    cover the stratum's whole projection on a surface seen edge-on (up to
+             *    CONTINUOUS_STRETCH x, as the join allows), which darkened a wedge of cornell's
+             *    side wall, seen edge-on (cornell:front 0.0297 against 0.0268, both with
+             *    coverage=half: docs/methods.md). */
+            float h = 0.5 * max(s.radius_px - 1.5, 0.0) / float(vb.steps);
+            /* The screen step away from P on this side (t is -t_pos on side -, and the step
+             * -dir): it orients the tangent outward. */
+            vec2 out_dir = positive ? s.across : vec2(s.across.x, -s.across.y);
+            vec2 te = dot(tangent, out_dir) < 0.0 ? -tangent : tangent;
+            vec2 e = te * (h * ob_pixel_world(max(-sv.z, 1e-20), -p.z, vb.radius, s.radius_px));
+            vec2 b0 = front + thick * ray, o0 = f0 + e, o1 = b0 + e;
+            float r2_max = vb.radius * vb.radius;
+            o0 = dot(o0, o0) > r2_max ? f0 : o0;
+            o1 = dot(o1, o1) > r2_max ? b0 : o1;
+            float ro0 = ob_rise_angle_of(o0), ro1 = ob_rise_angle_of(o1);
+            ends = extend ? ob_sample_bits(min(span.x, min(ro0, ro1)), max(span.y, max(ro0, ro1)), s.ang_n, positive,
+                                           OB_VB_COVERAGE)
+                          : 0u;
+            bool starts = extend && !(prev.solid && continuous);
+            float ri0 = ob_rise_angle_of(f0 - e), ri1 = ob_rise_angle_of(b0 - e);
+            span = starts ? vec2(min(span.x, min(ri0, ri1)), max(span.y, max(ri0, ri1))) : span;
+        }
     }
-    bits |= join ? ob_sample_bits(rises.x, rises.y, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
+    span = join ? vec2(min(span.x, rises.x), max(span.y, rises.y)) : span;
+    uint bits = solid ? ob_sample_bits(span.x, span.y, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
     prev = refine ? prev : ob_prev_step(w, dist_px, rise_front, solid, tangent, ends);
 #ifdef OB_VBGI
     /* The sender's direct radiance through the directions it is the first to occlude, only where

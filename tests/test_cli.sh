@@ -228,6 +228,8 @@ grep -qE "^edges +[0-9]" "$dir/stdout" && [ ! -s "$dir/stderr" ] && ok || bad "-
 rm -f "$dir/adapt.png"
 # No EGL vendor at all: the context error names what was tried, with its own exit code.
 __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent expect 5 "no GPU context" -- "${R[@]}" --scene corner
+# --shader-dir (below) that names no directory is refused before anything is rendered.
+expect 3 "shader-dir: .*not a readable directory" -- "${R[@]}" --scene corner --shader-dir "$dir/no-such-dir"
 
 # --gpu hw: a hardware device if the machine has one, else exit 5 naming the devices tried.
 "$OBSCURA" "${R[@]}" --scene corner --gpu hw -v >/dev/null 2>"$dir/stderr"
@@ -273,6 +275,17 @@ fi
 "$OBSCURA" render --scene corner --size 96x64 --gpu sw --out "$dir/c2.png" --ao-out "$dir/c2.pfm" 2>/dev/null
 cmp -s "$dir/c.pfm" "$dir/c2.pfm" && ok || bad "AO differs between two identical runs"
 cmp -s "$dir/c.png" "$dir/c2.png" && ok || bad "final image differs between two identical runs"
+
+# --shader-dir: the shaders compiled from a directory. A copy of the source tree's (the build
+# tree links share/obscura/shaders beside the binary) gives the built-in bytes; an edited copy (the AO pass
+# writes 1 - AO) changes them (a missing directory: above).
+cp -rL "$(dirname "$OBSCURA")/share/obscura/shaders" "$dir/sh"
+"$OBSCURA" render --scene corner --size 96x64 --gpu sw --shader-dir "$dir/sh" --out "$dir/c3.png" --ao-out "$dir/c3.pfm" 2>"$dir/stderr"
+cmp -s "$dir/c.pfm" "$dir/c3.pfm" && ok || bad "--shader-dir with the source shaders: AO differs from the built-in ($(cat "$dir/stderr"))"
+sed -i 's/imageStore(ao_out, pix, vec4(ao));/imageStore(ao_out, pix, vec4(1.0 - ao));/' "$dir/sh/visibility_bitmask.glsl"
+"$OBSCURA" render --scene corner --size 96x64 --gpu sw --shader-dir "$dir/sh" --out "$dir/c3.png" --ao-out "$dir/c3.pfm" 2>"$dir/stderr"
+if cmp -s "$dir/c.pfm" "$dir/c3.pfm"; then bad "--shader-dir with an edited shader: the AO is the built-in's"; else ok; fi
+rm -rf "$dir/sh" "$dir"/c3.*
 
 # --view goes through the library's view pass (ob_read_view, as the viewer's ob_present draws it):
 # every view decodes at the image size, RGB (final: RGBA as before), and the ao view is exactly the

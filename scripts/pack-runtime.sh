@@ -46,6 +46,7 @@ if $device; then
     present=()
     for m in "${models[@]}"; do [ -f "$m" ] && present+=("$m"); done
     tar -cJf .gl/ctest.tar.xz --exclude=CMakeFiles --exclude='*.a' --exclude=Testing --exclude=build/tests/screenshots \
+        --exclude=build/packages \
         "$(dirname "$BIN")" data "${present[@]}" 2>/dev/null
     git rev-parse HEAD >.gl/commit
     git diff --quiet HEAD || echo "(working tree differs from HEAD)" >>.gl/commit

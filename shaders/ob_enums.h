@@ -58,10 +58,12 @@
 #define OB_SECTOR_COVERAGE_ALL 2
 
 /* How a visibility bitmask joins consecutive steps on one surface (vbao.c's connect options):
- * not at all, by the chord between their fronts, or by the curve through both with their
- * normals' tangents, each run's ends extended over their strata. */
+ * not at all; by the chord between their fronts; the chord with each run's ends extended over
+ * their strata along the samples' tangents; or that, with the curve through both fronts along
+ * their normals' tangents in place of the chord. Each mode adds to the one before. */
 #define OB_CONNECT_OFF 0
 #define OB_CONNECT_CHORD 1
-#define OB_CONNECT_CURVE 2
+#define OB_CONNECT_ENDS 2
+#define OB_CONNECT_CURVE 3
 
 #endif

@@ -15,7 +15,6 @@ OB_CONSTANTS_BEGIN(ob_vb_constants, OB_BINDING_PASS)
     OB_FLOAT thickness;       /* a sample's thickness behind its front, world units: */
     OB_FLOAT thickness_slope; /*   thickness + thickness_slope x the sample's linear depth */
     OB_INT weighting;         /* OB_DIRECTIONS_MODE_*: sectors weighted uniformly in angle or by the cosine */
-    OB_INT connect;           /* OB_CONNECT_*: how steps on one continuous surface are joined (the coverage rule is the program's) */
     OB_INT slices;            /* N_slices: screen directions over [0, π) */
     OB_INT steps;             /* steps on each side of each slice */
     OB_INT noise;             /* OB_NOISE_* per-pixel slice and step jitter */
@@ -28,6 +27,7 @@ OB_CONSTANTS_BEGIN(ob_vb_constants, OB_BINDING_PASS)
     OB_INT adaptive;          /* 1: per-pixel slices, adaptive_base x the multiplier (OB_UNIT_SLICE_MULTIPLIER) */
     OB_INT adaptive_base;     /*   the slices at multiplier 1 (SSDO thesis §4.1) */
     OB_INT layers;            /* 1: a sample's back is the second depth layer behind it (OB_UNIT_SECOND_DEPTH) */
+    OB_INT pad0;              /* (the joining rule, vbao's `connect`, is the program's: OB_VB_CONNECT) */
 OB_CONSTANTS_END(ob_vb_constants, vb)
 OB_CONSTANTS_SIZE(ob_vb_constants, 4 * 16);
 

@@ -51,6 +51,13 @@ layout(binding = OB_IMAGE_UNIT_BOUNCE, rgba16f) uniform writeonly image2D bounce
 #ifndef OB_VB_COVERAGE
 #define OB_VB_COVERAGE OB_SECTOR_COVERAGE_TOUCH
 #endif
+/* The joining rule (OB_CONNECT_*, vbao's `connect`) likewise: each mode's code alone in its
+ * program. As a uniform branch the curve's code weighed on every mode: on an H200 `chord` took
+ * 1.00 ms there (vbao high, 1080p), a program doing more than chord, without the rest of the
+ * curve's code, 0.85 (docs/methods.md, "What the curve costs on a GPU"). */
+#ifndef OB_VB_CONNECT
+#define OB_VB_CONNECT OB_CONNECT_OFF
+#endif
 
 /* Bisections of the gap in which the surface leaves the sphere of radius R (ob_gap). */
 const int REFINE_STEPS = 2;
@@ -62,10 +69,11 @@ const int REFINE_STEPS = 2;
  * shows why it was not fitted. */
 const float CONTINUOUS_STRETCH = 3.0;
 
-/* The last step taken on one side of a slice, for joining the next to it (vb.connect): its offset
- * from P, its distance from P in pixels and the rise of its front; `solid`: it occluded (within R,
- * or its column entered the sphere). Under `curve` also its surface's unit tangent in the slice's
- * 2D coordinates and the sectors its stratum's outer half adds if its run ends there (`ends`).
+/* The last step taken on one side of a slice, for joining the next to it (OB_VB_CONNECT): its
+ * offset from P, its distance from P in pixels and the rise of its front; `solid`: it occluded
+ * (within R, or its column entered the sphere). Under `ends` and `curve` also its surface's unit
+ * tangent in the slice's 2D coordinates and the sectors its stratum's outer half adds if its run
+ * ends there (`ends`).
  * The march starts each side from P itself, whose tangent is the slice's (1, 0). */
 struct ob_prev_step {
     vec3 w;
@@ -184,14 +192,14 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     vec3 jump = w - prev.w;
     float reach = CONTINUOUS_STRETCH * (dist_px - prev.px) * px_world;
     bool continuous = dot(jump, jump) <= reach * reach;
-    bool join = vb.connect != OB_CONNECT_OFF && !refine && solid && prev.solid && continuous;
+    bool join = OB_VB_CONNECT != OB_CONNECT_OFF && !refine && solid && prev.solid && continuous;
     vec2 rises = vec2(min(prev.rise, rise_front), max(prev.rise, rise_front));
-    /* `curve` (docs/methods.md, "Steps joined along a curve"): what the steps leave out of the
-     * surfaces they land on, from the samples' own normals. Uniform, so a branch; one normal
-     * fetch per step inside it. */
+    /* `ends` and `curve` (docs/methods.md, "Steps joined along a curve"): what the steps leave out
+     * of the surfaces they land on, from the samples' own normals; one normal fetch per step. */
     vec2 tangent = vec2(1.0, 0.0);
     uint ends = 0u, deferred = 0u;
-    if (vb.connect == OB_CONNECT_CURVE && !refine) {
+#if OB_VB_CONNECT >= OB_CONNECT_ENDS
+    if (!refine) {
         /* The sample's surface in the slice: the line across its normal's in-slice part (the
          * normal's part along the slice axis tilts the surface across the slice, not within it). */
         vec3 n_s = ob_march_normal(texel);
@@ -209,21 +217,25 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
          * the plane by the normals' rounding alone (8-bit normals: 4e-3 rad), which `touch` turns
          * into a whole sector (test_host_inputs' RGBA8 normals read 0.046 darker so). Only a
          * sample with an interval of its own (P's open plane has none) is extended. */
-        bool curved = join && rises.y > 0.0;
+        bool curved = OB_VB_CONNECT == OB_CONNECT_CURVE && join && rises.y > 0.0;
         bool extend = solid && span.y > 0.0;
         /* Neither holds for a step on P's open plane, where most of a scene's samples land: a
          * SIMD group all of whose lanes are there skips the curve's points and their angles. */
         if (curved || extend) {
+#if OB_VB_CONNECT == OB_CONNECT_CURVE
             /* 1. Between two joined steps the surface is a curve, not the chord: on a convex
              *    surface (a rounded bar, a sphere, a link of a chain) its highest point seen from
              *    P lies between the steps more often than on one, and a sparse march reads the top
              *    of every convex occluder low. The cubic through both fronts with both tangents
-             *    bounds the angles it subtends; its points within R widen the joined interval. */
+             *    bounds the angles it subtends; its points within R widen the joined interval.
+             *    `curve` alone: `ends` without it costs an H200 0.7x the AO pass, for 0.0004 of
+             *    RMSE on the check views and as much the other way on the choose views. */
             vec2 q1, q2, q3;
             ob_hermite_quarters(a, prev.tangent, f0, tangent, q1, q2, q3);
             float r1 = ob_rise_within(q1, vb.radius, rise_front), r2 = ob_rise_within(q2, vb.radius, rise_front),
                   r3 = ob_rise_within(q3, vb.radius, rise_front);
             rises = curved ? vec2(min(rises.x, min(r1, min(r2, r3))), max(rises.y, max(r1, max(r2, r3)))) : rises;
+#endif
             /* 2. A step stands for its stratum, half the steps' spacing h on either side along
              *    the screen (the strata of ob_slice_step_px, shifted by the jitter). Where a run of
              *    joined steps ends, the surface goes on, on average, half a stratum past its last
@@ -257,6 +269,7 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
             span = starts ? vec2(min(span.x, min(ri0, ri1)), max(span.y, max(ri0, ri1))) : span;
         }
     }
+#endif
     span = join ? vec2(min(span.x, rises.x), max(span.y, rises.y)) : span;
     uint bits = solid ? ob_sample_bits(span.x, span.y, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
     prev = refine ? prev : ob_prev_step(w, dist_px, rise_front, solid, tangent, ends);

@@ -565,12 +565,15 @@ static void check_grille_layers(ob_context *ctx)
  * reads more open than a dense one, most along creases, where the first step lands up the wall
  * and the wall's foot is never sampled, and at the top of every convex occluder, which lies
  * between two steps more often than on one. `chord` sets the directions between consecutive
- * steps of one continuous surface; `curve` takes the curve through both with their normals'
- * tangents instead, and extends each run over its end steps' strata, so that the mean AO of
- * 2 x 3 steps comes nearer 4 x 8 than with the chord, and that nearer than not joined (numbers:
- * the test prints them). The gap under a floating slab stays open, joining never crossing the
- * depth jump at its edge: check_slab_bitmask's bound (vbao with 0.1 R samples within 0.01 of AO_R
- * under the thin slab) runs with the default. */
+ * steps of one continuous surface; `ends` (the default) also extends each run over its end
+ * steps' strata along their surfaces; `curve` does that with the curve through both fronts along
+ * their normals' tangents in place of the chord. Each brings the mean AO of 2 x 3 steps nearer
+ * 4 x 8 than not joining, and (but `ends` on the slab, below) than the mode before it (numbers:
+ * the test prints them). Each mode is its own program
+ * (OB_VB_CONNECT), so this also checks that the settings pick the programs. The gap under a
+ * floating slab stays open, joining never crossing the depth jump at its edge:
+ * check_slab_bitmask's bound (vbao with 0.1 R samples within 0.01 of AO_R under the thin slab)
+ * runs with the default. */
 static double mean_ao(ob_context *ctx, const char *scene_name, const char *camera, const char **sets)
 {
     ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = scene_name});
@@ -591,20 +594,28 @@ static double mean_ao(ob_context *ctx, const char *scene_name, const char *camer
 static void check_joined_steps(ob_context *ctx)
 {
     const char *views[2][2] = {{"cornell", "front"}, {"slab", "front"}};
-    const char *modes[3] = {"vbao.connect=off", "vbao.connect=chord", "vbao.connect=curve"};
+    const char *modes[4] = {"vbao.connect=off", "vbao.connect=chord", "vbao.connect=ends", "vbao.connect=curve"};
     for (int v = 0; v < 2; ++v) {
-        double gap[3];
-        for (int c = 0; c < 3; ++c) {
+        double gap[4];
+        for (int c = 0; c < 4; ++c) {
             const char *sparse[] = {"vbao.slices=2", "vbao.steps=3", modes[c], NULL};
             const char *dense[] = {"vbao.slices=4", "vbao.steps=8", modes[c], NULL};
             gap[c] = mean_ao(ctx, views[v][0], views[v][1], sparse) - mean_ao(ctx, views[v][0], views[v][1], dense);
         }
-        printf("  %s:%s, mean AO of 2 x 3 steps minus 4 x 8: %.4f not joined, %.4f chord, %.4f curve\n", views[v][0],
-               views[v][1], gap[0], gap[1], gap[2]);
+        printf("  %s:%s, mean AO of 2 x 3 steps minus 4 x 8: %.4f not joined, %.4f chord, %.4f ends, %.4f curve\n",
+               views[v][0], views[v][1], gap[0], gap[1], gap[2], gap[3]);
         CHECK(gap[0] > 0.0 && gap[1] >= 0.0 && gap[1] < gap[0], "%s: steps joined by the chord drift less with the "
               "step count (%.4f against %.4f)", views[v][0], gap[1], gap[0]);
-        CHECK(fabs(gap[2]) < gap[1], "%s: steps joined by the curve drift less than by the chord (%.4f against %.4f)",
-              views[v][0], gap[2], gap[1]);
+        /* The ends extended: less drift than not joined on both views, and than the chord alone at
+         * cornell's creases, whose feet the sparse march misses; on the slab a little more than the
+         * chord (0.0022 against 0.0017 on llvmpipe), whose runs end at the slab's true edge. */
+        CHECK(fabs(gap[2]) < gap[0], "%s: runs extended over their ends' strata drift less than not joined "
+              "(%.4f against %.4f)", views[v][0], gap[2], gap[0]);
+        if (v == 0)
+            CHECK(fabs(gap[2]) < gap[1], "%s: runs extended over their ends' strata drift less than the chord alone "
+                  "(%.4f against %.4f)", views[v][0], gap[2], gap[1]);
+        CHECK(fabs(gap[3]) < fabs(gap[2]), "%s: steps joined by the curve drift less than by the chord with the ends "
+              "(%.4f against %.4f)", views[v][0], gap[3], gap[2]);
     }
 }
 

@@ -244,7 +244,12 @@ enum {
      * the kit's own program). Each sample worked out all three rules and selected one: 6 % of vbao's
      * instructions at 16 taps. */
     OB_SLICE_COVERAGE_SHIFT = 4,
-    OB_SLICE_VARIANTS = 64
+    /* vbao and vbgi: OB_CONNECT_* in the two bits from here (OB_VB_CONNECT; 0, `off`, is the kit's
+     * own program). A uniform mode kept every mode's code in one program: on an H200 `chord` ran
+     * slower so than a program doing more than chord without the curve's code (docs/methods.md,
+     * "What the curve costs on a GPU"). */
+    OB_SLICE_CONNECT_SHIFT = 6,
+    OB_SLICE_VARIANTS = 256
 };
 /* The run of a slice method after its constants are filled: the kit's uploads and bindings, the
  * program for `features` (OB_SLICE_*: the kit's own for none, else a variant of `shader` made on

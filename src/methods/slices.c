@@ -71,10 +71,14 @@ ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], co
         if (features & OB_SLICE_LAYERS) strcat(defines, "#define OB_MARCH_LAYERS 1\n");
         if (features & OB_SLICE_BENT) strcat(defines, "#define OB_GTAO_BENT 1\n");
         if (features & OB_SLICE_PACKED) strcat(defines, "#define OB_MARCH_PACKED 1\n");
-        const unsigned coverage = features >> OB_SLICE_COVERAGE_SHIFT;
+        const unsigned coverage = (features >> OB_SLICE_COVERAGE_SHIFT) & 3u, connect = features >> OB_SLICE_CONNECT_SHIFT;
+        char line[48];
         if (coverage) {
-            char line[48];
             snprintf(line, sizeof line, "#define OB_VB_COVERAGE %u\n", coverage);
+            strcat(defines, line);
+        }
+        if (connect) {
+            snprintf(line, sizeof line, "#define OB_VB_CONNECT %u\n", connect);
             strcat(defines, line);
         }
         if (!ob_method_variant(&variants[features], shader, defines)) return ob_peek_error(NULL);

@@ -31,7 +31,7 @@ enum {
 };
 
 static const char *const coverage_options[] = {"touch", "half", "all"};
-static const char *const connect_options[] = {"off", "chord", "curve"};
+static const char *const connect_options[] = {"off", "chord", "ends", "curve"};
 
 /* The defaults and the views that chose them: docs/methods.md, "vbao". */
 static const ob_param_info vb_params[P_COUNT] = {
@@ -75,13 +75,19 @@ static const ob_param_info vb_params[P_COUNT] = {
     /* chord: the sectors between two consecutive steps on one continuous surface are set too
      * (shaders/visibility_bitmask.glsl): the directions a sparse march leaves open between the
      * steps of a wall, most at a crease's foot (docs/methods.md, "Steps joined along a surface").
-     * curve (the default): the surface between them is the cubic through both fronts with their
-     * normals' tangents, and a run's first and last steps stand for their strata's outer halves,
-     * so that the presets' mean AO agrees (docs/methods.md, "Steps joined along a curve"). */
-    [P_CONNECT] = {"connect", OB_PARAM_ENUM, 0.0f, 2.0f, 2.0f, "",
+     * ends (the default): a run's first and last steps also stand for their strata's outer halves,
+     * laid along the samples' tangents, so that the presets' mean AO agrees; curve: that, with
+     * the cubic through both fronts along their normals' tangents in place of the chord
+     * (docs/methods.md, "Steps joined along a curve"; on an H200 the curve cost 1.4x the AO pass
+     * of `ends` for 0.0004 of RMSE on the check views, and lost as much on the choose views). The
+     * mode is the program's (OB_VB_CONNECT), not a uniform: with the curve's code in the program,
+     * `chord` ran slower there than a program doing more than it (docs/methods.md, "What the curve
+     * costs on a GPU"). */
+    [P_CONNECT] = {"connect", OB_PARAM_ENUM, 0.0f, 3.0f, 2.0f, "",
                    "join consecutive steps on one continuous surface: off (each step's own interval, the "
-                   "paper's), chord (the sectors between their fronts) or curve (the curve through both fronts "
-                   "along their normals' tangents, and each run extended over its end steps' strata)",
+                   "paper's), chord (the sectors between their fronts), ends (chord, and each run extended "
+                   "over its end steps' strata along their surfaces) or curve (ends, with the curve through "
+                   "both fronts along their normals' tangents in place of the chord)",
                    false, connect_options},
     [P_EMITTER_COSINE] = {"emitter_cosine", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                           "a sender's radiance times its cosine toward P (the paper's); off: its radiance where it "
@@ -113,7 +119,6 @@ static void fill_constants(ob_vb_constants *c, const float *params, bool gi, con
     c->thickness = params[P_THICKNESS] * r;
     c->thickness_slope = params[P_THICKNESS_SLOPE];
     c->layers = params[P_LAYERS] >= 2.0f ? 1 : 0;
-    c->connect = (int)params[P_CONNECT]; /* OB_CONNECT_* */
     c->weighting = (int)params[P_WEIGHTING];
     c->slices = (int)params[P_SLICES];
     c->steps = (int)params[P_STEPS];
@@ -179,7 +184,8 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
     const bool packed = s->gi && c.max_mip == 0 && ob_packed_samples_wanted(&s->packed, params[P_PACKED]);
     const unsigned features = (c.max_mip > 0 ? OB_SLICE_MIPS : 0u) | (c.layers ? OB_SLICE_LAYERS : 0u) |
                               (packed ? OB_SLICE_PACKED : 0u) |
-                              (unsigned)params[P_COVERAGE] << OB_SLICE_COVERAGE_SHIFT;
+                              (unsigned)params[P_COVERAGE] << OB_SLICE_COVERAGE_SHIFT |
+                              (unsigned)params[P_CONNECT] << OB_SLICE_CONNECT_SHIFT;
     if (packed) {
         ob_error err = ob_packed_samples_run(&s->packed, in, OB_UNIT_PACKED_SAMPLES);
         if (err != OB_OK) return err;

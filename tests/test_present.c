@@ -565,6 +565,35 @@ static void test_shader_directory(ob_context *ctx, const ob_settings *s)
 }
 
 /* ---- adopting the caller's context ---------------------------------------------------------- */
+/* A caller's stale GL error, left pending before each call that checks its own GL calls with
+ * glGetError: the call works and does not report it as its own (ob_gl_drop_pending). Each call
+ * once with GL_INVALID_VALUE pending; afterwards nothing is left pending either. */
+static void test_stale_errors(ob_context *ctx, const ob_settings *s)
+{
+    glViewport(0, 0, -1, -1);
+    ob_renderer *r = make(ctx, W, H);
+    if (!r) return;
+    glViewport(0, 0, -1, -1);
+    bool rendered = frame(r, s);
+    if (rendered) {
+        size_t n = ob_image_size(r, OB_IMAGE_AO_F32);
+        float *ao = malloc(n);
+        glViewport(0, 0, -1, -1);
+        CHECK(ao && ob_read_image(r, OB_IMAGE_AO_F32, ao, n) == OB_OK, "ob_read_image with a stale error: %s",
+              last_message());
+        free(ao);
+        uint8_t *rgba = malloc((size_t)W * H * 4);
+        glViewport(0, 0, -1, -1);
+        CHECK(rgba && ob_read_view(r, OB_VIEW_AO, rgba, (size_t)W * H * 4) == OB_OK,
+              "ob_read_view with a stale error: %s", last_message());
+        free(rgba);
+        glViewport(0, 0, -1, -1);
+        CHECK(ob_wait_timings(r) == OB_OK, "ob_wait_timings with a stale error: %s", last_message());
+    }
+    CHECK(glGetError() == GL_NO_ERROR, "a stale error outlived the library's calls, or one raised its own");
+    ob_destroy_renderer(r);
+}
+
 static void *make_without_context(void *result)
 {
     /* A new thread has no current context. */
@@ -638,6 +667,7 @@ int main(void)
     ob_destroy_renderer(r);
     test_resize(ctx, &s);
     test_shader_directory(ctx, &s);
+    test_stale_errors(ctx, &s);
     test_adopt(ctx, &s);
     ob_destroy_scene(scene);
     ob_destroy_context(ctx);

@@ -473,7 +473,8 @@ typedef struct ob_renderer ob_renderer;
 /* A renderer on ctx's GL context, which must be current on this thread (desc NULL = 640x480).
  * It keeps a pointer to ctx: destroy it (ob_destroy_renderer) before the context. NULL on
  * failure. It checks its own GL calls with glGetError, so a GL error the caller left pending is
- * read and dropped first: read yours before calling it. Errors: OB_ERR_INVALID_ARGUMENT (NULL ctx), OB_ERR_BAD_SIZE (one side zero, negative
+ * read and dropped first: read yours before calling it (ob_render_frame, ob_render_floor,
+ * ob_read_image, ob_read_view and ob_wait_timings do the same; the host path reads none). Errors: OB_ERR_INVALID_ARGUMENT (NULL ctx), OB_ERR_BAD_SIZE (one side zero, negative
  * or above GL_MAX_TEXTURE_SIZE), OB_ERR_SHADER (the passes compiled up front),
  * OB_ERR_OUT_OF_MEMORY, OB_ERR_GL (the GL could not make the targets). */
 ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc);

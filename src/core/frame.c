@@ -322,6 +322,7 @@ ob_error ob_render_frame(ob_renderer *r, const ob_camera *camera, const ob_setti
     if (!r->has_scene) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_frame: no scene (ob_renderer_set_scene)");
     if (s->ambient_mode == OB_AMBIENT_ENVIRONMENT && !r->environment.texture)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "environment ambient without an environment map (--env FILE.hdr)");
+    ob_gl_drop_pending(); /* the frame's GL calls are checked with glGetError at its end */
 
     ob_camera cam = *camera;
     if (cam.fov_y_deg <= 0.0f) cam.fov_y_deg = 60.0f;
@@ -397,6 +398,7 @@ ob_error ob_render_floor(ob_renderer *r, const ob_settings *s, ob_floor_info *in
 {
     if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_render_floor: NULL renderer");
     if (ob_check_settings(s) != OB_OK) return ob_peek_error(NULL);
+    ob_gl_drop_pending();
     const int si = ob_scale_index(s->ao_divisor);
     if (!r->has_frame || r->last.scale != si || !r->scales[si].ready)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT,

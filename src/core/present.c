@@ -105,6 +105,7 @@ ob_error ob_read_view(ob_renderer *r, ob_view view, uint8_t *dst, size_t dst_siz
     ob_view_inputs in;
     ob_error err = view_inputs(r, view, "ob_read_view", &in);
     if (err != OB_OK) return err;
+    ob_gl_drop_pending(); /* the read is checked with glGetError */
     size_t need = ob_image_size(r, OB_IMAGE_FINAL_RGBA8);
     if (!dst || dst_size < need)
         return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_read_view: buffer of %zu bytes, need %zu", dst ? dst_size : 0,

@@ -111,6 +111,7 @@ ob_error ob_read_image(ob_renderer *r, ob_image_kind kind, void *dst, size_t dst
     size_t need = ob_image_size(r, kind);
     if (!r || !dst || need == 0) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_read_image: bad argument");
     if (dst_size < need) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_read_image: buffer of %zu bytes, need %zu", dst_size, need);
+    ob_gl_drop_pending(); /* the reads are checked with glGetError */
     /* The targets hold a whole frame only after a frame that finished: not after a resize, a
      * failure half-way, or a host call, which overwrites some of them and writes its results
      * into the host's textures. */
@@ -264,6 +265,7 @@ void ob_query_timings_frame(const ob_renderer *r, long long *timed, long long *r
 ob_error ob_wait_timings(ob_renderer *r)
 {
     if (!r) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "ob_wait_timings: NULL renderer");
+    ob_gl_drop_pending();
     ob_timers_wait(&r->timers);
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x reading the timer queries", e);

@@ -131,10 +131,7 @@ ob_renderer *ob_make_renderer(ob_context *ctx, const ob_renderer_desc *desc)
         d.height = 480;
     }
     if (check_size(ctx, d.width, d.height) != OB_OK) return NULL;
-    /* A GL error pending now is the caller's, raised before this call; the passes below check
-     * their own allocations with glGetError and would report it as theirs (an engine's stale
-     * error failed the HDR targets so). Read and dropped, bounded: a lost context repeats one. */
-    for (int drained = 0; drained < 64 && glGetError() != GL_NO_ERROR; ++drained) continue;
+    ob_gl_drop_pending(); /* the passes below check their allocations with glGetError */
     ob_renderer *r = calloc(1, sizeof *r);
     if (!r) {
         ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory making the renderer");

@@ -89,6 +89,11 @@ void ob_gl_state_restore(const ob_gl_state *s);
  * checks for allocation failures calls this, not glGetError. */
 GLenum ob_gl_error(void);
 void ob_gl_set_quiet(bool on);
+/* Reads and drops the GL errors pending when a library call starts that checks its own GL calls
+ * with glGetError: they are the caller's, raised before the call, and would read as the call's
+ * (a stale error of an engine's failed ob_make_renderer so, "making the HDR targets"). Bounded: a
+ * lost context repeats its error. Not inside a host-path call (ob_gl_set_quiet): none is read there. */
+void ob_gl_drop_pending(void);
 
 /* ---- timers (timer.c) ----------------------------------------------------------------------- */
 #define OB_MAX_TIMED_PASSES 20

@@ -95,3 +95,8 @@ static _Thread_local bool quiet;
 void ob_gl_set_quiet(bool on) { quiet = on; }
 
 GLenum ob_gl_error(void) { return quiet ? GL_NO_ERROR : glGetError(); }
+
+void ob_gl_drop_pending(void)
+{
+    for (int drained = 0; !quiet && drained < 64 && glGetError() != GL_NO_ERROR; ++drained) continue;
+}

@@ -57,8 +57,7 @@ ob_error ob_environment_upload(ob_environment *e, const float *rgb, int w, int h
             return ob_set_error(OB_ERR_IO, "environment map %s holds negative or non-finite radiance", what);
     ob_environment_destroy(e);
     ob_environment_sh(rgb, w, h, e->sh);
-    while (glGetError() != GL_NO_ERROR) {
-    } /* an earlier call's error is not this upload's */
+    ob_gl_drop_pending(); /* an earlier call's error is not this upload's */
     int levels = 1;
     for (int s = w > h ? w : h; s > 1; s >>= 1) ++levels;
     glCreateTextures(GL_TEXTURE_2D, 1, &e->texture);

@@ -72,9 +72,7 @@ ob_error ob_view_render(ob_view_pass *v, const ob_view_inputs *in, GLuint *out)
 
 ob_error ob_view_present(ob_view_pass *v, const ob_view_inputs *in, GLuint framebuffer, int x, int y, int w, int h)
 {
-    /* Errors raised before this call are not ours to report. */
-    int drained = 0;
-    while (drained++ < 64 && glGetError() != GL_NO_ERROR) continue; /* bounded: a lost context repeats */
+    ob_gl_drop_pending(); /* errors raised before this call are not ours to report */
     GLuint src = in->source;
     if (in->view != OB_VIEW_FINAL) {
         ob_error err = run_view(v, in);

@@ -1021,7 +1021,23 @@ static void test_sidecar_ground(void)
                   (double)(along_hi - along_lo));
         }
         CHECK(ob_query_scene_stats(s).bounds_max[1] == 5.0f, "the bounds hold the walls");
+        /* The default camera frames the model from +x, +z: the wall at x = 3 stood between it and
+         * the model, so it looks from -x now; the wall at z = -1 is behind the model from +z. */
+        const ob_camera *c = &s->cameras[0];
+        CHECK(!strcmp(c->name, "default") && c->eye[0] < c->target[0] && c->eye[2] > c->target[2],
+              "the default camera looks from the walls' open side: eye - target (%g, %g)",
+              (double)(c->eye[0] - c->target[0]), (double)(c->eye[2] - c->target[2]));
         check_mesh_sanity(s);
+        ob_destroy_scene(s);
+    }
+    /* Walls on both sides of x: no open side there, the camera stays on +x. */
+    write_text(json, "{\"ground\": {\"walls\": [{\"x\": 3}, {\"x\": -1}]}}");
+    s = load(obj, json, OB_UP_DEFAULT);
+    CHECK(s != NULL, "ground with two x walls: %s", last_message());
+    if (s) {
+        const ob_camera *c = &s->cameras[0];
+        CHECK(c->eye[0] > c->target[0] && c->eye[2] > c->target[2], "walls on both sides of x: the default camera "
+              "stays (eye - target %g, %g)", (double)(c->eye[0] - c->target[0]), (double)(c->eye[2] - c->target[2]));
         ob_destroy_scene(s);
     }
     const char *bad_walls[] = {

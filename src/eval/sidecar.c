@@ -559,8 +559,31 @@ static ob_error add_wall(ob_scene *s, const sidecar *sc, const char *path, int w
     return OB_OK;
 }
 
+/* The default camera (index 0, framing the model from +x, +z: ob_camera_frame_bounds) looked at
+ * the model through a wall standing on its side: bunny-corner's "default" showed the backs of its
+ * two walls and no bunny. Mirrored across the model's centre on that axis, it looks from the open
+ * side into the corner; where walls stand on both sides of an axis there is no open side, and it
+ * stays. */
+static void default_camera_off_walls(ob_scene *s, const sidecar *sc)
+{
+    if (s->camera_count == 0 || strcmp(s->cameras[0].name, "default") != 0) return;
+    ob_camera *c = &s->cameras[0];
+    for (int axis = 0; axis <= 2; axis += 2) {
+        const float eye = c->eye[axis] - c->target[axis];
+        bool near_side = false, far_side = false;
+        for (int w = 0; w < sc->wall_count; ++w) {
+            if (sc->walls[w].axis != axis) continue;
+            const float wall = sc->walls[w].at - c->target[axis];
+            if (wall * eye > 0.0f) near_side = true;
+            else far_side = true;
+        }
+        if (near_side && !far_side) c->eye[axis] = c->target[axis] - eye;
+    }
+}
+
 /* The sidecar's ground: one quad (two triangles, counter-clockwise seen from +Y) in its own
- * material, and the bounds grown to hold it. The default camera is left framing the model. */
+ * material, and the bounds grown to hold it. The default camera keeps framing the model, from the
+ * open side of its walls (default_camera_off_walls). */
 static ob_error add_ground(ob_scene *s, const sidecar *sc, const char *path, const char *material)
 {
     float ex = s->bounds_max[0] - s->bounds_min[0], ez = s->bounds_max[2] - s->bounds_min[2];
@@ -600,6 +623,7 @@ static ob_error add_ground(ob_scene *s, const sidecar *sc, const char *path, con
         ob_error err = add_wall(s, sc, path, w, mat, (float[3]){cx, y, cz}, h, model_height);
         if (err != OB_OK) return err;
     }
+    default_camera_off_walls(s, sc);
     return OB_OK;
 }
 

@@ -25,8 +25,9 @@
 #define OB_FILTER_T float
 #define OB_FILTER_FETCH(tex, q) texelFetch(tex, q, 0).r
 #define OB_FILTER_SKY vec4(1.0)
-/* AO is a fraction: a weighted mean of values in [0, 1] lies in it, but not after rounding (an
- * NVIDIA H200 wrote 1 + 1 ulp, which a host's check of its output range refuses). */
+/* AO is a fraction: a weighted mean of values in [0, 1] lies in it, but not after rounding
+ * (llvmpipe's gaussian wrote 1 + 1 ulp; on an NVIDIA H200 the old entry point's filtered AO left
+ * [0, 1], which a host's check of its output range refuses). */
 #define OB_FILTER_RESULT(v) clamp(v, 0.0, 1.0)
 #endif
 #endif

@@ -537,7 +537,7 @@ static void sweep(ob_renderer *r, const views *vw, const inputs *in)
                 if (!run(r, &fr, &s, ao, px, true, methods[m][0])) continue;
                 size_t occluded = 0;
                 for (size_t i = 0; i < NPX; ++i) {
-                    sane = sane && isfinite(px[i]) && px[i] >= 0.0f && px[i] <= 1.000001f; /* gaussian: 1 + 1 ulp */
+                    sane = sane && isfinite(px[i]) && px[i] >= 0.0f && px[i] <= 1.0f; /* the filters clamp AO (gaussian wrote 1 + 1 ulp) */
                     occluded += px[i] < 0.9f;
                 }
                 sane = sane && occluded >= NPX / 100; /* the contact, the creases */

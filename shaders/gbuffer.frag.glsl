@@ -1,5 +1,6 @@
 #version 450 core
 #include "gbuffer_params.h"
+#include "octahedral.glsl"
 
 in vec3 v_view_pos;
 in vec3 v_view_normal;
@@ -11,6 +12,7 @@ layout(binding = OB_UNIT_DIFFUSE_MAP) uniform sampler2D diffuse_map; /* sRGB tex
 layout(location = 0) out float out_linear_depth;   /* R32F, positive distance along -Z */
 layout(location = 1) out vec4 out_normal;          /* RGBA16F, view space, unit length; w: the part, + front face, - back */
 layout(location = 2) out vec4 out_albedo;          /* RGBA16F, linear */
+layout(location = 3) out vec2 out_facet;           /* RG16F, the triangle's own view normal, octahedral */
 
 void main()
 {
@@ -26,4 +28,15 @@ void main()
     vec3 albedo = gb.diffuse;
     if (gb.textured != 0) albedo *= texture(diffuse_map, v_uv).rgb;
     out_albedo = vec4(albedo, 1.0);
+    /* The normal of the triangle itself, which the interpolated n is not on a smooth-shaded curved
+     * mesh: a ray leaving the pixel's point above n's tangent plane but below the triangle's
+     * plane enters the surface at once, and the ground truth counts it occluded (vbao's facet
+     * wedge, visibility_bitmask.glsl). The position is linear across the triangle, so its screen
+     * derivatives span the triangle's plane exactly (a 2x2 quad's helper pixels interpolate the
+     * same triangle); their cross product faces the eye on a visible triangle, front or back.
+     * Degenerate (a triangle seen edge-on): n. */
+    vec3 f = cross(dFdx(v_view_pos), dFdy(v_view_pos));
+    float len = length(f);
+    f = len > 0.0 && !isnan(len) && !isinf(len) ? f / len : n;
+    out_facet = ob_oct_encode(f);
 }

@@ -32,6 +32,7 @@
 #include "common.glsl"
 #include "slice_march.glsl"
 #include "bitmask.glsl"
+#include "octahedral.glsl"
 
 layout(local_size_x = OB_VB_GROUP_X, local_size_y = OB_VB_GROUP_Y) in;
 
@@ -40,6 +41,7 @@ layout(binding = OB_UNIT_NORMAL) uniform sampler2D view_normal;          /* RGBA
 layout(binding = OB_UNIT_NOISE) uniform sampler2D noise_tile;            /* RG32F 4x4 rotation vectors */
 layout(binding = OB_UNIT_SLICE_DEPTH_MIPS) uniform sampler2D depth_mips; /* MIP chain (OB_MARCH_DEPTH_MIPS) or the depth */
 layout(binding = OB_UNIT_SLICE_MULTIPLIER) uniform sampler2D multiplier; /* adaptive: 1..3 per OB_EDGE_BLOCK^2 pixels */
+layout(binding = OB_UNIT_FACET_NORMAL) uniform sampler2D facet_normal;  /* full-resolution RG16F octahedral (vb.facets) */
 layout(binding = OB_IMAGE_UNIT_OUT, r32f) uniform writeonly image2D ao_out;
 #ifdef OB_VBGI
 layout(binding = OB_UNIT_SLICE_RADIANCE) uniform sampler2D radiance; /* full-resolution RGBA16F direct radiance */
@@ -119,12 +121,72 @@ float ob_rise_within(vec2 xy, float radius, float outside)
     return dot(xy, xy) <= radius * radius ? ob_rise_angle_of(xy) : outside;
 }
 
+/* The normal of P's own triangle (the G-buffer's facet normal of the full-resolution pixel AO
+ * texel pix came from), or n where the frame has none (vb.facets 0). */
+vec3 ob_facet_of(ivec2 pix, vec3 n)
+{
+    if (vb.facets == 0) return n;
+    ivec2 full = clamp(pix * frame.ao_k + frame.ao_o, ivec2(0), textureSize(facet_normal, 0) - 1);
+    return ob_oct_decode(texelFetch(facet_normal, full, 0).xy);
+}
+
+/* The facet's wedge in slice s: the directions between P's tangent (from its interpolated normal
+ * n, which the slice's sectors are laid around) and the trace of P's own triangle, unit normal f,
+ * on the side where the triangle rises above the tangent. AO_R's rays leave P around n, and a ray
+ * below the triangle's plane enters the surface at once: on a smooth-shaded mesh every point but
+ * the triangle's centre has such a wedge, up to half the angle between two triangles where they
+ * are smoothed across a crease. The steps see it only where they land on P's own triangle.
+ * In the slice's coordinates (along t_pos, along the normal's in-slice part) f's in-slice part is
+ * f2; the triangle runs across it, (f2.y, -f2.x) on side + and (f2.y, f2.x) on side -, and rises
+ * on the side f2 leans away from. Returns the rise and its side (rise 0: none). */
+const float OB_FACET_EPSILON = 4e-3;
+
+float ob_facet_wedge(ob_slice s, vec3 n, vec3 f, out bool positive)
+{
+    vec3 pn = n - s.axis * dot(n, s.axis);
+    vec2 f2 = vec2(dot(f, s.t_pos), dot(f, pn) / max(s.len_n, 1e-4));
+    positive = f2.x < 0.0;
+    /* On a flat surface f is n but for the rounding of the two formats, RGBA16F (n) and RG16F
+     * octahedral (f), each within 1e-3 rad: a wedge under 4e-3 rad (0.23 deg, 4 % of a sector,
+     * a cosine measure under 4e-6) is that rounding and sets nothing. */
+    float rise = ob_rise_angle_of(vec2(f2.y, abs(f2.x)));
+    return rise > OB_FACET_EPSILON ? rise : 0.0;
+}
+
+/* The wedge is exact, not a sample standing for its stratum, so it is counted exactly: the
+ * sectors it covers whole as bits (`all`), and the rest, from their edge to the rise, by its own
+ * cosine measure where no sample set that sector (ob_wedge_rest). The steps' `touch` would have
+ * turned every wedge into whole sectors, `half` a wedge of 0.6 sector into one: its measure grows
+ * with the square of the rise, so either reads darker than AO_R on average. */
+uint ob_wedge_bits(float rise, float ang_n, bool positive)
+{
+    return ob_sample_bits(0.0, rise, ang_n, positive, OB_SECTOR_COVERAGE_ALL);
+}
+
+/* The cosine measure (uniform: the share of the half circle) of the wedge's part sector, the one
+ * its rise ends in, when `mask` leaves that sector unset; 0 otherwise. Side + rises from θ = n +
+ * π/2 toward V, side - from θ = n - π/2 (bitmask.glsl ob_sample_bits). */
+float ob_wedge_rest(float rise, float ang_n, float cos_n, float sin_n, bool positive, uint mask, bool cosine)
+{
+    const float width = OB_BITMASK_PI / float(OB_SECTORS);
+    float whole = floor(rise / width) * width;
+    /* The part sector's bit: counted from the tangent at bit 31 on side +, bit 0 on side -. */
+    int k = int(floor(rise / width));
+    int bit = positive ? OB_SECTORS - 1 - k : k;
+    bool open = rise > whole && k < OB_SECTORS && ((mask >> uint(clamp(bit, 0, OB_SECTORS - 1))) & 1u) == 0u;
+    float t0 = positive ? ang_n + 0.5 * OB_BITMASK_PI - rise : ang_n - 0.5 * OB_BITMASK_PI + whole;
+    float t1 = positive ? ang_n + 0.5 * OB_BITMASK_PI - whole : ang_n - 0.5 * OB_BITMASK_PI + rise;
+    float part = cosine ? ob_sector_s(t1, ang_n, cos_n, sin_n) - ob_sector_s(t0, ang_n, cos_n, sin_n)
+                        : (rise - whole) / OB_BITMASK_PI;
+    return open ? part : 0.0;
+}
+
 /* One sample on one side of slice s (positive: along +dir), at AO-grid position `at`, dist_px
  * from P. `refine`: a bisection step of the gap, counting only while it is open (it joins no
  * step: it lands between steps already taken). Updates the mask, the highest front rise within R
  * (for the gap), vbgi's bounce and the side's last step. */
-void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, bool refine, inout uint mask,
-                  inout float rise, inout ob_gap gap, inout vec3 bounce, inout ob_prev_step prev)
+void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, bool refine, float wedge,
+                  inout uint mask, inout float rise, inout ob_gap gap, inout vec3 bounce, inout ob_prev_step prev)
 {
     vec3 w;
     ivec2 texel;
@@ -261,9 +323,11 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
             o0 = dot(o0, o0) > r2_max ? f0 : o0;
             o1 = dot(o1, o1) > r2_max ? b0 : o1;
             float ro0 = ob_rise_angle_of(o0), ro1 = ob_rise_angle_of(o1);
-            ends = extend ? ob_sample_bits(min(span.x, min(ro0, ro1)), max(span.y, max(ro0, ro1)), s.ang_n, positive,
-                                           OB_VB_COVERAGE)
-                          : 0u;
+            /* Clipped to the facet's wedge as the sample's own interval is (below). */
+            vec2 outer = vec2(max(min(span.x, min(ro0, ro1)), wedge), max(span.y, max(ro0, ro1)));
+            ends = extend && outer.y > (wedge > 0.0 ? wedge + OB_FACET_EPSILON : 0.0)
+                       ? ob_sample_bits(outer.x, outer.y, s.ang_n, positive, OB_VB_COVERAGE)
+                       : 0u;
             bool starts = extend && !(prev.solid && continuous);
             float ri0 = ob_rise_angle_of(f0 - e), ri1 = ob_rise_angle_of(b0 - e);
             span = starts ? vec2(min(span.x, min(ri0, ri1)), max(span.y, max(ri0, ri1))) : span;
@@ -271,7 +335,15 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
     }
 #endif
     span = join ? vec2(min(span.x, rises.x), max(span.y, rises.y)) : span;
-    uint bits = solid ? ob_sample_bits(span.x, span.y, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
+    /* Below the facet's wedge (`wedge`, this side's rise of P's own triangle; 0 without one) a
+     * sample adds nothing: whatever lies behind the plane of P's triangle is seen from P through
+     * the wedge alone. A step on that plane (P's own triangle, or a flat face's others) rises to
+     * the wedge's edge but for rounding, and `touch` would round that up to the wedge's part
+     * sector, which ob_wedge_rest counts exactly: such a step must rise past the facet normal's
+     * rounding to count. */
+    float above = wedge > 0.0 ? wedge + OB_FACET_EPSILON : 0.0;
+    span.x = max(span.x, wedge);
+    uint bits = solid && span.y > above ? ob_sample_bits(span.x, span.y, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
     prev = refine ? prev : ob_prev_step(w, dist_px, rise_front, solid, tangent, ends);
 #ifdef OB_VBGI
     /* The sender's direct radiance through the directions it is the first to occlude, only where
@@ -330,6 +402,7 @@ void main()
     vec2 centre, to_view;
     vec3 p, v, n;
     ob_slice_pixel(pix, d, view_normal, centre, p, v, n, to_view);
+    vec3 facet = ob_facet_of(pix, n);
     vec2 jit = ob_slice_jitters(pix, vb.noise, noise_tile, vec2(vb.slice_offset, vb.step_offset));
     int slices = ob_slice_count(pix, vb.slices, vb.adaptive, vb.adaptive_base, multiplier), steps = vb.steps;
     bool cosine = vb.weighting == OB_DIRECTIONS_MODE_COSINE;
@@ -347,7 +420,12 @@ void main()
             total += cosine ? 0.0 : 1.0;
             continue;
         }
-        uint mask = 0u;
+        /* P's own triangle's wedge first: a sample inside it sets no fresh sector (vbgi: P's own
+         * surface sends it nothing). */
+        bool wedge_pos = true;
+        float wedge = vb.facets != 0 ? ob_facet_wedge(s, n, facet, wedge_pos) : 0.0;
+        vec2 wedges = wedge_pos ? vec2(wedge, 0.0) : vec2(0.0, wedge);
+        uint mask = ob_wedge_bits(wedge, s.ang_n, wedge_pos);
         vec2 rise = vec2(0.0);
         ob_gap gap_pos = ob_gap_none(), gap_neg = ob_gap_none();
         vec3 slice_bounce = vec3(0.0);
@@ -355,8 +433,10 @@ void main()
         for (int j = 0; j < steps; ++j) {
             float dist_px = ob_slice_step_px(j, jit.y, steps, s.radius_px);
             vec2 off = s.dir * dist_px;
-            bitmask_step(s, centre + off, dist_px, p, true, false, mask, rise.x, gap_pos, slice_bounce, prev_pos);
-            bitmask_step(s, centre - off, dist_px, p, false, false, mask, rise.y, gap_neg, slice_bounce, prev_neg);
+            bitmask_step(s, centre + off, dist_px, p, true, false, wedges.x, mask, rise.x, gap_pos, slice_bounce,
+                         prev_pos);
+            bitmask_step(s, centre - off, dist_px, p, false, false, wedges.y, mask, rise.y, gap_neg, slice_bounce,
+                         prev_neg);
         }
         /* Each side with a gap gets REFINE_STEPS bisections, one step per pass of the loop
          * (ob_gap_next_side). The one branch of the march: most pixels (open surfaces) have no
@@ -371,19 +451,20 @@ void main()
             ob_gap g = ob_gap_next_side(gap_pos, gap_neg, left, positive);
             float r = positive ? rise.x : rise.y, mid = ob_gap_mid(g);
             ob_prev_step unused = ob_prev_step_at_p();
-            bitmask_step(s, centre + (positive ? mid : -mid) * s.dir, mid, p, positive, true, mask, r, g, slice_bounce,
-                         unused);
+            bitmask_step(s, centre + (positive ? mid : -mid) * s.dir, mid, p, positive, true,
+                         positive ? wedges.x : wedges.y, mask, r, g, slice_bounce, unused);
             gap_pos = positive ? g : gap_pos;
             gap_neg = positive ? gap_neg : g;
             rise = positive ? vec2(r, rise.y) : vec2(rise.x, r);
         }
         /* The open half circle's cosine measure: â(n + π/2) + â(n - π/2) = cos n + n sin n. */
         float open = s.cos_n + s.ang_n * s.sin_n;
+        float rest = ob_wedge_rest(wedge, s.ang_n, s.cos_n, s.sin_n, wedge_pos, mask, cosine);
         if (cosine) {
-            visible += s.len_n * (open - ob_bits_measure(mask, s.ang_n, s.cos_n, s.sin_n));
+            visible += s.len_n * (open - ob_bits_measure(mask, s.ang_n, s.cos_n, s.sin_n) - rest);
             total += s.len_n * open;
         } else {
-            visible += 1.0 - float(bitCount(mask)) / float(OB_SECTORS);
+            visible += 1.0 - float(bitCount(mask)) / float(OB_SECTORS) - rest;
             total += 1.0;
         }
         cos_total += s.len_n * open;

@@ -28,8 +28,9 @@ scene=(--model "$model" --floor-size 1000)
 
 # ---- the library's own frame: render's AO (after the crease filter, as ob_host_ao's output) ----
 # One depth layer: the host hands no second layer, and vbao then reads one (its default, two, needs
-# the layer that render's own G-buffer peels).
-if ! "$obscura" render --scene armadillo "${camera[@]}" --size $size --set vbao.layers=1 --out "$tmp/render.png" \
+# the layer that render's own G-buffer peels). No facet wedge, likewise: a host's frame has no
+# facet normals (the G-buffer's fifth target; docs/methods.md "Facets of a smooth-shaded mesh").
+if ! "$obscura" render --scene armadillo "${camera[@]}" --size $size --set vbao.layers=1 --set vbao.facets=off --out "$tmp/render.png" \
         --ao-out "$tmp/render_ao.pfm" --depth-out "$tmp/render_depth.pfm" >"$tmp/log" 2>&1; then
     cat "$tmp/log"; echo "example_host: obscura render failed"; exit 1
 fi

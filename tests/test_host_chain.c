@@ -101,6 +101,13 @@ static void same_bits(ob_context *ctx, ob_scene *scene, const char *method, cons
     if (!a || !b) return;
     ob_settings s;
     ob_settings_init(&s, method);
+    /* A host's frame has no facet normals (the G-buffer's fifth target), so ob_host_ao runs
+     * vbao's and vbgi's facet wedge off: the frame it must match has it off too. */
+    if (!strcmp(method, "vbao") || !strcmp(method, "vbgi")) {
+        char facets[32];
+        snprintf(facets, sizeof facets, "%s.facets=off", method);
+        CHECK(ob_settings_set(&s, facets) == OB_OK, "%s: %s", label, error_text());
+    }
     if (extra) CHECK(ob_settings_set(&s, extra) == OB_OK, "%s: %s", label, error_text());
     ob_settings_set_ao_divisor(&s, divisor);
     s.temporal = temporal;

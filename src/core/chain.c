@@ -262,6 +262,7 @@ static ob_error run_method_stage(chain_run *c)
                              .depth_mips = mips,
                              .depth_mip_levels = mip_levels,
                              .second_depth = reads & OB_READS_SECOND_LAYER ? io->second_depth : 0,
+                             .facet_normal = io->facet,
                              .extra_depth = r->last.extra_view ? r->extra_gbuffer.linear_depth : 0,
                              .extra_normal = r->last.extra_view ? r->extra_gbuffer.normal : 0,
                              .extra_radiance = r->last.extra_view ? r->extra_direct : 0,

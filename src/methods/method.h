@@ -81,6 +81,10 @@ typedef struct ob_ao_inputs {
      * then falls back to its single-layer assumption. AO pixel i reads full pixel k i + o, the
      * pixel the AO grid's depth came from. */
     GLuint second_depth;
+    /* The full-resolution RG16F octahedral normal of each pixel's own triangle (the G-buffer's
+     * `facet`), or 0 where the frame has none (a host's frame, ob_compute_ao). AO pixel i reads
+     * full pixel k i + o, as second_depth. */
+    GLuint facet_normal;
     /* OB_READS_EXTRA_VIEW: a second camera's G-buffer, turned 90 degrees about the up axis around
      * the main camera's target (Belonogov 2018 §4.4), at the G-buffer's size: its linear depth, view
      * normal (in ITS view space) and direct radiance; 0 where the frame has none (ob_compute_ao).

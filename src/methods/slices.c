@@ -90,6 +90,7 @@ ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], co
     /* The second depth layer (full resolution); the depth itself keeps the sampler valid when the
      * frame has none, and then no variant reads it. */
     glBindTextureUnit(OB_UNIT_SECOND_DEPTH, in->second_depth ? in->second_depth : in->linear_depth);
+    glBindTextureUnit(OB_UNIT_FACET_NORMAL, in->facet_normal ? in->facet_normal : in->linear_depth);
     return OB_OK;
 }
 

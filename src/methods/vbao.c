@@ -25,6 +25,7 @@ enum {
     P_DEPTH_MIPS,
     P_LAYERS,
     P_CONNECT,
+    P_FACETS,
     P_EMITTER_COSINE, /* vbgi only from here on: the last entries, so vbao's table is the prefix */
     P_PACKED,
     P_COUNT
@@ -89,6 +90,16 @@ static const ob_param_info vb_params[P_COUNT] = {
                    "over its end steps' strata along their surfaces) or curve (ends, with the curve through "
                    "both fronts along their normals' tangents in place of the chord)",
                    false, connect_options},
+    /* on: the sectors between P's tangent plane (its interpolated normal's) and its own triangle's
+     * plane are set, where the triangle rises above the tangent in the slice: AO_R's rays leave P
+     * around the interpolated normal, and those below the triangle enter the surface at once
+     * (docs/methods.md, "Facets of a smooth-shaded mesh"). Needs the G-buffer's facet normals: a
+     * host's frame has none, and there it is off. */
+    [P_FACETS] = {"facets", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
+                  "set the directions between the interpolated normal's tangent plane and the pixel's own "
+                  "triangle, which a smooth-shaded mesh hides from its normals (needs the G-buffer's facet "
+                  "normals; off in a host's frame)",
+                  false},
     [P_EMITTER_COSINE] = {"emitter_cosine", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                           "a sender's radiance times its cosine toward P (the paper's); off: its radiance where it "
                           "faces P (the solid-angle form of the one-bounce integral)",
@@ -128,6 +139,7 @@ static void fill_constants(ob_vb_constants *c, const float *params, bool gi, con
     c->mip_scale = sf->mip_scale;
     c->max_mip = params[P_DEPTH_MIPS] != 0.0f ? sf->max_mip : 0;
     c->emitter_cosine = gi && params[P_EMITTER_COSINE] != 0.0f ? 1 : 0;
+    c->facets = params[P_FACETS] != 0.0f ? 1 : 0;
 }
 
 static ob_error vbao_init(void *p)
@@ -179,6 +191,7 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
     const ob_slice_frame sf = ob_slice_frame_make(in);
     fill_constants(&c, params, s->gi, &sf);
     c.layers = c.layers && in->second_depth ? 1 : 0; /* ob_compute_ao has no second layer */
+    c.facets = c.facets && in->facet_normal ? 1 : 0;  /* nor a host's frame facet normals */
     /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
     ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
     const bool packed = s->gi && c.max_mip == 0 && ob_packed_samples_wanted(&s->packed, params[P_PACKED]);

@@ -10,21 +10,22 @@
 
 _Static_assert(OB_PART_SHEET == OB_PART_SHEET_FLAG, "the sheet flag of scene/parts.c and the G-buffer's shaders");
 
-/* The four targets in the order of ob_gbuffer's members: depth, linear depth, normal, albedo. */
-static void make_targets(GLuint tex[4], int width, int height)
+#define TARGETS 5
+
+/* The targets in the order of ob_gbuffer's members: depth, linear depth, normal, albedo, facet. */
+static void make_targets(GLuint tex[TARGETS], int width, int height)
 {
     tex[0] = ob_make_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
     tex[1] = ob_make_texture_2d(GL_R32F, width, height);
     tex[2] = ob_make_texture_2d(GL_RGBA16F, width, height);
     tex[3] = ob_make_texture_2d(GL_RGBA16F, width, height);
+    tex[4] = ob_make_texture_2d(GL_RG16F, width, height);
 }
 
-static GLenum attach(GLuint fbo, const GLuint tex[4])
+static GLenum attach(GLuint fbo, const GLuint tex[TARGETS])
 {
     glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, tex[0], 0);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex[1], 0);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, tex[2], 0);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT2, tex[3], 0);
+    for (int i = 1; i < TARGETS; ++i) glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + (GLenum)(i - 1), tex[i], 0);
     return glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
 }
 
@@ -37,15 +38,17 @@ ob_error ob_gbuffer_init(ob_gbuffer *g, int width, int height)
     if (!g->program) return ob_peek_error(NULL);
     glCreateBuffers(1, &g->ubo);
     glNamedBufferStorage(g->ubo, sizeof(ob_gbuffer_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
-    GLuint tex[4] = {0, 0, 0, 0};
+    GLuint tex[TARGETS] = {0, 0, 0, 0, 0};
     make_targets(tex, width, height);
     g->depth = tex[0];
     g->linear_depth = tex[1];
     g->normal = tex[2];
     g->albedo = tex[3];
+    g->facet = tex[4];
     glCreateFramebuffers(1, &g->fbo);
-    const GLenum draw[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glNamedFramebufferDrawBuffers(g->fbo, 3, draw);
+    const GLenum draw[TARGETS - 1] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                      GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(g->fbo, TARGETS - 1, draw);
     GLenum status = attach(g->fbo, tex);
     if (status != GL_FRAMEBUFFER_COMPLETE)
         return ob_set_error(OB_ERR_GL, "G-buffer framebuffer incomplete (0x%x) at %dx%d", status, width, height);
@@ -54,25 +57,26 @@ ob_error ob_gbuffer_init(ob_gbuffer *g, int width, int height)
 
 ob_error ob_gbuffer_resize(ob_gbuffer *g, int width, int height)
 {
-    GLuint made[4] = {0, 0, 0, 0};
+    GLuint made[TARGETS] = {0, 0, 0, 0, 0};
     make_targets(made, width, height);
     GLenum e = ob_gl_error();
     GLenum status = e == GL_NO_ERROR ? attach(g->fbo, made) : GL_FRAMEBUFFER_COMPLETE;
     if (e != GL_NO_ERROR || status != GL_FRAMEBUFFER_COMPLETE) {
         /* Back to the old targets, which still work at the old size. */
-        const GLuint old[4] = {g->depth, g->linear_depth, g->normal, g->albedo};
+        const GLuint old[TARGETS] = {g->depth, g->linear_depth, g->normal, g->albedo, g->facet};
         attach(g->fbo, old);
-        glDeleteTextures(4, made);
+        glDeleteTextures(TARGETS, made);
         if (e != GL_NO_ERROR)
             return ob_set_error(OB_ERR_GL, "OpenGL error 0x%x making %dx%d G-buffer targets", e, width, height);
         return ob_set_error(OB_ERR_GL, "G-buffer framebuffer incomplete (0x%x) at %dx%d", status, width, height);
     }
-    GLuint old[4] = {g->depth, g->linear_depth, g->normal, g->albedo};
-    glDeleteTextures(4, old);
+    GLuint old[TARGETS] = {g->depth, g->linear_depth, g->normal, g->albedo, g->facet};
+    glDeleteTextures(TARGETS, old);
     g->depth = made[0];
     g->linear_depth = made[1];
     g->normal = made[2];
     g->albedo = made[3];
+    g->facet = made[4];
     g->width = width;
     g->height = height;
     return OB_OK;
@@ -242,6 +246,7 @@ void ob_gbuffer_run_from(ob_gbuffer *g, const ob_gbuffer *scene, const float *vi
     glClearNamedFramebufferfv(g->fbo, GL_COLOR, 0, zero);
     glClearNamedFramebufferfv(g->fbo, GL_COLOR, 1, zero);
     glClearNamedFramebufferfv(g->fbo, GL_COLOR, 2, zero);
+    glClearNamedFramebufferfv(g->fbo, GL_COLOR, 3, zero);
     glClearNamedFramebufferfv(g->fbo, GL_DEPTH, 0, &one);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -275,7 +280,7 @@ void ob_gbuffer_destroy(ob_gbuffer *g)
     glDeleteProgram(g->program);
     glDeleteBuffers(1, &g->ubo);
     glDeleteFramebuffers(1, &g->fbo);
-    GLuint tex[4] = {g->depth, g->linear_depth, g->normal, g->albedo};
-    glDeleteTextures(4, tex);
+    GLuint tex[TARGETS] = {g->depth, g->linear_depth, g->normal, g->albedo, g->facet};
+    glDeleteTextures(TARGETS, tex);
     memset(g, 0, sizeof *g);
 }

@@ -24,6 +24,8 @@ typedef struct ob_gbuffer {
     GLuint linear_depth;  /* R32F */
     GLuint normal;        /* RGBA16F view space */
     GLuint albedo;        /* RGBA16F linear */
+    GLuint facet;         /* RG16F: the view-space unit normal of the pixel's own triangle, octahedral
+                             (shaders/common.glsl ob_oct_decode); (0, 0) where no triangle */
     int width, height;
     ob_gpu_mesh *meshes;
     int mesh_count;

@@ -12,6 +12,7 @@
 #define OB_SLICE_MARCH_GLSL
 
 #include "noise.glsl"
+#include "octahedral.glsl"
 
 const float OB_PI = 3.14159265358979;
 const float OB_HALF_PI = 1.57079632679490;
@@ -248,6 +249,42 @@ float ob_layer_thickness(float z1, float z2, float d, float radius, float radius
         max(radius_px - 1.5, 0.0) / float(steps) * ob_depth_scale(z1) * radius / (ob_depth_scale(d) * max(radius_px, 1e-6));
     return z2 > 0.0 ? max(z2 - z1, spacing) : -1.0;
 }
+
+/* The normal of P's own triangle: the G-buffer's facet normal (RG16F octahedral, written by
+ * gbuffer.frag.glsl) of the full-resolution pixel AO texel pix came from, as ob_second_depth.
+ * Bound by ob_slice_use (the depth itself where the frame has none: read only when the
+ * method's `facets` constant says the frame has them). */
+layout(binding = OB_UNIT_FACET_NORMAL) uniform sampler2D ob_facet_normals;
+
+vec3 ob_facet_normal(ivec2 pix)
+{
+    ivec2 full = clamp(pix * frame.ao_k + frame.ao_o, ivec2(0), textureSize(ob_facet_normals, 0) - 1);
+    return ob_oct_decode(texelFetch(ob_facet_normals, full, 0).xy);
+}
+
+/* A smooth-shaded mesh's facet wedge in slice s (docs/methods.md, "Facets of a smooth-shaded
+ * mesh"): the directions between P's tangent (from its interpolated normal n, around which the
+ * slice is laid) and the trace of P's own triangle, unit normal f, on the side where the triangle
+ * rises above the tangent. AO_R's rays leave P around n, and a ray below the triangle's plane
+ * enters the surface at once: on a smooth-shaded mesh every point but the triangle's centre has
+ * such a wedge, up to half the angle between two triangles where they are smoothed across a
+ * crease. The depth buffer does not show it: the steps see it only where they land on P's own
+ * triangle. In the slice's coordinates (along t_pos, along the normal's in-slice part) f's
+ * in-slice part is f2; the triangle runs across it, (f2.y, -f2.x) on side + and (f2.y, f2.x) on
+ * side -, and rises on the side f2 leans away from. Returns the trace on that side in that side's
+ * coordinates (along its tangent, across it: ob_rise_key's x and y); y <= 0: no wedge. */
+vec2 ob_facet_trace(ob_slice s, vec3 n, vec3 f, out bool positive)
+{
+    vec3 pn = n - s.axis * dot(n, s.axis);
+    vec2 f2 = vec2(dot(f, s.t_pos), dot(f, pn) / max(s.len_n, 1e-4));
+    positive = f2.x < 0.0;
+    return vec2(f2.y, abs(f2.x));
+}
+
+/* A facet wedge under this many radians is the normals' rounding (RGBA16F n, RG16F octahedral f,
+ * each within 1e-3 rad), not a tilt: 0.23 deg, 4 % of a bitmask sector, a cosine measure under
+ * 4e-6. */
+const float OB_FACET_EPSILON = 4e-3;
 
 /* The rise of a sample above a side's tangent t, as k = 1 - cos(rise) = 2 sin²(rise / 2): 0 for
  * none, up to 2 for a sample straight up the far side. In the slice's coordinates the sample is

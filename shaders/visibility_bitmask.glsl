@@ -32,7 +32,6 @@
 #include "common.glsl"
 #include "slice_march.glsl"
 #include "bitmask.glsl"
-#include "octahedral.glsl"
 
 layout(local_size_x = OB_VB_GROUP_X, local_size_y = OB_VB_GROUP_Y) in;
 
@@ -41,7 +40,6 @@ layout(binding = OB_UNIT_NORMAL) uniform sampler2D view_normal;          /* RGBA
 layout(binding = OB_UNIT_NOISE) uniform sampler2D noise_tile;            /* RG32F 4x4 rotation vectors */
 layout(binding = OB_UNIT_SLICE_DEPTH_MIPS) uniform sampler2D depth_mips; /* MIP chain (OB_MARCH_DEPTH_MIPS) or the depth */
 layout(binding = OB_UNIT_SLICE_MULTIPLIER) uniform sampler2D multiplier; /* adaptive: 1..3 per OB_EDGE_BLOCK^2 pixels */
-layout(binding = OB_UNIT_FACET_NORMAL) uniform sampler2D facet_normal;  /* full-resolution RG16F octahedral (vb.facets) */
 layout(binding = OB_IMAGE_UNIT_OUT, r32f) uniform writeonly image2D ao_out;
 #ifdef OB_VBGI
 layout(binding = OB_UNIT_SLICE_RADIANCE) uniform sampler2D radiance; /* full-resolution RGBA16F direct radiance */
@@ -121,35 +119,12 @@ float ob_rise_within(vec2 xy, float radius, float outside)
     return dot(xy, xy) <= radius * radius ? ob_rise_angle_of(xy) : outside;
 }
 
-/* The normal of P's own triangle (the G-buffer's facet normal of the full-resolution pixel AO
- * texel pix came from), or n where the frame has none (vb.facets 0). */
-vec3 ob_facet_of(ivec2 pix, vec3 n)
-{
-    if (vb.facets == 0) return n;
-    ivec2 full = clamp(pix * frame.ao_k + frame.ao_o, ivec2(0), textureSize(facet_normal, 0) - 1);
-    return ob_oct_decode(texelFetch(facet_normal, full, 0).xy);
-}
-
-/* The facet's wedge in slice s: the directions between P's tangent (from its interpolated normal
- * n, which the slice's sectors are laid around) and the trace of P's own triangle, unit normal f,
- * on the side where the triangle rises above the tangent. AO_R's rays leave P around n, and a ray
- * below the triangle's plane enters the surface at once: on a smooth-shaded mesh every point but
- * the triangle's centre has such a wedge, up to half the angle between two triangles where they
- * are smoothed across a crease. The steps see it only where they land on P's own triangle.
- * In the slice's coordinates (along t_pos, along the normal's in-slice part) f's in-slice part is
- * f2; the triangle runs across it, (f2.y, -f2.x) on side + and (f2.y, f2.x) on side -, and rises
- * on the side f2 leans away from. Returns the rise and its side (rise 0: none). */
-const float OB_FACET_EPSILON = 4e-3;
-
+/* The facet wedge's rise on its side (slice_march.glsl ob_facet_trace), 0 for none. On a flat
+ * surface f is n but for the rounding of the two formats, RGBA16F (n) and RG16F octahedral (f),
+ * each within 1e-3 rad: a wedge under OB_FACET_EPSILON is that rounding and sets nothing. */
 float ob_facet_wedge(ob_slice s, vec3 n, vec3 f, out bool positive)
 {
-    vec3 pn = n - s.axis * dot(n, s.axis);
-    vec2 f2 = vec2(dot(f, s.t_pos), dot(f, pn) / max(s.len_n, 1e-4));
-    positive = f2.x < 0.0;
-    /* On a flat surface f is n but for the rounding of the two formats, RGBA16F (n) and RG16F
-     * octahedral (f), each within 1e-3 rad: a wedge under 4e-3 rad (0.23 deg, 4 % of a sector,
-     * a cosine measure under 4e-6) is that rounding and sets nothing. */
-    float rise = ob_rise_angle_of(vec2(f2.y, abs(f2.x)));
+    float rise = ob_rise_angle_of(ob_facet_trace(s, n, f, positive));
     return rise > OB_FACET_EPSILON ? rise : 0.0;
 }
 
@@ -402,7 +377,7 @@ void main()
     vec2 centre, to_view;
     vec3 p, v, n;
     ob_slice_pixel(pix, d, view_normal, centre, p, v, n, to_view);
-    vec3 facet = ob_facet_of(pix, n);
+    vec3 facet = vb.facets != 0 ? ob_facet_normal(pix) : n;
     vec2 jit = ob_slice_jitters(pix, vb.noise, noise_tile, vec2(vb.slice_offset, vb.step_offset));
     int slices = ob_slice_count(pix, vb.slices, vb.adaptive, vb.adaptive_base, multiplier), steps = vb.steps;
     bool cosine = vb.weighting == OB_DIRECTIONS_MODE_COSINE;

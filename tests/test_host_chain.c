@@ -102,8 +102,8 @@ static void same_bits(ob_context *ctx, ob_scene *scene, const char *method, cons
     ob_settings s;
     ob_settings_init(&s, method);
     /* A host's frame has no facet normals (the G-buffer's fifth target), so ob_host_ao runs
-     * vbao's and vbgi's facet wedge off: the frame it must match has it off too. */
-    if (!strcmp(method, "vbao") || !strcmp(method, "vbgi")) {
+     * gtao's, vbao's and vbgi's facet wedge off: the frame it must match has it off too. */
+    if (!strcmp(method, "vbao") || !strcmp(method, "vbgi") || !strcmp(method, "gtao")) {
         char facets[32];
         snprintf(facets, sizeof facets, "%s.facets=off", method);
         CHECK(ob_settings_set(&s, facets) == OB_OK, "%s: %s", label, error_text());

@@ -118,8 +118,8 @@ uint64_t ob_estimate_renderer_memory(int width, int height, const ob_settings *s
     }
     const int inner_w = width + 2 * guard, inner_h = height + 2 * guard;
     const uint64_t visible = pixels(width, height), inner = pixels(inner_w, inner_h);
-    /* passes/gbuffer.c: depth32F, linear depth R32F, normal and albedo RGBA16F. */
-    const uint64_t gbuffer = 24;
+    /* passes/gbuffer.c: depth32F, linear depth R32F, normal and albedo RGBA16F, facet RG16F. */
+    const uint64_t gbuffer = 28;
     uint64_t bytes = inner * (gbuffer + 4 + 8); /* renderer.c make_full_targets: ao R32F, direct RGBA16F */
     /* final RGBA8, radiance RGBA16F (renderer.c), the debug view's RGBA8 (passes/view.c). */
     bytes += visible * (4 + 8 + 4);

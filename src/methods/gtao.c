@@ -12,7 +12,7 @@
 
 enum {
     P_RADIUS, P_FALLOFF, P_THIN, P_THICKNESS, P_SLICES, P_STEPS, P_NOISE, P_TEMPORAL, P_DEPTH_MIPS, P_BENT_NORMALS,
-    P_LAYERS, P_COUNT
+    P_LAYERS, P_FACETS, P_COUNT
 };
 
 static const ob_param_info gtao_params[P_COUNT] = {
@@ -61,6 +61,12 @@ static const ob_param_info gtao_params[P_COUNT] = {
      * horizon ray passes through the object under it, not behind its second layer (gtao.glsl);
      * measured worse than 1 on every view tried (docs/methods.md), so 1 stays the default. */
     [P_LAYERS] = OB_LAYERS_PARAM,
+    /* As vbao's (methods/vbao.c): each side's horizon starts at the plane of P's own triangle where
+     * that rises above the tangent; a host's frame has no facet normals, and there it is off. */
+    [P_FACETS] = {"facets", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
+                  "each side's horizon starts at the pixel's own triangle where it rises above the interpolated "
+                  "normal's tangent plane (needs the G-buffer's facet normals; off in a host's frame)",
+                  false},
 };
 
 typedef struct gtao_state {
@@ -97,6 +103,7 @@ static void fill_constants(ob_gtao_constants *c, const float *params, const ob_s
     c->max_mip = c->depth_mips ? sf->max_mip : 0; /* level 0 only: the unit holds the depth itself */
     c->bent_normals = params[P_BENT_NORMALS] != 0.0f ? 1 : 0;
     c->layers = params[P_LAYERS] >= 2.0f ? 1 : 0;
+    c->facets = params[P_FACETS] != 0.0f ? 1 : 0;
 }
 
 /* The depth MIP chain only when asked for: the full-resolution path stays the baseline. */
@@ -119,6 +126,7 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
     const ob_slice_frame sf = ob_slice_frame_make(in);
     fill_constants(&c, params, &sf);
     c.layers = c.layers && in->second_depth ? 1 : 0; /* ob_compute_ao has no second layer */
+    c.facets = c.facets && in->facet_normal ? 1 : 0;  /* nor a host's frame facet normals */
     c.bent_normals = c.bent_normals && out->bent_normal ? 1 : 0;
     /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
     ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);

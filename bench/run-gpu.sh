@@ -89,8 +89,8 @@ sweep=(--full --cameras front --radius 4 --quality low,medium,high,ultra --frame
 # side on one machine: two depth layers (layers=2: the second_layer pass, one more raster of the
 # scene, and the AO pass reading it) against one, and steps joined along a curve (connect=curve:
 # one more normal fetch per step) against the chord and against none, and the facet wedge
-# (facets=on: one fetch a pixel, a few operations a slice; the G-buffer writes its facet target
-# either way) against none. cornell:front and FZK-Haus's
+# (facets=on, off by default: one fetch a pixel, a few operations a slice; the G-buffer writes its
+# facet target either way) against none. cornell:front and FZK-Haus's
 # stair at 1080p, every preset, shadows off (no pass here reads them); the default run again last,
 # so that a drift of the machine during the step shows.
 d47=(--size 1920x1080 --radius 4 --quality low,medium,high,ultra --frames 100 --warmup 20 --shadow none --methods vbao,vbgi)
@@ -105,9 +105,9 @@ for sc in cornell:front fzk-haus:stair; do
     # shellcheck disable=SC2046
     want defaults && run "connect_off_${sc%%:*}" 60 "${dv[@]}" $(both connect=off)
     # shellcheck disable=SC2046
-    want defaults && run "facets_off_${sc%%:*}" 60 "${dv[@]}" $(both facets=off)
+    want defaults && run "facets_on_${sc%%:*}" 60 "${dv[@]}" $(both facets=on)
     # shellcheck disable=SC2046
-    want defaults && run "before_${sc%%:*}" 60 "${dv[@]}" $(both layers=1) $(both connect=off) $(both facets=off)
+    want defaults && run "before_${sc%%:*}" 60 "${dv[@]}" $(both layers=1) $(both connect=off)
     want defaults && run "defaults_again_${sc%%:*}" 60 "${dv[@]}"
 done
 # Shader edits side by side (bench --shader-dir): every copy of shaders/ under .gl/sh/NAME, each

@@ -61,9 +61,10 @@ static const ob_param_info gtao_params[P_COUNT] = {
      * horizon ray passes through the object under it, not behind its second layer (gtao.glsl);
      * measured worse than 1 on every view tried (docs/methods.md), so 1 stays the default. */
     [P_LAYERS] = OB_LAYERS_PARAM,
-    /* As vbao's (methods/vbao.c): each side's horizon starts at the plane of P's own triangle where
-     * that rises above the tangent; a host's frame has no facet normals, and there it is off. */
-    [P_FACETS] = {"facets", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
+    /* As vbao's (methods/vbao.c, off by default for the same reason): each side's horizon starts at
+     * the plane of P's own triangle where that rises above the tangent; a host's frame has no facet
+     * normals, and there it is off. */
+    [P_FACETS] = {"facets", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                   "each side's horizon starts at the pixel's own triangle where it rises above the interpolated "
                   "normal's tangent plane (needs the G-buffer's facet normals; off in a host's frame)",
                   false},

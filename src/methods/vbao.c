@@ -94,8 +94,10 @@ static const ob_param_info vb_params[P_COUNT] = {
      * plane are set, where the triangle rises above the tangent in the slice: AO_R's rays leave P
      * around the interpolated normal, and those below the triangle enter the surface at once
      * (docs/methods.md, "Facets of a smooth-shaded mesh"). Needs the G-buffer's facet normals: a
-     * host's frame has none, and there it is off. */
-    [P_FACETS] = {"facets", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
+     * host's frame has none, and there it is off. Off by default: the reference's ray offset opens
+     * part of the wedge on small triangles, and against it the choose views and five models that
+     * chose nothing read better without (against a reference without that offset, with). */
+    [P_FACETS] = {"facets", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                   "set the directions between the interpolated normal's tangent plane and the pixel's own "
                   "triangle, which a smooth-shaded mesh hides from its normals (needs the G-buffer's facet "
                   "normals; off in a host's frame)",

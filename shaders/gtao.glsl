@@ -158,7 +158,9 @@ void main()
     vec2 centre, to_view;
     vec3 p, v, n;
     ob_slice_pixel(pix, d, view_normal, centre, p, v, n, to_view);
-    vec3 facet = gtao.facets != 0 ? ob_facet_normal(pix) : n;
+#ifdef OB_MARCH_FACETS
+    vec3 facet = ob_facet_normal(pix);
+#endif
     vec2 jit = ob_slice_jitters(pix, gtao.noise, noise_tile, vec2(gtao.slice_offset, gtao.step_offset));
     int slices = ob_slice_count(pix, gtao.slices, gtao.adaptive, gtao.adaptive_base, multiplier), steps = gtao.steps;
 
@@ -174,13 +176,17 @@ void main()
         /* The horizon starts at P's own triangle where it rises above the tangent (the facet
          * wedge, slice_march.glsl ob_facet_trace): below it AO_R's rays enter the surface. Its key
          * as ob_rise_key's, 1 - cos(rise) = y^2 / (r (r + x)) with x = cos > 0 here. */
-        bool wedge_pos = true;
-        vec2 trace = gtao.facets != 0 ? ob_facet_trace(s, n, facet, wedge_pos) : vec2(1.0, 0.0);
+#ifdef OB_MARCH_FACETS
+        bool wedge_pos;
+        vec2 trace = ob_facet_trace(s, n, facet, wedge_pos);
         float trace_r = length(trace);
         float wedge = trace.y > tan(OB_FACET_EPSILON) * trace.x && trace.x > 0.0
                           ? trace.y * trace.y / (trace_r * (trace_r + trace.x))
                           : 0.0;
         vec2 rise = wedge_pos ? vec2(wedge, 0.0) : vec2(0.0, wedge);
+#else
+        vec2 rise = vec2(0.0);
+#endif
         ob_gap gap_pos = ob_gap_none(), gap_neg = ob_gap_none();
         column_candidate cand_pos = column_candidate(vec3(0.0), 0.0), cand_neg = cand_pos;
         for (int j = 0; j < steps; ++j) {

@@ -32,7 +32,7 @@ OB_CONSTANTS_BEGIN(ob_gtao_constants, OB_BINDING_PASS)
                                  inside R occludes: slice_march.glsl ob_column_entry); 0 = none */
     OB_FLOAT full_reach;      /* the distance up to which an occluder's weight is 1: (1 - falloff) R */
     OB_FLOAT column_shell2;   /* (full_reach + column)^2: a front farther from P cannot reach the sphere */
-    OB_INT facets;            /* 1: each side's horizon starts at P's own triangle (OB_UNIT_FACET_NORMAL) */
+    OB_FLOAT pad0;            /* (the facet wedge `facets` is the program's: OB_MARCH_FACETS) */
 OB_CONSTANTS_END(ob_gtao_constants, gtao)
 OB_CONSTANTS_SIZE(ob_gtao_constants, 5 * 16);
 

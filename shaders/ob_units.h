@@ -40,8 +40,8 @@
  * depth itself where the frame has none) and the packed samples (methods/packed.c). */
 #define OB_UNIT_SECOND_DEPTH 6
 #define OB_UNIT_PACKED_SAMPLES 10
-/* vbao and vbgi: the G-buffer's facet normals (full resolution RG16F octahedral; the depth itself
- * where the frame has none, and then vb.facets is 0 and nothing reads it). */
+/* The slice methods' `facets` (OB_MARCH_FACETS): the G-buffer's facet normals (full resolution
+ * RG16F octahedral; the depth itself where the frame has none, and then no variant reads it). */
 #define OB_UNIT_FACET_NORMAL 11
 
 /* ssdo's extra view (Belonogov 2018 §4.4): its linear depth, normal (its own view space) and direct

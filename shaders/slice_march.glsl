@@ -250,10 +250,11 @@ float ob_layer_thickness(float z1, float z2, float d, float radius, float radius
     return z2 > 0.0 ? max(z2 - z1, spacing) : -1.0;
 }
 
+#ifdef OB_MARCH_FACETS
 /* The normal of P's own triangle: the G-buffer's facet normal (RG16F octahedral, written by
  * gbuffer.frag.glsl) of the full-resolution pixel AO texel pix came from, as ob_second_depth.
- * Bound by ob_slice_use (the depth itself where the frame has none: read only when the
- * method's `facets` constant says the frame has them). */
+ * The program variant of a method's `facets` (OB_SLICE_FACETS), made only for a frame that has
+ * them. */
 layout(binding = OB_UNIT_FACET_NORMAL) uniform sampler2D ob_facet_normals;
 
 vec3 ob_facet_normal(ivec2 pix)
@@ -261,6 +262,7 @@ vec3 ob_facet_normal(ivec2 pix)
     ivec2 full = clamp(pix * frame.ao_k + frame.ao_o, ivec2(0), textureSize(ob_facet_normals, 0) - 1);
     return ob_oct_decode(texelFetch(ob_facet_normals, full, 0).xy);
 }
+#endif
 
 /* A smooth-shaded mesh's facet wedge in slice s (docs/methods.md, "Facets of a smooth-shaded
  * mesh"): the directions between P's tangent (from its interpolated normal n, around which the
@@ -285,6 +287,11 @@ vec2 ob_facet_trace(ob_slice s, vec3 n, vec3 f, out bool positive)
  * each within 1e-3 rad), not a tilt: 0.23 deg, 4 % of a bitmask sector, a cosine measure under
  * 4e-6. */
 const float OB_FACET_EPSILON = 4e-3;
+
+/* The rise a sample's interval must pass to count on a side whose facet wedge rises `wedge` (0:
+ * none, every rise counts): the wedge's edge plus the normals' rounding (visibility_bitmask.glsl
+ * bitmask_step says why). */
+float ob_wedge_top(float wedge) { return wedge > 0.0 ? wedge + OB_FACET_EPSILON : 0.0; }
 
 /* The rise of a sample above a side's tangent t, as k = 1 - cos(rise) = 2 sin²(rise / 2): 0 for
  * none, up to 2 for a sample straight up the far side. In the slice's coordinates the sample is

@@ -27,8 +27,8 @@ OB_CONSTANTS_BEGIN(ob_vb_constants, OB_BINDING_PASS)
     OB_INT adaptive;          /* 1: per-pixel slices, adaptive_base x the multiplier (OB_UNIT_SLICE_MULTIPLIER) */
     OB_INT adaptive_base;     /*   the slices at multiplier 1 (SSDO thesis §4.1) */
     OB_INT layers;            /* 1: a sample's back is the second depth layer behind it (OB_UNIT_SECOND_DEPTH) */
-    OB_INT facets;            /* 1: the sectors between P's tangent and its own triangle's plane are set
-                                 (OB_UNIT_FACET_NORMAL; the joining rule, `connect`, is the program's) */
+    OB_INT pad0;              /* (the joining rule `connect` and the facet wedge `facets` are the
+                                 program's: OB_VB_CONNECT, OB_MARCH_FACETS) */
 OB_CONSTANTS_END(ob_vb_constants, vb)
 OB_CONSTANTS_SIZE(ob_vb_constants, 4 * 16);
 

@@ -300,9 +300,9 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
             float ro0 = ob_rise_angle_of(o0), ro1 = ob_rise_angle_of(o1);
             /* Clipped to the facet's wedge as the sample's own interval is (below). */
             vec2 outer = vec2(max(min(span.x, min(ro0, ro1)), wedge), max(span.y, max(ro0, ro1)));
-            ends = extend && outer.y > (wedge > 0.0 ? wedge + OB_FACET_EPSILON : 0.0)
-                       ? ob_sample_bits(outer.x, outer.y, s.ang_n, positive, OB_VB_COVERAGE)
-                       : 0u;
+            ends = extend && outer.y > ob_wedge_top(wedge) ? ob_sample_bits(outer.x, outer.y, s.ang_n, positive,
+                                                                            OB_VB_COVERAGE)
+                                                             : 0u;
             bool starts = extend && !(prev.solid && continuous);
             float ri0 = ob_rise_angle_of(f0 - e), ri1 = ob_rise_angle_of(b0 - e);
             span = starts ? vec2(min(span.x, min(ri0, ri1)), max(span.y, max(ri0, ri1))) : span;
@@ -316,9 +316,9 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
      * the wedge's edge but for rounding, and `touch` would round that up to the wedge's part
      * sector, which ob_wedge_rest counts exactly: such a step must rise past the facet normal's
      * rounding to count. */
-    float above = wedge > 0.0 ? wedge + OB_FACET_EPSILON : 0.0;
     span.x = max(span.x, wedge);
-    uint bits = solid && span.y > above ? ob_sample_bits(span.x, span.y, s.ang_n, positive, OB_VB_COVERAGE) : 0u;
+    uint bits = solid && span.y > ob_wedge_top(wedge) ? ob_sample_bits(span.x, span.y, s.ang_n, positive, OB_VB_COVERAGE)
+                                                      : 0u;
     prev = refine ? prev : ob_prev_step(w, dist_px, rise_front, solid, tangent, ends);
 #ifdef OB_VBGI
     /* The sender's direct radiance through the directions it is the first to occlude, only where
@@ -377,7 +377,9 @@ void main()
     vec2 centre, to_view;
     vec3 p, v, n;
     ob_slice_pixel(pix, d, view_normal, centre, p, v, n, to_view);
-    vec3 facet = vb.facets != 0 ? ob_facet_normal(pix) : n;
+#ifdef OB_MARCH_FACETS
+    vec3 facet = ob_facet_normal(pix);
+#endif
     vec2 jit = ob_slice_jitters(pix, vb.noise, noise_tile, vec2(vb.slice_offset, vb.step_offset));
     int slices = ob_slice_count(pix, vb.slices, vb.adaptive, vb.adaptive_base, multiplier), steps = vb.steps;
     bool cosine = vb.weighting == OB_DIRECTIONS_MODE_COSINE;
@@ -397,10 +399,15 @@ void main()
         }
         /* P's own triangle's wedge first: a sample inside it sets no fresh sector (vbgi: P's own
          * surface sends it nothing). */
-        bool wedge_pos = true;
-        float wedge = vb.facets != 0 ? ob_facet_wedge(s, n, facet, wedge_pos) : 0.0;
+#ifdef OB_MARCH_FACETS
+        bool wedge_pos;
+        float wedge = ob_facet_wedge(s, n, facet, wedge_pos);
         vec2 wedges = wedge_pos ? vec2(wedge, 0.0) : vec2(0.0, wedge);
         uint mask = ob_wedge_bits(wedge, s.ang_n, wedge_pos);
+#else
+        const vec2 wedges = vec2(0.0);
+        uint mask = 0u;
+#endif
         vec2 rise = vec2(0.0);
         ob_gap gap_pos = ob_gap_none(), gap_neg = ob_gap_none();
         vec3 slice_bounce = vec3(0.0);
@@ -434,7 +441,11 @@ void main()
         }
         /* The open half circle's cosine measure: â(n + π/2) + â(n - π/2) = cos n + n sin n. */
         float open = s.cos_n + s.ang_n * s.sin_n;
+#ifdef OB_MARCH_FACETS
         float rest = ob_wedge_rest(wedge, s.ang_n, s.cos_n, s.sin_n, wedge_pos, mask, cosine);
+#else
+        const float rest = 0.0;
+#endif
         if (cosine) {
             visible += s.len_n * (open - ob_bits_measure(mask, s.ang_n, s.cos_n, s.sin_n) - rest);
             total += s.len_n * open;

@@ -104,7 +104,6 @@ static void fill_constants(ob_gtao_constants *c, const float *params, const ob_s
     c->max_mip = c->depth_mips ? sf->max_mip : 0; /* level 0 only: the unit holds the depth itself */
     c->bent_normals = params[P_BENT_NORMALS] != 0.0f ? 1 : 0;
     c->layers = params[P_LAYERS] >= 2.0f ? 1 : 0;
-    c->facets = params[P_FACETS] != 0.0f ? 1 : 0;
 }
 
 /* The depth MIP chain only when asked for: the full-resolution path stays the baseline. */
@@ -127,12 +126,12 @@ static ob_error gtao_run(void *p, const ob_ao_inputs *in, const float *params, c
     const ob_slice_frame sf = ob_slice_frame_make(in);
     fill_constants(&c, params, &sf);
     c.layers = c.layers && in->second_depth ? 1 : 0; /* ob_compute_ao has no second layer */
-    c.facets = c.facets && in->facet_normal ? 1 : 0;  /* nor a host's frame facet normals */
+    const bool facets = params[P_FACETS] != 0.0f && in->facet_normal; /* a host's frame has none */
     c.bent_normals = c.bent_normals && out->bent_normal ? 1 : 0;
     /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
     ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
     const unsigned features = (c.depth_mips ? OB_SLICE_MIPS : 0u) | (c.layers ? OB_SLICE_LAYERS : 0u) |
-                              (c.bent_normals ? OB_SLICE_BENT : 0u);
+                              (c.bent_normals ? OB_SLICE_BENT : 0u) | (facets ? OB_SLICE_FACETS : 0u);
     ob_error err = ob_slice_use(&s->kit, s->variants, "gtao.glsl", features, &c, sizeof c, in, out);
     if (err != OB_OK) return err;
     if (c.bent_normals)

@@ -253,7 +253,9 @@ enum {
      * slower so than a program doing more than chord without the curve's code (docs/methods.md,
      * "What the curve costs on a GPU"). */
     OB_SLICE_CONNECT_SHIFT = 6,
-    OB_SLICE_VARIANTS = 256
+    /* OB_MARCH_FACETS: the facet wedge (gtao, vbao, vbgi `facets`: the G-buffer's facet normals). */
+    OB_SLICE_FACETS = 256,
+    OB_SLICE_VARIANTS = 512
 };
 /* The run of a slice method after its constants are filled: the kit's uploads and bindings, the
  * program for `features` (OB_SLICE_*: the kit's own for none, else a variant of `shader` made on

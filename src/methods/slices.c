@@ -71,7 +71,9 @@ ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], co
         if (features & OB_SLICE_LAYERS) strcat(defines, "#define OB_MARCH_LAYERS 1\n");
         if (features & OB_SLICE_BENT) strcat(defines, "#define OB_GTAO_BENT 1\n");
         if (features & OB_SLICE_PACKED) strcat(defines, "#define OB_MARCH_PACKED 1\n");
-        const unsigned coverage = (features >> OB_SLICE_COVERAGE_SHIFT) & 3u, connect = features >> OB_SLICE_CONNECT_SHIFT;
+        if (features & OB_SLICE_FACETS) strcat(defines, "#define OB_MARCH_FACETS 1\n");
+        const unsigned coverage = (features >> OB_SLICE_COVERAGE_SHIFT) & 3u,
+                       connect = (features >> OB_SLICE_CONNECT_SHIFT) & 3u;
         char line[48];
         if (coverage) {
             snprintf(line, sizeof line, "#define OB_VB_COVERAGE %u\n", coverage);
@@ -90,6 +92,7 @@ ob_error ob_slice_use(ob_method_kit *kit, GLuint variants[OB_SLICE_VARIANTS], co
     /* The second depth layer (full resolution); the depth itself keeps the sampler valid when the
      * frame has none, and then no variant reads it. */
     glBindTextureUnit(OB_UNIT_SECOND_DEPTH, in->second_depth ? in->second_depth : in->linear_depth);
+    /* The facet normals likewise (only the OB_SLICE_FACETS variants read them). */
     glBindTextureUnit(OB_UNIT_FACET_NORMAL, in->facet_normal ? in->facet_normal : in->linear_depth);
     return OB_OK;
 }

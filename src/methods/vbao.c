@@ -141,7 +141,6 @@ static void fill_constants(ob_vb_constants *c, const float *params, bool gi, con
     c->mip_scale = sf->mip_scale;
     c->max_mip = params[P_DEPTH_MIPS] != 0.0f ? sf->max_mip : 0;
     c->emitter_cosine = gi && params[P_EMITTER_COSINE] != 0.0f ? 1 : 0;
-    c->facets = params[P_FACETS] != 0.0f ? 1 : 0;
 }
 
 static ob_error vbao_init(void *p)
@@ -193,12 +192,12 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
     const ob_slice_frame sf = ob_slice_frame_make(in);
     fill_constants(&c, params, s->gi, &sf);
     c.layers = c.layers && in->second_depth ? 1 : 0; /* ob_compute_ao has no second layer */
-    c.facets = c.facets && in->facet_normal ? 1 : 0;  /* nor a host's frame facet normals */
+    const bool facets = params[P_FACETS] != 0.0f && in->facet_normal; /* a host's frame has none */
     /* Adaptive sample counts: the slices scale with the edge pass's multiplier. */
     ob_slice_adaptive(in, c.slices, &c.adaptive, &c.adaptive_base);
     const bool packed = s->gi && c.max_mip == 0 && ob_packed_samples_wanted(&s->packed, params[P_PACKED]);
     const unsigned features = (c.max_mip > 0 ? OB_SLICE_MIPS : 0u) | (c.layers ? OB_SLICE_LAYERS : 0u) |
-                              (packed ? OB_SLICE_PACKED : 0u) |
+                              (packed ? OB_SLICE_PACKED : 0u) | (facets ? OB_SLICE_FACETS : 0u) |
                               (unsigned)params[P_COVERAGE] << OB_SLICE_COVERAGE_SHIFT |
                               (unsigned)params[P_CONNECT] << OB_SLICE_CONNECT_SHIFT;
     if (packed) {

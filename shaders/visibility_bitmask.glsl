@@ -278,21 +278,41 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
              *    joined steps ends, the surface goes on, on average, half a stratum past its last
              *    step: a sparse march puts the top edge of every occluder one step's jitter too
              *    low, and the start of a run as far too late. So a run's first step adds the inner
-             *    half of its stratum and its last step the outer half: h pixels' world length at
-             *    the sample's depth, laid along its surface's tangent, the outer ends within R.
-             *    With the steps jittered uniformly in their strata, the extended run's end is
-             *    where the surface ends, on average, at every step count. Laid along the surface
-             *    and not across the view ray, the extension never leaves a plane; not stretched to
-             *    cover the stratum's whole projection on a surface seen edge-on (up to
-             *    CONTINUOUS_STRETCH x, as the join allows), which darkened a wedge of cornell's
-             *    side wall, seen edge-on (cornell:front 0.0297 against 0.0268, both with
-             *    coverage=half: docs/methods.md). */
+             *    half of its stratum and its last step the outer half, laid along its surface's
+             *    tangent, the outer ends within R. With the steps jittered uniformly in their
+             *    strata, the extended run's end is where the surface ends, on average, at every
+             *    step count. Laid along the surface and not across the view ray, the extension
+             *    never leaves a plane.
+             * 3. A run's inner half is h pixels of the screen, so on the surface it is the length
+             *    whose projection is h pixels: h pixels' world length at the sample's depth over
+             *    the sine between the tangent and the view ray (a floor or a wall seen at a
+             *    grazing angle holds much more surface in a pixel than one facing the camera), up
+             *    to CONTINUOUS_STRETCH times (the join's own bound on a surface's slope), and no
+             *    farther than the gap back to the march's previous step, or its start 1.5 px
+             *    out: that step saw something else, or P's own surface, so the run began after
+             *    it. Without the stretch a run's start covered only that sine's part of its
+             *    stratum: a sphere's underside over its floor read 0.06 too open at the low preset
+             *    (docs/methods.md, "Each step's stratum on the screen"). Without the bound a first
+             *    step jittered close to P reached past P, and a sheet beside P (cornell's light
+             *    under its ceiling) set a whole side. The outer half is not stretched: nothing the
+             *    march saw bounds it, and along the tangent of a smoothed normal (a low-poly
+             *    model shaded smooth) three times the length left the surface by three times as
+             *    much: test_vbao's smoothed cube went from RMSE 0.066 to 0.102.
+             *    Either half is turned outward by the sign of its screen motion, its cross
+             *    product with the view ray (the sample's own offset from P has the outward
+             *    sign), not by its dot with a screen step at constant depth: on a wall seen
+             *    edge-on off the screen's centre the two disagree. */
             float h = 0.5 * max(s.radius_px - 1.5, 0.0) / float(vb.steps);
-            /* The screen step away from P on this side (t is -t_pos on side -, and the step
-             * -dir): it orients the tangent outward. */
-            vec2 out_dir = positive ? s.across : vec2(s.across.x, -s.across.y);
-            vec2 te = dot(tangent, out_dir) < 0.0 ? -tangent : tangent;
+            vec2 ray_dir = ray * inversesqrt(max(dot(ray, ray), 1e-20));
+            float sin_tr = ray_dir.x * tangent.y - ray_dir.y * tangent.x;
+            float out_side = ray_dir.x * f0.y - ray_dir.y * f0.x;
+            vec2 te = sin_tr * out_side < 0.0 ? -tangent : tangent;
             vec2 e = te * (h * ob_pixel_world(max(-sv.z, 1e-20), -p.z, vb.radius, s.radius_px));
+            /* The inner half: stretched to h pixels of screen (h stretch |sin| of them after the
+             * stretch), within the gap to the previous step. */
+            float stretch = min(1.0 / max(abs(sin_tr), 1e-6), CONTINUOUS_STRETCH);
+            float gap_px = max(dist_px - max(prev.px, 1.5), 0.0);
+            vec2 e_in = e * (stretch * min(1.0, gap_px / max(h * stretch * abs(sin_tr), 1e-6)));
             vec2 b0 = front + thick * ray, o0 = f0 + e, o1 = b0 + e;
             float r2_max = vb.radius * vb.radius;
             o0 = dot(o0, o0) > r2_max ? f0 : o0;
@@ -304,7 +324,7 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
                                                                             OB_VB_COVERAGE)
                                                              : 0u;
             bool starts = extend && !(prev.solid && continuous);
-            float ri0 = ob_rise_angle_of(f0 - e), ri1 = ob_rise_angle_of(b0 - e);
+            float ri0 = ob_rise_angle_of(f0 - e_in), ri1 = ob_rise_angle_of(b0 - e_in);
             span = starts ? vec2(min(span.x, min(ri0, ri1)), max(span.y, max(ri0, ri1))) : span;
         }
     }

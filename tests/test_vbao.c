@@ -622,6 +622,79 @@ static void check_joined_steps(ob_context *ctx)
     }
 }
 
+/* A run's inner half on the screen (shaders/visibility_bitmask.glsl, bitmask_step, its 3.): it
+ * covers h pixels of the screen, so on a surface seen at a grazing angle it is stretched along the
+ * surface (up to 3x), and it stops at the march's previous step. Two checks:
+ * - sphere-on-plane's underside, where the floor below is seen at a grazing angle: the drift of
+ *   the mean AO from 2 x 3 to 4 x 8 steps over the pixels facing down falls below half the
+ *   chord's (measured on llvmpipe: 0.044 against 0.103; before the stretch 0.070);
+ * - cornell's light patch, 0.8 mm below its ceiling: from a point of the ceiling beside it, a first
+ *   step jittered close to P on the patch reached past P when stretched without the bound, and the
+ *   patch, almost in P's plane, set a whole side of the slice (0.17 on a line of pixels 3 cm in
+ *   front of it). The patch and the ceiling 5 cm round it must read open, as AO_R does but for
+ *   the patch's sliver. */
+static void check_stratum_on_screen(ob_context *ctx)
+{
+    const char *modes[2] = {"vbao.connect=chord", "vbao.connect=ends"};
+    double drift[2] = {0.0, 0.0};
+    ob_scene *sphere = ob_load_scene(&(ob_scene_desc){.name = "sphere-on-plane"});
+    CHECK(sphere != NULL, "sphere-on-plane scene");
+    for (int c = 0; sphere && c < 2; ++c) {
+        const char *sparse[] = {"vbao.slices=2", "vbao.steps=3", modes[c], NULL};
+        const char *dense[] = {"vbao.slices=4", "vbao.steps=8", modes[c], NULL};
+        ob_settings s0, s1;
+        frame f0, f1;
+        if (!settings_for(&s0, "vbao", sparse) || !settings_for(&s1, "vbao", dense) ||
+            !render_frame(ctx, sphere, "contact", &s0, OB_IMAGE_AO_RAW_F32, &f0))
+            break;
+        if (!render_frame(ctx, sphere, "contact", &s1, OB_IMAGE_AO_RAW_F32, &f1)) {
+            frame_free(&f0);
+            break;
+        }
+        int count = 0;
+        for (size_t i = 0; i < (size_t)W * H; ++i)
+            if (f0.depth[i] > 0.0f && f0.wn[3 * i + 1] < -0.6f) {
+                drift[c] += f0.img[i] - f1.img[i];
+                ++count;
+            }
+        drift[c] /= count > 0 ? count : 1;
+        CHECK(count > 100, "sphere-on-plane:contact shows the sphere's underside: %d pixels", count);
+        frame_free(&f0);
+        frame_free(&f1);
+    }
+    ob_destroy_scene(sphere);
+    printf("  sphere-on-plane:contact's underside, mean AO of 2 x 3 steps minus 4 x 8: %.4f chord, %.4f ends\n",
+           drift[0], drift[1]);
+    CHECK(drift[0] > 0.0 && drift[1] < 0.5 * drift[0], "the runs' starts stretched over their strata on the "
+          "screen drift less than half the chord's (%.4f against %.4f)", drift[1], drift[0]);
+
+    ob_scene *box = ob_load_scene(&(ob_scene_desc){.name = "cornell"});
+    CHECK(box != NULL, "cornell scene");
+    const char *sparse[] = {"vbao.slices=2", "vbao.steps=3", NULL};
+    ob_settings s;
+    frame f;
+    if (box && settings_for(&s, "vbao", sparse) && render_frame(ctx, box, "front", &s, OB_IMAGE_AO_RAW_F32, &f)) {
+        double sum = 0.0, least = 1.0;
+        int count = 0;
+        for (size_t i = 0; i < (size_t)W * H; ++i) {
+            const float *q = &f.pos[3 * i];
+            /* The patch spans x 0.213-0.343 m, z 0.227-0.332 m: it and the ceiling 5 cm round it. */
+            float dx = fmaxf(fmaxf(0.213f - q[0], q[0] - 0.343f), 0.0f), dz = fmaxf(fmaxf(0.227f - q[2], q[2] - 0.332f), 0.0f);
+            float d = sqrtf(dx * dx + dz * dz);
+            if (f.depth[i] <= 0.0f || f.wn[3 * i + 1] > -0.9f || q[1] < 0.54f || d >= 0.05f) continue;
+            sum += f.img[i];
+            least = fmin(least, f.img[i]);
+            ++count;
+        }
+        printf("  cornell:front, the light patch and the ceiling 5 cm round it (%d pixels), 2 x 3 steps: mean AO %.4f, "
+               "least %.4f\n", count, count ? sum / count : 0.0, least);
+        CHECK(count > 20 && sum / count > 0.95 && least > 0.5, "the light and the ceiling beside it read open: mean %.4f, "
+              "least %.4f", count ? sum / count : 0.0, least);
+        frame_free(&f);
+    }
+    ob_destroy_scene(box);
+}
+
 /* vbgi's `packed` on against off: the march reads the same depth and the bounce the same normal
  * and radiance, from one packed texel (shaders/sample_pack.glsl) instead of three textures, so AO
  * and bounce must be the same bits: at full and half AO resolution, and with the second layer. */
@@ -850,6 +923,7 @@ int main(void)
     check_second_layer(ctx);
     check_grille_layers(ctx);
     check_joined_steps(ctx);
+    check_stratum_on_screen(ctx);
     /* The bitmask with the second layer as each sample's back (ob_layer_thickness: at least the
      * steps' spacing): the thin slab's true 2 cm, thinner than the 0.375 m default, lets the
      * light under it that AO_R sees (measured +0.006 from AO_R against the default's -0.021).

@@ -320,7 +320,7 @@ for k in ("radius", "bias", "intensity", "samples"):
     assert k in p, k
     assert p[k]["min"] <= p[k]["default"] <= p[k]["max"], p[k]
 scenes = [s["name"] for s in d["builtin_scenes"]]
-assert scenes == ["cornell", "corner", "sphere-on-plane", "slab", "bleed", "grille"], scenes
+assert scenes == ["cornell", "corner", "sphere-on-plane", "slab", "bleed", "grille", "vent"], scenes
 assert "bunny" in d["named_scenes"] and "fzk-haus" in d["named_scenes"], d["named_scenes"]
 PY
 then ok; else bad "list --json"; fi

@@ -156,13 +156,13 @@ static bool bounds_sane(const ob_scene_stats *st)
 
 static void test_builtins(void)
 {
-    CHECK(ob_builtin_scene_count() == 6, "6 built-in scenes, got %d", ob_builtin_scene_count());
+    CHECK(ob_builtin_scene_count() == 7, "7 built-in scenes, got %d", ob_builtin_scene_count());
     for (int i = 0; i < ob_builtin_scene_count(); ++i) {
         CHECK(ob_builtin_scene_name(i) && ob_builtin_scene_description(i) &&
                   ob_builtin_scene_description(i)[0],
               "built-in %d has a name and a description", i);
     }
-    CHECK(ob_builtin_scene_name(6) == NULL, "built-in name out of range is NULL");
+    CHECK(ob_builtin_scene_name(7) == NULL, "built-in name out of range is NULL");
 
     const struct {
         const char *name;
@@ -185,6 +185,9 @@ static void test_builtins(void)
         /* floor 16 x 16 quads; 11 x 11 cells less 25 holes per face: the sheet's one face, the
          * closed plate's top and bottom, 4 walls per hole and its 4-quad rim */
         {"grille", 512u + 3u * 192u + 25u * 8u + 8u, {-4.0f, 0.0f, -4.0f}, {4.0f, 0.49f, 4.0f}, 0.5f, "front"},
+        /* floor 16 x 16 quads; the wall's 8 front quads, the recess's 5 and the box's 5; the
+         * vent's 11 x 7 cells less 15 holes */
+        {"vent", 512u + 2u * 18u + 2u * 62u, {-4.0f, 0.0f, -4.0f}, {4.0f, 2.0f, 4.0f}, 0.5f, "front"},
     };
     for (size_t k = 0; k < sizeof expect / sizeof expect[0]; ++k) {
         ob_scene *s = load(expect[k].name, NULL, OB_UP_DEFAULT);
@@ -1327,7 +1330,7 @@ static void test_parts(void)
         if (!s || s->mesh_count != 1) continue;
         const ob_mesh *m = &s->meshes[0];
         float *labels = malloc((size_t)m->vertex_count * sizeof(float));
-        int64_t parts = labels ? ob_mesh_part_labels(m, 0u, labels) : -1;
+        int64_t parts = labels ? ob_mesh_part_labels(m, 0u, labels, NULL) : -1;
         CHECK(parts == 3, "%s: %lld parts (floor and two solids or sheets), expected 3", names[k], (long long)parts);
         /* Every triangle's corners share a label, and the floor (y = 0) has its own. */
         int split = 0, floor_label = -1, floor_mixed = 0;
@@ -1340,7 +1343,7 @@ static void test_parts(void)
         }
         CHECK(split == 0 && floor_mixed == 0, "%s: %d triangles across parts, %d floor triangles off the floor's part",
               names[k], split, floor_mixed);
-        int64_t again = labels ? ob_mesh_part_labels(m, OB_PART_LABELS - 1u, labels) : -1;
+        int64_t again = labels ? ob_mesh_part_labels(m, OB_PART_LABELS - 1u, labels, NULL) : -1;
         float lo = 1e9f, hi = 0.0f;
         for (uint32_t v = 0; labels && v < m->vertex_count; ++v) {
             float l = labels[v] >= (float)OB_PART_SHEET ? labels[v] - (float)OB_PART_SHEET : labels[v]; /* a sheet's flag off */
@@ -1358,19 +1361,25 @@ static void test_parts(void)
 /* A 2 x 2 square frame with a 1 x 1 hole at height y, one part in a mesh of its own (8 corners,
  * 8 triangles): a flat part whose open edges form two loops, a sheet candidate. `bend` lifts one
  * outer corner off the plane. */
-static void add_frame(ob_scene *s, float y, float bend)
+static void add_frame_scaled(ob_scene *s, float y, float bend, float scale)
 {
     ob_mesh *m = ob_scene_add_mesh(s, 8, 24, false);
     if (!m) return;
     static const float xz[8][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-0.5f, -0.5f}, {0.5f, -0.5f}, {0.5f, 0.5f}, {-0.5f, 0.5f}};
     for (int v = 0; v < 8; ++v) {
-        m->positions[3 * v] = xz[v][0], m->positions[3 * v + 1] = y + (v == 0 ? bend : 0.0f), m->positions[3 * v + 2] = xz[v][1];
+        m->positions[3 * v] = scale * xz[v][0], m->positions[3 * v + 1] = y + (v == 0 ? bend : 0.0f),
+        m->positions[3 * v + 2] = scale * xz[v][1];
         m->normals[3 * v] = 0.0f, m->normals[3 * v + 1] = 1.0f, m->normals[3 * v + 2] = 0.0f;
     }
     for (uint32_t k = 0; k < 4; ++k) { /* each side of the frame: outer k, k+1 and inner k, k+1 */
         uint32_t a = k, b = (k + 1u) % 4u, c = 4u + (k + 1u) % 4u, d = 4u + k, *ix = &m->indices[6u * k];
         ix[0] = a, ix[1] = b, ix[2] = c, ix[3] = a, ix[4] = c, ix[5] = d;
     }
+}
+
+static void add_frame(ob_scene *s, float y, float bend)
+{
+    add_frame_scaled(s, y, bend, 1.0f);
 }
 
 /* A 0.5 m box standing on y = 0 at the origin, in a mesh of its own: its bottom corners lie on
@@ -1397,26 +1406,28 @@ static void add_box(ob_scene *s)
 static int count_sheets(ob_scene *s)
 {
     float *labels[8] = {0};
+    ob_holes holes[8] = {{0}};
     int sheets = -1;
     bool ok = s->mesh_count <= 8;
     for (int m = 0; ok && m < s->mesh_count; ++m) {
         labels[m] = malloc((size_t)s->meshes[m].vertex_count * sizeof(float));
-        ok = labels[m] && ob_mesh_part_labels(&s->meshes[m], 0u, labels[m]) >= 0;
+        ok = labels[m] && ob_mesh_part_labels(&s->meshes[m], 0u, labels[m], &holes[m]) >= 0;
     }
-    if (ok) sheets = ob_scene_settle_sheets(s, labels);
+    if (ok) sheets = ob_scene_settle_sheets(s, labels, holes);
     /* What is left marked is the sheets, each vertex of them. */
     int marked = 0;
     for (int m = 0; ok && m < s->mesh_count; ++m)
         for (uint32_t v = 0; v < s->meshes[m].vertex_count; ++v) marked += labels[m][v] >= (float)OB_PART_SHEET;
     CHECK(!ok || (sheets == 0) == (marked == 0), "%s: %d sheets, %d vertices marked", s->name, sheets, marked);
-    for (int m = 0; m < 8; ++m) free(labels[m]);
+    for (int m = 0; m < 8; ++m) free(labels[m]), free(holes[m].items);
     return sheets;
 }
 
 /* Which parts are sheets (scene/parts.c, scene/sheets.c): a flat part with holes that nothing
- * stands in. The grille's drilled sheet is one; its closed plate and its floor are not. A frame
- * is one alone and over a floor far below it; bent off its plane, or with a box standing in its
- * hole (a Quake map's floor around a pillar), it is not; nor is a plain quad (one loop). */
+ * stands in. The grille's drilled sheet is one; its closed plate and its floor are not; the vent's
+ * grille is one, though the wall touches its outline. A frame is one alone, over a floor far below
+ * it and flush in a wall; bent off its plane, or with a box standing in its hole (a Quake map's
+ * floor around a pillar), it is not; nor is a plain quad (one loop). */
 static void test_sheets(void)
 {
     ob_scene *g = load("grille", NULL, OB_UP_DEFAULT);
@@ -1424,7 +1435,9 @@ static void test_sheets(void)
     if (g) {
         const ob_mesh *m = &g->meshes[0];
         float *labels = malloc((size_t)m->vertex_count * sizeof(float));
-        int sheets = labels && ob_mesh_part_labels(m, 0u, labels) >= 0 ? ob_scene_settle_sheets(g, &labels) : -1;
+        ob_holes holes = {0};
+        int sheets = labels && ob_mesh_part_labels(m, 0u, labels, &holes) >= 0 ? ob_scene_settle_sheets(g, &labels, &holes) : -1;
+        free(holes.items);
         int wrong = 0, on_sheet = 0;
         for (uint32_t v = 0; labels && v < m->vertex_count; ++v) {
             const float *p = &m->positions[3u * v];
@@ -1437,21 +1450,48 @@ static void test_sheets(void)
         free(labels);
         ob_destroy_scene(g);
     }
+    /* A wall round the frame, flush in its plane: a frame of twice the size in a mesh of its own,
+     * whose hole is the frame's outline. It touches the frame along the outline alone and leaves
+     * it a sheet (a vent set into a wall); the frame lies in the wall's hole, so the wall is not. */
     struct {
         const char *name;
         float bend;
-        bool box;
+        bool box, wall;
         int sheets;
-    } cases[] = {{"frame", 0.0f, false, 1}, {"bent frame", 0.2f, false, 0}, {"frame round a box", 0.0f, true, 0}};
-    for (int k = 0; k < 3; ++k) {
+    } cases[] = {{"frame", 0.0f, false, false, 1},
+                 {"bent frame", 0.2f, false, false, 0},
+                 {"frame round a box", 0.0f, true, false, 0},
+                 {"frame flush in a wall", 0.0f, false, true, 1}};
+    for (int k = 0; k < 4; ++k) {
         ob_scene *s = ob_scene_alloc(cases[k].name);
         add_frame(s, 0.0f, cases[k].bend);
         if (cases[k].box) add_box(s);
+        if (cases[k].wall) add_frame_scaled(s, 0.0f, 0.0f, 2.0f);
         ob_scene_finish(s);
         int got = count_sheets(s);
         CHECK(got == cases[k].sheets, "%s: %d sheets, expected %d", cases[k].name, got, cases[k].sheets);
         ob_destroy_scene(s);
     }
+    ob_scene *vent = load("vent", NULL, OB_UP_DEFAULT);
+    CHECK(vent && vent->mesh_count == 3 && count_sheets(vent) == 1, "vent: one sheet (the grille; not the wall or floor)");
+    if (vent && vent->mesh_count == 3) { /* build_vent: floor, wall, then the grille: only the grille's vertices marked */
+        float *labels[3] = {0};
+        ob_holes holes[3] = {{0}};
+        bool ok = true;
+        for (int m = 0; m < 3; ++m) {
+            labels[m] = malloc((size_t)vent->meshes[m].vertex_count * sizeof(float));
+            ok = ok && labels[m] && ob_mesh_part_labels(&vent->meshes[m], 0u, labels[m], &holes[m]) >= 0;
+        }
+        ok = ok && ob_scene_settle_sheets(vent, labels, holes) == 1;
+        int marked[3] = {0, 0, 0};
+        for (int m = 0; ok && m < 3; ++m)
+            for (uint32_t v = 0; v < vent->meshes[m].vertex_count; ++v) marked[m] += labels[m][v] >= (float)OB_PART_SHEET;
+        CHECK(ok && marked[0] == 0 && marked[1] == 0 && marked[2] == (int)vent->meshes[2].vertex_count,
+              "vent: the grille's %d of %u vertices marked, the floor's %d and the wall's %d", marked[2],
+              vent->meshes[2].vertex_count, marked[0], marked[1]);
+        for (int m = 0; m < 3; ++m) free(labels[m]), free(holes[m].items);
+    }
+    ob_destroy_scene(vent);
     /* One loop: slab's floor, a plain 8 m quad grid, is no candidate. */
     ob_scene *slab = load("slab", NULL, OB_UP_DEFAULT);
     CHECK(slab && count_sheets(slab) == 0, "slab: no sheet");

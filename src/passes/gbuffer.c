@@ -110,15 +110,18 @@ static void release_scene(ob_gbuffer *g)
 static float **scene_part_labels(const ob_scene *scene)
 {
     float **labels = calloc((size_t)scene->mesh_count + 1, sizeof *labels);
+    ob_holes *holes = calloc((size_t)scene->mesh_count + 1, sizeof *holes);
     uint32_t parts = 0;
-    bool ok = labels != NULL;
+    bool ok = labels != NULL && holes != NULL;
     for (int i = 0; ok && i < scene->mesh_count; ++i) {
         labels[i] = malloc((size_t)scene->meshes[i].vertex_count * sizeof(float) + 1);
-        int64_t found = labels[i] ? ob_mesh_part_labels(&scene->meshes[i], parts, labels[i]) : -1;
+        int64_t found = labels[i] ? ob_mesh_part_labels(&scene->meshes[i], parts, labels[i], &holes[i]) : -1;
         ok = found >= 0;
         if (ok) parts += (uint32_t)(found % OB_PART_LABELS);
     }
-    if (ok) ok = ob_scene_settle_sheets(scene, labels) >= 0;
+    if (ok) ok = ob_scene_settle_sheets(scene, labels, holes) >= 0;
+    for (int i = 0; holes && i < scene->mesh_count; ++i) free(holes[i].items);
+    free(holes);
     if (!ok && labels) {
         for (int i = 0; i < scene->mesh_count; ++i) free(labels[i]);
         free(labels);

@@ -24,6 +24,8 @@ static const struct {
     {"bleed", "a red wall standing on a white floor, both lit (one-bounce colour bleeding)"},
     {"grille", "two plates drilled with 25 square holes floating 45 cm above a floor: a single sheet and a "
                "closed 4 cm plate (through-holes, second depth layer)"},
+    {"vent", "a grille of 15 square holes set flush into a wall, in front of a 40 cm deep recess (a thin "
+             "part touching another in its own plane, second depth layer)"},
 };
 
 #define BUILTIN_COUNT ((int)(sizeof builtins / sizeof builtins[0]))
@@ -441,8 +443,8 @@ static void geo_floor(geo *g)
     geo_grid(g, o, ux, uz, 16, 16, up);
 }
 
-/* The end of `slab` and `grille`: their one mesh, R = 0.5 m and the key light from the front,
- * above and right. False when the mesh could not be made (geo_emit set the error). */
+/* The end of `slab`, `grille` and `vent`: their (last) mesh, R = 0.5 m and the key light from the
+ * front, above and right. False when the mesh could not be made (geo_emit set the error). */
 static bool finish_floor_scene(ob_scene *s, geo *g, int material)
 {
     if (!geo_emit(g, s, material)) return false;
@@ -548,6 +550,85 @@ static bool build_grille(ob_scene *s)
     return ob_scene_add_camera(s, &front) && ob_scene_add_camera(s, &top);
 }
 
+/* ---- vent ------------------------------------------------------------------------------------ */
+
+/* The vent's opening in the wall z = 0: 11 x 7 cells of 8 cm from (VENT_X0, VENT_Y0), 0.88 m by
+ * 0.56 m; its holes are the cells with both indices odd (5 x 3). */
+#define VENT_X0 (-0.44f)
+#define VENT_Y0 0.5f
+#define VENT_CELL 0.08f
+#define VENT_DEPTH 0.4f
+
+/* A wall 4 m long, 2 m high and 0.6 m thick standing on the floor, its front face z = 0 with the
+ * vent's opening, and behind the opening a recess VENT_DEPTH deep: one closed solid (its front
+ * face meets the recess at the opening's rim). */
+static void vent_wall(geo *g)
+{
+    const float xs[4] = {-2.0f, VENT_X0, VENT_X0 + 11.0f * VENT_CELL, 2.0f};
+    const float ys[4] = {0.0f, VENT_Y0, VENT_Y0 + 7.0f * VENT_CELL, 2.0f};
+    const float pz[3] = {0.0f, 0.0f, 1.0f}, mz[3] = {0.0f, 0.0f, -1.0f};
+    const float px[3] = {1.0f, 0.0f, 0.0f}, mx[3] = {-1.0f, 0.0f, 0.0f};
+    const float py[3] = {0.0f, 1.0f, 0.0f}, my[3] = {0.0f, -1.0f, 0.0f};
+    /* The front: 3 x 3 quads round the opening, which is the middle one. */
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) {
+            if (i == 1 && j == 1) continue;
+            const float o[3] = {xs[i], ys[j], 0.0f};
+            const float u[3] = {xs[i + 1] - xs[i], 0.0f, 0.0f}, v[3] = {0.0f, ys[j + 1] - ys[j], 0.0f};
+            geo_grid(g, o, u, v, 1, 1, pz);
+        }
+    /* The recess: four sides facing into it and its back. */
+    const float w = xs[2] - xs[1], h = ys[2] - ys[1];
+    const float ux[3] = {w, 0.0f, 0.0f}, uy[3] = {0.0f, h, 0.0f}, uz[3] = {0.0f, 0.0f, -VENT_DEPTH};
+    const float lo[3] = {xs[1], ys[1], 0.0f}, right[3] = {xs[2], ys[1], 0.0f}, top[3] = {xs[1], ys[2], 0.0f};
+    const float back[3] = {xs[1], ys[1], -VENT_DEPTH};
+    geo_grid(g, lo, uy, uz, 1, 1, px);
+    geo_grid(g, right, uy, uz, 1, 1, mx);
+    geo_grid(g, lo, ux, uz, 1, 1, py);
+    geo_grid(g, top, ux, uz, 1, 1, my);
+    geo_grid(g, back, ux, uy, 1, 1, pz);
+    /* The rest of the box: back, top, ends and bottom. */
+    const float b_lo[3] = {-2.0f, 0.0f, -0.6f}, b_top[3] = {-2.0f, 2.0f, -0.6f}, b_end[3] = {2.0f, 0.0f, -0.6f};
+    const float long_x[3] = {4.0f, 0.0f, 0.0f}, tall[3] = {0.0f, 2.0f, 0.0f}, deep[3] = {0.0f, 0.0f, 0.6f};
+    geo_grid(g, b_lo, long_x, tall, 1, 1, mz);
+    geo_grid(g, b_top, long_x, deep, 1, 1, py);
+    geo_grid(g, b_lo, tall, deep, 1, 1, mx);
+    geo_grid(g, b_end, tall, deep, 1, 1, px);
+    geo_grid(g, b_lo, long_x, deep, 1, 1, my);
+}
+
+/* A vent grille set flush into a wall, in a mesh of its own (a metal part in a plaster wall, as
+ * models give them): a single sheet with 15 square 8 cm holes, its outline on the rim of the
+ * wall's opening, and behind it a recess 0.8 R deep. The sheet touches the wall in its own plane
+ * along its whole outline: the first rule for sheets (scene/sheets.c) read anything touching a
+ * candidate in its plane as a solid standing on it, so the vent's thickness was unknown and vbao
+ * made it a slab of its constant 0.75 R, which reached almost to the recess's back. */
+static bool build_vent(ob_scene *s)
+{
+    int white = ob_scene_add_material(s, "white", 0.8f, 0.8f, 0.8f);
+    int grey = ob_scene_add_material(s, "grey", 0.5f, 0.5f, 0.5f);
+    if (white < 0 || grey < 0) return false;
+    geo g = {0};
+    geo_floor(&g);
+    if (!geo_emit(&g, s, white)) return false;
+    vent_wall(&g);
+    if (!geo_emit(&g, s, white)) return false;
+    const float o[3] = {VENT_X0, VENT_Y0, 0.0f}, u[3] = {VENT_CELL, 0.0f, 0.0f}, v[3] = {0.0f, VENT_CELL, 0.0f};
+    const float pz[3] = {0.0f, 0.0f, 1.0f};
+    for (int j = 0; j < 7; ++j)
+        for (int i = 0; i < 11; ++i) {
+            if (i % 2 == 1 && j % 2 == 1) continue;
+            const float c[3] = {o[0] + (float)i * VENT_CELL, o[1] + (float)j * VENT_CELL, 0.0f};
+            geo_grid(&g, c, u, v, 1, 1, pz);
+        }
+    if (!finish_floor_scene(s, &g, grey)) return false;
+    /* From the front, a little above and to the right: the recess's back through every hole. */
+    ob_camera front = make_camera("front", 0.7f, 1.6f, 2.4f, 0.0f, 0.55f, -0.2f, 45.0f);
+    /* From the left and low: the recess's far side through the holes, at a slant. */
+    ob_camera side = make_camera("side", -1.5f, 1.0f, 1.5f, 0.0f, 0.55f, -0.2f, 45.0f);
+    return ob_scene_add_camera(s, &front) && ob_scene_add_camera(s, &side);
+}
+
 /* ---- bleed ----------------------------------------------------------------------------------- */
 
 /* A red wall x = 0 (2 m high, 4 m long) standing on a white floor x in [0, 4]; one directional
@@ -591,6 +672,7 @@ ob_scene *ob_scene_builtin(const char *name)
     if (strcmp(name, "slab") == 0) build = build_slab;
     if (strcmp(name, "bleed") == 0) build = build_bleed;
     if (strcmp(name, "grille") == 0) build = build_grille;
+    if (strcmp(name, "vent") == 0) build = build_vent;
     if (!build) {
         ob_set_error(OB_ERR_UNKNOWN_SCENE, "unknown built-in scene '%s'", name);
         return NULL;

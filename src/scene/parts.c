@@ -111,8 +111,10 @@ static int flat_parts(const ob_mesh *m, uint32_t *parent, const uint32_t *loops,
  * castings, the motorbike's parts read as sheets made the fins 4x worse: docs/methods.md, "Thin
  * holes"), and a part that is not flat is not a sheet of one plane. scene/sheets.c then settles
  * these candidates over the whole scene. sheet[part root] is set for each vertex's part (parent:
- * the parts' forest); welded[v] is the first vertex at v's position. -1 when out of memory. */
-static int find_sheets(const ob_mesh *m, const uint32_t *welded, uint32_t *parent, double tolerance, bool *sheet)
+ * the parts' forest); welded[v] is the first vertex at v's position; loop_of[v] (n words) gets the
+ * loop of open edges through v's position, UINT32_MAX where none. -1 when out of memory. */
+static int find_sheets(const ob_mesh *m, const uint32_t *welded, uint32_t *parent, double tolerance, bool *sheet,
+                       uint32_t *loop_of)
 {
     uint32_t n = m->vertex_count;
     size_t edges = 0, cap = (size_t)(m->index_count / 3u) * 3u;
@@ -137,9 +139,12 @@ static int find_sheets(const ob_mesh *m, const uint32_t *welded, uint32_t *paren
             open[a] = open[b] = true;
             join(loop, a, b);
         }
-        /* Each loop once, at its root (an open corner: join keeps the lower index), on its part. */
-        for (uint32_t v = 0; v < n; ++v)
+        /* Each loop once, at its root (an open corner: join keeps the lower index), on its part;
+         * every vertex at an open corner's position keeps its loop for the holes' bounds. */
+        for (uint32_t v = 0; v < n; ++v) {
             if (open[v] && find_root(loop, v) == v) ++loops[find_root(parent, v)];
+            loop_of[v] = open[welded[v]] ? find_root(loop, welded[v]) : UINT32_MAX;
+        }
         code = flat_parts(m, parent, loops, tolerance, loop, sheet); /* the loops' forest is done with */
     }
     free(edge);
@@ -149,7 +154,70 @@ static int find_sheets(const ob_mesh *m, const uint32_t *welded, uint32_t *paren
     return code;
 }
 
-int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels)
+/* The holes of each sheet candidate: every loop of its open edges but the widest, its outline, as
+ * a box in the mesh's coordinates with the part's label (sheets.c asks whether anything stands
+ * in one). loop_of from find_sheets. -1 when out of memory. */
+static int sheet_holes(const ob_mesh *m, uint32_t *parent, const bool *sheet, const uint32_t *loop_of,
+                       const float *labels, ob_holes *holes)
+{
+    const uint32_t n = m->vertex_count;
+    uint32_t *slot = malloc((size_t)n * sizeof *slot + 1), count = 0;
+    if (!slot) return -1;
+    for (uint32_t v = 0; v < n; ++v) slot[v] = UINT32_MAX;
+    for (uint32_t v = 0; v < n; ++v) /* one box per loop of a candidate, at the loop's root */
+        if (loop_of[v] != UINT32_MAX && sheet[find_root(parent, v)] && slot[loop_of[v]] == UINT32_MAX)
+            slot[loop_of[v]] = count++;
+    typedef struct {
+        float lo[3], hi[3];
+        uint32_t part;
+        bool used;
+    } box;
+    box *b = calloc((size_t)count + 1, sizeof *b);
+    uint32_t *widest = malloc((size_t)n * sizeof *widest + 1); /* per part root: its widest loop's box */
+    if (!b || !widest) return free(slot), free(b), free(widest), -1;
+    for (uint32_t v = 0; v < n; ++v) {
+        widest[v] = UINT32_MAX;
+        if (loop_of[v] == UINT32_MAX || slot[loop_of[v]] == UINT32_MAX) continue;
+        box *x = &b[slot[loop_of[v]]];
+        const float *p = &m->positions[3u * v];
+        for (int k = 0; k < 3; ++k) {
+            x->lo[k] = x->used && x->lo[k] < p[k] ? x->lo[k] : p[k];
+            x->hi[k] = x->used && x->hi[k] > p[k] ? x->hi[k] : p[k];
+        }
+        x->part = find_root(parent, v);
+        x->used = true;
+    }
+    /* The outline is the loop whose box has the longest diagonal: a hole lies inside it. */
+    for (uint32_t i = 0; i < count; ++i) {
+        float d = 0.0f, e = 0.0f;
+        uint32_t *w = &widest[b[i].part];
+        for (int k = 0; k < 3; ++k) {
+            d += (b[i].hi[k] - b[i].lo[k]) * (b[i].hi[k] - b[i].lo[k]);
+            if (*w != UINT32_MAX) e += (b[*w].hi[k] - b[*w].lo[k]) * (b[*w].hi[k] - b[*w].lo[k]);
+        }
+        if (*w == UINT32_MAX || d > e) *w = i;
+    }
+    int code = 0;
+    for (uint32_t i = 0; code == 0 && i < count; ++i) {
+        if (widest[b[i].part] == i) continue;
+        if (holes->count == holes->cap) {
+            size_t cap = holes->cap ? 2 * holes->cap : 16;
+            ob_hole *grown = realloc(holes->items, cap * sizeof *grown);
+            if (!grown) {
+                code = -1;
+                break;
+            }
+            holes->items = grown, holes->cap = cap;
+        }
+        ob_hole *h = &holes->items[holes->count++];
+        h->label = labels[b[i].part];
+        for (int k = 0; k < 3; ++k) h->lo[k] = b[i].lo[k], h->hi[k] = b[i].hi[k];
+    }
+    free(slot), free(b), free(widest);
+    return code;
+}
+
+int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels, ob_holes *holes)
 {
     uint32_t n = m->vertex_count;
     uint32_t *parent = malloc((size_t)n * sizeof *parent + 1);
@@ -197,9 +265,11 @@ int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels)
      * folded into 1..OB_PART_LABELS (an RGBA16F channel holds the integers to 2048 exactly). Two
      * parts that fold onto one label are told apart by the winding alone. A sheet's vertices carry
      * OB_PART_SHEET on top, which the raster passes take off (shaders/gbuffer.vert.glsl). */
-    uint32_t *number = malloc((size_t)n * sizeof *number + 1);
-    if (!number || !welded || !sheet || find_sheets(m, welded, parent, 100.0 * quantum, sheet) != 0) {
+    uint32_t *number = malloc((size_t)n * sizeof *number + 1), *loop_of = malloc((size_t)n * sizeof *loop_of + 1);
+    if (!number || !welded || !sheet || !loop_of ||
+        find_sheets(m, welded, parent, 100.0 * quantum, sheet, loop_of) != 0) {
         free(number);
+        free(loop_of);
         free(welded);
         free(sheet);
         free(parent);
@@ -213,9 +283,15 @@ int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels)
         if (number[r] == UINT32_MAX) number[r] = count++;
         labels[v] = (float)(1u + (first + number[r]) % OB_PART_LABELS + (sheet[r] ? OB_PART_SHEET : 0u));
     }
+    bool holes_ok = !holes || sheet_holes(m, parent, sheet, loop_of, labels, holes) == 0;
     free(number);
+    free(loop_of);
     free(welded);
     free(sheet);
     free(parent);
+    if (!holes_ok) {
+        ob_set_error(OB_ERR_OUT_OF_MEMORY, "out of memory finding the holes of a %u-vertex mesh", n);
+        return -1;
+    }
     return count;
 }

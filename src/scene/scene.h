@@ -80,15 +80,26 @@ OB_EVAL_SHARED bool ob_scene_check_bounds(const ob_scene *s, const char *source)
 /* Added to the label of a sheet's vertices: a part with holes in it, whose open edges form two
  * loops or more (a drilled plate, a grille), has no thickness (scene/parts.c). */
 #define OB_PART_SHEET 4096u
-int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels);
+/* A hole of a sheet candidate (a loop of its open edges other than its outline): its bounds in
+ * the mesh's coordinates and its part's label (with OB_PART_SHEET). */
+typedef struct ob_hole {
+    float label;
+    float lo[3], hi[3];
+} ob_hole;
+typedef struct ob_holes {
+    ob_hole *items;
+    size_t count, cap;
+} ob_holes;
+/* holes (may be NULL): the candidates' holes are appended (free items when done). */
+int64_t ob_mesh_part_labels(const ob_mesh *m, uint32_t first, float *labels, ob_holes *holes);
 /* The plane of triangle t (its first index): unit normal and offset, plane[0..2] . x = plane[3].
  * False for a triangle with no area or an index out of range. */
 bool ob_triangle_plane(const ob_mesh *m, uint32_t t, double plane[4]);
 /* Over the whole scene (scene/sheets.c): a part ob_mesh_part_labels marked a sheet stays one only
- * when no vertex of another part lies on its plane within its bounds; the others lose
- * OB_PART_SHEET. labels[m] are mesh m's labels. Returns the sheets left, or -1 (out of memory,
- * error set). */
-int ob_scene_settle_sheets(const ob_scene *s, float *const *labels);
+ * when no vertex of another part lies on its plane within one of its holes; the others lose
+ * OB_PART_SHEET. labels[m] and holes[m] are mesh m's labels and holes. Returns the sheets left,
+ * or -1 (out of memory, error set). */
+int ob_scene_settle_sheets(const ob_scene *s, float *const *labels, const ob_holes *holes);
 
 /* The default framing camera for bounds, looking from the front-above-right. */
 ob_camera ob_camera_frame_bounds(const float bmin[3], const float bmax[3], float fov_y_deg);

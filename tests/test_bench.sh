@@ -201,7 +201,7 @@ def pos(x, what):
     assert isinstance(x, (int, float)) and math.isfinite(x) and x > 0, f"{what} = {x!r}"
 assert d["mode"] == "host", d["mode"]
 assert [p["name"] for p in d["host_paths"]] == ["frame", "host_linear", "host_packed", "host_no_normals"]
-chain = {"downsample", "edges", "depth_mips", "ao", "temporal", "filter", "upsample"}
+chain = {"downsample", "edges", "depth_mips", "second_back", "ao", "temporal", "filter", "upsample"}
 cfgs = d["configurations"]
 assert [c["label"] for c in cfgs] == ["vbao \u00b7 ao 1 \u00b7 N 12 \u00b7 r 4", "vbao \u00b7 ao 0.5 \u00b7 N 12 \u00b7 r 4"], [c["label"] for c in cfgs]
 for c in cfgs:

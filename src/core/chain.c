@@ -83,6 +83,16 @@ static ob_error make_depth_mips(ob_renderer *r, GLuint depth, int width, int hei
     return OB_OK;
 }
 
+/* The second layer over each pixel's footprint (passes/second_back.c) from the frame's full-resolution
+ * depth and *second (the peel pass's or a host's), into *second. */
+static ob_error make_second_back(ob_renderer *r, GLuint depth, GLuint *second)
+{
+    if (!r->second_back.pass.program && ob_second_back_init(&r->second_back) != OB_OK) return ob_peek_error(NULL);
+    ob_error err = ob_second_back_run(&r->second_back, depth, *second);
+    if (err == OB_OK) *second = r->second_back.texture;
+    return err;
+}
+
 /* Filter one chain (src -> dst through the scratch target) at the AO resolution, guided by the AO
  * grid's depth and normals. */
 static ob_error run_filter(const ob_renderer *r, const ob_filter_impl *filter, void *fstate, const ao_targets *t,
@@ -251,6 +261,12 @@ static ob_error run_method_stage(chain_run *c)
         if (err != OB_OK) return err;
     }
     const ob_chain_io *io = c->io;
+    GLuint second = reads & OB_READS_SECOND_LAYER ? io->second_depth : 0;
+    if (second && (reads & OB_READS_SECOND_BACK)) {
+        ob_timer_begin(&r->timers, "second_back");
+        err = make_second_back(r, io->depth, &second);
+        if (err != OB_OK) return err;
+    }
     const ob_ao_inputs in = {.frame = &r->frame_constants,
                              .linear_depth = c->guide[0],
                              .view_normal = c->guide[1],
@@ -261,7 +277,7 @@ static ob_error run_method_stage(chain_run *c)
                              .albedo = reads & OB_READS_ALBEDO ? io->albedo : 0,
                              .depth_mips = mips,
                              .depth_mip_levels = mip_levels,
-                             .second_depth = reads & OB_READS_SECOND_LAYER ? io->second_depth : 0,
+                             .second_depth = second,
                              .facet_normal = io->facet,
                              .extra_depth = r->last.extra_view ? r->extra_gbuffer.linear_depth : 0,
                              .extra_normal = r->last.extra_view ? r->extra_gbuffer.normal : 0,

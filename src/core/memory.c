@@ -79,7 +79,7 @@ uint64_t ob_estimate_renderer_memory(int width, int height, const ob_settings *s
     }
     scale_use scales[3] = {{0}};
     int guard = 0;
-    bool peel = false, extra = false, full_rgb = false, full_bent = false;
+    bool peel = false, second_back = false, extra = false, full_rgb = false, full_bent = false;
     uint64_t shadows = 0;
     for (int n = 0; n < count; ++n) {
         const ob_settings *s = &settings[n];
@@ -111,6 +111,7 @@ uint64_t ob_estimate_renderer_memory(int width, int height, const ob_settings *s
         full_rgb = full_rgb || directional;
         full_bent = full_bent || bent;
         peel = peel || (reads & OB_READS_SECOND_LAYER) != 0;
+        second_back = second_back || (reads & OB_READS_SECOND_BACK) != 0;
         extra = extra || (reads & OB_READS_EXTRA_VIEW) != 0;
         /* passes/shadow.c remakes the maps for new settings after freeing the old: the largest. */
         uint64_t sh = shadow_bytes(s);
@@ -131,6 +132,7 @@ uint64_t ob_estimate_renderer_memory(int width, int height, const ob_settings *s
     if (full_rgb) bytes += inner * 16u;  /* ao_rgb, bounce: RGBA16F (ob_renderer_rgb_targets) */
     if (full_bent) bytes += inner * 8u;  /* bent */
     if (peel) bytes += inner * 8u;       /* passes/peel.c: depth32F, linear depth R32F */
+    if (second_back) bytes += inner * 4u; /* passes/second_back.c: R32F */
     if (extra) bytes += inner * (gbuffer + 8); /* frame.c: the extra view's G-buffer and direct light */
     uint64_t mips = 0, packed = 0, split = 0;
     for (int i = 0; i < 3; ++i) {

@@ -91,6 +91,7 @@ void ob_destroy_renderer(ob_renderer *r)
     ob_view_destroy(&r->view);
     /* Passes made on first use are zero until then, which their destroy functions take. */
     ob_depth_mips_destroy(&r->depth_mips);
+    ob_second_back_destroy(&r->second_back);
     ob_floor_destroy(&r->floor);
     ob_peel_destroy(&r->peel);
     ob_host_passes_destroy(&r->host);

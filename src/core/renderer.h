@@ -112,6 +112,7 @@ struct ob_renderer {
     ob_depth_mips depth_mips;  /* for methods that read OB_READS_DEPTH_MIPS, made on first use */
     ob_floor floor;            /* ob_render_floor, made on first use */
     ob_peel peel;              /* the second depth layer, for methods that read OB_READS_SECOND_LAYER */
+    ob_second_back second_back; /* that layer over each pixel's footprint, what they read; made on first use */
     /* The extra view (Belonogov 2018 §4.4), for methods that read OB_READS_EXTRA_VIEW, made on first use
      * at the G-buffer's size: its own G-buffer (drawing the main one's meshes), direct light and
      * per-frame block; the matrices between the two views of the current frame. */

@@ -22,6 +22,11 @@ enum {
     OB_READS_SECOND_LAYER = 1u << 5, /* a second depth layer (depth peeling, passes/peel.c) */
     OB_READS_HISTORY = 1u << 6,      /* reserved: the previous frame's output, reprojected */
     OB_READS_EXTRA_VIEW = 1u << 7,   /* an extra view's G-buffer and direct light (Belonogov 2018 §4.4) */
+    /* With OB_READS_SECOND_LAYER: the second layer over each pixel's footprint (passes/second_back.c)
+     * in place of the peel pass's own, as ob_ao_inputs.second_depth: the back of a sample's solid
+     * (vbao, vbgi). gtao and ssdo read the layer as it is (docs/methods.md, "The back over a
+     * pixel's footprint"). */
+    OB_READS_SECOND_BACK = 1u << 8,
 };
 
 /* What a method writes (ob_method_impl.writes); the renderer makes, filters and upsamples each. */

@@ -168,19 +168,20 @@ static void vb_destroy(void *p)
 static uint32_t vb_active_reads(const float *params, uint32_t reads)
 {
     if (params[P_DEPTH_MIPS] == 0.0f) reads &= ~(uint32_t)OB_READS_DEPTH_MIPS;
-    if (params[P_LAYERS] < 2.0f) reads &= ~(uint32_t)OB_READS_SECOND_LAYER;
+    if (params[P_LAYERS] < 2.0f) reads &= ~(uint32_t)(OB_READS_SECOND_LAYER | OB_READS_SECOND_BACK);
     return reads;
 }
 
 static uint32_t vbao_active_reads(const float *params)
 {
-    return vb_active_reads(params, OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER);
+    return vb_active_reads(params, OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER |
+                                       OB_READS_SECOND_BACK);
 }
 
 static uint32_t vbgi_active_reads(const float *params)
 {
     return vb_active_reads(params, OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS |
-                                    OB_READS_SECOND_LAYER);
+                                       OB_READS_SECOND_LAYER | OB_READS_SECOND_BACK);
 }
 
 static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
@@ -244,7 +245,7 @@ const ob_method_impl ob_method_vbao = {
     .shader = "vbao.glsl",
     .constants_size = sizeof(ob_vb_constants),
     .state_size = sizeof(vb_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER | OB_READS_SECOND_BACK,
     .writes = OB_WRITES_VISIBILITY,
     .init = vbao_init,
     .run = vb_run,
@@ -266,7 +267,8 @@ const ob_method_impl ob_method_vbgi = {
     .shader = "vbgi.glsl",
     .constants_size = sizeof(ob_vb_constants),
     .state_size = sizeof(vb_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER |
+             OB_READS_SECOND_BACK,
     .writes = OB_WRITES_VISIBILITY | OB_WRITES_BOUNCE,
     .init = vbgi_init,
     .run = vb_run,

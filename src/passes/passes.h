@@ -161,6 +161,30 @@ ob_error ob_temporal_run(ob_temporal_pass *p, const ob_temporal_constants *c, co
 ob_error ob_temporal_motion(ob_temporal_pass *p, const ob_ao_grid *g, GLuint depth, GLuint motion);
 void ob_temporal_destroy(ob_temporal_pass *p);
 
+/* ---- the second layer over each pixel's footprint: second_back.c, shaders/second_back.glsl -----
+ * What the methods read as their samples' backs: per pixel the deepest of the peel pass's back at
+ * its centre and at the four edges of its footprint (half way to each neighbour that shows the
+ * same solid); 0 where the peel pass found none. The shader says why. */
+typedef struct ob_second_back {
+    ob_compute_pass pass;
+    GLuint texture;    /* R32F, the second layer's size; 0 before the first run */
+    int width, height;
+} ob_second_back;
+/* Builds the program; the texture is made by the first run. Errors: OB_ERR_INVALID_ARGUMENT (NULL),
+ * OB_ERR_SHADER. */
+ob_error ob_second_back_init(ob_second_back *b);
+/* b->texture from front_depth (the first layer's linear depth) and second_depth (the peel pass's),
+ * both R32F-readable and of one size, their writes visible to texture fetches. Remakes the texture
+ * when the size differs from the last run's. Issues a texture-fetch barrier after its dispatch.
+ * Not timed here. Errors: OB_ERR_INVALID_ARGUMENT (not initialised, an input 0), OB_ERR_BAD_SIZE,
+ * OB_ERR_GL (the texture could not be made; b keeps its old one and nothing runs). */
+ob_error ob_second_back_run(ob_second_back *b, GLuint front_depth, GLuint second_depth);
+/* Safe on a zeroed or already destroyed b. */
+void ob_second_back_destroy(ob_second_back *b);
+/* The CPU twin of the shader, for the tests: back (width x height floats, row-major) from front
+ * and second. */
+void ob_second_back_reference(const float *front, const float *second, int width, int height, float *back);
+
 /* ---- depth MIP prefilter: depth_mips.c, shaders/depth_mips.glsl (issue 13) -------------------
  * A MIP chain of linear view depth (R32F, positive along -Z, 0 = sky) built in one dispatch, for
  * the horizon-based methods to read far taps from coarser levels (McGuire et al. 2012, SAO §2.2).

@@ -64,7 +64,7 @@ static void bench_usage(FILE *f, const cli_common *defaults)
           "                        chain, per configuration (method, N, r, filter, AO scale, temporal),\n"
           "                        four paths in one run, alternated frame by frame:\n"
           "                          (a) frame: ob_render_frame, the sum of its chain passes (downsample,\n"
-          "                              edges, depth_mips, ao, temporal, filter, upsample)\n"
+          "                              edges, depth_mips, second_back, ao, temporal, filter, upsample)\n"
           "                          (b) host_linear: ob_host_ao on that frame's G-buffer, read back and\n"
           "                              uploaded as R32F linear depth + RGBA16F view normals -> R32F\n"
           "                          (c) host_packed: as a D32F reversed-Z [0,1] depth buffer + octahedral\n"

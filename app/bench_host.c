@@ -33,7 +33,8 @@ const char *const host_path_output[HOST_PATHS] = {"renderer's own", "R32F", "R8"
 
 /* The passes of the AO chain (src/core/chain.c) that (a) sums; a host call's other passes are its
  * input and output passes. */
-static const char *const CHAIN_PASSES[] = {"downsample", "edges", "depth_mips", "ao", "temporal", "filter", "upsample"};
+static const char *const CHAIN_PASSES[] = {"downsample", "edges",    "depth_mips", "second_back",
+                                           "ao",         "temporal", "filter",     "upsample"};
 
 static bool is_chain_pass(const char *name)
 {

@@ -460,8 +460,8 @@ void bench_print_host_tables(const bench_opts *o, const ob_scene *scene, const h
                "of %d frames, the four alternated frame by frame ==\n",
                ob_query_scene_name(scene), ob_query_camera(scene, cams[ci]).name, o->common.width, o->common.height,
                o->common.temporal ? ", temporal on" : "", o->frames);
-        printf("(a) frame            ob_render_frame, the sum of its chain passes (downsample, edges, depth_mips, ao, "
-               "temporal, filter, upsample)\n"
+        printf("(a) frame            ob_render_frame, the sum of its chain passes (downsample, edges, depth_mips, "
+               "second_back, ao, temporal, filter, upsample)\n"
                "(b) host_linear      ob_host_ao, R32F linear depth + RGBA16F view normals -> R32F\n"
                "(c) host_packed      ob_host_ao, D32F reversed-Z depth + octahedral RG16F world normals -> R8\n"
                "(d) host_no_normals  ob_host_ao, D32F reversed-Z depth, no normals (rebuilt by the input pass) -> R8\n"

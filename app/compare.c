@@ -530,7 +530,7 @@ static int time_row(ob_renderer *r, const ob_camera *cam, const ob_settings *s, 
         ao_ms[f] = frame_ms[f] = chain_ms[f] = 0.0;
         for (int p = 0; p < tn; ++p) {
             if (!strcmp(t[p].name, "ao")) ao_ms[f] = t[p].ms;
-            static const char *const chain[] = {"ao", "depth_mips", "edges", "filter", "upsample"};
+            static const char *const chain[] = {"ao", "depth_mips", "second_back", "edges", "filter", "upsample"};
             for (size_t q = 0; q < sizeof chain / sizeof chain[0]; ++q)
                 if (!strcmp(t[p].name, chain[q])) chain_ms[f] += t[p].ms;
             frame_ms[f] += t[p].ms;

@@ -16,10 +16,10 @@
 
 /* The passes the renderer can time, in frame order (temporal where it runs by default, before the
  * filter): the CSV's columns, GPU times and then CPU times. */
-static const char *const pass_order[] = {"shadow",     "gbuffer", "lighting", "extra_view", "second_layer",
-                                         "downsample", "edges",   "depth_mips", "ao",       "temporal",
-                                         "filter",     "upsample", "compose",   "luminance", "bloom",
-                                         "tonemap"};
+static const char *const pass_order[] = {"shadow",     "gbuffer",    "lighting",    "extra_view", "second_layer",
+                                         "downsample", "edges",      "depth_mips",  "second_back", "ao",
+                                         "temporal",   "filter",     "upsample",    "compose",    "luminance",
+                                         "bloom",      "tonemap"};
 enum { PASS_ORDER_COUNT = sizeof pass_order / sizeof pass_order[0] };
 
 typedef struct test_cell {

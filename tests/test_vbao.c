@@ -483,11 +483,57 @@ static void check_second_layer(ob_context *ctx)
  * down (more along the oblique ray, less than 3x). Through the sheet's holes, then, vbao with two
  * layers comes near AO_R, where one layer's 0.75 R slab under the sheet reads the holes black
  * (measured at the test's size: 0.21 with one layer, 0.77 with two, AO_R 0.88). */
+/* Seen through holes: the mean AO of the pixels `select` picks in `camera`'s view, with vbao's one
+ * layer (m[0]) and two (m[1]), and AO_R there (m[2], 256 rays). The pixel count, 0 when a render
+ * or the reference failed. */
+typedef bool (*pixel_select)(const frame *f, size_t i);
+
+static size_t layers_through_holes(ob_context *ctx, ob_scene *scene, const char *camera, pixel_select select,
+                                   double m[3])
+{
+    size_t n = (size_t)W * H, count = 0;
+    ob_settings s;
+    const char *one[] = {"vbao.layers=1", NULL}, *two[] = {"vbao.layers=2", NULL};
+    frame a, b;
+    m[0] = m[1] = m[2] = 0.0;
+    if (!settings_for(&s, "vbao", one) || !render_frame(ctx, scene, camera, &s, OB_IMAGE_AO_RAW_F32, &a)) return 0;
+    if (settings_for(&s, "vbao", two) && render_frame(ctx, scene, camera, &s, OB_IMAGE_AO_RAW_F32, &b)) {
+        float *pos = malloc(n * 3 * sizeof(float)), *wn = malloc(n * 3 * sizeof(float)), *ref = malloc(n * sizeof(float));
+        double sum_one = 0.0, sum_two = 0.0, sum_ref = 0.0;
+        for (size_t i = 0; pos && wn && ref && i < n; ++i) {
+            if (!select(&a, i)) continue;
+            memcpy(&pos[3 * count], &a.pos[3 * i], 3 * sizeof(float));
+            memcpy(&wn[3 * count], &a.wn[3 * i], 3 * sizeof(float));
+            ++count;
+            sum_one += a.img[i];
+            sum_two += b.img[i];
+        }
+        ob_error e = count ? ob_reference_ao(scene, pos, wn, count,
+                                             &(ob_reference_desc){.spp = 256, .radius = radius, .seed = 7}, ref, NULL)
+                           : OB_ERR_INVALID_ARGUMENT;
+        for (size_t j = 0; e == OB_OK && j < count; ++j) sum_ref += ref[j];
+        if (e != OB_OK) count = 0;
+        double c = count ? (double)count : 1.0;
+        m[0] = sum_one / c, m[1] = sum_two / c, m[2] = sum_ref / c;
+        free(pos);
+        free(wn);
+        free(ref);
+        frame_free(&b);
+    }
+    frame_free(&a);
+    return count;
+}
+
 static const float grille_sheet_x[2] = {-1.8f, -0.6f}, grille_plate_x[2] = {0.6f, 1.8f};
 
 static bool in_grille(float x, float z, const float span[2], float margin)
 {
     return x > span[0] + margin && x < span[1] - margin && fabsf(z) < 0.6f - margin;
+}
+
+static bool floor_under_sheet(const frame *f, size_t i)
+{
+    return is_floor(f, i) && in_grille(f->pos[3 * i], f->pos[3 * i + 2], grille_sheet_x, 0.0f);
 }
 
 static void check_grille_layers(ob_context *ctx)
@@ -527,40 +573,15 @@ static void check_grille_layers(ob_context *ctx)
         frame_free(&f);
     }
     /* AO of the floor through the sheet's holes, one layer and two, against AO_R. */
-    const char *one[] = {"vbao.layers=1", NULL};
-    frame a, b;
-    if (settings_for(&s, "vbao", one) && render_frame(ctx, scene, "top", &s, OB_IMAGE_AO_RAW_F32, &a)) {
-        if (settings_for(&s, "vbao", two) && render_frame(ctx, scene, "top", &s, OB_IMAGE_AO_RAW_F32, &b)) {
-            float *pos = malloc(n * 3 * sizeof(float)), *wn = malloc(n * 3 * sizeof(float)), *ref = malloc(n * sizeof(float));
-            size_t count = 0;
-            double sum_one = 0.0, sum_two = 0.0, sum_ref = 0.0;
-            for (size_t i = 0; pos && wn && ref && i < n; ++i) {
-                if (!is_floor(&a, i) || !in_grille(a.pos[3 * i], a.pos[3 * i + 2], grille_sheet_x, 0.0f)) continue;
-                memcpy(&pos[3 * count], &a.pos[3 * i], 3 * sizeof(float));
-                memcpy(&wn[3 * count], &a.wn[3 * i], 3 * sizeof(float));
-                ++count;
-                sum_one += a.img[i];
-                sum_two += b.img[i];
-            }
-            ob_error e = count ? ob_reference_ao(scene, pos, wn, count,
-                                                 &(ob_reference_desc){.spp = 256, .radius = radius, .seed = 7}, ref, NULL)
-                               : OB_ERR_INVALID_ARGUMENT;
-            for (size_t j = 0; e == OB_OK && j < count; ++j) sum_ref += ref[j];
-            double c = count ? (double)count : 1.0, m1 = sum_one / c, m2 = sum_two / c, mr = sum_ref / c;
-            printf("  floor through the sheet's holes (%zu pixels): mean AO %.4f with one layer, %.4f with two, AO_R %.4f\n",
-                   count, m1, m2, mr);
-            CHECK(count > 100 && e == OB_OK, "floor seen through the sheet's holes: %zu pixels, AO_R traced", count);
-            /* The rest of the gap is the sheet's thinnest occluder, one step's spacing, not none. */
-            CHECK(mr - m1 > 0.3, "one layer reads them far darker (the slab under the sheet): %.4f vs %.4f", m1, mr);
-            CHECK(fabs(m2 - mr) < 0.25 * (mr - m1), "two layers close three quarters of that gap: %.4f, %.4f, AO_R %.4f",
-                  m1, m2, mr);
-            free(pos);
-            free(wn);
-            free(ref);
-            frame_free(&b);
-        }
-        frame_free(&a);
-    }
+    double m[3];
+    size_t count = layers_through_holes(ctx, scene, "top", floor_under_sheet, m);
+    printf("  floor through the sheet's holes (%zu pixels): mean AO %.4f with one layer, %.4f with two, AO_R %.4f\n",
+           count, m[0], m[1], m[2]);
+    CHECK(count > 100, "floor seen through the sheet's holes: %zu pixels, AO_R traced", count);
+    /* The rest of the gap is the sheet's thinnest occluder, one step's spacing, not none. */
+    CHECK(m[2] - m[0] > 0.3, "one layer reads them far darker (the slab under the sheet): %.4f vs %.4f", m[0], m[2]);
+    CHECK(fabs(m[1] - m[2]) < 0.25 * (m[2] - m[0]), "two layers close three quarters of that gap: %.4f, %.4f, AO_R %.4f",
+          m[0], m[1], m[2]);
     ob_destroy_scene(scene);
 }
 
@@ -572,22 +593,37 @@ static void check_grille_layers(ob_context *ctx)
  * back seen through the holes read black: the unseen scenes' "vent much darker than the truth"
  * (at 320 x 240: 0.03 where AO_R is 0.32; as a sheet 0.29; at this test's 160 x 120: 0.01, AO_R 0.29,
  * as a sheet 0.19). One layer reads it as that rule did. */
+/* Inside the vent's opening, x in [-0.44, 0.44], y in [0.5, 1.06], by a margin; facing the camera
+ * (+z) at depth z. */
+static bool vent_facing(const frame *f, size_t i, float z)
+{
+    const float *p = &f->pos[3 * i];
+    return f->depth[i] > 0.0f && f->wn[3 * i + 2] > 0.99f && fabsf(p[2] - z) < 1e-3f && fabsf(p[0]) < 0.43f &&
+           p[1] > 0.51f && p[1] < 1.05f;
+}
+
+static bool vent_grille(const frame *f, size_t i)
+{
+    return vent_facing(f, i, 0.0f);
+}
+
+static bool recess_back(const frame *f, size_t i)
+{
+    return vent_facing(f, i, -0.4f);
+}
+
 static void check_vent_layers(ob_context *ctx)
 {
     ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = "vent"});
     CHECK(scene != NULL, "vent scene");
     if (!scene) return;
-    size_t n = (size_t)W * H;
     ob_settings s;
-    const char *one[] = {"vbao.layers=1", NULL}, *two[] = {"vbao.layers=2", NULL};
-    frame f, a, b;
-    /* Inside the opening, x in [-0.44, 0.44], y in [0.5, 1.06], by a margin. */
-#define IN_OPENING(p) (fabsf((p)[0]) < 0.43f && (p)[1] > 0.51f && (p)[1] < 1.05f)
+    const char *two[] = {"vbao.layers=2", NULL};
+    frame f;
     if (settings_for(&s, "vbao", two) && render_frame(ctx, scene, "front", &s, OB_IMAGE_SECOND_DEPTH_F32, &f)) {
         int vent = 0, vent_ok = 0;
-        for (size_t i = 0; i < n; ++i) {
-            if (f.depth[i] <= 0.0f || f.wn[3 * i + 2] < 0.99f || fabsf(f.pos[3 * i + 2]) > 1e-3f || !IN_OPENING(&f.pos[3 * i]))
-                continue;
+        for (size_t i = 0; i < (size_t)W * H; ++i) {
+            if (!vent_grille(&f, i)) continue;
             ++vent;
             vent_ok += f.img[i] == f.depth[i];
         }
@@ -595,41 +631,16 @@ static void check_vent_layers(ob_context *ctx)
         CHECK(vent > 50 && vent_ok == vent, "the vent flush in its wall is its own back: %d of %d", vent_ok, vent);
         frame_free(&f);
     }
-    if (settings_for(&s, "vbao", one) && render_frame(ctx, scene, "front", &s, OB_IMAGE_AO_RAW_F32, &a)) {
-        if (settings_for(&s, "vbao", two) && render_frame(ctx, scene, "front", &s, OB_IMAGE_AO_RAW_F32, &b)) {
-            float *pos = malloc(n * 3 * sizeof(float)), *wn = malloc(n * 3 * sizeof(float)), *ref = malloc(n * sizeof(float));
-            size_t count = 0;
-            double sum_one = 0.0, sum_two = 0.0, sum_ref = 0.0;
-            for (size_t i = 0; pos && wn && ref && i < n; ++i) {
-                const float *p = &a.pos[3 * i];
-                /* The recess's back, z = -0.4, facing the holes. */
-                if (a.depth[i] <= 0.0f || a.wn[3 * i + 2] < 0.99f || fabsf(p[2] + 0.4f) > 1e-3f || !IN_OPENING(p)) continue;
-                memcpy(&pos[3 * count], p, 3 * sizeof(float));
-                memcpy(&wn[3 * count], &a.wn[3 * i], 3 * sizeof(float));
-                ++count;
-                sum_one += a.img[i];
-                sum_two += b.img[i];
-            }
-            ob_error e = count ? ob_reference_ao(scene, pos, wn, count,
-                                                 &(ob_reference_desc){.spp = 256, .radius = radius, .seed = 7}, ref, NULL)
-                               : OB_ERR_INVALID_ARGUMENT;
-            for (size_t j = 0; e == OB_OK && j < count; ++j) sum_ref += ref[j];
-            double c = count ? (double)count : 1.0, m1 = sum_one / c, m2 = sum_two / c, mr = sum_ref / c;
-            printf("  recess through the vent's holes (%zu pixels): mean AO %.4f with one layer, %.4f with two, AO_R %.4f\n",
-                   count, m1, m2, mr);
-            CHECK(count > 30 && e == OB_OK, "recess seen through the vent's holes: %zu pixels, AO_R traced", count);
-            CHECK(mr - m1 > 0.2, "one layer reads it far darker (the slab behind the vent): %.4f vs %.4f", m1, mr);
-            /* At the test's size the holes are 6 pixels wide, and their rims, where the sheet's
-             * spacing-thick samples stand nearest, are a third of them. */
-            CHECK(fabs(m2 - mr) < 0.5 * (mr - m1), "two layers close half of that gap: %.4f, %.4f, AO_R %.4f", m1, m2, mr);
-            free(pos);
-            free(wn);
-            free(ref);
-            frame_free(&b);
-        }
-        frame_free(&a);
-    }
-#undef IN_OPENING
+    double m[3];
+    size_t count = layers_through_holes(ctx, scene, "front", recess_back, m);
+    printf("  recess through the vent's holes (%zu pixels): mean AO %.4f with one layer, %.4f with two, AO_R %.4f\n",
+           count, m[0], m[1], m[2]);
+    CHECK(count > 30, "recess seen through the vent's holes: %zu pixels, AO_R traced", count);
+    CHECK(m[2] - m[0] > 0.2, "one layer reads it far darker (the slab behind the vent): %.4f vs %.4f", m[0], m[2]);
+    /* At the test's size the holes are 6 pixels wide, and their rims, where the sheet's
+     * spacing-thick samples stand nearest, are a third of them. */
+    CHECK(fabs(m[1] - m[2]) < 0.5 * (m[2] - m[0]), "two layers close half of that gap: %.4f, %.4f, AO_R %.4f", m[0], m[1],
+          m[2]);
     ob_destroy_scene(scene);
 }
 

@@ -482,6 +482,19 @@ static bool build_slab(ob_scene *s)
 
 /* ---- grille ---------------------------------------------------------------------------------- */
 
+/* A drilled face: nu x nv cells o + i u + j v, those with both indices odd left out (the holes),
+ * facing n; `grille`'s plates and `vent`'s grille. */
+static void drilled_face(geo *g, const float o[3], const float u[3], const float v[3], int nu, int nv, const float n[3])
+{
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            if (i % 2 == 1 && j % 2 == 1) continue;
+            const float c[3] = {o[0] + (float)i * u[0] + (float)j * v[0], o[1] + (float)i * u[1] + (float)j * v[1],
+                                o[2] + (float)i * u[2] + (float)j * v[2]};
+            geo_grid(g, c, u, v, 1, 1, n);
+        }
+}
+
 /* The cells of a plate's top (or bottom) face: an 11 x 11 grid over [x0, x0 + 1.2] x [-0.6, 0.6]
  * at height y, the cells with both indices odd left out (the 5 x 5 holes, 0.109 m square), facing
  * n. The holes' walls, when `walls`, run from y down to y - depth. */
@@ -491,13 +504,8 @@ static bool build_slab(ob_scene *s)
 static void grille_face(geo *g, float x0, float y, const float n[3])
 {
     const float c = GRILLE_SIZE / (float)GRILLE_CELLS;
-    const float u[3] = {c, 0.0f, 0.0f}, v[3] = {0.0f, 0.0f, c};
-    for (int j = 0; j < GRILLE_CELLS; ++j)
-        for (int i = 0; i < GRILLE_CELLS; ++i) {
-            if (i % 2 == 1 && j % 2 == 1) continue;
-            const float o[3] = {x0 + (float)i * c, y, -0.5f * GRILLE_SIZE + (float)j * c};
-            geo_grid(g, o, u, v, 1, 1, n);
-        }
+    const float o[3] = {x0, y, -0.5f * GRILLE_SIZE}, u[3] = {c, 0.0f, 0.0f}, v[3] = {0.0f, 0.0f, c};
+    drilled_face(g, o, u, v, GRILLE_CELLS, GRILLE_CELLS, n);
 }
 
 static void grille_walls(geo *g, float x0, float y_lo, float depth)
@@ -615,12 +623,7 @@ static bool build_vent(ob_scene *s)
     if (!geo_emit(&g, s, white)) return false;
     const float o[3] = {VENT_X0, VENT_Y0, 0.0f}, u[3] = {VENT_CELL, 0.0f, 0.0f}, v[3] = {0.0f, VENT_CELL, 0.0f};
     const float pz[3] = {0.0f, 0.0f, 1.0f};
-    for (int j = 0; j < 7; ++j)
-        for (int i = 0; i < 11; ++i) {
-            if (i % 2 == 1 && j % 2 == 1) continue;
-            const float c[3] = {o[0] + (float)i * VENT_CELL, o[1] + (float)j * VENT_CELL, 0.0f};
-            geo_grid(&g, c, u, v, 1, 1, pz);
-        }
+    drilled_face(&g, o, u, v, 11, 7, pz);
     if (!finish_floor_scene(s, &g, grey)) return false;
     /* From the front, a little above and to the right: the recess's back through every hole. */
     ob_camera front = make_camera("front", 0.7f, 1.6f, 2.4f, 0.0f, 0.55f, -0.2f, 45.0f);

@@ -1,5 +1,6 @@
 #version 450 core
-/* The `none` filter (src/filters/none.c): the raw AO goes on as it is, copied texel for texel.
+/* The `none` filter (src/filters/none.c): the raw AO goes on as it is, copied texel for texel
+ * (clamped to [0, 1] as every filter clamps its result).
  * A compute pass rather than glCopyImageSubData, which NVIDIA's driver runs on the graphics
  * pipe: 0.185 ms for one 1920x1080 R32F copy on an H100, as long as box4 and gaussian together
  * (bench/results/2026-11-23-h100-egl.md). */
@@ -14,5 +15,6 @@ void main()
 {
     ivec2 pix = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pix, flt.size))) return;
-    imageStore(ao_out, pix, texelFetch(ao_in, pix, 0));
+    /* OB_FILTER_RESULT: a method's raw estimate may leave [0, 1] by its noise (vbao's one slice). */
+    imageStore(ao_out, pix, vec4(OB_FILTER_RESULT(OB_FILTER_FETCH(ao_in, pix))));
 }

@@ -476,9 +476,17 @@ void main()
         cos_total += s.len_n * open;
         bounce += s.len_n * slice_bounce;
     }
-    float ao = total > 0.0 ? clamp(visible / total, 0.0, 1.0) : 1.0;
+    /* Cosine weighting: 1 - the occluded measure over N slices' expected open measure, an
+     * estimate linear in its slices, so that every slice count has the same mean (the presets keep
+     * their steps and change their slices: methods/vbao.c). Over the slices' own open sum (the
+     * ratio), one slice read up to 0.006 too open on the check views. Unclamped: one slice's
+     * estimate leaves [0, 1] by its noise, and the filter clamps what it averages (filter_params.h
+     * OB_FILTER_RESULT). The uniform weighting's open measure is 1 a slice: the ratio is linear. */
+    float expected = cosine ? float(slices) * ob_slice_expected_open(p, v, n, d, to_view) : total;
+    float ao = expected > 0.0 ? 1.0 - (total - visible) / expected : 1.0;
     imageStore(ao_out, pix, vec4(ao));
 #ifdef OB_VBGI
-    imageStore(bounce_out, pix, vec4(cos_total > 0.0 ? bounce / cos_total : vec3(0.0), 1.0));
+    float bounce_norm = cosine ? expected : cos_total;
+    imageStore(bounce_out, pix, vec4(bounce_norm > 0.0 ? bounce / bounce_norm : vec3(0.0), 1.0));
 #endif
 }

@@ -709,6 +709,91 @@ static void check_joined_steps(ob_context *ctx)
     }
 }
 
+/* The mean and the standard deviation of the mean raw AO over `cam`'s covered pixels, across
+ * FRAMES frames of one renderer (vbao.temporal=on moves the slice and step jitters each frame):
+ * how far one frame's mean strays is the noise a preset's mean is judged against. */
+enum { FRAMES = 4 };
+static bool frames_mean(ob_context *ctx, const ob_scene *scene, const ob_camera *cam, const ob_settings *s,
+                        double *mean, double *sd)
+{
+    ob_renderer *r = ob_make_renderer(ctx, &(ob_renderer_desc){.width = W, .height = H});
+    CHECK(r != NULL, "renderer");
+    if (!r) return false;
+    ob_renderer_set_scene(r, scene);
+    float *ao = malloc((size_t)W * H * sizeof(float)), *depth = malloc((size_t)W * H * sizeof(float));
+    double m[FRAMES];
+    bool ok = ao && depth;
+    for (int k = 0; ok && k < FRAMES; ++k) {
+        ok = ob_render_frame(r, cam, s) == OB_OK &&
+             ob_read_image(r, OB_IMAGE_AO_RAW_F32, ao, (size_t)W * H * sizeof(float)) == OB_OK &&
+             ob_read_image(r, OB_IMAGE_DEPTH_F32, depth, (size_t)W * H * sizeof(float)) == OB_OK;
+        double sum = 0.0;
+        int count = 0;
+        for (size_t i = 0; ok && i < (size_t)W * H; ++i)
+            if (depth[i] > 0.0f) {
+                sum += ao[i];
+                ++count;
+            }
+        m[k] = count > 0 ? sum / count : 0.0;
+    }
+    CHECK(ok, "frames of %s", ob_method_at(s->method)->name);
+    if (ok) {
+        double a = 0.0, v = 0.0;
+        for (int k = 0; k < FRAMES; ++k) a += m[k] / FRAMES;
+        for (int k = 0; k < FRAMES; ++k) v += (m[k] - a) * (m[k] - a) / (FRAMES - 1);
+        *mean = a;
+        *sd = sqrt(v);
+    }
+    free(ao);
+    free(depth);
+    ob_destroy_renderer(r);
+    return ok;
+}
+
+/* Presets that keep their mean (methods/vbao.c VB_PRESET_STEPS; docs/methods.md): the four
+ * presets march 6 steps on 1, 2, 3 and 5 slices, and the shader divides the occluded measure by N
+ * slices' expected open measure, so more samples lower the noise and leave the mean. Each preset's
+ * mean raw AO over FRAMES frames must lie within 3 standard errors of the default's (high), on
+ * cornell's creases and on sphere-on-plane's contact, where a sparse march misses the most; and
+ * the split the presets had before (low as 2 slices x 3 steps) must not, so that the check can
+ * tell a drift from noise. */
+static void check_presets_agree(ob_context *ctx)
+{
+    const char *views[2][2] = {{"cornell", "front"}, {"sphere-on-plane", "contact"}};
+    const char *names[4] = {"low", "medium", "high", "ultra"};
+    for (int v = 0; v < 2; ++v) {
+        ob_scene *scene = ob_load_scene(&(ob_scene_desc){.name = views[v][0]});
+        ob_camera cam = {0};
+        CHECK(scene != NULL && ob_find_camera(scene, views[v][1], &cam) == OB_OK, "%s:%s", views[v][0], views[v][1]);
+        if (!scene) continue;
+        double mean[5], sd[5];
+        bool ok = true;
+        const char *sets[] = {"vbao.temporal=on", NULL};
+        for (int p = 0; ok && p < 5; ++p) {
+            ob_settings s;
+            ok = settings_for(&s, "vbao", sets);
+            if (ok && p < 4) ok = ob_settings_set_samples(&s, ob_quality_samples(names[p])) == OB_OK;
+            if (ok && p == 4) ok = ob_settings_set(&s, "vbao.slices=2") == OB_OK && ob_settings_set(&s, "vbao.steps=3") == OB_OK;
+            CHECK(ok, "settings %d", p);
+            ok = ok && frames_mean(ctx, scene, &cam, &s, &mean[p], &sd[p]);
+        }
+        ob_destroy_scene(scene);
+        if (!ok) continue;
+        for (int p = 0; p < 5; ++p) {
+            double diff = mean[p] - mean[2], se = sqrt((sd[p] * sd[p] + sd[2] * sd[2]) / FRAMES);
+            double z = diff / (se > 1e-7 ? se : 1e-7);
+            printf("  %s:%s %-7s mean AO %.5f (sd %.5f), minus high's %+.5f = %+.1f standard errors\n", views[v][0],
+                   views[v][1], p < 4 ? names[p] : "2 x 3", mean[p], sd[p], diff, z);
+            if (p < 4)
+                CHECK(fabs(z) < 3.0, "%s:%s: the %s preset's mean AO is %+.5f from high's, %.1f standard errors",
+                      views[v][0], views[v][1], names[p], diff, z);
+            else
+                CHECK(z > 3.0, "%s:%s: 2 x 3 steps read more open than high by more than the noise (%+.5f, %.1f "
+                      "standard errors): the check could not tell a drift", views[v][0], views[v][1], diff, z);
+        }
+    }
+}
+
 /* A run's inner half on the screen (shaders/visibility_bitmask.glsl, bitmask_step, its 3.): it
  * covers h pixels of the screen, so on a surface seen at a grazing angle it is stretched along the
  * surface (up to 3x), and it stops at the march's previous step. Two checks:
@@ -1012,6 +1097,7 @@ int main(void)
     check_vent_layers(ctx);
     check_joined_steps(ctx);
     check_stratum_on_screen(ctx);
+    check_presets_agree(ctx);
     /* The bitmask with the second layer as each sample's back (ob_layer_thickness: at least the
      * steps' spacing): the thin slab's true 2 cm, thinner than the 0.375 m default, lets the
      * light under it that AO_R sees (measured +0.006 from AO_R against the default's -0.021).

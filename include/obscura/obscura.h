@@ -446,7 +446,8 @@ ob_error ob_settings_set_ao_divisor(ob_settings *settings, int divisor);
 ob_error ob_settings_set_ao_scale(ob_settings *settings, float scale);
 
 /* Quality presets (Belonogov 2018 §3.2.3, §5.1): "low" 12, "medium" 24, "high" 36, "ultra" 64 samples
- * per pixel. Returns the count, or -1 for an unknown name or NULL (no error recorded). */
+ * per pixel (vbao and vbgi take 64 as 5 slices x 6 steps x 2 sides = 60: they keep 6 steps at
+ * every count). Returns the count, or -1 for an unknown name or NULL (no error recorded). */
 int ob_quality_samples(const char *name);
 /* Give the current method `samples` samples per pixel: the `samples` parameter, or what the
  * method makes of the count (HBAO: directions x steps). Marks what it sets as explicit.
@@ -516,7 +517,9 @@ void ob_renderer_reset_history(ob_renderer *r);
 typedef enum ob_image_kind {
     OB_IMAGE_FINAL_RGBA8 = 0, /* sRGB, rows top to bottom, 4 bytes per pixel */
     OB_IMAGE_AO_F32,          /* visibility after filter and upsampling, 1 float per pixel, bottom row first */
-    OB_IMAGE_AO_RAW_F32,      /* visibility before the filter, at the AO resolution (ao_scale) */
+    OB_IMAGE_AO_RAW_F32,      /* visibility before the filter, at the AO resolution (ao_scale); vbao's
+                               * and vbgi's leave [0, 1] by their noise (an unbiased estimate; the
+                               * filter, `none` included, clamps) */
     OB_IMAGE_DEPTH_F32,       /* linear view depth (0 where no geometry), bottom row first */
     OB_IMAGE_NORMAL_F32,      /* view-space normal xyz, 3 floats per pixel, bottom row first */
     OB_IMAGE_SAMPLES_F32,     /* samples each pixel took (adaptive sampling varies it), bottom row first */
@@ -607,7 +610,7 @@ ob_error ob_set_shader_directory(const char *dir);
 /* The host path of the first releases (ob_host_ao is the whole of it): the settings' method, at
  * the renderer's size, on an engine's linear depth (R32F or R16F positive view depth, or a depth
  * buffer) and view-space normals (any format ob_host_frame takes), written to ao_out (any format
- * ob_host_outputs.ao takes) as the raw AO, OB_IMAGE_AO_RAW_F32 of a frame; proj is the
+ * ob_host_outputs.ao takes) as the raw AO, OB_IMAGE_AO_RAW_F32 of a frame clamped to [0, 1]; proj is the
  * column-major projection used to rasterise them (perspective or orthographic, as
  * ob_host_frame.projection), view space is taken as world space. AO scale,
  * adaptive sampling, temporal accumulation and the guard band are ignored here, and a radius that

@@ -153,7 +153,7 @@ static int gtao_count_rays(const float *params) { return 2 * (int)params[P_SLICE
 static ob_error gtao_set_samples(float *params, uint32_t *params_set, int samples)
 {
     return ob_slice_set_samples("gtao", params, params_set, samples, P_SLICES, P_STEPS, OB_GTAO_MAX_SLICES,
-                                OB_GTAO_MAX_STEPS);
+                                OB_GTAO_MAX_STEPS, 0);
 }
 
 const ob_method_impl ob_method_gtao = {

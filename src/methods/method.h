@@ -220,13 +220,18 @@ extern const char *const ob_noise_options[];     /* texture4, ign */
 /* ---- the slice methods (slices.c): gtao, vbao and vbgi march the same slices ----------------
  * (shaders/slice_march.glsl); what their C sides share. */
 /* N taps per pixel -> slices x steps x 2 sides, written to params[p_slices] and params[p_steps]
- * (the bits of both set in *params_set). Belonogov 2018's quality levels (§3.2.3) get fixed splits:
- * 12 = 2 x 3, 24 = 2 x 6, 36 = 3 x 6, 64 = 4 x 8. Steps come first: too few steps bias the
- * horizon toward open (24 taps on cornell:front: 2 x 6 bias +0.014, 3 x 4 +0.019), while too few
- * slices only add noise that the 4x4 filter window averages. Other counts split N / 2 near
- * slices = sqrt(N / 2) / 1.4. OB_ERR_OUT_OF_RANGE (naming `method`) outside 2..2 x max x max. */
+ * (the bits of both set in *params_set). A sparse march misses small occluders between its steps,
+ * so the step count moves the mean AO, while the slices, averaged, only move the noise.
+ * fixed_steps > 0 (vbao, vbgi): every count marches that many steps, N / (2 x fixed_steps) slices
+ * rounded, at least one (12 = 1 x 6, 24 = 2 x 6, 36 = 3 x 6, 64 -> 5 x 6 = 60 taps with 6): the
+ * presets then agree in their mean (docs/methods.md, "Presets that keep their mean"); counts below
+ * 2 x fixed_steps march N / 2 steps on one slice. fixed_steps = 0 (gtao): Belonogov 2018's quality
+ * levels (§3.2.3) get fixed splits, 12 = 2 x 3, 24 = 2 x 6, 36 = 3 x 6, 64 = 4 x 8 (too few steps
+ * bias the horizon toward open: 24 taps on cornell:front, 2 x 6 bias +0.014, 3 x 4 +0.019), and
+ * other counts split N / 2 near slices = sqrt(N / 2) / 1.4. OB_ERR_OUT_OF_RANGE (naming `method`)
+ * outside 2..2 x max x max. */
 ob_error ob_slice_set_samples(const char *method, float *params, uint32_t *params_set, int samples, int p_slices,
-                              int p_steps, int max_slices, int max_steps);
+                              int p_steps, int max_slices, int max_steps, int fixed_steps);
 /* What a slice method's constants take from the frame: the jitter offsets (an R2 sequence over
  * the frame index, for temporal noise), the MIP level scale of the depth march, and the
  * coarsest MIP level there is (0 without the chain). */

@@ -14,15 +14,27 @@
 #define R2_A2 0.5698402909980532f
 
 ob_error ob_slice_set_samples(const char *method, float *params, uint32_t *params_set, int samples, int p_slices,
-                              int p_steps, int max_slices, int max_steps)
+                              int p_steps, int max_slices, int max_steps, int fixed_steps)
 {
     if (!params) return ob_set_error(OB_ERR_INVALID_ARGUMENT, "%s: params is NULL", method);
     const int most = 2 * max_slices * max_steps;
     if (samples < 2 || samples > most)
         return ob_set_error(OB_ERR_OUT_OF_RANGE, "%s: samples must be 2..%d (2 x slices x steps), got %d", method, most,
                             samples);
-    static const struct { int samples, slices, steps; } presets[] = {{12, 2, 3}, {24, 2, 6}, {36, 3, 6}, {64, 4, 8}};
     int slices = 0, steps = 0;
+    if (fixed_steps > 0) {
+        /* The steps set the mean, the slices only the noise (method.h): every count marches the
+         * same steps, 12 = 1 x 6, 24 = 2 x 6, 36 = 3 x 6, 64 -> 5 x 6 (60). */
+        steps = fixed_steps < max_steps ? fixed_steps : max_steps;
+        if (samples < 2 * steps) steps = samples / 2;
+        slices = (int)lroundf((float)samples / (float)(2 * steps));
+        slices = slices < 1 ? 1 : slices > max_slices ? max_slices : slices;
+        params[p_slices] = (float)slices;
+        params[p_steps] = (float)steps;
+        if (params_set) *params_set |= (1u << p_slices) | (1u << p_steps);
+        return OB_OK;
+    }
+    static const struct { int samples, slices, steps; } presets[] = {{12, 2, 3}, {24, 2, 6}, {36, 3, 6}, {64, 4, 8}};
     for (size_t i = 0; i < sizeof presets / sizeof presets[0]; ++i)
         if (presets[i].samples == samples) {
             slices = presets[i].slices;

@@ -545,7 +545,9 @@ void cli_common_usage(FILE *f, const cli_common *c)
               "  --ao-scales S,S       AO at 1, 0.5 and/or 0.25 of the size, then joint bilateral\n"
               "                        upsampling (default 1); --ao-scale S for one\n"
               "  --quality Q,Q         low|medium|high|ultra = 12/24/36/64 samples per pixel (Belonogov 2018);\n"
-              "                        HBAO as directions x steps, gtao as 2 x slices x steps\n"
+              "                        HBAO as directions x steps, gtao as 2 x slices x steps; vbao and\n"
+              "                        vbgi keep 6 steps over 1/2/3/5 slices (ultra 60), so the presets\n"
+              "                        change their noise and not their mean AO\n"
               "  --samples N,N         samples per pixel (instead of --quality), 1..2048; each method stops\n"
               "                        at its own maximum: 256 (ssao, crytek, alchemy, ssdo*), 1024 (hbao)\n"
               "                        Each combination of these lists is one row, labelled with the\n"
@@ -560,7 +562,9 @@ void cli_common_usage(FILE *f, const cli_common *c)
               "  --ao-scale S          run the AO at 1, 0.5 or 0.25 of the size, then joint bilateral\n"
               "                        upsampling (default 1)\n"
               "  --quality Q           low|medium|high|ultra = 12/24/36/64 samples per pixel (Belonogov 2018);\n"
-              "                        HBAO as directions x steps, gtao as 2 x slices x steps\n"
+              "                        HBAO as directions x steps, gtao as 2 x slices x steps; vbao and\n"
+              "                        vbgi keep 6 steps over 1/2/3/5 slices (ultra 60), so the presets\n"
+              "                        change their noise and not their mean AO\n"
               "  --samples N           samples per pixel, overriding --quality, 1..2048; each method stops\n"
               "                        at its own maximum: 256 (ssao, crytek, alchemy, ssdo*), 1024 (hbao)\n",
               f);

@@ -29,13 +29,9 @@ ob_error ob_slice_set_samples(const char *method, float *params, uint32_t *param
         if (samples < 2 * steps) steps = samples / 2;
         slices = (int)lroundf((float)samples / (float)(2 * steps));
         slices = slices < 1 ? 1 : slices > max_slices ? max_slices : slices;
-        params[p_slices] = (float)slices;
-        params[p_steps] = (float)steps;
-        if (params_set) *params_set |= (1u << p_slices) | (1u << p_steps);
-        return OB_OK;
     }
     static const struct { int samples, slices, steps; } presets[] = {{12, 2, 3}, {24, 2, 6}, {36, 3, 6}, {64, 4, 8}};
-    for (size_t i = 0; i < sizeof presets / sizeof presets[0]; ++i)
+    for (size_t i = 0; fixed_steps <= 0 && i < sizeof presets / sizeof presets[0]; ++i)
         if (presets[i].samples == samples) {
             slices = presets[i].slices;
             steps = presets[i].steps;

@@ -52,7 +52,7 @@ static const ob_param_info vb_params[P_COUNT] = {
                     "which sectors a sample's angle interval sets: every one it touches, those whose centre it "
                     "covers, or those it covers whole",
                     false, coverage_options},
-    /* 3 slices x 6 steps x 2 sides = 36 taps, the high preset; every preset keeps the 6 steps
+    /* 3 slices x 6 steps x 2 sides = 36 taps, the high preset; every preset keeps these 6 steps
      * (VB_PRESET_STEPS below) and changes the slices. */
     [P_SLICES] = {"slices", OB_PARAM_INT, 1.0f, (float)OB_VB_MAX_SLICES, 3.0f, "count",
                   "screen directions N_slices over [0, π), each marched on both sides", false},
@@ -219,10 +219,10 @@ static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, con
 static int vb_count_samples(const float *params) { return 2 * (int)params[P_SLICES] * (int)params[P_STEPS]; }
 static int vb_count_rays(const float *params) { return 2 * (int)params[P_SLICES]; }
 
-/* Every sample count marches the default's 6 steps and changes only its slices (12 = 1 x 6 ...
+/* Every sample count marches the default's steps (6) and changes only its slices (12 = 1 x 6 ...
  * 64 -> 5 x 6): fewer steps read more open, fewer slices only noisier (docs/methods.md, "Presets
  * that keep their mean"). */
-#define VB_PRESET_STEPS 6
+#define VB_PRESET_STEPS ((int)vb_params[P_STEPS].def)
 
 static ob_error vbao_set_samples(float *params, uint32_t *params_set, int samples)
 {

@@ -248,7 +248,9 @@ bool ob_march_fetch(sampler2D depth, vec2 at, float dist_px, vec3 p, float mip_s
 }
 
 /* The second depth layer (depth peeling, passes/peel.c) behind the surface of AO-grid texel q: the
- * linear depth of the full-resolution pixel that texel's depth came from (0 = nothing behind). */
+ * linear depth of the full-resolution pixel that texel's depth came from (0 = nothing behind). vbao
+ * and vbgi read it over the pixel's footprint (second_back.glsl), negated where part of that
+ * footprint's solid has no known back; gtao the peel pass's own layer, never negative. */
 layout(binding = OB_UNIT_SECOND_DEPTH) uniform sampler2D second_layer;
 
 float ob_second_depth(ivec2 q)

@@ -184,10 +184,11 @@ void bitmask_step(ob_slice s, vec2 at, float dist_px, vec3 p, bool positive, boo
      * (ob_layer_thickness; linear depth scales along the ray, so depth z1 + t lies |sv| t / z1
      * along it, t along an orthographic camera's); nothing behind: the constant above. Its own
      * program variant (OB_SLICE_LAYERS): llvmpipe would run the block for every sample with the
-     * layer off too. */
-    float z1 = max(-sv.z, 1e-20);
-    float t2 = ob_layer_thickness(z1, ob_second_depth(texel), -p.z, vb.radius, s.radius_px, vb.steps);
-    thick = t2 > 0.0 ? t2 / (ortho ? 1.0 : z1 * sv_inv) : thick;
+     * layer off too. A back written negated (second_back.glsl: part of the footprint's solid has
+     * no known back) is at least the deepest known and at least the constant: the thicker. */
+    float z1 = max(-sv.z, 1e-20), z2 = ob_second_depth(texel);
+    float t2 = ob_layer_thickness(z1, abs(z2), -p.z, vb.radius, s.radius_px, vb.steps);
+    thick = t2 > 0.0 ? max(t2 / (ortho ? 1.0 : z1 * sv_inv), z2 < 0.0 ? thick : 0.0) : thick;
 #endif
     /* The front and its view ray in the slice's 2D coordinates (ob_rise_angle_of): the back and
      * the column's entry are the front moved along the ray there, and no 3D point past this line

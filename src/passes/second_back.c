@@ -56,15 +56,19 @@ void ob_second_back_reference(const float *front, const float *second, int width
         for (int x = 0; x < width; ++x) {
             size_t i = (size_t)y * (size_t)width + (size_t)x;
             float z2 = second[i], deepest = z2;
+            int sheet = z2 <= front[i], open_behind = 0;
             for (int k = 0; z2 > 0.0f && k < 4; ++k) {
                 int qx = x + step[k][0], qy = y + step[k][1];
                 if (qx < 0 || qy < 0 || qx >= width || qy >= height) continue;
                 size_t j = (size_t)qy * (size_t)width + (size_t)qx;
-                if (second[j] > 0.0f && front[j] > 0.0f && front[j] < z2) {
+                if (!(front[j] > 0.0f && front[j] < z2)) continue;
+                if (second[j] > 0.0f) {
                     float edge = 0.5f * (z2 + second[j]);
                     deepest = edge > deepest ? edge : deepest;
+                } else {
+                    open_behind = 1;
                 }
             }
-            back[i] = deepest;
+            back[i] = open_behind && !sheet ? -deepest : deepest;
         }
 }

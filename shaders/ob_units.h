@@ -43,6 +43,9 @@
 /* The slice methods' `facets` (OB_MARCH_FACETS): the G-buffer's facet normals (full resolution
  * RG16F octahedral; the depth itself where the frame has none, and then no variant reads it). */
 #define OB_UNIT_FACET_NORMAL 11
+/* second_back.glsl: the peel pass's planes (RG16F octahedral, the second layer's own triangles),
+ * beside the G-buffer's facet normals at OB_UNIT_FACET_NORMAL. */
+#define OB_UNIT_SECOND_PLANE 12
 
 /* ssdo's extra view (Belonogov 2018 §4.4): its linear depth, normal (its own view space) and direct
  * radiance; this frame's own where there is none. */

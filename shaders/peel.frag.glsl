@@ -28,6 +28,7 @@
  * around the sheet read a slab between them, and the holes black (docs/methods.md, "Thin holes").
  */
 #include "gbuffer_params.h"
+#include "octahedral.glsl"
 
 in vec3 v_view_pos;
 in vec3 v_view_normal;
@@ -39,6 +40,8 @@ layout(binding = OB_UNIT_FIRST_LAYER) uniform sampler2D first_layer; /* the G-bu
 layout(binding = OB_UNIT_FIRST_FACING) uniform sampler2D first_normal; /* the G-buffer's normal: w = ±part, + front face */
 
 layout(location = 0) out float out_linear_depth;   /* R32F: the second layer's linear depth, 0 = none or unknown */
+layout(location = 1) out vec2 out_plane;           /* RG16F: that surface's own triangle's view normal, octahedral
+                                                      (second_back.glsl reads the back's plane over the pixel) */
 
 /* The separation, relative to the first layer's depth: it drops the first surface itself where a
  * second triangle coincides with it (duplicated or z-fighting faces), and nothing an occluder test
@@ -47,6 +50,9 @@ const float SEPARATION = 1e-3;
 
 void main()
 {
+    /* The triangle's own plane, as the G-buffer's facet normal (gbuffer.frag.glsl): before any
+     * discard, where the quad's derivatives are defined. */
+    out_plane = ob_oct_encode(normalize(cross(dFdx(v_view_pos), dFdy(v_view_pos))));
     float z = -v_view_pos.z;
     float first = texelFetch(first_layer, ivec2(gl_FragCoord.xy), 0).r;
     /* Behind the sky there is nothing (first = 0 only where no triangle covers the pixel). */

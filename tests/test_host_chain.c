@@ -101,12 +101,18 @@ static void same_bits(ob_context *ctx, ob_scene *scene, const char *method, cons
     if (!a || !b) return;
     ob_settings s;
     ob_settings_init(&s, method);
-    /* A host's frame has no facet normals (the G-buffer's fifth target), so ob_host_ao runs
-     * gtao's, vbao's and vbgi's facet wedge off: the frame it must match has it off too. */
+    /* A host's frame has no facet normals (the G-buffer's fifth target) and no planes of the
+     * second layer (the peel pass's second target), so ob_host_ao runs gtao's, vbao's and vbgi's
+     * facet wedge, and vbao's and vbgi's planes, off: the frame it must match has them off too. */
     if (!strcmp(method, "vbao") || !strcmp(method, "vbgi") || !strcmp(method, "gtao")) {
         char facets[32];
         snprintf(facets, sizeof facets, "%s.facets=off", method);
         CHECK(ob_settings_set(&s, facets) == OB_OK, "%s: %s", label, error_text());
+    }
+    if (!strcmp(method, "vbao") || !strcmp(method, "vbgi")) {
+        char planes[32];
+        snprintf(planes, sizeof planes, "%s.planes=off", method);
+        CHECK(ob_settings_set(&s, planes) == OB_OK, "%s: %s", label, error_text());
     }
     if (extra) CHECK(ob_settings_set(&s, extra) == OB_OK, "%s: %s", label, error_text());
     ob_settings_set_ao_divisor(&s, divisor);

@@ -10,6 +10,10 @@
  *   - a neighbour of the same solid whose back is unknown flags the pixel (its back negated: at least
  *     the deepest known and at least the method's constant), a sheet excepted;
  *   - an unknown back (0) stays unknown, sky stays sky; a sheet (back = front) stays a sheet;
+ *   - with the two layers' planes, across an edge where the front is not one surface (a stair of
+ *     one-pixel risers), the back where the ray through that edge leaves the back's plane, at most
+ *     the centre's thickness deeper (perspective and orthographic); one front keeps the
+ *     neighbours' rule;
  *   - odd sizes and a size change (the texture is remade). */
 #include <epoxy/gl.h>
 #include <math.h>
@@ -23,25 +27,46 @@
 
 static ob_second_back gpu; /* one pass for the whole run, so a size change remakes its texture */
 
-/* Both implementations of front/second (w x h), then bit-exact agreement; the GPU's result in out. */
-static void run_both(const char *what, const float *front, const float *second, int w, int h, float *out)
+/* A texture of two floats a pixel: the planes' octahedral pairs (the pass reads any format). */
+static GLuint plane_texture(const float *oct, int w, int h)
+{
+    GLuint t = ob_make_texture_2d(GL_RG32F, w, h);
+    glTextureSubImage2D(t, 0, 0, 0, w, h, GL_RG, GL_FLOAT, oct);
+    return t;
+}
+
+/* Both implementations of front/second (w x h) and planes (or NULL), then agreement: bit for bit
+ * without planes; with them within 1e-5 of the depth (the GPU's normalize and division round
+ * differently from C's). The GPU's result in out. */
+static void run_both(const char *what, const float *front, const float *second, int w, int h,
+                     const ob_second_back_planes_data *planes, float *out)
 {
     size_t n = (size_t)w * (size_t)h;
     float *cpu = malloc(n * sizeof(float));
-    ob_second_back_reference(front, second, w, h, cpu);
+    ob_second_back_reference(front, second, w, h, planes, cpu);
     GLuint f = ob_make_texture_2d(GL_R32F, w, h), s = ob_make_texture_2d(GL_R32F, w, h);
     glTextureSubImage2D(f, 0, 0, 0, w, h, GL_RED, GL_FLOAT, front);
     glTextureSubImage2D(s, 0, 0, 0, w, h, GL_RED, GL_FLOAT, second);
-    CHECK(ob_second_back_run(&gpu, f, s) == OB_OK, "%s: gpu run %dx%d", what, w, h);
+    ob_second_back_planes gpu_planes = {0};
+    if (planes) {
+        gpu_planes.front = plane_texture(planes->front, w, h);
+        gpu_planes.back = plane_texture(planes->back, w, h);
+        memcpy(gpu_planes.proj_info, planes->proj_info, sizeof gpu_planes.proj_info);
+        gpu_planes.orthographic = planes->orthographic;
+    }
+    CHECK(ob_second_back_run(&gpu, f, s, planes ? &gpu_planes : NULL) == OB_OK, "%s: gpu run %dx%d", what, w, h);
     CHECK(gpu.width == w && gpu.height == h, "%s: the texture is %dx%d, want %dx%d", what, gpu.width, gpu.height, w, h);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
     glGetTextureImage(gpu.texture, 0, GL_RED, GL_FLOAT, (GLsizei)(n * sizeof(float)), out);
     int differ = 0;
-    for (size_t i = 0; i < n; ++i) differ += memcmp(&cpu[i], &out[i], sizeof(float)) != 0;
+    for (size_t i = 0; i < n; ++i)
+        differ += planes ? !(fabsf(cpu[i] - out[i]) <= 1e-5f * fabsf(cpu[i])) : memcmp(&cpu[i], &out[i], sizeof(float)) != 0;
     CHECK(differ == 0, "%s: %d of %zu texels differ between the GPU pass and its CPU twin", what, differ, n);
     CHECK(glGetError() == GL_NO_ERROR, "%s: no GL error", what);
     glDeleteTextures(1, &f);
     glDeleteTextures(1, &s);
+    glDeleteTextures(1, &gpu_planes.front);
+    glDeleteTextures(1, &gpu_planes.back);
     free(cpu);
 }
 
@@ -53,7 +78,7 @@ static void test_wedge(void)
     float front[W * H], second[W * H], out[W * H];
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) front[y * W + x] = 10.0f, second[y * W + x] = 10.5f + 0.01f * (float)x;
-    run_both("wedge", front, second, W, H, out);
+    run_both("wedge", front, second, W, H, NULL, out);
     int bad = 0;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
@@ -74,7 +99,7 @@ static void test_neighbours(void)
     const float front[W] = {10.0f, 10.0f, 10.0f, 10.0f, 30.0f, 10.0f, 9.0f, 0.0f};
     const float second[W] = {10.1f, 10.1f, 12.0f, 10.1f, 31.0f, 10.1f, 0.0f, 0.0f};
     float out[W];
-    run_both("neighbours", front, second, W, H, out);
+    run_both("neighbours", front, second, W, H, NULL, out);
     CHECK(out[0] == 10.1f, "a thin pixel between thin ones keeps its back: %g", (double)out[0]);
     CHECK(out[1] == 0.5f * (10.1f + 12.0f) && out[3] == out[1],
           "a thin pixel beside a thick one of the same solid reaches half way to its back: %g, %g", (double)out[1],
@@ -101,7 +126,7 @@ static void test_open_behind(void)
     const float front[H] = {20.0f, 20.0f, 19.0f, 18.0f, 17.5f, 17.0f};
     const float second[H] = {20.3f, 0.0f, 19.3f, 18.3f, 17.5f, 0.0f};
     float out[H];
-    run_both("open behind", front, second, W, H, out);
+    run_both("open behind", front, second, W, H, NULL, out);
     CHECK(out[0] == -20.3f, "a riser's top row above its unknown lower row is flagged: %g", (double)out[0]);
     CHECK(out[1] == 0.0f && out[5] == 0.0f, "unknown stays unknown: %g, %g", (double)out[1], (double)out[5]);
     CHECK(out[2] == 19.3f,
@@ -112,6 +137,76 @@ static void test_open_behind(void)
           (double)out[4]);
 }
 
+/* The two layers' planes over the footprint, under a camera of 60 degrees. A stair of risers one
+ * pixel row tall facing the camera, each 0.5 nearer than the row above, each step leaving through
+ * its horizontal tread 0.5 behind its riser on the ray through the pixel's centre (a back plane
+ * y = const through that point). Across each row's upper and lower edges the front is another
+ * riser, and the back is where the ray through that edge leaves the tread, 20.5 nc / ne deep for
+ * the edge's and centre's ndc.y at depth 20: the edge nearer the horizon runs longer under the tread,
+ * at most the centre's thickness deeper. One riser of the same tread planes (no step between the rows)
+ * is one front, and keeps its neighbours' backs; so does a slab seen face-on (parallel planes). An
+ * orthographic camera and a back tilted by 2 in y: the deeper edge lies 2 * 0.1 further. A sheet
+ * stays a sheet. */
+static void test_planes(void)
+{
+    enum { W = 4, H = 100 };
+    const double f = 1.0 / tan(3.14159265358979323846 / 6.0), aspect = (double)W / (double)H;
+    static float front[W * H], second[W * H], fo[2 * W * H], bo[2 * W * H], out[W * H];
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            int i = y * W + x;
+            front[i] = 20.0f + 0.5f * (float)(y % 2), second[i] = front[i] + 0.5f;
+            fo[2 * i] = fo[2 * i + 1] = 0.0f;       /* (0, 0, 1): the riser faces the camera */
+            bo[2 * i] = 0.0f, bo[2 * i + 1] = 1.0f; /* (0, 1, 0): the tread */
+        }
+    ob_second_back_planes_data pl = {fo, bo, {(float)(aspect / f), (float)(1.0 / f), 0.0f, 0.0f}, 0};
+    run_both("planes: stair", front, second, W, H, &pl, out);
+    int bad = 0, deeper = 0;
+    for (int y = 0; y < H; ++y) {
+        double z1 = front[y * W], z2 = second[y * W], nc = ((double)y + 0.5) * 2.0 / H - 1.0, want = z2;
+        for (int k = -1; k <= 1; k += 2) {
+            double ne = nc + k * 1.0 / H;
+            if (fabs(ne) < 1e-9 || (ne > 0) != (nc > 0)) continue;
+            want = fmax(want, fmin(z2 * nc / ne, 2.0 * z2 - z1));
+        }
+        /* The nearer row below (y % 2 == 0 lies in front of the odd rows' backs) is a neighbour of
+         * the same solid: its back's mean with this one's is nearer than this one's, no deeper. */
+        for (int x = 0; x < W; ++x) {
+            bad += fabs(out[y * W + x] - want) > 2e-4 * want;
+            deeper += out[y * W + x] > second[y * W + x] + 0.05f;
+        }
+    }
+    CHECK(bad == 0, "planes: %d stair pixels not at the back of their deeper edge", bad);
+    CHECK(deeper >= W * (H - 4), "planes: only %d of %d stair pixels deeper than their centre's back", deeper, W * H);
+
+    for (int i = 0; i < W * H; ++i) front[i] = 20.0f, second[i] = 20.5f;
+    run_both("planes: one riser", front, second, W, H, &pl, out);
+    bad = 0;
+    for (int i = 0; i < W * H; ++i) bad += fabsf(out[i] - 20.5f) > 1e-5f;
+    CHECK(bad == 0, "planes: %d pixels of one riser (one front) moved from their neighbours' backs", bad);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) front[y * W + x] = 20.0f + 0.5f * (float)(y % 2), second[y * W + x] = front[y * W + x] + 0.5f;
+
+    for (int i = 0; i < W * H; ++i) bo[2 * i] = bo[2 * i + 1] = 0.0f;
+    run_both("planes: slab", front, second, W, H, &pl, out);
+    bad = 0;
+    for (int i = 0; i < W * H; ++i) bad += fabsf(out[i] - second[i]) > 1e-5f;
+    CHECK(bad == 0, "planes: %d pixels of a slab seen face-on moved", bad);
+
+    /* Orthographic: proj_info (1/P00, 1/P11, -P30, -P31), a view 10 units high; the back's normal
+     * (0, 2, 1) / sqrt 5, octahedral (0, 2/3). Half a pixel is 0.1 view units. */
+    for (int i = 0; i < W * H; ++i) bo[2 * i] = 0.0f, bo[2 * i + 1] = 2.0f / 3.0f;
+    ob_second_back_planes_data ortho = {fo, bo, {10.0f * (float)aspect, 10.0f, 0.0f, 0.0f}, 1};
+    run_both("planes: orthographic", front, second, W, H, &ortho, out);
+    bad = 0;
+    for (int i = 0; i < W * H; ++i) bad += fabsf(out[i] - (second[i] + 0.2f)) > 1e-4f;
+    CHECK(bad == 0, "planes: %d pixels of a tilted back under an orthographic camera not 0.2 deeper (%g at 0)", bad,
+          (double)out[0]);
+
+    run_both("planes: sheet", front, front, W, H, &pl, out);
+    CHECK(!memcmp(out, front, sizeof out), "planes: a sheet stays its own back");
+}
+
 /* A sheet seen at a slant, its own back (second = front), with holes (sky) in it: nothing changes. */
 static void test_sheet(void)
 {
@@ -119,7 +214,7 @@ static void test_sheet(void)
     float front[W * H], out[W * H];
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) front[y * W + x] = (x % 5 == 2 && y % 5 == 2) ? 0.0f : 5.0f + 0.3f * (float)x;
-    run_both("sheet", front, front, W, H, out);
+    run_both("sheet", front, front, W, H, NULL, out);
     CHECK(!memcmp(out, front, sizeof out), "a sheet stays its own back");
 }
 
@@ -143,7 +238,7 @@ static void test_random(void)
         }
         char what[32];
         snprintf(what, sizeof what, "random %dx%d", w, h);
-        run_both(what, front, second, w, h, out);
+        run_both(what, front, second, w, h, NULL, out);
         int nearer = 0, unknown = 0, flagged = 0;
         for (size_t i = 0; i < n; ++i) {
             nearer += fabsf(out[i]) < second[i];
@@ -172,6 +267,7 @@ int main(void)
     test_wedge();
     test_neighbours();
     test_open_behind();
+    test_planes();
     test_sheet();
     test_random();
     ob_second_back_destroy(&gpu);

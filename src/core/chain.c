@@ -85,10 +85,14 @@ static ob_error make_depth_mips(ob_renderer *r, GLuint depth, int width, int hei
 
 /* The second layer over each pixel's footprint (passes/second_back.c) from the frame's full-resolution
  * depth and *second (the peel pass's or a host's), into *second. */
-static ob_error make_second_back(ob_renderer *r, GLuint depth, GLuint *second)
+static ob_error make_second_back(ob_renderer *r, const ob_chain_io *io, bool planes_wanted, GLuint *second)
 {
     if (!r->second_back.pass.program && ob_second_back_init(&r->second_back) != OB_OK) return ob_peek_error(NULL);
-    ob_error err = ob_second_back_run(&r->second_back, depth, *second);
+    ob_second_back_planes planes = {.front = planes_wanted ? io->facet : 0,
+                                    .back = planes_wanted ? io->second_plane : 0,
+                                    .orthographic = r->frame_constants.orthographic};
+    memcpy(planes.proj_info, r->frame_constants.proj_info, sizeof planes.proj_info);
+    ob_error err = ob_second_back_run(&r->second_back, io->depth, *second, &planes);
     if (err == OB_OK) *second = r->second_back.texture;
     return err;
 }
@@ -264,7 +268,7 @@ static ob_error run_method_stage(chain_run *c)
     GLuint second = reads & OB_READS_SECOND_LAYER ? io->second_depth : 0;
     if (second && (reads & OB_READS_SECOND_BACK)) {
         ob_timer_begin(&r->timers, "second_back");
-        err = make_second_back(r, io->depth, &second);
+        err = make_second_back(r, io, (reads & OB_READS_SECOND_PLANES) != 0, &second);
         if (err != OB_OK) return err;
     }
     const ob_ao_inputs in = {.frame = &r->frame_constants,

@@ -288,6 +288,7 @@ static ob_error run_passes(ob_renderer *r, const ob_settings *s, const ob_method
                             .albedo = r->gbuffer.albedo,
                             .facet = r->gbuffer.facet,
                             .second_depth = plan->reads & OB_READS_SECOND_LAYER ? r->peel.linear_depth : 0,
+                            .second_plane = plan->reads & OB_READS_SECOND_LAYER ? r->peel.plane : 0,
                             .extra_view = (plan->reads & OB_READS_EXTRA_VIEW) != 0,
                             .ao = r->ao};
     err = ob_run_ao_chain(r, s, plan, t, &io);

@@ -131,7 +131,7 @@ uint64_t ob_estimate_renderer_memory(int width, int height, const ob_settings *s
     if (guard > 0) bytes += visible * (gbuffer + 4 + 8);
     if (full_rgb) bytes += inner * 16u;  /* ao_rgb, bounce: RGBA16F (ob_renderer_rgb_targets) */
     if (full_bent) bytes += inner * 8u;  /* bent */
-    if (peel) bytes += inner * 8u;       /* passes/peel.c: depth32F, linear depth R32F */
+    if (peel) bytes += inner * 12u;      /* passes/peel.c: depth32F, linear depth R32F, planes RG16F */
     if (second_back) bytes += inner * 4u; /* passes/second_back.c: R32F */
     if (extra) bytes += inner * (gbuffer + 8); /* frame.c: the extra view's G-buffer and direct light */
     uint64_t mips = 0, packed = 0, split = 0;

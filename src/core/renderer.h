@@ -199,6 +199,7 @@ typedef struct ob_chain_io {
     GLuint radiance, albedo;   /* for methods that read them; 0 otherwise */
     GLuint second_depth;       /* linear depth of the second layer, or 0 */
     GLuint facet;              /* the G-buffer's facet normals (RG16F octahedral), or 0 (a host's frame) */
+    GLuint second_plane;       /* the peel pass's own planes (RG16F octahedral), or 0 (a host's frame) */
     bool extra_view;           /* the extra view was rendered this frame (ob_render_frame) */
     GLuint ao;                 /* R32F: the visibility (r->ao, or a host's R32F texture) */
     GLuint motion;             /* a host's motion vectors for the temporal accumulation, or 0 */

@@ -27,6 +27,10 @@ enum {
      * (vbao, vbgi). gtao and ssdo read the layer as it is (docs/methods.md, "The back over a
      * pixel's footprint"). */
     OB_READS_SECOND_BACK = 1u << 8,
+    /* With OB_READS_SECOND_BACK: that pass follows the two layers' own planes (the G-buffer's facet
+     * normals and the peel pass's) across a footprint edge where the front steps; a host's frame
+     * has none (docs/methods.md, "Where part of the footprint has no known back"). */
+    OB_READS_SECOND_PLANES = 1u << 9,
 };
 
 /* What a method writes (ob_method_impl.writes); the renderer makes, filters and upsamples each. */

@@ -26,6 +26,7 @@ enum {
     P_LAYERS,
     P_CONNECT,
     P_FACETS,
+    P_PLANES,
     P_EMITTER_COSINE, /* vbgi only from here on: the last entries, so vbao's table is the prefix */
     P_PACKED,
     P_COUNT
@@ -103,6 +104,15 @@ static const ob_param_info vb_params[P_COUNT] = {
                   "triangle, which a smooth-shaded mesh hides from its normals (needs the G-buffer's facet "
                   "normals; off in a host's frame)",
                   false},
+    /* On: the back over a pixel's footprint follows the second layer's own plane across an edge
+     * where the front steps to another surface (a stair of one-pixel risers: shaders/second_back.glsl,
+     * docs/methods.md "Where part of the footprint has no known back"). Needs the peel pass's planes:
+     * a host's frame has none, and there it is off. */
+    [P_PLANES] = {"planes", OB_PARAM_BOOL, 0.0f, 1.0f, 1.0f, "on/off",
+                  "with layers=2, the back over a pixel's footprint follows the second layer's own plane "
+                  "across an edge where the front steps to another surface (needs the peel pass's planes; "
+                  "off in a host's frame)",
+                  false},
     [P_EMITTER_COSINE] = {"emitter_cosine", OB_PARAM_BOOL, 0.0f, 1.0f, 0.0f, "on/off",
                           "a sender's radiance times its cosine toward P (the paper's); off: its radiance where it "
                           "faces P (the solid-angle form of the one-bounce integral)",
@@ -169,20 +179,22 @@ static void vb_destroy(void *p)
 static uint32_t vb_active_reads(const float *params, uint32_t reads)
 {
     if (params[P_DEPTH_MIPS] == 0.0f) reads &= ~(uint32_t)OB_READS_DEPTH_MIPS;
-    if (params[P_LAYERS] < 2.0f) reads &= ~(uint32_t)(OB_READS_SECOND_LAYER | OB_READS_SECOND_BACK);
+    if (params[P_LAYERS] < 2.0f)
+        reads &= ~(uint32_t)(OB_READS_SECOND_LAYER | OB_READS_SECOND_BACK | OB_READS_SECOND_PLANES);
+    if (params[P_PLANES] == 0.0f) reads &= ~(uint32_t)OB_READS_SECOND_PLANES;
     return reads;
 }
 
 static uint32_t vbao_active_reads(const float *params)
 {
     return vb_active_reads(params, OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER |
-                                       OB_READS_SECOND_BACK);
+                                       OB_READS_SECOND_BACK | OB_READS_SECOND_PLANES);
 }
 
 static uint32_t vbgi_active_reads(const float *params)
 {
     return vb_active_reads(params, OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS |
-                                       OB_READS_SECOND_LAYER | OB_READS_SECOND_BACK);
+                                       OB_READS_SECOND_LAYER | OB_READS_SECOND_BACK | OB_READS_SECOND_PLANES);
 }
 
 static ob_error vb_run(void *p, const ob_ao_inputs *in, const float *params, const ob_ao_outputs *out)
@@ -251,7 +263,8 @@ const ob_method_impl ob_method_vbao = {
     .shader = "vbao.glsl",
     .constants_size = sizeof(ob_vb_constants),
     .state_size = sizeof(vb_state),
-    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER | OB_READS_SECOND_BACK,
+    .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER | OB_READS_SECOND_BACK |
+             OB_READS_SECOND_PLANES,
     .writes = OB_WRITES_VISIBILITY,
     .init = vbao_init,
     .run = vb_run,
@@ -274,7 +287,7 @@ const ob_method_impl ob_method_vbgi = {
     .constants_size = sizeof(ob_vb_constants),
     .state_size = sizeof(vb_state),
     .reads = OB_READS_DEPTH | OB_READS_NORMALS | OB_READS_RADIANCE | OB_READS_DEPTH_MIPS | OB_READS_SECOND_LAYER |
-             OB_READS_SECOND_BACK,
+             OB_READS_SECOND_BACK | OB_READS_SECOND_PLANES,
     .writes = OB_WRITES_VISIBILITY | OB_WRITES_BOUNCE,
     .init = vbgi_init,
     .run = vb_run,

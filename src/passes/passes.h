@@ -54,6 +54,7 @@ typedef struct ob_peel {
     GLuint program, ubo, fbo;
     GLuint depth;         /* DEPTH_COMPONENT32F */
     GLuint linear_depth;  /* R32F, the second layer */
+    GLuint plane;         /* RG16F: the second layer's own triangle's view normal, octahedral */
     int width, height;    /* of the targets; 0 until the first run */
 } ob_peel;
 
@@ -174,16 +175,36 @@ typedef struct ob_second_back {
  * OB_ERR_SHADER. */
 ob_error ob_second_back_init(ob_second_back *b);
 /* b->texture from front_depth (the first layer's linear depth) and second_depth (the peel pass's),
- * both R32F-readable and of one size, their writes visible to texture fetches. Remakes the texture
+ * both R32F-readable and of one size, their writes visible to texture fetches; with planes (both
+ * textures non-zero, of that size) the back over the footprint's edges where the front steps
+ * (shaders/second_back.glsl). A pixel written negated is flagged: part of its footprint's solid has
+ * no known back. Remakes the texture
  * when the size differs from the last run's. Issues a texture-fetch barrier after its dispatch.
  * Not timed here. Errors: OB_ERR_INVALID_ARGUMENT (not initialised, an input 0), OB_ERR_BAD_SIZE,
  * OB_ERR_GL (the texture could not be made; b keeps its old one and nothing runs). */
-ob_error ob_second_back_run(ob_second_back *b, GLuint front_depth, GLuint second_depth);
+/* The two layers' own planes, for the back over the footprint's edges: the first layer's facet
+ * normals (the G-buffer's) and the second's (the peel pass's), RG16F octahedral, with the camera that
+ * maps a pixel to its view ray (frame_params.h's proj_info, and 1 for an orthographic camera). */
+typedef struct ob_second_back_planes {
+    GLuint front, back;
+    float proj_info[4];
+    int orthographic;
+} ob_second_back_planes;
+/* planes may be NULL (a host's frame: no planes), and then only the neighbours' backs count. */
+ob_error ob_second_back_run(ob_second_back *b, GLuint front_depth, GLuint second_depth,
+                            const ob_second_back_planes *planes);
 /* Safe on a zeroed or already destroyed b. */
 void ob_second_back_destroy(ob_second_back *b);
 /* The CPU twin of the shader, for the tests: back (width x height floats, row-major) from front
- * and second. */
-void ob_second_back_reference(const float *front, const float *second, int width, int height, float *back);
+ * and second; planes as ob_second_back_planes with the normals' octahedral pairs in memory (two
+ * floats a pixel, as the textures hold them), or NULL. */
+typedef struct ob_second_back_planes_data {
+    const float *front, *back;
+    float proj_info[4];
+    int orthographic;
+} ob_second_back_planes_data;
+void ob_second_back_reference(const float *front, const float *second, int width, int height,
+                              const ob_second_back_planes_data *planes, float *back);
 
 /* ---- depth MIP prefilter: depth_mips.c, shaders/depth_mips.glsl (issue 13) -------------------
  * A MIP chain of linear view depth (R32F, positive along -Z, 0 = sky) built in one dispatch, for

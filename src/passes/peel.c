@@ -1,6 +1,7 @@
 /* The second depth layer (shaders/peel.frag.glsl): one more raster pass over the G-buffer's
- * meshes, made and run only for a method that reads OB_READS_SECOND_LAYER. Its targets follow the
- * G-buffer's size, so a resize (or a guard band) remakes them on the next run. */
+ * meshes, made and run only for a method that reads OB_READS_SECOND_LAYER. It writes the layer's
+ * linear depth and its own triangles' planes (their normals, which second_back.glsl reads). Its
+ * targets follow the G-buffer's size, so a resize (or a guard band) remakes them on the next run. */
 #include <string.h>
 
 #include "base/error.h"
@@ -9,9 +10,9 @@
 
 static void release_targets(ob_peel *p)
 {
-    GLuint tex[2] = {p->depth, p->linear_depth};
-    glDeleteTextures(2, tex);
-    p->depth = p->linear_depth = 0;
+    GLuint tex[3] = {p->depth, p->linear_depth, p->plane};
+    glDeleteTextures(3, tex);
+    p->depth = p->linear_depth = p->plane = 0;
     p->width = p->height = 0;
 }
 
@@ -23,7 +24,8 @@ ob_error ob_peel_init(ob_peel *p)
     glCreateBuffers(1, &p->ubo);
     glNamedBufferStorage(p->ubo, sizeof(ob_gbuffer_constants), NULL, GL_DYNAMIC_STORAGE_BIT);
     glCreateFramebuffers(1, &p->fbo);
-    glNamedFramebufferDrawBuffer(p->fbo, GL_COLOR_ATTACHMENT0);
+    const GLenum draw[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(p->fbo, 2, draw);
     return OB_OK;
 }
 
@@ -32,8 +34,10 @@ static ob_error make_targets(ob_peel *p, int width, int height)
     release_targets(p);
     p->depth = ob_make_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
     p->linear_depth = ob_make_texture_2d(GL_R32F, width, height);
+    p->plane = ob_make_texture_2d(GL_RG16F, width, height);
     glNamedFramebufferTexture(p->fbo, GL_DEPTH_ATTACHMENT, p->depth, 0);
     glNamedFramebufferTexture(p->fbo, GL_COLOR_ATTACHMENT0, p->linear_depth, 0);
+    glNamedFramebufferTexture(p->fbo, GL_COLOR_ATTACHMENT1, p->plane, 0);
     GLenum status = glCheckNamedFramebufferStatus(p->fbo, GL_FRAMEBUFFER);
     GLenum e = glGetError();
     if (e != GL_NO_ERROR || status != GL_FRAMEBUFFER_COMPLETE) {
@@ -64,6 +68,7 @@ ob_error ob_peel_run(ob_peel *p, const ob_gbuffer *g, const float *view, const f
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     const float one = 1.0f;
     glClearNamedFramebufferfv(p->fbo, GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(p->fbo, GL_COLOR, 1, zero);
     glClearNamedFramebufferfv(p->fbo, GL_DEPTH, 0, &one);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);

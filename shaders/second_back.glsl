@@ -67,10 +67,13 @@ vec3 view_position(vec2 pixel, float d)
 }
 
 /* The linear depth at which the view ray through `pixel` meets the plane through q of normal m;
- * -1 where the ray runs along it. */
+ * -1 where the ray runs along it. The ray is o + t d at depth t: from the eye through the point at
+ * depth 1, or an orthographic ray's origin on the image plane along -Z. */
 float plane_depth(vec2 pixel, vec3 q, vec3 m)
 {
-    vec3 o = view_position(pixel, 0.0), d = view_position(pixel, 1.0) - o;
+    vec3 at_one = view_position(pixel, 1.0);
+    bool ortho = sb.size.w != 0;
+    vec3 o = ortho ? vec3(at_one.xy, 0.0) : vec3(0.0), d = ortho ? vec3(0.0, 0.0, -1.0) : at_one;
     float den = dot(d, m);
     return abs(den) > 1e-4 * length(d) ? dot(q - o, m) / den : -1.0;
 }
@@ -100,11 +103,13 @@ void main()
                 if (q2 > 0.0) deepest = max(deepest, 0.5 * (z2 + q2));
                 else open_behind = true;
             }
-            if (planes) {
-                float seen = plane_depth(vec2(q) + 0.5, f, n);
-                bool same_front = q1 > 0.0 && seen > 0.0 && abs(q1 - seen) <= 0.5 * abs(q1 - z1);
+            /* The back's plane only where the front steps across this edge: most edges lie inside
+             * one surface, and there the second ray is not cast. */
+            float seen = planes && q1 > 0.0 ? plane_depth(vec2(q) + 0.5, f, n) : -1.0;
+            bool same_front = seen > 0.0 && abs(q1 - seen) <= 0.5 * abs(q1 - z1);
+            if (planes && !same_front) {
                 float edge = plane_depth(c + 0.5 * vec2(step[k]), b, m);
-                if (!same_front && edge > 0.0) deepest = max(deepest, min(edge, 2.0 * z2 - z1));
+                if (edge > 0.0) deepest = max(deepest, min(edge, 2.0 * z2 - z1));
             }
         }
     }

@@ -85,10 +85,15 @@ static float twin_dot(const float a[3], const float b[3]) { return a[0] * b[0] +
 
 static float twin_plane_depth(const twin_camera *c, float px, float py, const float q[3], const float m[3])
 {
-    float o[3], d[3], qo[3];
-    twin_view_position(c, px, py, 0.0f, o);
-    twin_view_position(c, px, py, 1.0f, d);
-    for (int k = 0; k < 3; ++k) d[k] -= o[k], qo[k] = q[k] - o[k];
+    float at_one[3], o[3] = {0.0f, 0.0f, 0.0f}, d[3], qo[3];
+    twin_view_position(c, px, py, 1.0f, at_one);
+    if (c->orthographic) {
+        o[0] = at_one[0], o[1] = at_one[1];
+        d[0] = 0.0f, d[1] = 0.0f, d[2] = -1.0f;
+    } else {
+        memcpy(d, at_one, sizeof d);
+    }
+    for (int k = 0; k < 3; ++k) qo[k] = q[k] - o[k];
     float den = twin_dot(d, m);
     return fabsf(den) > 1e-4f * sqrtf(twin_dot(d, d)) ? twin_dot(qo, m) / den : -1.0f;
 }
@@ -139,12 +144,14 @@ void ob_second_back_reference(const float *front, const float *second, int width
                             open_behind = 1;
                         }
                     }
-                    if (with_planes) {
-                        float seen = twin_plane_depth(&cam, (float)qx + 0.5f, (float)qy + 0.5f, f, n);
-                        int same_front = q1 > 0.0f && seen > 0.0f && fabsf(q1 - seen) <= 0.5f * fabsf(q1 - z1);
+                    float seen = with_planes && q1 > 0.0f
+                                     ? twin_plane_depth(&cam, (float)qx + 0.5f, (float)qy + 0.5f, f, n)
+                                     : -1.0f;
+                    int same_front = seen > 0.0f && fabsf(q1 - seen) <= 0.5f * fabsf(q1 - z1);
+                    if (with_planes && !same_front) {
                         float edge = twin_plane_depth(&cam, cx + 0.5f * (float)step[k][0], cy + 0.5f * (float)step[k][1], b, m);
                         float cap = 2.0f * z2 - z1;
-                        if (!same_front && edge > 0.0f) {
+                        if (edge > 0.0f) {
                             edge = edge < cap ? edge : cap;
                             deepest = edge > deepest ? edge : deepest;
                         }
